@@ -1,0 +1,89 @@
+# libbraun — top-level build.
+#   make              build/libbraun.a and build/bin/braun
+#   make test         build and run every test (installs missing Debian packages)
+#   make install      PREFIX=/usr/local DESTDIR=
+#   make clean
+# Options: BRAUN_SINGLE=1 builds braun_real = float.
+
+CC      ?= cc
+AR      ?= ar
+PREFIX  ?= /usr/local
+DESTDIR ?=
+BUILD   ?= build
+
+WARN    := -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes
+OPT     ?= -O2 -g
+CFLAGS  ?=
+CPPFLAGS_ALL := -Iinclude -Isrc $(CPPFLAGS)
+ifeq ($(BRAUN_SINGLE),1)
+CPPFLAGS_ALL += -DBRAUN_SINGLE
+endif
+CFLAGS_ALL := -std=c99 $(OPT) $(WARN) $(CFLAGS)
+LDLIBS_ALL := -lm $(LDLIBS)
+
+# Core library: src/*.c and src/models/*.c depend on nothing but libm.
+LIB_SRC := $(sort $(wildcard src/*.c) $(wildcard src/models/*.c))
+# Host conveniences (allocation, message formatting): in the host library,
+# never in the firmware build.
+HOST_SRC := $(sort $(wildcard src/host/*.c))
+CLI_SRC  := $(sort $(wildcard src/cli/*.c))
+LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/obj/%.o) $(HOST_SRC:%.c=$(BUILD)/obj/%.o)
+CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/obj/%.o)
+HEADERS  := $(wildcard include/*.h) $(wildcard src/*.h)
+
+TEST_SRC  := $(sort $(wildcard tests/test_*.c))
+TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+
+.PHONY: all lib cli test test-unit test-cli deps-test install clean convergence
+all: lib cli
+lib: $(BUILD)/libbraun.a
+cli: $(BUILD)/bin/braun
+
+$(BUILD)/obj/%.o: %.c $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -c $< -o $@
+
+$(BUILD)/libbraun.a: $(LIB_OBJ)
+	@mkdir -p $(dir $@)
+	rm -f $@
+	$(AR) rcs $@ $^
+
+$(BUILD)/bin/braun: $(CLI_OBJ) $(BUILD)/libbraun.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) $(CLI_OBJ) $(BUILD)/libbraun.a $(LDLIBS_ALL) -o $@
+
+# ---------------------------------------------------------------- tests
+TEST_DEPS := libcmocka-dev
+
+deps-test:
+	@tools/ensure-deps $(TEST_DEPS)
+
+$(BUILD)/tests/%: tests/%.c tests/test_util.h $(BUILD)/libbraun.a | deps-test
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) -Itests $(CFLAGS_ALL) $< $(BUILD)/libbraun.a -lcmocka $(LDLIBS_ALL) -o $@
+
+test: deps-test
+	@$(MAKE) --no-print-directory test-unit test-cli
+
+# Runs every unit test binary; prints one closing line "N passed, N failed".
+test-unit: $(TEST_BIN)
+	@tools/run-tests $(TEST_BIN)
+
+test-cli: $(BUILD)/bin/braun
+	@sh tests/cli/run.sh $(BUILD)/bin/braun
+
+# Observed order of convergence (docs/method.md).
+convergence: $(BUILD)/bin/braun
+	@sh tools/convergence.sh $(BUILD)/bin/braun
+
+# ---------------------------------------------------------------- install
+install: all
+	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
+	install -m 644 include/braun.h include/braun_models.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(BUILD)/libbraun.a $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(BUILD)/bin/braun $(DESTDIR)$(PREFIX)/bin/
+	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/^#define BRAUN_VERSION "\(.*\)"/\1/p' include/braun.h)|g' \
+	    braun.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/braun.pc
+
+clean:
+	rm -rf $(BUILD)

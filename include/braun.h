@@ -1,0 +1,306 @@
+/*
+ * libbraun — constrained mechanical systems with explicit ODE solvers.
+ *
+ * Implements the corrected equation of motion of Braun & Goldfarb,
+ * "Simulation of Constrained Mechanical Systems — Part I" (J. Appl. Mech. 2012):
+ *   Eq. 16  q' = v + R^-1 C_q^+ (b_q - A_q v - Δ_q)                 (position impulse)
+ *   Eq. 17  v' = a + R^-1 C_v^+ (b_v - A_v a - Δ_v) + R^-1 N_v R^-T Q0 (velocity force)
+ *   Eq. 20  Q0 = R^T [C_e N_v]^+ (b_ev - A_ev a - Δ_ev)               (energy force)
+ * with M = R^T R (Cholesky), C_* = A_* R^-1, N_v = I - C_v^+ C_v.
+ *
+ * Layers (GSL-like): braun_eval (corrected right-hand side, no time advance)
+ *   -> braun_step (one explicit step) -> braun_integrate (driver to t_end).
+ *
+ * Memory (CMSIS-like): a braun_model (sizes, callbacks, options) is immutable
+ * while simulating; a braun_data holds state, statistics and all scratch,
+ * carved out of one caller-provided buffer of braun_data_size() bytes.
+ * Nothing is allocated inside a step.
+ *
+ * Status convention: 0 is success, > 0 informational, < 0 an error.
+ * Callbacks follow SUNDIALS: return 0 on success, > 0 for a recoverable
+ * failure (the adaptive driver retries with a smaller step), < 0 fatal.
+ */
+#ifndef BRAUN_H
+#define BRAUN_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------ */
+/* Scalar type: double, or float with -DBRAUN_SINGLE.                  */
+/* ------------------------------------------------------------------ */
+#ifdef BRAUN_SINGLE
+typedef float braun_real;
+#define BRAUN_R(x) (x##f)
+#else
+typedef double braun_real;
+#define BRAUN_R(x) (x)
+#endif
+
+#define BRAUN_VERSION "0.1.0"
+
+/* ------------------------------------------------------------------ */
+/* Status codes                                                        */
+/* ------------------------------------------------------------------ */
+typedef enum braun_status {
+    BRAUN_OK = 0,
+    BRAUN_ERR_ARGUMENT = -1,      /* NULL pointer, bad option or enum value */
+    BRAUN_ERR_SIZE = -2,          /* negative or inconsistent n, m, p */
+    BRAUN_ERR_BUFFER = -3,        /* caller buffer too small or misaligned */
+    BRAUN_ERR_NONFINITE = -4,     /* NaN/Inf in the state or a callback output */
+    BRAUN_ERR_MASS_NOT_SYMMETRIC = -5,
+    BRAUN_ERR_MASS_NOT_SPD = -6,  /* Cholesky pivot not positive */
+    BRAUN_ERR_CALLBACK = -7,      /* a callback returned < 0 (fatal) */
+    BRAUN_ERR_CALLBACK_RECOVERABLE = -8, /* callback returned > 0 and no retry possible */
+    BRAUN_ERR_STEP = -9,          /* step size not finite and positive */
+    BRAUN_ERR_TIME = -10,         /* t_end not after the current time */
+    BRAUN_ERR_DIVERGED = -11,     /* state left the finite range during a step */
+    BRAUN_ERR_STEP_TOO_SMALL = -12, /* adaptive step fell below its minimum */
+    BRAUN_ERR_TOO_MANY_STEPS = -13,
+    BRAUN_ERR_MISSING_CALLBACK = -14, /* m > 0 without holonomic(), ... */
+    BRAUN_ERR_NO_ENERGY_LAW = -15,    /* energy correction asked, system has none */
+    BRAUN_STOPPED = 1             /* the output callback asked to stop */
+} braun_status;
+
+/* Name and one-line meaning of a status code (static string, never NULL). */
+const char *braun_status_str(int status);
+
+/* ------------------------------------------------------------------ */
+/* The system: callbacks in the paper's notation (Sec. 2)              */
+/* ------------------------------------------------------------------ */
+/* All matrices are dense, row-major. Outputs passed as NULL are not wanted
+ * by the library at that call and must not be written. */
+
+/* M(t,q), n x n symmetric positive definite (Eq. 1). */
+typedef int (*braun_mass_fn)(braun_real t, const braun_real *q, braun_real *M,
+                             void *user);
+
+/* Q(t,q,v), n: Coriolis/centrifugal terms and applied forces (Eq. 1). */
+typedef int (*braun_force_fn)(braun_real t, const braun_real *q,
+                              const braun_real *v, braun_real *Q, void *user);
+
+/* Holonomic constraints Φ_q(t,q) = 0, m rows (Sec. 2.2):
+ *   phi[m]  = Φ_q(t,q)
+ *   A[m*n]  = A_q = ∂Φ_q/∂q
+ *   b[m]    = b_q = -∂Φ_q/∂t                      (0 for scleronomic)
+ *   bv[m]   = b_qv = -(∂(A_q v)/∂q) v - 2 (∂A_q/∂t) v - ∂²Φ_q/∂t²
+ * so that Φ̇_q = A_q v - b_q and Φ̈_q = A_q v' - b_qv. */
+typedef int (*braun_holonomic_fn)(braun_real t, const braun_real *q,
+                                  const braun_real *v, braun_real *phi,
+                                  braun_real *A, braun_real *b, braun_real *bv,
+                                  void *user);
+
+/* Nonholonomic constraints Φ_v(t,q,v) = 0, p rows (Sec. 2.2):
+ *   phi[p]  = Φ_v(t,q,v)
+ *   A[p*n]  = A_vv = ∂Φ_v/∂v
+ *   bv[p]   = b_vv = -(∂Φ_v/∂q) v - ∂Φ_v/∂t
+ * so that Φ̇_v = A_vv v' - b_vv. */
+typedef int (*braun_nonholonomic_fn)(braun_real t, const braun_real *q,
+                                     const braun_real *v, braun_real *phi,
+                                     braun_real *A, braun_real *bv, void *user);
+
+/* Energy-type law (Sec. 2.5, Eq. 18): Φ_e = E(t,q,v) - E0 - ∫Ė dτ.
+ *   E       = E(t,q,v)
+ *   dE_dq[n], dE_dv[n] (= A_e), dE_dt
+ * The library forms b_e = -dE_dt - dE_dq·v + Ė (Eq. 19). */
+typedef int (*braun_energy_fn)(braun_real t, const braun_real *q,
+                               const braun_real *v, braun_real *E,
+                               braun_real *dE_dq, braun_real *dE_dv,
+                               braun_real *dE_dt, void *user);
+
+/* Energy input rate Ė(t,q,v) (power of dampers, motors, applied forces).
+ * Only called when the system sets BRAUN_ENERGY_INPUT; then ∫Ė dτ is part
+ * of the integrated state. */
+typedef int (*braun_power_fn)(braun_real t, const braun_real *q,
+                              const braun_real *v, braun_real *Edot, void *user);
+
+enum braun_system_flags {
+    BRAUN_MASS_CONSTANT = 1u << 0, /* M called and factored once */
+    BRAUN_ENERGY_INPUT = 1u << 1   /* Ė not identically zero: power() used */
+};
+
+typedef struct braun_system {
+    int n;                /* coordinates */
+    int m;                /* holonomic constraint rows (may be redundant) */
+    int p;                /* nonholonomic constraint rows */
+    unsigned flags;       /* braun_system_flags */
+    braun_mass_fn mass;               /* required */
+    braun_force_fn forces;            /* required */
+    braun_holonomic_fn holonomic;     /* required iff m > 0 */
+    braun_nonholonomic_fn nonholonomic; /* required iff p > 0 */
+    braun_energy_fn energy;           /* optional conservation law */
+    braun_power_fn power;             /* required iff BRAUN_ENERGY_INPUT */
+    void *user;                       /* passed to every callback */
+} braun_system;
+
+/* ------------------------------------------------------------------ */
+/* Options                                                             */
+/* ------------------------------------------------------------------ */
+enum braun_corrections {
+    BRAUN_CORRECT_NONE = 0,
+    BRAUN_CORRECT_POSITION = 1u << 0, /* ideal impulse, Eq. 16 */
+    BRAUN_CORRECT_VELOCITY = 1u << 1, /* Δ_v term of Eq. 17 */
+    BRAUN_CORRECT_ENERGY = 1u << 2,   /* nonideal force, Eq. 20 */
+    BRAUN_CORRECT_ALL = 7u
+};
+
+/* How the 1/h correction terms meet a multi-stage integrator
+ * (docs/method.md, "Discretisation"). */
+typedef enum braun_discretization {
+    /* Default. The ideal (Udwadia–Kalaba) flow is advanced by the integrator;
+     * the correction terms are evaluated once, at the step's start, and
+     * added with weight h, so h·Φ/h cancels exactly. Keeps RK order. */
+    BRAUN_PER_STEP = 0,
+    /* Eqs. 16, 17, 20 evaluated at every stage with Δ = Φ/h: the literal
+     * right-hand side. Identical to PER_STEP for Euler; for RK4 the 1/h
+     * terms act as a stiff term and cost the method its order. */
+    BRAUN_PER_STAGE = 1
+} braun_discretization;
+
+typedef struct braun_options {
+    unsigned corrections;   /* braun_corrections bits; default ALL (ENERGY only if a law exists) */
+    braun_discretization discretization; /* default BRAUN_PER_STEP */
+    /* Relative rank tolerance of the pseudoinverses: a pivot |r_kk| of the
+     * column-pivoted QR of C^T counts as zero when |r_kk| <= rank_tol·|r_00|.
+     * <= 0 selects the default max(rows, n)·ε of braun_real (as MATLAB's pinv).
+     * See docs/method.md for why larger values (1e-6) hurt near singularities. */
+    braun_real rank_tol;
+    /* Guard of the energy force (Eq. 20): its pseudoinverse divides by
+     * ||N_v C_e^T||² ≈ 2·kinetic energy. One step's energy correction may scale
+     * the velocity by at most this fraction (dimensionless); beyond it the
+     * correction is saturated and the remainder is left for later steps.
+     * <= 0 selects the default 0.01. */
+    braun_real energy_max_rel;
+    /* Mass-matrix symmetry tolerance, relative to the largest diagonal entry.
+     * <= 0 selects the default 1e3·ε. */
+    braun_real symmetry_tol;
+} braun_options;
+
+typedef struct braun_model {
+    braun_system sys;
+    braun_options opt;
+} braun_model;
+
+/* Copy the system, validate sizes and callbacks, set default options.
+ * Returns BRAUN_OK, BRAUN_ERR_ARGUMENT, BRAUN_ERR_SIZE or BRAUN_ERR_MISSING_CALLBACK. */
+int braun_model_init(braun_model *model, const braun_system *sys);
+
+/* ------------------------------------------------------------------ */
+/* Data: state, statistics, scratch                                    */
+/* ------------------------------------------------------------------ */
+typedef struct braun_stats {
+    long steps;             /* accepted steps */
+    long rejected_steps;    /* adaptive driver only */
+    long rhs_evals;         /* evaluations of the (ideal or corrected) right-hand side */
+    long mass_factorizations;
+    long constraint_factorizations; /* QR factorizations of C^T */
+    long rank_deficient;    /* factorizations whose rank < rows (redundancy or singularity) */
+    long energy_guard_hits; /* energy corrections saturated by energy_max_rel */
+} braun_stats;
+
+/* Where an error happened, for braun_error_format() and the CLI. */
+typedef struct braun_error_info {
+    int status;
+    const char *where;  /* static string: "mass", "forces", "state q", ... */
+    int index;          /* row/entry involved, or -1 */
+    int index2;         /* column, or -1 */
+    double value;       /* offending value (pivot, asymmetry, ...) */
+    double t;           /* time of the failing evaluation */
+} braun_error_info;
+
+typedef struct braun_data {
+    const braun_model *model;
+    /* State. q and v point into the buffer (n entries each). */
+    braun_real t;
+    braun_real *q;
+    braun_real *v;
+    braun_real work_in;   /* ∫_0^t Ė dτ (Eq. 18) */
+    braun_real E0;        /* energy at braun_set_state() */
+    int has_E0;
+    braun_stats stats;
+    braun_error_info error;
+    /* Private scratch (see src/braun_workspace.c). */
+    void *priv;
+} braun_data;
+
+/* Bytes of buffer braun_data_init() needs for this model (including alignment slack). */
+size_t braun_data_size(const braun_model *model);
+
+/* Carve the data out of buffer; no allocation. If M is constant it is
+ * evaluated and factored here, once. State is zero until braun_set_state(). */
+int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
+                    size_t bytes);
+
+/* Set time and state, check it is finite, reset ∫Ė and take E0 = E(t,q,v). */
+int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
+                    const braun_real *v);
+
+/* ------------------------------------------------------------------ */
+/* Evaluation (no time advance)                                        */
+/* ------------------------------------------------------------------ */
+/* The corrected equation of motion, Eqs. 16, 17, 20, with Δ = Φ/h, at the
+ * given state (∫Ė taken from d->work_in). Corrections as in the model options;
+ * with none (or at an exact state) vdot is the Udwadia–Kalaba acceleration
+ * and qdot = v. qdot, vdot: n entries each. */
+int braun_eval(braun_data *d, braun_real t, const braun_real *q,
+               const braun_real *v, braun_real h, braun_real *qdot,
+               braun_real *vdot);
+
+/* Constraint and energy residuals at a state: ||Φ_q||_2, ||[Φ̇_q; Φ_v]||_2, |Φ_e|
+ * (any output may be NULL; energy is 0 without a law or E0). */
+int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
+                    const braun_real *v, braun_real *pos, braun_real *vel,
+                    braun_real *energy);
+
+/* Total energy E(t,q,v) (0 without a law). */
+int braun_energy(braun_data *d, braun_real t, const braun_real *q,
+                 const braun_real *v, braun_real *E);
+
+/* ------------------------------------------------------------------ */
+/* Integrators                                                         */
+/* ------------------------------------------------------------------ */
+typedef enum braun_method {
+    BRAUN_EULER = 0,
+    BRAUN_HEUN = 1,
+    BRAUN_RK4 = 2,
+    BRAUN_DOPRI5 = 3 /* Dormand–Prince 5(4), adaptive driver only */
+} braun_method;
+
+/* Name ("euler", "heun", "rk4", "dopri5") <-> method; -1 if unknown. */
+const char *braun_method_name(braun_method method);
+int braun_method_from_name(const char *name);
+
+/* One fixed step of size h from d->t. On any error the state is left as it
+ * was before the step. BRAUN_DOPRI5 takes its 5th-order solution. */
+int braun_step(braun_data *d, braun_method method, braun_real h);
+
+/* Output callback: called at the start, every `every` steps and at the end.
+ * Return non-zero to stop (the driver returns BRAUN_STOPPED). */
+typedef int (*braun_output_fn)(const braun_data *d, void *user);
+
+/* Fixed-step driver from d->t to t_end; the last step is shortened to land
+ * on t_end. Step i ends at t0 + i·h (no accumulated round-off in t). */
+int braun_integrate(braun_data *d, braun_method method, braun_real h,
+                    braun_real t_end, long every, braun_output_fn out,
+                    void *out_user);
+
+typedef struct braun_adaptive {
+    braun_real rtol, atol;  /* mixed error test on q, v */
+    braun_real h0;          /* first trial step (<= 0: 1e-3·(t_end - t)) */
+    braun_real h_min, h_max;/* <= 0: 1e-12·|span|, span */
+    long max_steps;         /* <= 0: 10^8 */
+} braun_adaptive;
+
+/* Adaptive Dormand–Prince 5(4) driver; corrections applied once per accepted
+ * step. The output callback sees every `every`-th accepted step. */
+int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
+                             braun_real t_end, long every, braun_output_fn out,
+                             void *out_user);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* BRAUN_H */

@@ -1,0 +1,80 @@
+/* Adaptive driver: Dormand–Prince 5(4) with a standard step-size controller.
+ * The embedded estimate measures the ideal flow's local error; the
+ * corrections (applied once per accepted step) are not part of it. */
+#include <math.h>
+
+#include "braun_tableau.h"
+
+static double error_norm(int count, const braun_real *y0, const braun_real *y1,
+                         const braun_real *yerr, braun_real rtol, braun_real atol)
+{
+    double sum = 0;
+    for (int i = 0; i < count; i++) {
+        double a = fabs((double)y0[i]), b = fabs((double)y1[i]);
+        double sc = (double)atol + (double)rtol * (a > b ? a : b);
+        double e = (double)yerr[i] / sc;
+        sum += e * e;
+    }
+    return sqrt(sum / count);
+}
+
+int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
+                             braun_real t_end, long every, braun_output_fn out,
+                             void *out_user)
+{
+    if (!d || !d->priv || !ctl) return BRAUN_ERR_ARGUMENT;
+    if (!(ctl->rtol >= 0) || !(ctl->atol >= 0) || (ctl->rtol == 0 && ctl->atol == 0))
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "tolerances", -1, -1, (double)ctl->rtol, (double)d->t);
+    if (!braun_is_finite(t_end) || !(t_end > d->t))
+        return braun__fail(d, BRAUN_ERR_TIME, "t_end", -1, -1, (double)t_end, (double)d->t);
+    const braun_tableau *tb = braun__tableau(BRAUN_DOPRI5);
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n;
+    const double span = (double)(t_end - d->t);
+    double h = ctl->h0 > 0 ? (double)ctl->h0 : 1e-3 * span;
+    const double hmin = ctl->h_min > 0 ? (double)ctl->h_min : 1e-12 * span;
+    const double hmax = ctl->h_max > 0 ? (double)ctl->h_max : span;
+    const long max_steps = ctl->max_steps > 0 ? ctl->max_steps : 100000000L;
+    long accepted = 0;
+
+    if (out && out(d, out_user)) return BRAUN_STOPPED;
+    while (d->t < t_end) {
+        if (h > hmax) h = hmax;
+        int last = 0;
+        if ((double)d->t + h >= (double)t_end * (1 - 1e-15) || (double)d->t + h >= (double)t_end) {
+            h = (double)(t_end - d->t);
+            last = 1;
+        }
+        if (accepted + d->stats.rejected_steps >= max_steps)
+            return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "adaptive", -1, -1, (double)max_steps, (double)d->t);
+        braun__load_state(d);
+        int st = braun__rk_attempt(d, tb, (braun_real)h, pv->y1, pv->yerr);
+        double err;
+        if (st == BRAUN_ERR_CALLBACK_RECOVERABLE || st == BRAUN_ERR_DIVERGED) {
+            err = 1e10; /* retry smaller, as SUNDIALS does for recoverable failures */
+        } else if (st) {
+            return st;
+        } else {
+            err = error_norm(2 * n, pv->y0, pv->y1, pv->yerr, ctl->rtol, ctl->atol);
+        }
+        if (err <= 1) {
+            braun__commit(d, pv->y1, last ? t_end : (braun_real)((double)d->t + h));
+            d->error.status = BRAUN_OK;
+            accepted++;
+            if (out && ((every > 0 && accepted % every == 0) || d->t >= t_end) &&
+                out(d, out_user))
+                return BRAUN_STOPPED;
+            double fac = err > 0 ? 0.9 * pow(err, -0.2) : 5.0;
+            h *= fac > 5.0 ? 5.0 : (fac < 0.2 ? 0.2 : fac);
+        } else {
+            d->stats.rejected_steps++;
+            double fac = 0.9 * pow(err, -0.2);
+            h *= fac < 0.1 ? 0.1 : (fac > 0.9 ? 0.9 : fac);
+            if (h < hmin) {
+                if (st) return st;
+                return braun__fail(d, BRAUN_ERR_STEP_TOO_SMALL, "adaptive", -1, -1, h, (double)d->t);
+            }
+        }
+    }
+    return BRAUN_OK;
+}

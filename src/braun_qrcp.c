@@ -1,0 +1,163 @@
+/* Rank-revealing pseudoinverse: Householder QR with column pivoting of C^T,
+ * completed by a QR of the trapezoid when rows are dependent (see
+ * braun_linalg.h). Sizes are small and dense; everything is in place. */
+#include "braun_linalg.h"
+
+size_t braun_qrcp_reals(int n, int rows)
+{
+    int w = n > rows ? n : rows;
+    return (size_t)rows * (size_t)n      /* a */
+           + (size_t)rows                /* tau */
+           + (size_t)rows * (size_t)rows /* s */
+           + (size_t)rows                /* stau */
+           + (size_t)w;                  /* work */
+}
+
+size_t braun_qrcp_ints(int rows) { return (size_t)rows; }
+
+void braun_qrcp_bind(braun_qrcp *f, int n, int rows, braun_real *reals,
+                     int *ints)
+{
+    f->n = n;
+    f->rows = rows;
+    f->rank = 0;
+    f->a = reals;
+    f->tau = f->a + (size_t)rows * n;
+    f->s = f->tau + rows;
+    f->stau = f->s + (size_t)rows * rows;
+    f->work = f->stau + rows;
+    f->perm = ints;
+}
+
+/* Householder reflector for x[0..len): on return x[0] = beta, x[1..] = v[1..]
+ * (v[0] = 1 implied) and H = I - tau v v^T maps x to beta e1. */
+static braun_real house(int len, braun_real *x, braun_real normx)
+{
+    braun_real alpha = x[0];
+    if (normx == 0) return 0;
+    braun_real beta = alpha >= 0 ? -normx : normx;
+    braun_real scale = 1 / (alpha - beta);
+    for (int i = 1; i < len; i++) x[i] *= scale;
+    x[0] = beta;
+    return (beta - alpha) / beta;
+}
+
+/* y[0..len) := (I - tau v v^T) y with v = (1, vtail[0..len-1)). */
+static void reflect(int len, const braun_real *vtail, braun_real tau,
+                    braun_real *y)
+{
+    if (tau == 0) return;
+    braun_real w = y[0];
+    for (int i = 1; i < len; i++) w += vtail[i - 1] * y[i];
+    w *= tau;
+    y[0] -= w;
+    for (int i = 1; i < len; i++) y[i] -= w * vtail[i - 1];
+}
+
+int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
+{
+    const int n = f->n, rows = f->rows;
+    const int kmax = n < rows ? n : rows;
+    braun_real *a = f->a;
+    braun_real r00 = 0;
+    int k;
+
+    for (int j = 0; j < rows; j++) f->perm[j] = j;
+    f->rank = 0;
+    for (k = 0; k < kmax; k++) {
+        /* Pivot: the remaining column of largest norm. Norms are recomputed,
+         * not downdated, so cancellation cannot fake a large pivot. */
+        int best = k;
+        braun_real bestnorm = -1;
+        for (int j = k; j < rows; j++) {
+            braun_real nj = braun_nrm2(n - k, a + (size_t)j * n + k);
+            if (nj > bestnorm) {
+                bestnorm = nj;
+                best = j;
+            }
+        }
+        if (best != k) {
+            braun_real *ck = a + (size_t)k * n, *cb = a + (size_t)best * n;
+            for (int i = 0; i < n; i++) {
+                braun_real t = ck[i];
+                ck[i] = cb[i];
+                cb[i] = t;
+            }
+            int t = f->perm[k];
+            f->perm[k] = f->perm[best];
+            f->perm[best] = t;
+        }
+        if (k == 0) r00 = bestnorm;
+        /* Rank decision relative to the largest pivot (≈ ||C||_2). */
+        if (bestnorm == 0 || bestnorm <= tol * r00) break;
+        braun_real *col = a + (size_t)k * n + k;
+        f->tau[k] = house(n - k, col, bestnorm);
+        for (int j = k + 1; j < rows; j++)
+            reflect(n - k, col + 1, f->tau[k], a + (size_t)j * n + k);
+        f->rank = k + 1;
+    }
+
+    /* Dependent rows: S = [R11 R12]^T is rows x k; factor it by Householder
+     * QR (column-major in f->s) for the least-squares solve of S w = P^T r. */
+    const int rk = f->rank;
+    if (rk > 0 && rk < rows) {
+        braun_real *s = f->s;
+        for (int j = 0; j < rk; j++)
+            for (int i = 0; i < rows; i++)
+                s[(size_t)j * rows + i] = i >= j ? a[(size_t)i * n + j] : 0;
+        for (int j = 0; j < rk; j++) {
+            braun_real *cj = s + (size_t)j * rows + j;
+            f->stau[j] = house(rows - j, cj, braun_nrm2(rows - j, cj));
+            for (int c = j + 1; c < rk; c++)
+                reflect(rows - j, cj + 1, f->stau[j], s + (size_t)c * rows + j);
+        }
+    }
+    return rk;
+}
+
+void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
+                           braun_real *x)
+{
+    const int n = f->n, rows = f->rows, rk = f->rank;
+    const braun_real *a = f->a;
+    braun_real *w = f->work;
+
+    for (int i = 0; i < n; i++) x[i] = 0;
+    if (rk == 0) return;
+    for (int j = 0; j < rows; j++) w[j] = r[f->perm[j]];
+    if (rk == rows) {
+        /* S = R11^T is lower triangular: forward substitution. */
+        for (int i = 0; i < rk; i++) {
+            braun_real sum = w[i];
+            const braun_real *ci = a + (size_t)i * n; /* R(j,i) = ci[j] */
+            for (int j = 0; j < i; j++) sum -= ci[j] * w[j];
+            w[i] = sum / ci[i];
+        }
+    } else {
+        /* Least squares through S = U T: w = T^-1 (U^T P^T r)[0..k). */
+        const braun_real *s = f->s;
+        for (int j = 0; j < rk; j++)
+            reflect(rows - j, s + (size_t)j * rows + j + 1, f->stau[j], w + j);
+        for (int i = rk - 1; i >= 0; i--) {
+            braun_real sum = w[i];
+            for (int c = i + 1; c < rk; c++) sum -= s[(size_t)c * rows + i] * w[c];
+            w[i] = sum / s[(size_t)i * rows + i];
+        }
+    }
+    /* x = Q1 w = H_0 ... H_{k-1} [w; 0]. */
+    for (int i = 0; i < rk; i++) x[i] = w[i];
+    for (int j = rk - 1; j >= 0; j--)
+        reflect(n - j, a + (size_t)j * n + j + 1, f->tau[j], x + j);
+}
+
+void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
+{
+    const int n = f->n, rk = f->rank;
+    const braun_real *a = f->a;
+    if (rk == 0) return;
+    for (int j = 0; j < rk; j++)
+        reflect(n - j, a + (size_t)j * n + j + 1, f->tau[j], z + j);
+    for (int j = 0; j < rk; j++) z[j] = 0;
+    for (int j = rk - 1; j >= 0; j--)
+        reflect(n - j, a + (size_t)j * n + j + 1, f->tau[j], z + j);
+}

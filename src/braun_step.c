@@ -1,0 +1,117 @@
+/* One explicit Runge–Kutta step of the corrected equation of motion.
+ *
+ * Discretisation (docs/method.md): with BRAUN_PER_STEP the integrator
+ * advances the ideal flow and the correction terms of Eqs. 16, 17, 20 are
+ * evaluated once, at the step's start, and added with weight h: h·Φ/h then
+ * cancels exactly, no 1/h term meets the stages, and the method keeps its
+ * order. For Euler this is the paper's equation itself. */
+#include "braun_tableau.h"
+
+int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
+                      braun_real *y1, braun_real *yerr)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n, N = 2 * n + 1;
+    const unsigned corr = d->model->opt.corrections;
+    const int per_stage = d->model->opt.discretization == BRAUN_PER_STAGE;
+    const braun_real *y0 = pv->y0;
+    int st;
+
+    for (int s = 0; s < tb->stages; s++) {
+        const braun_real *ys = y0;
+        if (s > 0) {
+            braun_real *w = pv->ys;
+            for (int i = 0; i < N; i++) w[i] = y0[i];
+            for (int j = 0; j < s; j++) {
+                const braun_real a = (braun_real)tb->a[s][j] * h;
+                if (a == 0) continue;
+                for (int i = 0; i < N; i++) w[i] += a * pv->k[j][i];
+            }
+            ys = w;
+            /* A stage state that overflowed means the step diverged: say so,
+             * rather than let a callback report the NaN it was handed. */
+            if (!braun_all_finite(N, w))
+                return braun__fail(d, BRAUN_ERR_DIVERGED, "step stage", s, -1, (double)h, (double)d->t);
+        }
+        const braun_real ts = d->t + (braun_real)tb->c[s] * h;
+        braun_real *k = pv->k[s];
+        const int wants_corr = corr && (per_stage || s == 0);
+        st = braun__eval_ideal(d, ts, ys, ys + n, wants_corr ? BRAUN_WANT_PHI : 0u, k + n);
+        if (st) return st;
+        for (int i = 0; i < n; i++) k[i] = ys[n + i];
+        st = braun__power(d, ts, ys, ys + n, &k[2 * n]);
+        if (st) return st;
+        if (wants_corr) {
+            st = braun__eval_corrections(d, ts, ys, ys + n, ys[2 * n], h, k + n, pv->dq, pv->dv);
+            if (st) return st;
+            if (per_stage) /* the literal Eqs. 16-17 with Δ = Φ/h */
+                for (int i = 0; i < n; i++) {
+                    k[i] += pv->dq[i] / h;
+                    k[n + i] += pv->dv[i] / h;
+                }
+        }
+    }
+    for (int i = 0; i < N; i++) y1[i] = y0[i];
+    for (int s = 0; s < tb->stages; s++) {
+        const braun_real b = (braun_real)tb->b[s] * h;
+        if (b == 0) continue;
+        for (int i = 0; i < N; i++) y1[i] += b * pv->k[s][i];
+    }
+    if (yerr) {
+        for (int i = 0; i < N; i++) yerr[i] = 0;
+        for (int s = 0; s < tb->stages; s++) {
+            const braun_real e = (braun_real)tb->e[s] * h;
+            if (e == 0) continue;
+            for (int i = 0; i < N; i++) yerr[i] += e * pv->k[s][i];
+        }
+    }
+    if (corr && !per_stage)
+        for (int i = 0; i < n; i++) {
+            y1[i] += pv->dq[i];
+            y1[n + i] += pv->dv[i];
+        }
+    if (!braun_all_finite(N, y1) || (yerr && !braun_all_finite(N, yerr))) {
+        int bad = 0;
+        while (bad < N && braun_is_finite(y1[bad])) bad++;
+        return braun__fail(d, BRAUN_ERR_DIVERGED, "step", bad, -1, (double)h, (double)d->t);
+    }
+    return BRAUN_OK;
+}
+
+void braun__load_state(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n;
+    for (int i = 0; i < n; i++) {
+        pv->y0[i] = d->q[i];
+        pv->y0[n + i] = d->v[i];
+    }
+    pv->y0[2 * n] = d->work_in;
+}
+
+void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new)
+{
+    const int n = braun__priv(d)->n;
+    for (int i = 0; i < n; i++) {
+        d->q[i] = y1[i];
+        d->v[i] = y1[n + i];
+    }
+    d->work_in = y1[2 * n];
+    d->t = t_new;
+    d->stats.steps++;
+}
+
+int braun_step(braun_data *d, braun_method method, braun_real h)
+{
+    if (!d || !d->priv) return BRAUN_ERR_ARGUMENT;
+    const braun_tableau *tb = braun__tableau(method);
+    if (!tb) return braun__fail(d, BRAUN_ERR_ARGUMENT, "method", (int)method, -1, 0, (double)d->t);
+    if (!(h > 0) || !braun_is_finite(h))
+        return braun__fail(d, BRAUN_ERR_STEP, "step size", -1, -1, (double)h, (double)d->t);
+    braun_priv *pv = braun__priv(d);
+    braun__load_state(d);
+    int st = braun__rk_attempt(d, tb, h, pv->y1, NULL);
+    if (st) return st;
+    braun__commit(d, pv->y1, d->t + h);
+    return BRAUN_OK;
+}

@@ -1,0 +1,29 @@
+/* Butcher tableaus of the explicit Runge–Kutta methods (src/braun_tableau.c). */
+#ifndef BRAUN_TABLEAU_H
+#define BRAUN_TABLEAU_H
+
+#include "braun_internal.h"
+
+typedef struct braun_tableau {
+    const char *name;
+    int stages;
+    int order;
+    double c[BRAUN_MAX_STAGES];
+    double a[BRAUN_MAX_STAGES][BRAUN_MAX_STAGES];
+    double b[BRAUN_MAX_STAGES];      /* solution weights */
+    double e[BRAUN_MAX_STAGES];      /* b - b_hat (embedded error), zero if none */
+} braun_tableau;
+
+const braun_tableau *braun__tableau(braun_method method);
+
+/* Compute one step of size h from the start vector pv->y0 = [q; v; ∫Ė] at
+ * d->t into y1 (and the embedded error estimate into yerr when non-NULL),
+ * without changing the state. (src/braun_step.c) */
+int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
+                      braun_real *y1, braun_real *yerr);
+/* pv->y0 := current state. */
+void braun__load_state(braun_data *d);
+/* Accept y1 as the state at t_new and count the step. */
+void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new);
+
+#endif
