@@ -34,6 +34,9 @@ HEADERS  := $(wildcard include/*.h) $(wildcard src/*.h)
 TEST_SRC  := $(sort $(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
+# Keep intermediate objects (test support) between runs.
+.SECONDARY:
+
 .PHONY: all lib cli test test-unit test-cli deps-test install clean convergence
 all: lib cli
 lib: $(BUILD)/libbraun.a
@@ -58,9 +61,18 @@ TEST_DEPS := libcmocka-dev
 deps-test:
 	@tools/ensure-deps $(TEST_DEPS)
 
-$(BUILD)/tests/%: tests/%.c tests/test_util.h $(BUILD)/libbraun.a | deps-test
+# Test-only systems with known solutions, linked into every test binary.
+TEST_SUPPORT := $(BUILD)/obj/tests/systems/test_systems.o
+$(BUILD)/obj/tests/%.o: tests/%.c tests/systems/test_systems.h $(HEADERS)
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) -Itests $(CFLAGS_ALL) $< $(BUILD)/libbraun.a -lcmocka $(LDLIBS_ALL) -o $@
+	$(CC) $(CPPFLAGS_ALL) -Itests -Itests/systems $(CFLAGS_ALL) -c $< -o $@
+
+# test_noalloc counts heap calls through the linker's --wrap.
+LDFLAGS_test_noalloc := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
+
+$(BUILD)/tests/%: tests/%.c tests/test_util.h $(TEST_SUPPORT) $(BUILD)/libbraun.a | deps-test
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) -Itests -Itests/systems $(CFLAGS_ALL) $< $(TEST_SUPPORT) $(BUILD)/libbraun.a -lcmocka $(LDLIBS_ALL) $(LDFLAGS_$*) -o $@
 
 test: deps-test
 	@$(MAKE) --no-print-directory test-unit test-cli

@@ -165,8 +165,10 @@ typedef struct braun_options {
     braun_discretization discretization; /* default BRAUN_PER_STEP */
     /* Relative rank tolerance of the pseudoinverses: a pivot |r_kk| of the
      * column-pivoted QR of C^T counts as zero when |r_kk| <= rank_tol·|r_00|.
-     * <= 0 selects the default max(rows, n)·ε of braun_real (as MATLAB's pinv).
-     * See docs/method.md for why larger values (1e-6) hurt near singularities. */
+     * <= 0 selects the default 10·max(rows, n)·ε of braun_real: MATLAB's pinv
+     * tolerance with a margin of 10, because pivots of exactly dependent rows
+     * are a few ε·||C|| after round-off (a missed one amplifies noise). See
+     * docs/method.md for why loose values (1e-6) hurt near singularities. */
     braun_real rank_tol;
     /* Guard of the energy force (Eq. 20): its pseudoinverse divides by
      * ||N_v C_e^T||² ≈ 2·kinetic energy. One step's energy correction may scale
@@ -295,7 +297,9 @@ typedef struct braun_adaptive {
 } braun_adaptive;
 
 /* Adaptive Dormand–Prince 5(4) driver; corrections applied once per accepted
- * step. The output callback sees every `every`-th accepted step. */
+ * step (BRAUN_PER_STEP whatever the option says: with a varying h the literal
+ * Δ = Φ/h form is ill-posed). The output callback sees every `every`-th
+ * accepted step and the last. */
 int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
                              braun_real t_end, long every, braun_output_fn out,
                              void *out_user);

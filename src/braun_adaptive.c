@@ -1,6 +1,7 @@
 /* Adaptive driver: Dormand–Prince 5(4) with a standard step-size controller.
  * The embedded estimate measures the ideal flow's local error; the
- * corrections (applied once per accepted step) are not part of it. */
+ * corrections (applied once per accepted step, whatever the model's
+ * discretization option) are not part of it. */
 #include <math.h>
 
 #include "braun_tableau.h"
@@ -48,7 +49,10 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
         if (accepted + d->stats.rejected_steps >= max_steps)
             return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "adaptive", -1, -1, (double)max_steps, (double)d->t);
         braun__load_state(d);
-        int st = braun__rk_attempt(d, tb, (braun_real)h, pv->y1, pv->yerr);
+        /* Always per step: with a varying h the literal Δ = Φ/h changes
+         * meaning from one trial step to the next and the error test, which
+         * would see the 1/h terms, rejects without end. */
+        int st = braun__rk_attempt(d, tb, (braun_real)h, 0, pv->y1, pv->yerr);
         double err;
         if (st == BRAUN_ERR_CALLBACK_RECOVERABLE || st == BRAUN_ERR_DIVERGED) {
             err = 1e10; /* retry smaller, as SUNDIALS does for recoverable failures */

@@ -15,6 +15,7 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
     if (!braun_is_finite(t_end) || !(t_end > d->t))
         return braun__fail(d, BRAUN_ERR_TIME, "t_end", -1, -1, (double)t_end, (double)d->t);
     braun_priv *pv = braun__priv(d);
+    const int per_stage = d->model->opt.discretization == BRAUN_PER_STAGE;
     const double t0 = (double)d->t, span = (double)t_end - t0;
     const double ratio = span / (double)h;
     if (ratio > 9.0e18) return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "step count", -1, -1, ratio, t0);
@@ -29,7 +30,7 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
         const braun_real t_new = i == steps ? t_end : (braun_real)(t0 + (double)i * (double)h);
         const braun_real hi = t_new - d->t;
         braun__load_state(d);
-        int st = braun__rk_attempt(d, tb, hi, pv->y1, NULL);
+        int st = braun__rk_attempt(d, tb, hi, per_stage, pv->y1, NULL);
         if (st) return st;
         braun__commit(d, pv->y1, t_new);
         if (out && every > 0 && (i % every == 0 || i == steps) && out(d, out_user))

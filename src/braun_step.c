@@ -8,12 +8,11 @@
 #include "braun_tableau.h"
 
 int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
-                      braun_real *y1, braun_real *yerr)
+                      int per_stage, braun_real *y1, braun_real *yerr)
 {
     braun_priv *pv = braun__priv(d);
     const int n = pv->n, N = 2 * n + 1;
     const unsigned corr = d->model->opt.corrections;
-    const int per_stage = d->model->opt.discretization == BRAUN_PER_STAGE;
     const braun_real *y0 = pv->y0;
     int st;
 
@@ -37,6 +36,10 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         braun_real *k = pv->k[s];
         const int wants_corr = corr && (per_stage || s == 0);
         st = braun__eval_ideal(d, ts, ys, ys + n, wants_corr ? BRAUN_WANT_PHI : 0u, k + n);
+        /* Finite at the step's start but not at a later stage: the step left
+         * the region where the model is defined — it diverged. d->error
+         * keeps the callback and entry that overflowed. */
+        if (st == BRAUN_ERR_NONFINITE && s > 0) d->error.status = st = BRAUN_ERR_DIVERGED;
         if (st) return st;
         for (int i = 0; i < n; i++) k[i] = ys[n + i];
         st = braun__power(d, ts, ys, ys + n, &k[2 * n]);
@@ -110,7 +113,8 @@ int braun_step(braun_data *d, braun_method method, braun_real h)
         return braun__fail(d, BRAUN_ERR_STEP, "step size", -1, -1, (double)h, (double)d->t);
     braun_priv *pv = braun__priv(d);
     braun__load_state(d);
-    int st = braun__rk_attempt(d, tb, h, pv->y1, NULL);
+    int st = braun__rk_attempt(d, tb, h, d->model->opt.discretization == BRAUN_PER_STAGE,
+                               pv->y1, NULL);
     if (st) return st;
     braun__commit(d, pv->y1, d->t + h);
     return BRAUN_OK;

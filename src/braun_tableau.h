@@ -18,9 +18,10 @@ const braun_tableau *braun__tableau(braun_method method);
 
 /* Compute one step of size h from the start vector pv->y0 = [q; v; ∫Ė] at
  * d->t into y1 (and the embedded error estimate into yerr when non-NULL),
- * without changing the state. (src/braun_step.c) */
+ * without changing the state. per_stage: corrections at every stage with
+ * Δ = Φ/h (BRAUN_PER_STAGE) instead of once per step. (src/braun_step.c) */
 int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
-                      braun_real *y1, braun_real *yerr);
+                      int per_stage, braun_real *y1, braun_real *yerr);
 /* pv->y0 := current state. */
 void braun__load_state(braun_data *d);
 /* Accept y1 as the state at t_new and count the step. */

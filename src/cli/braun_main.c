@@ -1,0 +1,35 @@
+/* braun: command-line front end of libbraun. Dispatches the subcommands. */
+#include <stdio.h>
+#include <string.h>
+
+#include "braun_cli.h"
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        braun_cli_usage(stderr);
+        return BRAUN_CLI_USAGE;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+        braun_cli_usage(stdout);
+        return 0;
+    }
+    if (strcmp(cmd, "--version") == 0) {
+        printf("braun %s\n", BRAUN_VERSION);
+        return 0;
+    }
+    if (strcmp(cmd, "list") == 0) {
+        if (argc > 2) return braun_cli_error("list takes no arguments (got '%s')", argv[2]);
+        return braun_cli_list();
+    }
+    if (strcmp(cmd, "run") == 0) {
+        braun_cli_run_args a;
+        int rc = braun_cli_parse_run(argc - 2, argv + 2, &a);
+        if (rc < 0) return 0; /* --help */
+        if (rc) return rc;
+        return braun_cli_run(&a);
+    }
+    if (cmd[0] == '-') return braun_cli_error("unknown option '%s' (see braun --help)", cmd);
+    return braun_cli_error("unknown command '%s' (see braun --help)", cmd);
+}

@@ -1,0 +1,210 @@
+/* Option parsing of `braun run`: every mistake is one "braun: ..." line and
+ * exit status 2, before anything is computed. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "braun_cli.h"
+
+static const struct {
+    const char *name;
+    unsigned bit;
+} correction_names[] = {
+    {"position", BRAUN_CORRECT_POSITION},
+    {"velocity", BRAUN_CORRECT_VELOCITY},
+    {"energy", BRAUN_CORRECT_ENERGY},
+};
+#define N_CORRECTIONS (sizeof correction_names / sizeof correction_names[0])
+
+const char *braun_cli_corrections_str(unsigned bits, char *buf, size_t size)
+{
+    size_t len = 0;
+    if (size == 0) return buf;
+    buf[0] = '\0';
+    for (size_t i = 0; i < N_CORRECTIONS; i++) {
+        if (!(bits & correction_names[i].bit)) continue;
+        int k = snprintf(buf + len, size - len, "%s%s", len ? "," : "",
+                         correction_names[i].name);
+        if (k < 0 || (size_t)k >= size - len) break;
+        len += (size_t)k;
+    }
+    if (len == 0) snprintf(buf, size, "none");
+    return buf;
+}
+
+/* A real number filling the whole argument; NaN and Inf are never
+ * meaningful here, so they are refused with the other non-numbers. */
+static int parse_real(const char *opt, const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double x = strtod(s, &end);
+    if (end == s || *end != '\0' || !isfinite(x) || errno == ERANGE)
+        return braun_cli_error("%s: '%s' is not a finite number", opt, s);
+    *out = x;
+    return 0;
+}
+
+static int parse_positive(const char *opt, const char *s, double *out)
+{
+    int rc = parse_real(opt, s, out);
+    if (rc) return rc;
+    if (!(*out > 0)) return braun_cli_error("%s must be > 0 (got %s)", opt, s);
+    return 0;
+}
+
+/* Tolerances where 0 asks for the library's default. */
+static int parse_nonnegative(const char *opt, const char *s, double *out)
+{
+    int rc = parse_real(opt, s, out);
+    if (rc) return rc;
+    if (!(*out >= 0)) return braun_cli_error("%s must be >= 0 (got %s)", opt, s);
+    return 0;
+}
+
+static int parse_every(const char *s, long *out)
+{
+    char *end;
+    errno = 0;
+    long k = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno == ERANGE || k < 1)
+        return braun_cli_error("--every must be an integer >= 1 (got '%s')", s);
+    *out = k;
+    return 0;
+}
+
+static int parse_corrections(const char *s, braun_cli_run_args *a)
+{
+    if (strcmp(s, "all") == 0) {
+        a->corrections_default = 1;
+        return 0;
+    }
+    a->corrections_default = 0;
+    a->corrections = BRAUN_CORRECT_NONE;
+    if (strcmp(s, "none") == 0) return 0;
+    /* Walk the comma list without copying: each item is [s, comma). */
+    for (const char *p = s;; p++) {
+        const char *comma = strchr(p, ',');
+        size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        size_t i = 0;
+        while (i < N_CORRECTIONS && !(strlen(correction_names[i].name) == len &&
+                                      strncmp(correction_names[i].name, p, len) == 0))
+            i++;
+        if (i == N_CORRECTIONS)
+            return braun_cli_error("unknown correction '%.*s' in '%s' (position, velocity, "
+                                   "energy, or all | none)", (int)len, p, s);
+        a->corrections |= correction_names[i].bit;
+        if (!comma) return 0;
+        p = comma;
+    }
+}
+
+static int parse_discretization(const char *s, braun_discretization *out)
+{
+    if (strcmp(s, "per-step") == 0) *out = BRAUN_PER_STEP;
+    else if (strcmp(s, "per-stage") == 0) *out = BRAUN_PER_STAGE;
+    else return braun_cli_error("unknown discretization '%s' (per-step, per-stage)", s);
+    return 0;
+}
+
+/* Apply one "--name value" pair. */
+static int apply(const char *opt, const char *val, braun_cli_run_args *a)
+{
+    if (strcmp(opt, "--dt") == 0) return parse_positive(opt, val, &a->dt);
+    if (strcmp(opt, "--t-end") == 0) return parse_positive(opt, val, &a->t_end);
+    if (strcmp(opt, "--integrator") == 0) {
+        int m = braun_method_from_name(val);
+        if (m < 0)
+            return braun_cli_error("unknown integrator '%s' (euler, heun, rk4, dopri5)", val);
+        a->method = (braun_method)m;
+        return 0;
+    }
+    if (strcmp(opt, "--corrections") == 0) return parse_corrections(val, a);
+    if (strcmp(opt, "--discretization") == 0) return parse_discretization(val, &a->discretization);
+    if (strcmp(opt, "--rank-tol") == 0) return parse_nonnegative(opt, val, &a->rank_tol);
+    if (strcmp(opt, "--energy-max-rel") == 0) return parse_nonnegative(opt, val, &a->energy_max_rel);
+    if (strcmp(opt, "--rtol") == 0) return parse_nonnegative(opt, val, &a->rtol);
+    if (strcmp(opt, "--atol") == 0) return parse_nonnegative(opt, val, &a->atol);
+    if (strcmp(opt, "--ref-h") == 0) return parse_positive(opt, val, &a->ref_h);
+    if (strcmp(opt, "--every") == 0) return parse_every(val, &a->every);
+    if (strcmp(opt, "--out") == 0) {
+        a->out_path = val;
+        return 0;
+    }
+    if (strcmp(opt, "--summary") == 0) {
+        a->summary_path = val;
+        return 0;
+    }
+    return braun_cli_error("unknown option '%s' (see braun --help)", opt);
+}
+
+static int takes_value(const char *opt)
+{
+    static const char *const names[] = {
+        "--dt", "--t-end", "--integrator", "--corrections", "--discretization",
+        "--rank-tol", "--energy-max-rel", "--rtol", "--atol", "--ref-h",
+        "--every", "--out", "--summary"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (strcmp(opt, names[i]) == 0) return 1;
+    return 0;
+}
+
+int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
+{
+    memset(a, 0, sizeof *a);
+    a->dt = a->t_end = NAN;
+    a->method = BRAUN_RK4;
+    a->corrections_default = 1;
+    a->discretization = BRAUN_PER_STEP;
+    a->rtol = 1e-8;
+    a->atol = 1e-10;
+    a->every = 1;
+    a->summary_path = "-";
+
+    for (int i = 0; i < argc; i++) {
+        const char *arg = argv[i];
+        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+            braun_cli_usage(stdout);
+            return -1;
+        }
+        /* "-" alone and negative numbers are values, not options. */
+        if (arg[0] != '-' || strcmp(arg, "-") == 0) {
+            if (a->model) return braun_cli_error("unexpected argument '%s' (one MODEL only)", arg);
+            a->model = arg;
+            continue;
+        }
+        if (strncmp(arg, "--", 2) != 0)
+            return braun_cli_error("unknown option '%s' (see braun --help)", arg);
+        /* Both "--dt 1e-3" and "--dt=1e-3". */
+        char name[32];
+        const char *eq = strchr(arg, '=');
+        const char *val;
+        size_t len = eq ? (size_t)(eq - arg) : strlen(arg);
+        if (len >= sizeof name) return braun_cli_error("unknown option '%s' (see braun --help)", arg);
+        memcpy(name, arg, len);
+        name[len] = '\0';
+        if (!takes_value(name)) return braun_cli_error("unknown option '%s' (see braun --help)", name);
+        if (eq) {
+            val = eq + 1;
+        } else {
+            /* A following option is a forgotten value, not a file name. */
+            if (i + 1 >= argc || strncmp(argv[i + 1], "--", 2) == 0)
+                return braun_cli_error("option %s needs a value", name);
+            val = argv[++i];
+        }
+        if (*val == '\0') return braun_cli_error("option %s needs a value", name);
+        int rc = apply(name, val, a);
+        if (rc) return rc;
+    }
+
+    if (!a->model) return braun_cli_error("run needs a MODEL (see braun list)");
+    if (isnan(a->dt)) return braun_cli_error("run needs --dt H");
+    if (isnan(a->t_end)) return braun_cli_error("run needs --t-end T");
+    if (a->method == BRAUN_DOPRI5 && a->rtol == 0 && a->atol == 0)
+        return braun_cli_error("--rtol and --atol cannot both be 0");
+    if (a->out_path && strcmp(a->out_path, "-") == 0 && strcmp(a->summary_path, "-") == 0)
+        return braun_cli_error("--out - and the summary both write to stdout; give --summary FILE");
+    return 0;
+}

@@ -1,0 +1,11 @@
+/* braun list: the built-in models, one line each (name, n, m, p, description). */
+#include "braun_cli.h"
+
+int braun_cli_list(void)
+{
+    const braun_builtin *b;
+    for (int i = 0; (b = braun_builtin_at(i)) != NULL; i++)
+        printf("%-14s n=%d m=%d p=%d  %s\n", b->name, b->sys.n, b->sys.m, b->sys.p,
+               b->description ? b->description : "");
+    return fflush(stdout) == 0 ? 0 : BRAUN_CLI_FAILED;
+}

@@ -1,0 +1,165 @@
+/* braun_error_format: d->error as one sentence for people (host only). */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "braun_host.h"
+
+/* snprintf that appends: keeps writing into what is left of buf and counts
+ * the full length, so the caller can report truncation as snprintf does. */
+typedef struct msg {
+    char *buf;
+    size_t size;
+    size_t len; /* length the whole message needs so far */
+} msg;
+
+static void put(msg *w, const char *fmt, ...)
+{
+    va_list ap;
+    char *at = NULL;
+    size_t room = 0;
+    if (w->buf && w->len < w->size) {
+        at = w->buf + w->len;
+        room = w->size - w->len;
+    }
+    va_start(ap, fmt);
+    int k = vsnprintf(at, room, fmt, ap);
+    va_end(ap);
+    if (k > 0) w->len += (size_t)k;
+}
+
+/* "[i]", "[i][j]" or nothing, for the entry a check pointed at. */
+static void put_index(msg *w, int i, int j)
+{
+    if (i >= 0) put(w, "[%d]", i);
+    if (i >= 0 && j >= 0) put(w, "[%d]", j);
+}
+
+static void put_time(msg *w, double t) { put(w, " at t = %.10g", t); }
+
+static const char *nonfinite_name(double x)
+{
+    if (isnan(x)) return "NaN";
+    return x > 0 ? "+Inf" : "-Inf";
+}
+
+/* The core's `where` strings are terse identifiers; name the mass matrix
+ * as people say it, keep the rest (they already read as nouns). */
+static const char *noun(const char *where)
+{
+    if (!where) return "a value";
+    if (strcmp(where, "mass") == 0) return "mass matrix";
+    return where;
+}
+
+/* Entry bad of the integrator state [q; v; ∫Ė] (length 2n + 1), or of the
+ * error estimate past its end. */
+static void put_state_entry(msg *w, const braun_data *d, int bad)
+{
+    const int n = d->model ? d->model->sys.n : -1;
+    if (n <= 0 || bad < 0) return;
+    if (bad < n) put(w, ", q[%d] not finite", bad);
+    else if (bad < 2 * n) put(w, ", v[%d] not finite", bad - n);
+    else if (bad == 2 * n) put(w, ", energy input integral not finite");
+    else put(w, ", error estimate not finite");
+}
+
+static void describe(msg *w, const braun_data *d)
+{
+    const braun_error_info *e = &d->error;
+    const char *where = e->where;
+    switch (e->status) {
+    case BRAUN_OK:
+        put(w, "no error");
+        return;
+    case BRAUN_STOPPED:
+        put(w, "stopped by the output callback");
+        break;
+    case BRAUN_ERR_ARGUMENT:
+        if (where && strcmp(where, "method") == 0)
+            put(w, "unknown integration method %d", e->index);
+        else if (where && strcmp(where, "tolerances") == 0)
+            put(w, "invalid tolerances (rtol = %.3g; need rtol, atol >= 0, not both 0)", e->value);
+        else if (where)
+            put(w, "invalid argument '%s'", where);
+        else
+            put(w, "invalid argument (NULL pointer or option out of range)");
+        if (where) break;
+        return; /* nothing recorded: no time to report */
+    case BRAUN_ERR_SIZE:
+        put(w, "invalid sizes n, m, p");
+        return;
+    case BRAUN_ERR_BUFFER:
+        put(w, "workspace buffer too small or misaligned (see braun_data_size)");
+        return;
+    case BRAUN_ERR_NONFINITE:
+        put(w, "%s", noun(where));
+        put_index(w, e->index, e->index2);
+        put(w, " is %s", nonfinite_name(e->value));
+        break;
+    case BRAUN_ERR_MASS_NOT_SYMMETRIC:
+        put(w, "mass matrix not symmetric: |M[%d][%d] - M[%d][%d]| = %.3g", e->index,
+            e->index2, e->index2, e->index, e->value);
+        break;
+    case BRAUN_ERR_MASS_NOT_SPD:
+        put(w, "mass matrix not positive definite at pivot %d (value %.3g)", e->index,
+            e->value);
+        break;
+    case BRAUN_ERR_CALLBACK:
+        put(w, "callback '%s' failed (returned %d)", where ? where : "?", e->index);
+        break;
+    case BRAUN_ERR_CALLBACK_RECOVERABLE:
+        put(w, "callback '%s' failed recoverably (returned %d) and the step could not be retried",
+            where ? where : "?", e->index);
+        break;
+    case BRAUN_ERR_STEP:
+        put(w, "step size h = %.6g is not finite and positive", e->value);
+        break;
+    case BRAUN_ERR_TIME:
+        put(w, "t_end = %.10g is not finite or not after the current time", e->value);
+        break;
+    case BRAUN_ERR_DIVERGED:
+        /* The time is the step's start: the state there is the last good one. */
+        put(w, "step diverged");
+        put_time(w, e->t);
+        if (where && strcmp(where, "step stage") == 0) {
+            put(w, " (h = %.6g, stage %d not finite)", e->value, e->index);
+        } else {
+            put(w, " (h = %.6g", e->value);
+            put_state_entry(w, d, e->index);
+            put(w, ")");
+        }
+        return;
+    case BRAUN_ERR_STEP_TOO_SMALL:
+        put(w, "adaptive step fell below its minimum (h = %.3g)", e->value);
+        break;
+    case BRAUN_ERR_TOO_MANY_STEPS:
+        if (where && strcmp(where, "adaptive") == 0)
+            put(w, "step limit of %.0f steps reached before t_end", e->value);
+        else
+            put(w, "too many steps requested (%.3g)", e->value);
+        break;
+    case BRAUN_ERR_MISSING_CALLBACK:
+        put(w, "a callback the sizes n, m, p require is NULL");
+        return;
+    case BRAUN_ERR_NO_ENERGY_LAW:
+        put(w, "energy correction requested but the system has no energy law");
+        return;
+    default:
+        put(w, "unknown status %d", e->status);
+        if (where) put(w, " in '%s'", where);
+        break;
+    }
+    put_time(w, e->t);
+}
+
+int braun_error_format(const braun_data *d, char *buf, size_t size)
+{
+    if (buf && size > 0) buf[0] = '\0';
+    if (!d) return -1;
+    msg w = {buf, size, 0};
+    describe(&w, d);
+    if (buf && size > 0 && w.len >= size) buf[size - 1] = '\0';
+    return (int)w.len;
+}

@@ -1,0 +1,196 @@
+/*
+ * Double four-bar linkage of Sec. 4.2 (Fig. 5): five uniform rods of length
+ * l and mass m. Three cranks turn about the ground pivots (0,0), (l,0),
+ * (2l,0) and end in the moving joints 1, 2, 3; two couplers join 1–2 and
+ * 2–3. Coordinates are the joint positions q = [x1, y1, x2, y2, x3, y3].
+ *
+ * Mass matrix: a crank with one fixed end has T = ½(m/3)|v_i|², a coupler
+ * T = (m/6)(|v_i|² + v_i·v_j + |v_j|²); summed this is the printed M.
+ *
+ * Potential: each rod's centre is at the mean height of its ends, so
+ *   V = mg(y1/2 + y2/2 + y3/2 + (y1+y2)/2 + (y2+y3)/2) = mg(y1 + 3/2 y2 + y3),
+ * as in the printed energy law. The printed force vector
+ * [0, -mg, 0, +3/2 mg, 0, -mg] has a sign misprint in its fourth entry:
+ * Q = -∂V/∂q = [0, -mg, 0, -3/2 mg, 0, -mg]. With +3/2 mg the constrained
+ * motion no longer matches θ'' + (7g/6l) cos θ = 0 (tests/test_models.c).
+ *
+ * Minimal coordinate: the cranks stay parallel at angle θ, joint i at
+ * ((i-1)l + l cos θ, l sin θ), all joints with velocity lθ'(-sin θ, cos θ).
+ * Then T = ½(3m)l²θ'² (sum of all entries of one 3x3 block of M) and
+ * V = (7/2)mgl sin θ, so 3ml²θ'' + (7/2)mgl cos θ = 0 (Fig. 6 caption).
+ * With phi = θ + π/2 this is the pendulum phi'' = -(7g/6l) sin phi.
+ *
+ * Whenever y1 = y2 = y3 = 0 the five constraint rows lose rank (kinematic
+ * singularity); the model states them as printed.
+ */
+#include <stddef.h>
+
+#include "braun_models_internal.h"
+
+static const braun_link_params params = {1.0, 1.0, 9.81};
+
+static int mass(braun_real t, const braun_real *q, braun_real *M, void *user)
+{
+    const braun_link_params *p = user;
+    braun_real d = BRAUN_R(2.0) / BRAUN_R(3.0) * (braun_real)p->m;
+    braun_real o = (braun_real)p->m / BRAUN_R(6.0);
+    braun_real mid = (braun_real)p->m;
+    (void)t;
+    (void)q;
+    for (int i = 0; i < 36; ++i) M[i] = BRAUN_R(0.0);
+    for (int k = 0; k < 2; ++k) { /* x block (k = 0) and y block (k = 1) */
+        int i1 = k, i2 = 2 + k, i3 = 4 + k;
+        M[i1 * 6 + i1] = d;
+        M[i2 * 6 + i2] = mid;
+        M[i3 * 6 + i3] = d;
+        M[i1 * 6 + i2] = M[i2 * 6 + i1] = o;
+        M[i2 * 6 + i3] = M[i3 * 6 + i2] = o;
+    }
+    return 0;
+}
+
+/* Q = -∂V/∂q; the paper prints +3/2 mg for the fourth entry (misprint). */
+static int forces(braun_real t, const braun_real *q, const braun_real *v,
+                  braun_real *Q, void *user)
+{
+    const braun_link_params *p = user;
+    braun_real mg = (braun_real)(p->m * p->g);
+    (void)t;
+    (void)q;
+    (void)v;
+    Q[0] = BRAUN_R(0.0);
+    Q[1] = -mg;
+    Q[2] = BRAUN_R(0.0);
+    Q[3] = BRAUN_R(-1.5) * mg;
+    Q[4] = BRAUN_R(0.0);
+    Q[5] = -mg;
+    return 0;
+}
+
+/* Rod k between points a and b (a = -1 for a ground pivot at gx): row
+ * |b - a|² - l². Quadratic, so b_qv = -2|v_b - v_a|². */
+static int holonomic(braun_real t, const braun_real *q, const braun_real *v,
+                     braun_real *phi, braun_real *A, braun_real *b,
+                     braun_real *bv, void *user)
+{
+    const braun_link_params *p = user;
+    braun_real l = (braun_real)p->l;
+    /* Rows: cranks to joints 1, 2, 3, couplers 1–2, 2–3. */
+    static const int from[5] = {-1, -1, -1, 0, 1};
+    static const int to[5] = {0, 1, 2, 1, 2};
+    (void)t;
+    if (A)
+        for (int i = 0; i < 30; ++i) A[i] = BRAUN_R(0.0);
+    for (int r = 0; r < 5; ++r) {
+        int a = from[r], j = to[r];
+        /* Ground pivot of crank r sits at (r·l, 0). */
+        braun_real ax = a < 0 ? (braun_real)r * l : q[2 * a];
+        braun_real ay = a < 0 ? BRAUN_R(0.0) : q[2 * a + 1];
+        braun_real dx = q[2 * j] - ax, dy = q[2 * j + 1] - ay;
+        if (phi) phi[r] = dx * dx + dy * dy - l * l;
+        if (A) {
+            A[r * 6 + 2 * j] = BRAUN_R(2.0) * dx;
+            A[r * 6 + 2 * j + 1] = BRAUN_R(2.0) * dy;
+            if (a >= 0) {
+                A[r * 6 + 2 * a] = BRAUN_R(-2.0) * dx;
+                A[r * 6 + 2 * a + 1] = BRAUN_R(-2.0) * dy;
+            }
+        }
+        if (b) b[r] = BRAUN_R(0.0);
+        if (bv) {
+            braun_real ux = v[2 * j] - (a < 0 ? BRAUN_R(0.0) : v[2 * a]);
+            braun_real uy = v[2 * j + 1] - (a < 0 ? BRAUN_R(0.0) : v[2 * a + 1]);
+            bv[r] = BRAUN_R(-2.0) * (ux * ux + uy * uy);
+        }
+    }
+    return 0;
+}
+
+/* E = ½vᵀMv + mg(y1 + 3/2 y2 + y3). */
+static int energy(braun_real t, const braun_real *q, const braun_real *v,
+                  braun_real *E, braun_real *dE_dq, braun_real *dE_dv,
+                  braun_real *dE_dt, void *user)
+{
+    const braun_link_params *p = user;
+    braun_real mg = (braun_real)(p->m * p->g);
+    braun_real M[36], Mv[6];
+    mass(t, q, M, user);
+    for (int i = 0; i < 6; ++i) {
+        Mv[i] = BRAUN_R(0.0);
+        for (int k = 0; k < 6; ++k) Mv[i] += M[i * 6 + k] * v[k];
+    }
+    if (E) {
+        braun_real T = BRAUN_R(0.0);
+        for (int i = 0; i < 6; ++i) T += v[i] * Mv[i];
+        *E = BRAUN_R(0.5) * T + mg * (q[1] + BRAUN_R(1.5) * q[3] + q[5]);
+    }
+    if (dE_dq) {
+        for (int i = 0; i < 6; ++i) dE_dq[i] = BRAUN_R(0.0);
+        dE_dq[1] = mg;
+        dE_dq[3] = BRAUN_R(1.5) * mg;
+        dE_dq[5] = mg;
+    }
+    if (dE_dv)
+        for (int i = 0; i < 6; ++i) dE_dv[i] = Mv[i];
+    if (dE_dt) *dE_dt = BRAUN_R(0.0);
+    return 0;
+}
+
+/* Fig. 6 caption: θ'' + (7g/6l) cos θ = 0. */
+static void minimal_rhs(double t, const double *y, double *dydt,
+                        const braun_link_params *p)
+{
+    (void)t;
+    dydt[0] = y[1];
+    dydt[1] = -7.0 * p->g / (6.0 * p->l) * cos(y[0]);
+}
+
+static const double min_y0[2] = {BRAUN_PI_D / 2.0, -1.0};
+
+/* phi = θ + π/2 turns the equation into the pendulum with w2 = 7g/(6l);
+ * from the paper's state phi(0) = π, phi'(0) = -1 the linkage rotates. */
+static int minimal_exact(double t, double *y, const braun_link_params *p)
+{
+    double phi, dphi;
+    int st = braun_pendulum_exact(7.0 * p->g / (6.0 * p->l),
+                                  min_y0[0] + BRAUN_PI_D / 2.0, min_y0[1], t,
+                                  &phi, &dphi);
+    if (st < 0) return st;
+    y[0] = phi - BRAUN_PI_D / 2.0;
+    y[1] = dphi;
+    return 0;
+}
+
+static void minimal_to_state(const double *y, double *q, double *v,
+                             const braun_link_params *p)
+{
+    double c = cos(y[0]), s = sin(y[0]);
+    for (int i = 0; i < 3; ++i) {
+        q[2 * i] = i * p->l + p->l * c;
+        q[2 * i + 1] = p->l * s;
+        v[2 * i] = -p->l * s * y[1];
+        v[2 * i + 1] = p->l * c * y[1];
+    }
+}
+
+/* Fig. 6 caption. */
+static const braun_real q0[6] = {BRAUN_R(0.0), BRAUN_R(1.0), BRAUN_R(1.0),
+                                 BRAUN_R(1.0), BRAUN_R(2.0), BRAUN_R(1.0)};
+static const braun_real v0[6] = {BRAUN_R(1.0), BRAUN_R(0.0), BRAUN_R(1.0),
+                                 BRAUN_R(0.0), BRAUN_R(1.0), BRAUN_R(0.0)};
+
+const braun_builtin braun_builtin_four_bar = {
+    "four-bar",
+    "double four-bar linkage of Sec. 4.2: 6 joint coordinates, 5 constraints",
+    {6, 5, 0, BRAUN_MASS_CONSTANT, mass, forces, holonomic, NULL, energy, NULL,
+     /* Callbacks only read the parameters; void * has no const. */
+     (void *)&params},
+    q0,
+    v0,
+    2,
+    min_y0,
+    minimal_rhs,
+    minimal_exact,
+    minimal_to_state,
+    4, /* joint 3: ε3 of Fig. 7 */
+    5};

@@ -1,0 +1,122 @@
+/*
+ * Simple pendulum: a point mass m on a massless rod of length l hinged at
+ * the origin, q = [x, y], one constraint x² + y² - l² = 0. The smallest
+ * constrained system: the test bed of the solver.
+ *
+ * Minimal coordinate: phi, the angle from the downward vertical,
+ * x = l sin phi, y = -l cos phi, phi'' = -(g/l) sin phi, solved in closed
+ * form by braun_pendulum_exact.
+ */
+#include <stddef.h>
+
+#include "braun_models_internal.h"
+
+static const braun_link_params params = {1.0, 1.0, 9.81};
+
+static int mass(braun_real t, const braun_real *q, braun_real *M, void *user)
+{
+    const braun_link_params *p = user;
+    (void)t;
+    (void)q;
+    M[0] = M[3] = (braun_real)p->m;
+    M[1] = M[2] = BRAUN_R(0.0);
+    return 0;
+}
+
+static int forces(braun_real t, const braun_real *q, const braun_real *v,
+                  braun_real *Q, void *user)
+{
+    const braun_link_params *p = user;
+    (void)t;
+    (void)q;
+    (void)v;
+    Q[0] = BRAUN_R(0.0);
+    Q[1] = -(braun_real)(p->m * p->g);
+    return 0;
+}
+
+/* Φ = x² + y² - l²; quadratic, so b_qv = -2|v|². */
+static int holonomic(braun_real t, const braun_real *q, const braun_real *v,
+                     braun_real *phi, braun_real *A, braun_real *b,
+                     braun_real *bv, void *user)
+{
+    const braun_link_params *p = user;
+    braun_real l = (braun_real)p->l;
+    (void)t;
+    if (phi) phi[0] = q[0] * q[0] + q[1] * q[1] - l * l;
+    if (A) {
+        A[0] = BRAUN_R(2.0) * q[0];
+        A[1] = BRAUN_R(2.0) * q[1];
+    }
+    if (b) b[0] = BRAUN_R(0.0);
+    if (bv) bv[0] = BRAUN_R(-2.0) * (v[0] * v[0] + v[1] * v[1]);
+    return 0;
+}
+
+/* E = ½m|v|² + mgy. */
+static int energy(braun_real t, const braun_real *q, const braun_real *v,
+                  braun_real *E, braun_real *dE_dq, braun_real *dE_dv,
+                  braun_real *dE_dt, void *user)
+{
+    const braun_link_params *p = user;
+    braun_real m = (braun_real)p->m;
+    braun_real mg = (braun_real)(p->m * p->g);
+    (void)t;
+    if (E) *E = BRAUN_R(0.5) * m * (v[0] * v[0] + v[1] * v[1]) + mg * q[1];
+    if (dE_dq) {
+        dE_dq[0] = BRAUN_R(0.0);
+        dE_dq[1] = mg;
+    }
+    if (dE_dv) {
+        dE_dv[0] = m * v[0];
+        dE_dv[1] = m * v[1];
+    }
+    if (dE_dt) *dE_dt = BRAUN_R(0.0);
+    return 0;
+}
+
+static void minimal_rhs(double t, const double *y, double *dydt,
+                        const braun_link_params *p)
+{
+    (void)t;
+    dydt[0] = y[1];
+    dydt[1] = -p->g / p->l * sin(y[0]);
+}
+
+/* Released at rest from the horizontal. */
+static const double min_y0[2] = {BRAUN_PI_D / 2.0, 0.0};
+
+static int minimal_exact(double t, double *y, const braun_link_params *p)
+{
+    return braun_pendulum_exact(p->g / p->l, min_y0[0], min_y0[1], t, &y[0],
+                                &y[1]);
+}
+
+static void minimal_to_state(const double *y, double *q, double *v,
+                             const braun_link_params *p)
+{
+    double c = cos(y[0]), s = sin(y[0]);
+    q[0] = p->l * s;
+    q[1] = -p->l * c;
+    v[0] = p->l * c * y[1];
+    v[1] = p->l * s * y[1];
+}
+
+static const braun_real q0[2] = {BRAUN_R(1.0), BRAUN_R(0.0)}; /* [l, 0] */
+static const braun_real v0[2] = {BRAUN_R(0.0), BRAUN_R(0.0)};
+
+const braun_builtin braun_builtin_pendulum = {
+    "pendulum",
+    "point mass on a rigid massless rod: 2 coordinates, 1 constraint",
+    {2, 1, 0, BRAUN_MASS_CONSTANT, mass, forces, holonomic, NULL, energy, NULL,
+     /* Callbacks only read the parameters; void * has no const. */
+     (void *)&params},
+    q0,
+    v0,
+    2,
+    min_y0,
+    minimal_rhs,
+    minimal_exact,
+    minimal_to_state,
+    0,
+    1};

@@ -1,0 +1,379 @@
+/* The corrected equation of motion (Eqs. 16, 17, 20): equivalence with the
+ * Udwadia–Kalaba / Lagrange-multiplier acceleration, the geometric
+ * invariants of each correction term, redundancy, inconsistent starts,
+ * nonholonomic and rheonomic systems against exact solutions. */
+#include "test_util.h"
+#include "test_systems.h"
+
+#define NM 8
+
+/* Solve the dense system K x = r (size k) by Gaussian elimination with
+ * partial pivoting — the test's independent reference. */
+static void gauss_solve(int k, double *K, double *r)
+{
+    for (int c = 0; c < k; c++) {
+        int p = c;
+        for (int i = c + 1; i < k; i++)
+            if (fabs(K[i * k + c]) > fabs(K[p * k + c])) p = i;
+        for (int j = 0; j < k; j++) {
+            double t = K[c * k + j]; K[c * k + j] = K[p * k + j]; K[p * k + j] = t;
+        }
+        double t = r[c]; r[c] = r[p]; r[p] = t;
+        for (int i = c + 1; i < k; i++) {
+            double f = K[i * k + c] / K[c * k + c];
+            for (int j = c; j < k; j++) K[i * k + j] -= f * K[c * k + j];
+            r[i] -= f * r[c];
+        }
+    }
+    for (int i = k - 1; i >= 0; i--) {
+        for (int j = i + 1; j < k; j++) r[i] -= K[i * k + j] * r[j];
+        r[i] /= K[i * k + i];
+    }
+}
+
+/* Lagrange-multiplier acceleration: [M A^T; A 0][a; λ] = [Q; b_v]. */
+static void kkt_accel(const braun_system *s, double t, const double *q, const double *v,
+                      double *acc)
+{
+    const int n = s->n, rows = s->m + s->p, k = n + rows;
+    double M[NM * NM], Q[NM], A[NM * NM], bv[NM], K[(2 * NM) * (2 * NM)], r[2 * NM];
+    s->mass(t, q, M, s->user);
+    s->forces(t, q, v, Q, s->user);
+    if (s->m) s->holonomic(t, q, v, NULL, A, NULL, bv, s->user);
+    if (s->p) s->nonholonomic(t, q, v, NULL, A + s->m * n, bv + s->m, s->user);
+    memset(K, 0, sizeof K);
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < n; j++) K[i * k + j] = M[i * n + j];
+        r[i] = Q[i];
+    }
+    for (int i = 0; i < rows; i++) {
+        for (int j = 0; j < n; j++) K[(n + i) * k + j] = K[j * k + n + i] = A[i * n + j];
+        r[n + i] = bv[i];
+    }
+    gauss_solve(k, K, r);
+    for (int i = 0; i < n; i++) acc[i] = r[i];
+}
+
+/* Orthonormal basis of the row space of A (rows x n) by Gram–Schmidt;
+ * returns its dimension. */
+static int row_basis(int rows, int n, const double *A, double *B)
+{
+    int k = 0;
+    for (int i = 0; i < rows; i++) {
+        double w[NM];
+        for (int j = 0; j < n; j++) w[j] = A[i * n + j];
+        for (int c = 0; c < k; c++) {
+            double d = 0;
+            for (int j = 0; j < n; j++) d += B[c * n + j] * w[j];
+            for (int j = 0; j < n; j++) w[j] -= d * B[c * n + j];
+        }
+        double nr = 0;
+        for (int j = 0; j < n; j++) nr += w[j] * w[j];
+        nr = sqrt(nr);
+        if (nr < 1e-10) continue;
+        for (int j = 0; j < n; j++) B[k * n + j] = w[j] / nr;
+        k++;
+    }
+    return k;
+}
+
+/* |x - P_rowspace(A) x| / |x|: 0 iff x lies in range(A^T). */
+static double off_range(int rows, int n, const double *A, const double *x)
+{
+    double B[NM * NM], w[NM], nx = 0, nw = 0;
+    int k = row_basis(rows, n, A, B);
+    for (int j = 0; j < n; j++) w[j] = x[j];
+    for (int c = 0; c < k; c++) {
+        double d = 0;
+        for (int j = 0; j < n; j++) d += B[c * n + j] * x[j];
+        for (int j = 0; j < n; j++) w[j] -= d * B[c * n + j];
+    }
+    for (int j = 0; j < n; j++) { nx += x[j] * x[j]; nw += w[j] * w[j]; }
+    return nx > 0 ? sqrt(nw / nx) : 0;
+}
+
+static void full_jacobian(const braun_system *s, double t, const double *q, const double *v,
+                          double *A)
+{
+    if (s->m) s->holonomic(t, q, v, NULL, A, NULL, (double[NM]){0}, s->user);
+    if (s->p) s->nonholonomic(t, q, v, NULL, A + s->m * s->n, (double[NM]){0}, s->user);
+}
+
+/* With no corrections, and with all of them at an exact state, braun_eval
+ * gives the ideal (Udwadia–Kalaba) acceleration = the multiplier solution. */
+static void test_ideal_equals_udwadia_kalaba(void **state)
+{
+    (void)state;
+    braun_system s = generic_system();
+    double q[4], v[4], ref[4], qd[4], vd[4];
+    generic_consistent_state(q, v);
+    kkt_accel(&s, 0, q, v, ref);
+    for (unsigned corr = 0; corr <= BRAUN_CORRECT_ALL; corr += BRAUN_CORRECT_ALL) {
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &s, corr), BRAUN_OK);
+        assert_int_equal(braun_set_state(&sim.data, 0, q, v), BRAUN_OK);
+        assert_int_equal(braun_eval(&sim.data, 0, q, v, 1e-3, qd, vd), BRAUN_OK);
+        for (int i = 0; i < 4; i++) {
+            /* Exact state up to round-off: Φ/h ~ 1e-16/1e-3 is the only difference. */
+            assert_near(vd[i], ref[i], 1e-11);
+            assert_near(qd[i], v[i], 1e-11);
+        }
+        test_sim_close(&sim);
+    }
+}
+
+/* Perturbed (inconsistent) state of the generic system. */
+static void generic_perturbed(double *q, double *v)
+{
+    generic_consistent_state(q, v);
+    const double dq[4] = {0.01, -0.02, 0.015, 0.005}, dv[4] = {0.1, 0.05, -0.08, 0.02};
+    for (int i = 0; i < 4; i++) { q[i] += dq[i]; v[i] += dv[i]; }
+}
+
+static void eval_with(const braun_system *s, unsigned corr, double dE0, const double *q,
+                      const double *v, double h, double *qd, double *vd)
+{
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, s, corr), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q, v), BRAUN_OK);
+    sim.data.E0 += dE0;
+    assert_int_equal(braun_eval(&sim.data, 0, q, v, h, qd, vd), BRAUN_OK);
+    test_sim_close(&sim);
+}
+
+/* The energy force is tangent to the constraints: A_v R^-1 N_v R^-T Q0 = 0,
+ * while it does change the energy. */
+static void test_energy_force_is_tangent(void **state)
+{
+    (void)state;
+    braun_system s = generic_system();
+    double q[4], v[4], qd[4], v0[4], v1[4], A[3 * 4], dE[4];
+    generic_perturbed(q, v);
+    eval_with(&s, 0, 0.0, q, v, 1e-2, qd, v0);
+    /* E0 shifted so that Φ_e = -1e-3: the force must act. */
+    eval_with(&s, BRAUN_CORRECT_ENERGY, 1e-3, q, v, 1e-2, qd, v1);
+    full_jacobian(&s, 0, q, v, A);
+    double d[4], dmax = 0;
+    for (int i = 0; i < 4; i++) { d[i] = v1[i] - v0[i]; dmax = fmax(dmax, fabs(d[i])); }
+    assert_true(dmax > 1e-3);
+    for (int r = 0; r < 3; r++) {
+        double Ad = 0;
+        for (int j = 0; j < 4; j++) Ad += A[r * 4 + j] * d[j];
+        assert_near(Ad, 0, 1e-12 * dmax * 10);
+    }
+    /* and it acts along the energy gradient's tangent part: A_e d != 0 */
+    s.energy(0, q, v, NULL, NULL, dE, NULL, NULL);
+    double Aed = 0;
+    for (int j = 0; j < 4; j++) Aed += dE[j] * d[j];
+    assert_true(fabs(Aed) > 1e-3);
+}
+
+/* The ideal impulse (Eq. 16) and the velocity-level force (Eq. 17) are
+ * M-orthogonal to the tangent space: M·correction lies in range(A^T), so
+ * they do no work on any motion the constraints allow. */
+static void test_ideal_corrections_are_normal(void **state)
+{
+    (void)state;
+    braun_system s = generic_system();
+    double q[4], v[4], qd[4], vd[4], v0[4], qd0[4], A[3 * 4], M[16];
+    generic_perturbed(q, v);
+    full_jacobian(&s, 0, q, v, A);
+    s.mass(0, q, M, NULL);
+    eval_with(&s, 0, 0.0, q, v, 1e-2, qd0, v0);
+    eval_with(&s, BRAUN_CORRECT_POSITION, 0.0, q, v, 1e-2, qd, vd);
+    double dq[4], Mdq[4], dv[4], Mdv[4];
+    for (int i = 0; i < 4; i++) dq[i] = qd[i] - qd0[i];
+    for (int i = 0; i < 4; i++) {
+        Mdq[i] = 0;
+        for (int j = 0; j < 4; j++) Mdq[i] += M[i * 4 + j] * dq[j];
+    }
+    /* position correction: holonomic rows only (Eq. 16 uses A_q) */
+    assert_true(fabs(Mdq[0]) + fabs(Mdq[1]) > 1e-3);
+    assert_le(off_range(2, 4, A, Mdq), 1e-12);
+    eval_with(&s, BRAUN_CORRECT_VELOCITY, 0.0, q, v, 1e-2, qd, vd);
+    for (int i = 0; i < 4; i++) dv[i] = vd[i] - v0[i];
+    for (int i = 0; i < 4; i++) {
+        Mdv[i] = 0;
+        for (int j = 0; j < 4; j++) Mdv[i] += M[i * 4 + j] * dv[j];
+    }
+    assert_true(fabs(dv[0]) + fabs(dv[1]) > 1e-3);
+    assert_le(off_range(3, 4, A, Mdv), 1e-12);
+}
+
+typedef struct track {
+    double maxpos, maxvel, maxE;
+} track;
+
+static int track_out(const braun_data *d, void *u)
+{
+    track *tr = u;
+    braun_real p, v, e;
+    braun_residuals((braun_data *)d, d->t, d->q, d->v, &p, &v, &e);
+    tr->maxpos = fmax(tr->maxpos, p);
+    tr->maxvel = fmax(tr->maxvel, v);
+    tr->maxE = fmax(tr->maxE, e);
+    return 0;
+}
+
+/* Redundant rows (duplicated, scaled duplicate) leave the motion unchanged. */
+static void test_redundant_rows_change_nothing(void **state)
+{
+    (void)state;
+    double qf[3][2], vf[3][2];
+    for (int red = 0; red < 3; red++) {
+        pendulum_params prm = {1.0, 1.0, 9.81, red, 0, 0, 0, 0, 0};
+        braun_system s = pendulum_system(&prm);
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+        const double q0[2] = {1, 0}, v0[2] = {0, 0};
+        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+        track tr = {0, 0, 0};
+        assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 10.0, 1, track_out, &tr),
+                         BRAUN_OK);
+        if (red) assert_true(sim.data.stats.rank_deficient > 0);
+        assert_le(tr.maxpos, 1e-9);
+        assert_le(tr.maxE, 1e-6); /* RK4 local energy error at h = 1e-2 */
+        for (int i = 0; i < 2; i++) { qf[red][i] = sim.data.q[i]; vf[red][i] = sim.data.v[i]; }
+        test_sim_close(&sim);
+    }
+    for (int red = 1; red < 3; red++)
+        for (int i = 0; i < 2; i++) {
+            assert_near(qf[red][i], qf[0][i], 1e-10);
+            assert_near(vf[red][i], vf[0][i], 1e-10);
+        }
+}
+
+/* An inconsistent start (position error 1e-2, velocity error 1e-1) is pulled
+ * onto the constraints within a few steps, without an energy blow-up. */
+static void test_inconsistent_start_is_pulled_back(void **state)
+{
+    (void)state;
+    pendulum_params prm = {1.0, 1.0, 9.81, 0, 0, 0, 0, 0, 0};
+    braun_system s = pendulum_system(&prm);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double q0[2] = {1.005, 0}, v0[2] = {0.1, 0}; /* Φ ≈ 1.0e-2, Φ̇ = 0.2 */
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    braun_real p0, vel0;
+    braun_residuals(&sim.data, 0, q0, v0, &p0, &vel0, NULL);
+    assert_true(p0 > 9e-3 && vel0 > 0.1);
+    braun_real p, vel, e, e0;
+    braun_residuals(&sim.data, 0, q0, v0, NULL, NULL, &e0);
+    for (int k = 0; k < 3; k++) assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_OK);
+    braun_residuals(&sim.data, sim.data.t, sim.data.q, sim.data.v, &p, &vel, &e);
+    /* Projection converges quadratically: 1e-2 -> 2e-5 -> 2e-10. */
+    assert_le(p, 1e-9);
+    /* E0 includes the radial kinetic energy of the inconsistent start
+     * (5e-3 J); the energy force moves it into the allowed motion at most
+     * energy_max_rel per step, which briefly costs velocity-level error of
+     * order h·|v|·|dv_e| until the balance closes. */
+    assert_le(vel, 1e-4);
+    track tr = {0, 0, 0};
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 20.0, 1, track_out, &tr), BRAUN_OK);
+    assert_le(tr.maxpos, 1e-9);
+    assert_le(tr.maxvel, 1e-4);
+    assert_le(tr.maxE, 5.0001e-3); /* never more than the initial inconsistency */
+    braun_residuals(&sim.data, sim.data.t, sim.data.q, sim.data.v, &p, &vel, &e);
+    assert_le(e, 1e-6);
+    assert_le(vel, 1e-7);
+    test_sim_close(&sim);
+}
+
+/* Knife edge (nonholonomic, energy conserving) against its exact circle. */
+static void test_knife_edge_exact(void **state)
+{
+    (void)state;
+    braun_system s = knife_system();
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double q0[3] = {0.5, -0.2, 0.3}, v0[3] = {1.2 * cos(0.3), 1.2 * sin(0.3), 0.8};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    track tr = {0, 0, 0};
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 20.0, 1, track_out, &tr), BRAUN_OK);
+    double qe[3], ve[3];
+    knife_exact(20.0, q0, v0, qe, ve);
+    for (int i = 0; i < 3; i++) {
+        assert_near(sim.data.q[i], qe[i], 1e-8);
+        assert_near(sim.data.v[i], ve[i], 1e-8);
+    }
+    assert_le(tr.maxvel, 1e-10);
+    assert_le(tr.maxE, 1e-10);
+    test_sim_close(&sim);
+}
+
+/* Bead on a spinning rod (rheonomic: b_q, b_qv with ∂/∂t terms, and the
+ * energy input of the rod integrated as ∫Ė) against r = r0 cosh ωt. */
+static void test_rheonomic_bead_exact(void **state)
+{
+    (void)state;
+    double w = 1.3;
+    braun_system s = bead_system(&w);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double q0[2] = {1, 0}, v0[2] = {0, w};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    track tr = {0, 0, 0};
+    const double T = 2.0;
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, T, 1, track_out, &tr), BRAUN_OK);
+    const double r = cosh(w * T);
+    assert_near(sim.data.q[0], r * cos(w * T), 1e-8 * r);
+    assert_near(sim.data.q[1], r * sin(w * T), 1e-8 * r);
+    /* the energy balance E = E0 + ∫Ė closes; ∫Ė = ω² (r² - r0²) exactly */
+    assert_near(sim.data.work_in, w * w * (r * r - 1), 1e-8 * r * r);
+    assert_le(tr.maxE, 1e-9 * r * r);
+    assert_le(tr.maxpos, 1e-10 * r);
+    test_sim_close(&sim);
+}
+
+/* Same binary, same input: bitwise-identical trajectories. */
+static void test_deterministic(void **state)
+{
+    (void)state;
+    double out[2][4];
+    for (int run = 0; run < 2; run++) {
+        braun_system s = generic_system();
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+        double q[4], v[4];
+        generic_perturbed(q, v);
+        assert_int_equal(braun_set_state(&sim.data, 0, q, v), BRAUN_OK);
+        assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 5.0, 0, NULL, NULL), BRAUN_OK);
+        for (int i = 0; i < 4; i++) out[run][i] = sim.data.q[i];
+        test_sim_close(&sim);
+    }
+    assert_memory_equal(out[0], out[1], sizeof out[0]);
+}
+
+/* The adaptive pair reaches the exact knife-edge solution at its tolerance. */
+static void test_adaptive_knife(void **state)
+{
+    (void)state;
+    braun_system s = knife_system();
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double q0[3] = {0, 0, 0}, v0[3] = {1, 0, 2};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    braun_adaptive ctl = {1e-10, 1e-12, 0, 0, 0, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 10.0, 1, NULL, NULL), BRAUN_OK);
+    assert_near(sim.data.t, 10.0, 0);
+    double qe[3], ve[3];
+    knife_exact(10.0, q0, v0, qe, ve);
+    for (int i = 0; i < 3; i++) assert_near(sim.data.q[i], qe[i], 1e-7);
+    test_sim_close(&sim);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_ideal_equals_udwadia_kalaba),
+        cmocka_unit_test(test_energy_force_is_tangent),
+        cmocka_unit_test(test_ideal_corrections_are_normal),
+        cmocka_unit_test(test_redundant_rows_change_nothing),
+        cmocka_unit_test(test_inconsistent_start_is_pulled_back),
+        cmocka_unit_test(test_knife_edge_exact),
+        cmocka_unit_test(test_rheonomic_bead_exact),
+        cmocka_unit_test(test_deterministic),
+        cmocka_unit_test(test_adaptive_knife),
+    };
+    return cmocka_run_group_tests_name("core", tests, NULL, NULL);
+}

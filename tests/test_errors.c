@@ -1,0 +1,233 @@
+/* Bad input gets a status that names the problem and the place; a failed
+ * step leaves the last good state in place. */
+#include "test_util.h"
+#include "test_systems.h"
+
+static pendulum_params pend(int bad_mass)
+{
+    pendulum_params p = {1.0, 1.0, 9.81, 0, bad_mass, 0, 0, 0, 0};
+    return p;
+}
+
+static void test_model_validation(void **state)
+{
+    (void)state;
+    pendulum_params prm = pend(0);
+    braun_system s = pendulum_system(&prm);
+    braun_model m;
+    assert_int_equal(braun_model_init(NULL, &s), BRAUN_ERR_ARGUMENT);
+    braun_system bad = s;
+    bad.n = 0;
+    assert_int_equal(braun_model_init(&m, &bad), BRAUN_ERR_SIZE);
+    bad = s;
+    bad.m = -1;
+    assert_int_equal(braun_model_init(&m, &bad), BRAUN_ERR_SIZE);
+    bad = s;
+    bad.holonomic = NULL;
+    assert_int_equal(braun_model_init(&m, &bad), BRAUN_ERR_MISSING_CALLBACK);
+    bad = s;
+    bad.p = 1;
+    assert_int_equal(braun_model_init(&m, &bad), BRAUN_ERR_MISSING_CALLBACK);
+    bad = s;
+    bad.flags |= BRAUN_ENERGY_INPUT;
+    assert_int_equal(braun_model_init(&m, &bad), BRAUN_ERR_MISSING_CALLBACK);
+    bad = s;
+    bad.flags = 1u << 7;
+    assert_int_equal(braun_model_init(&m, &bad), BRAUN_ERR_ARGUMENT);
+    /* energy correction without a law */
+    bad = s;
+    bad.energy = NULL;
+    assert_int_equal(braun_model_init(&m, &bad), BRAUN_OK);
+    assert_int_equal(m.opt.corrections & BRAUN_CORRECT_ENERGY, 0);
+    m.opt.corrections = BRAUN_CORRECT_ALL;
+    size_t bytes = braun_data_size(&m);
+    void *buf = malloc(bytes);
+    braun_data d;
+    assert_int_equal(braun_data_init(&d, &m, buf, bytes), BRAUN_ERR_NO_ENERGY_LAW);
+    /* buffer too small */
+    m.opt.corrections = 0;
+    assert_int_equal(braun_data_init(&d, &m, buf, bytes - 1), BRAUN_ERR_BUFFER);
+    assert_int_equal(braun_data_init(&d, &m, buf, bytes), BRAUN_OK);
+    free(buf);
+}
+
+/* Misaligned buffers are fine: the data is carved from an aligned offset. */
+static void test_misaligned_buffer(void **state)
+{
+    (void)state;
+    pendulum_params prm = pend(0);
+    braun_system s = pendulum_system(&prm);
+    braun_model m;
+    assert_int_equal(braun_model_init(&m, &s), BRAUN_OK);
+    size_t bytes = braun_data_size(&m);
+    unsigned char *raw = malloc(bytes + 1);
+    braun_data d;
+    assert_int_equal(braun_data_init(&d, &m, raw + 1, bytes), BRAUN_OK);
+    const double q0[2] = {1, 0}, v0[2] = {0, 0};
+    assert_int_equal(braun_set_state(&d, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&d, BRAUN_RK4, 1e-2, 1.0, 0, NULL, NULL), BRAUN_OK);
+    free(raw);
+}
+
+static void expect_mass_error(int bad_mass, int status, int i, int j)
+{
+    pendulum_params prm = pend(bad_mass);
+    braun_system s = pendulum_system(&prm);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double q0[2] = {1, 0}, v0[2] = {0, 0};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), status);
+    assert_string_equal(sim.data.error.where, "mass");
+    assert_int_equal(sim.data.error.index, i);
+    assert_int_equal(sim.data.error.index2, j);
+    assert_true(sim.data.t == 0); /* nothing advanced */
+    test_sim_close(&sim);
+}
+
+static void test_bad_mass_matrices(void **state)
+{
+    (void)state;
+    expect_mass_error(1, BRAUN_ERR_MASS_NOT_SPD, 1, 1);
+    expect_mass_error(2, BRAUN_ERR_MASS_NOT_SYMMETRIC, 0, 1);
+    expect_mass_error(3, BRAUN_ERR_NONFINITE, 1, 0);
+}
+
+static void test_bad_state_and_steps(void **state)
+{
+    (void)state;
+    pendulum_params prm = pend(0);
+    braun_system s = pendulum_system(&prm);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double q0[2] = {1, 0}, v0[2] = {0, 0}, qn[2] = {1, NAN}, vi[2] = {INFINITY, 0};
+    assert_int_equal(braun_set_state(&sim.data, 0, qn, v0), BRAUN_ERR_NONFINITE);
+    assert_string_equal(sim.data.error.where, "state q");
+    assert_int_equal(sim.data.error.index, 1);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, vi), BRAUN_ERR_NONFINITE);
+    assert_string_equal(sim.data.error.where, "state v");
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 0), BRAUN_ERR_STEP);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, -1e-3), BRAUN_ERR_STEP);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, NAN), BRAUN_ERR_STEP);
+    assert_int_equal(braun_step(&sim.data, (braun_method)42, 1e-3), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, 0.0, 1, NULL, NULL), BRAUN_ERR_TIME);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, -1.0, 1, NULL, NULL), BRAUN_ERR_TIME);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, INFINITY, 1, NULL, NULL), BRAUN_ERR_TIME);
+    braun_real qd[2], vd[2];
+    assert_int_equal(braun_eval(&sim.data, 0, q0, v0, 0, qd, vd), BRAUN_ERR_STEP);
+    assert_int_equal(braun_eval(&sim.data, 0, qn, v0, 1e-3, qd, vd), BRAUN_ERR_NONFINITE);
+    assert_int_equal(braun_eval(NULL, 0, q0, v0, 1e-3, qd, vd), BRAUN_ERR_ARGUMENT);
+    test_sim_close(&sim);
+}
+
+/* SUNDIALS convention: < 0 fatal, > 0 recoverable. Fixed-step drivers
+ * cannot retry; the adaptive driver retries with a smaller step. Either way
+ * the state stays at the last good step. */
+static void test_callback_failures(void **state)
+{
+    (void)state;
+    pendulum_params prm = pend(0);
+    prm.fail_from = 41; /* 4 RK4 stages per step: fails inside step 11 */
+    prm.fail_to = 1000000;
+    prm.fail_code = -3;
+    braun_system s = pendulum_system(&prm);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double q0[2] = {1, 0}, v0[2] = {0, 0};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 1, NULL, NULL),
+                     BRAUN_ERR_CALLBACK);
+    assert_string_equal(sim.data.error.where, "forces");
+    assert_int_equal(sim.data.error.index, -3);
+    assert_int_equal(sim.data.stats.steps, 10);
+    assert_near(sim.data.t, 0.1, 1e-15);
+    assert_true(isfinite(sim.data.q[0]) && isfinite(sim.data.v[1]));
+
+    prm.calls = 0;
+    prm.fail_code = 2;
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 1, NULL, NULL),
+                     BRAUN_ERR_CALLBACK_RECOVERABLE);
+
+    /* Adaptive: one recoverable failure is retried and the run completes. */
+    prm.calls = 0;
+    prm.fail_from = prm.fail_to = 30;
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    braun_adaptive ctl = {1e-8, 1e-10, 0, 0, 0, 0};
+    long rejected0 = sim.data.stats.rejected_steps;
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 1.0, 1, NULL, NULL), BRAUN_OK);
+    assert_true(sim.data.stats.rejected_steps > rejected0);
+    assert_near(sim.data.t, 1.0, 0);
+    test_sim_close(&sim);
+}
+
+/* A stiff unconstrained oscillator with a step far beyond RK4's stability
+ * limit: the overflow is reported as divergence, never a NaN trajectory. */
+static int osc_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t; (void)q; (void)u;
+    M[0] = 1;
+    return 0;
+}
+static int osc_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,
+                      void *u)
+{
+    (void)t; (void)v; (void)u;
+    Q[0] = -1e6 * q[0];
+    return 0;
+}
+
+static int count_out(const braun_data *d, void *u)
+{
+    (void)d;
+    ++*(long *)u;
+    return 0;
+}
+
+static void test_divergence_is_reported(void **state)
+{
+    (void)state;
+    braun_system s = {1, 0, 0, BRAUN_MASS_CONSTANT, osc_mass, osc_forces, NULL, NULL, NULL,
+                      NULL, NULL};
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
+                     BRAUN_OK);
+    const double q0[1] = {1}, v0[1] = {0};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    long outputs = 0;
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 0.1, 1e6, 1, count_out, &outputs),
+                     BRAUN_ERR_DIVERGED);
+    assert_true(isfinite(sim.data.q[0]) && isfinite(sim.data.v[0]));
+    assert_true(sim.data.t > 0);
+    /* the error names the stage time inside the failed step */
+    assert_true(sim.data.error.t >= sim.data.t && sim.data.error.t <= sim.data.t + 0.1 + 1e-12);
+    assert_int_equal(outputs, sim.data.stats.steps + 1); /* every good step was seen */
+    test_sim_close(&sim);
+}
+
+static void test_status_names(void **state)
+{
+    (void)state;
+    for (int st = -15; st <= 1; st++) {
+        const char *s = braun_status_str(st);
+        assert_non_null(s);
+        assert_true(strncmp(s, "BRAUN_", 6) == 0);
+        assert_null(strstr(s, "UNKNOWN"));
+    }
+    assert_non_null(strstr(braun_status_str(99), "UNKNOWN"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_model_validation),
+        cmocka_unit_test(test_misaligned_buffer),
+        cmocka_unit_test(test_bad_mass_matrices),
+        cmocka_unit_test(test_bad_state_and_steps),
+        cmocka_unit_test(test_callback_failures),
+        cmocka_unit_test(test_divergence_is_reported),
+        cmocka_unit_test(test_status_names),
+    };
+    return cmocka_run_group_tests_name("errors", tests, NULL, NULL);
+}

@@ -1,0 +1,203 @@
+/* Linear-algebra kernels: Cholesky and the rank-revealing pseudoinverse,
+ * checked against definitions (Moore–Penrose conditions), not against
+ * numbers the code printed. */
+#include "test_util.h"
+#include "braun_linalg.h"
+
+#define NMAX 8
+
+static double frand(unsigned *s)
+{
+    *s = *s * 1103515245u + 12345u;
+    return ((*s >> 8) & 0xffff) / 32768.0 - 1.0;
+}
+
+static void test_chol_known(void **state)
+{
+    (void)state;
+    /* M = R^T R with R = [2 1 0; 0 3 1; 0 0 4]. */
+    const braun_real Rk[9] = {2, 1, 0, 0, 3, 1, 0, 0, 4};
+    braun_real M[9], R[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double s = 0;
+            for (int k = 0; k < 3; k++) s += Rk[k * 3 + i] * Rk[k * 3 + j];
+            M[i * 3 + j] = s;
+        }
+    assert_int_equal(braun_chol_factor(3, M, R, 1e-12, NULL, NULL, NULL), BRAUN_OK);
+    for (int i = 0; i < 9; i++) assert_near(R[i], Rk[i], 1e-14);
+    /* Solves: R^-T then R^-1 of M x gives x. */
+    braun_real x[3] = {1, -2, 3}, y[3];
+    braun_gemv(3, 3, M, x, y);
+    braun_chol_solve_rt(3, R, y);
+    braun_chol_solve_r(3, R, y);
+    for (int i = 0; i < 3; i++) assert_near(y[i], x[i], 1e-13);
+}
+
+static void test_chol_rejects(void **state)
+{
+    (void)state;
+    braun_real R[9];
+    int bi = -1, bj = -1;
+    braun_real bad = 0;
+    const braun_real asym[9] = {2, 1, 0, 0.5, 2, 0, 0, 0, 2};
+    assert_int_equal(braun_chol_factor(3, asym, R, 1e-12, &bi, &bj, &bad),
+                     BRAUN_ERR_MASS_NOT_SYMMETRIC);
+    assert_int_equal(bi, 0);
+    assert_int_equal(bj, 1);
+    const braun_real indef[9] = {1, 2, 0, 2, 1, 0, 0, 0, 1};
+    assert_int_equal(braun_chol_factor(3, indef, R, 1e-12, &bi, &bj, &bad),
+                     BRAUN_ERR_MASS_NOT_SPD);
+    assert_int_equal(bi, 1);
+    assert_true(bad < 0);
+    const braun_real singular[4] = {1, 1, 1, 1};
+    assert_int_equal(braun_chol_factor(2, singular, R, 1e-12, &bi, &bj, &bad),
+                     BRAUN_ERR_MASS_NOT_SPD);
+}
+
+/* X = C^+ built column by column; then the four Penrose conditions. */
+typedef struct pinv_case {
+    int rows, n;
+    braun_real C[NMAX * NMAX];
+} pinv_case;
+
+static int factor(const pinv_case *c, braun_qrcp *f, braun_real *reals, int *ints,
+                  braun_real tol)
+{
+    braun_qrcp_bind(f, c->n, c->rows, reals, ints);
+    for (int i = 0; i < c->rows * c->n; i++) f->a[i] = c->C[i];
+    return braun_qrcp_factor(f, tol);
+}
+
+static void pinv_matrix(const braun_qrcp *f, int rows, int n, braun_real *X)
+{
+    braun_real e[NMAX], x[NMAX];
+    for (int j = 0; j < rows; j++) {
+        for (int i = 0; i < rows; i++) e[i] = i == j;
+        braun_qrcp_pinv_apply(f, e, x);
+        for (int i = 0; i < n; i++) X[i * rows + j] = x[i]; /* X is n x rows */
+    }
+}
+
+static void matmul(int a, int b, int c, const braun_real *A, const braun_real *B,
+                   braun_real *AB)
+{
+    for (int i = 0; i < a; i++)
+        for (int j = 0; j < c; j++) {
+            double s = 0;
+            for (int k = 0; k < b; k++) s += A[i * b + k] * B[k * c + j];
+            AB[i * c + j] = s;
+        }
+}
+
+static void check_penrose(const pinv_case *c, int expect_rank, double tol)
+{
+    braun_real reals[2 * NMAX * NMAX + 4 * NMAX];
+    int ints[NMAX];
+    braun_qrcp f;
+    assert_true(braun_qrcp_reals(c->n, c->rows) <= sizeof reals / sizeof reals[0]);
+    /* With tolerance 0 round-off pivots (~1e-16) would count as rank: the
+     * tolerance is what makes the decomposition rank-revealing. */
+    int rank = factor(c, &f, reals, ints, (braun_real)(NMAX * DBL_EPSILON));
+    assert_int_equal(rank, expect_rank);
+    const int m = c->rows, n = c->n;
+    braun_real X[NMAX * NMAX], CX[NMAX * NMAX], XC[NMAX * NMAX], T1[NMAX * NMAX],
+        T2[NMAX * NMAX];
+    pinv_matrix(&f, m, n, X);
+    matmul(m, n, m, c->C, X, CX);  /* m x m */
+    matmul(n, m, n, X, c->C, XC);  /* n x n */
+    matmul(m, m, n, CX, c->C, T1); /* C X C = C */
+    for (int i = 0; i < m * n; i++) assert_near(T1[i], c->C[i], tol);
+    matmul(n, n, m, XC, X, T2);    /* X C X = X */
+    for (int i = 0; i < n * m; i++) assert_near(T2[i], X[i], tol);
+    for (int i = 0; i < m; i++)    /* C X symmetric */
+        for (int j = 0; j < m; j++) assert_near(CX[i * m + j], CX[j * m + i], tol);
+    for (int i = 0; i < n; i++)    /* X C symmetric */
+        for (int j = 0; j < n; j++) assert_near(XC[i * n + j], XC[j * n + i], tol);
+    /* N z = z - X C z: C N z = 0 and N N z = N z. */
+    braun_real z[NMAX], nz[NMAX], cz[NMAX];
+    unsigned seed = 7;
+    for (int i = 0; i < n; i++) z[i] = frand(&seed);
+    for (int i = 0; i < n; i++) nz[i] = z[i];
+    braun_qrcp_null_project(&f, nz);
+    braun_gemv(m, n, c->C, nz, cz);
+    for (int i = 0; i < m; i++) assert_near(cz[i], 0, tol);
+    braun_real xcz[NMAX];
+    braun_gemv(n, n, XC, z, xcz);
+    for (int i = 0; i < n; i++) assert_near(nz[i], z[i] - xcz[i], tol);
+}
+
+static void test_pinv_full_rank(void **state)
+{
+    (void)state;
+    unsigned seed = 1;
+    pinv_case c = {3, 5, {0}};
+    for (int i = 0; i < 15; i++) c.C[i] = frand(&seed);
+    check_penrose(&c, 3, 1e-13);
+    /* Full row rank: C C^+ r = r for any r. */
+    braun_real reals[2 * NMAX * NMAX + 4 * NMAX], x[NMAX], r[3] = {1, -2, 0.5}, cr[3];
+    int ints[NMAX];
+    braun_qrcp f;
+    factor(&c, &f, reals, ints, 0);
+    braun_qrcp_pinv_apply(&f, r, x);
+    braun_gemv(3, 5, c.C, x, cr);
+    for (int i = 0; i < 3; i++) assert_near(cr[i], r[i], 1e-13);
+}
+
+static void test_pinv_duplicated_and_scaled_rows(void **state)
+{
+    (void)state;
+    unsigned seed = 3;
+    pinv_case c = {4, 5, {0}};
+    for (int i = 0; i < 10; i++) c.C[i] = frand(&seed);
+    for (int j = 0; j < 5; j++) {
+        c.C[2 * 5 + j] = c.C[j];           /* duplicated row */
+        c.C[3 * 5 + j] = -3.0 * c.C[5 + j]; /* scaled duplicate */
+    }
+    check_penrose(&c, 2, 1e-12);
+}
+
+static void test_pinv_more_rows_than_columns(void **state)
+{
+    (void)state;
+    unsigned seed = 5;
+    pinv_case c = {5, 3, {0}};
+    for (int i = 0; i < 15; i++) c.C[i] = frand(&seed);
+    check_penrose(&c, 3, 1e-12);
+}
+
+static void test_pinv_zero_and_rank_one(void **state)
+{
+    (void)state;
+    pinv_case z = {2, 3, {0}};
+    check_penrose(&z, 0, 0);
+    pinv_case r1 = {3, 4, {1, 2, 3, 4, 2, 4, 6, 8, -1, -2, -3, -4}};
+    check_penrose(&r1, 1, 1e-13);
+}
+
+/* The rank tolerance decides: a row 1e-10 away from dependence is kept by
+ * the default max(m,n)·ε and dropped by a loose 1e-6. */
+static void test_rank_tolerance(void **state)
+{
+    (void)state;
+    pinv_case c = {2, 3, {1, 0, 0, 1, 1e-10, 0}};
+    braun_real reals[2 * NMAX * NMAX + 4 * NMAX];
+    int ints[NMAX];
+    braun_qrcp f;
+    assert_int_equal(factor(&c, &f, reals, ints, 3 * DBL_EPSILON), 2);
+    assert_int_equal(factor(&c, &f, reals, ints, 1e-6), 1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_chol_known),
+        cmocka_unit_test(test_chol_rejects),
+        cmocka_unit_test(test_pinv_full_rank),
+        cmocka_unit_test(test_pinv_duplicated_and_scaled_rows),
+        cmocka_unit_test(test_pinv_more_rows_than_columns),
+        cmocka_unit_test(test_pinv_zero_and_rank_one),
+        cmocka_unit_test(test_rank_tolerance),
+    };
+    return cmocka_run_group_tests_name("linalg", tests, NULL, NULL);
+}
