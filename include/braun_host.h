@@ -2,9 +2,9 @@
  * libbraun host helpers: conveniences for programs running on an operating
  * system (the CLI, tests, desktop tools). They use the C library's stdio.
  *
- * Firmware builds compile src/*.c and src/models/*.c only and leave src/host
- * out, so the core never calls anything declared here; the host Makefile
- * puts src/host/*.c into libbraun.a.
+ * Firmware builds compile the core (src and src/models) only and leave
+ * src/host out, so the core never calls anything declared here; the host
+ * Makefile puts the files of src/host into libbraun.a.
  */
 #ifndef BRAUN_HOST_H
 #define BRAUN_HOST_H

@@ -92,7 +92,7 @@ static void test_limits(void **state)
         assert_near(cn, cos(u), 1e-15);
         assert_near(dn, 1.0, 0.0);
         /* m -> 1: sn = tanh u + ¼k'²(sinh u cosh u - u) sech²u + O(k'^4)
-         * (DLMF 22.10.8), with k'² ≈ 1e-12. */
+         * (A&S 16.15), with k'² ≈ 1e-12. */
         double m = 1.0 - 1e-12, kp2 = 1.0 - m, ch = cosh(u);
         braun_jacobi_sncndn(u, m, &sn, &cn, &dn);
         double first = tanh(u) + 0.25 * kp2 * (sinh(u) * ch - u) / (ch * ch);

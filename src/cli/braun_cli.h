@@ -1,4 +1,4 @@
-/* Private to the braun command-line tool: the pieces src/cli/*.c share. */
+/* Private to the braun command-line tool: what the files of src/cli share. */
 #ifndef BRAUN_CLI_H
 #define BRAUN_CLI_H
 

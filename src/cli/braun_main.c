@@ -6,10 +6,8 @@
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        braun_cli_usage(stderr);
-        return BRAUN_CLI_USAGE;
-    }
+    /* Usage errors are one line, so scripts can show them as they are. */
+    if (argc < 2) return braun_cli_error("missing command: run, list, --help or --version");
     const char *cmd = argv[1];
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
         braun_cli_usage(stdout);

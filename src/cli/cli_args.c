@@ -202,6 +202,12 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
     if (!a->model) return braun_cli_error("run needs a MODEL (see braun list)");
     if (isnan(a->dt)) return braun_cli_error("run needs --dt H");
     if (isnan(a->t_end)) return braun_cli_error("run needs --t-end T");
+    /* The adaptive driver corrects once per accepted step whatever the
+     * option says (Δ = Φ/h is ill-posed with a varying h): refuse rather
+     * than report a discretization that was not used. */
+    if (a->method == BRAUN_DOPRI5 && a->discretization == BRAUN_PER_STAGE)
+        return braun_cli_error("--discretization per-stage does not apply to dopri5 "
+                               "(the adaptive driver corrects per step)");
     if (a->method == BRAUN_DOPRI5 && a->rtol == 0 && a->atol == 0)
         return braun_cli_error("--rtol and --atol cannot both be 0");
     if (a->out_path && strcmp(a->out_path, "-") == 0 && strcmp(a->summary_path, "-") == 0)

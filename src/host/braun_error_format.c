@@ -120,15 +120,24 @@ static void describe(msg *w, const braun_data *d)
         put(w, "t_end = %.10g is not finite or not after the current time", e->value);
         break;
     case BRAUN_ERR_DIVERGED:
-        /* The time is the step's start: the state there is the last good one. */
-        put(w, "step diverged");
-        put_time(w, e->t);
         if (where && strcmp(where, "step stage") == 0) {
+            /* t is the step's start, the last good state. */
+            put(w, "step diverged");
+            put_time(w, e->t);
             put(w, " (h = %.6g, stage %d not finite)", e->value, e->index);
-        } else {
+        } else if (!where || strcmp(where, "step") == 0) {
+            put(w, "step diverged");
+            put_time(w, e->t);
             put(w, " (h = %.6g", e->value);
             put_state_entry(w, d, e->index);
             put(w, ")");
+        } else {
+            /* A callback output overflowed at a later stage of a step that
+             * started finite: the record is that output, t the stage's time. */
+            put(w, "step diverged: %s", noun(where));
+            put_index(w, e->index, e->index2);
+            put(w, " is %s", nonfinite_name(e->value));
+            put_time(w, e->t);
         }
         return;
     case BRAUN_ERR_STEP_TOO_SMALL:

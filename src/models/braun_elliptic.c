@@ -37,7 +37,7 @@ static long double ellip_K_long(double m)
 
 double braun_ellip_K(double m)
 {
-    if (!(m >= 0.0 && m < 1.0)) return m == 1.0 ? HUGE_VAL : NAN;
+    if (!(m >= 0.0 && m < 1.0)) return m == 1.0 ? HUGE_VAL : (double)NAN;
     return (double)ellip_K_long(m);
 }
 
@@ -46,7 +46,7 @@ void braun_jacobi_sncndn(double u, double m, double *sn, double *cn,
 {
     double s, c, d;
     if (!(m >= 0.0 && m <= 1.0) || !isfinite(u)) {
-        s = c = d = NAN;
+        s = c = d = (double)NAN;
     } else if (m == 1.0) {
         /* Limit m -> 1: sn = tanh, cn = dn = sech (A&S 16.6). */
         s = tanh(u);
@@ -126,16 +126,17 @@ static double carlson_rf(double x0, double y0, double z0)
 }
 
 /* F(φ|m) = sin φ R_F(cos²φ, 1 - m sin²φ, 1) for |φ| <= π/2 (DLMF 19.25.5),
- * extended by quasi-periodicity F(φ + jπ) = F(φ) + 2jK (DLMF 19.2.10). */
+ * extended by quasi-periodicity F(φ + jπ) = F(φ) + 2jK. */
 double braun_ellip_F(double phi, double m)
 {
-    if (!(m >= 0.0 && m < 1.0) || !isfinite(phi)) return NAN;
+    if (!(m >= 0.0 && m < 1.0) || !isfinite(phi)) return (double)NAN;
     double j = nearbyint(phi / BRAUN_PI_D);
     double pr = (double)((long double)phi - (long double)j * PI_L);
     double s = sin(pr), c = cos(pr);
     /* 1 - m sin²φ as cos²φ + (1-m) sin²φ: no cancellation near φ = ±π/2
      * when m is near 1. */
     double F = s * carlson_rf(c * c, c * c + (1.0 - m) * s * s, 1.0);
-    if (j != 0.0) F = (double)((long double)F + 2.0L * j * ellip_K_long(m));
+    if (j != 0.0)
+        F = (double)((long double)F + 2.0L * (long double)j * ellip_K_long(m));
     return F;
 }

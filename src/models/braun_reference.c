@@ -18,7 +18,8 @@ int braun_reference_init(braun_reference *ref, const braun_builtin *model,
 {
     if (!ref || !model || !model->minimal_to_state || !model->minimal_y0
         || model->minimal_dim < 1 || model->minimal_dim > REF_DIM_MAX
-        || (!model->minimal_exact && !model->minimal_rhs) || isnan(ref_h))
+        || (!model->minimal_exact && !model->minimal_rhs) || isnan(ref_h)
+        || isinf(ref_h))
         return BRAUN_ERR_ARGUMENT;
     ref->model = model;
     ref->t = 0.0;

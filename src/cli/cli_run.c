@@ -1,0 +1,239 @@
+/* braun run: simulate a model, monitor it, write the CSV and the summary.
+ *
+ * The simulation runs twice from the same initial state; libbraun is
+ * deterministic, so both runs take the same steps. Run 1 has no output
+ * callback and is the only one timed: cpu_s is the integration alone.
+ * Run 2 samples every step for the metrics and the CSV. */
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "braun_cli.h"
+#include "braun_host.h"
+
+/* What the output callback of run 2 needs. */
+typedef struct run_ctx {
+    braun_cli_monitor *mon;
+    FILE *csv;
+    long every;
+    int n;
+    braun_real t_end;
+    long calls;         /* states seen, t = 0 included */
+    int last_written;   /* the last stored state has its CSV row */
+    int monitor_status; /* non-zero: sampling failed, run stopped */
+    double t, *q, *v;   /* last state sampled: the run's final state */
+} run_ctx;
+
+static int on_step(const braun_data *d, void *user)
+{
+    run_ctx *c = (run_ctx *)user;
+    int st = braun_cli_monitor_sample(c->mon, d);
+    if (st) {
+        c->monitor_status = st;
+        return 1;
+    }
+    c->t = (double)d->t;
+    for (int i = 0; i < c->n; i++) {
+        c->q[i] = (double)d->q[i];
+        c->v[i] = (double)d->v[i];
+    }
+    /* Every K-th state, and the last one so the file ends where the run did. */
+    c->last_written = 0;
+    if (c->csv && (c->calls % c->every == 0 || d->t >= c->t_end)) {
+        braun_cli_csv_row(c->csv, c->n, c->t, c->q, c->v, &c->mon->cur, c->mon->has_ref);
+        c->last_written = 1;
+    }
+    c->calls++;
+    return 0;
+}
+
+static int start(braun_data *d, const braun_model *model, const braun_builtin *b,
+                 void *buf, size_t bytes)
+{
+    int st = braun_data_init(d, model, buf, bytes);
+    if (!st) st = braun_set_state(d, 0, b->q0, b->v0);
+    return st;
+}
+
+static int integrate(braun_data *d, const braun_cli_run_args *a, braun_output_fn out,
+                     void *user)
+{
+    if (a->method == BRAUN_DOPRI5) {
+        braun_adaptive ctl = {(braun_real)a->rtol, (braun_real)a->atol, (braun_real)a->dt,
+                              0, 0, 0};
+        return braun_integrate_adaptive(d, &ctl, (braun_real)a->t_end, 1, out, user);
+    }
+    return braun_integrate(d, a->method, (braun_real)a->dt, (braun_real)a->t_end, 1, out,
+                           user);
+}
+
+/* "braun: <sentence> (<STATUS: meaning>)"; the sentence only when d->error
+ * belongs to this failure (early argument checks record nothing). */
+static void report_failure(const braun_data *d, int st)
+{
+    char what[256];
+    if (d->error.status == st) {
+        braun_error_format(d, what, sizeof what);
+        braun_cli_error("%s (%s)", what, braun_status_str(st));
+    } else {
+        braun_cli_error("%s", braun_status_str(st));
+    }
+}
+
+static const char *method_name(unsigned used, unsigned supported)
+{
+    const unsigned pv = BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY;
+    if (used == supported) return "braun";
+    if ((used & pv) == pv && !(used & BRAUN_CORRECT_ENERGY)) return "braun-noenergy";
+    return "braun-custom";
+}
+
+static FILE *open_output(const char *path)
+{
+    if (strcmp(path, "-") == 0) return stdout;
+    FILE *f = fopen(path, "w");
+    if (!f) braun_cli_error("cannot open '%s' for writing: %s", path, strerror(errno));
+    return f;
+}
+
+/* Flush and close; a full disk shows up here rather than in fprintf. */
+static int close_output(FILE *f, const char *path)
+{
+    int bad = fflush(f) != 0 || ferror(f);
+    if (f != stdout && fclose(f) != 0) bad = 1;
+    if (bad) braun_cli_error("error writing '%s'", path);
+    return bad;
+}
+
+int braun_cli_run(const braun_cli_run_args *a)
+{
+    const braun_builtin *b;
+    int rc = braun_cli_find_model(a->model, &b);
+    if (rc) return rc;
+
+    braun_model model;
+    int st = braun_model_init(&model, &b->sys);
+    if (st) {
+        braun_cli_error("model '%s' is invalid: %s", b->name, braun_status_str(st));
+        return BRAUN_CLI_FAILED;
+    }
+    /* braun_model_init enables every correction the system supports. */
+    const unsigned supported = model.opt.corrections;
+    if (!a->corrections_default) {
+        if ((a->corrections & BRAUN_CORRECT_ENERGY) && !(supported & BRAUN_CORRECT_ENERGY))
+            return braun_cli_error("model '%s' has no energy law: cannot apply the energy "
+                                   "correction", b->name);
+        model.opt.corrections = a->corrections;
+    }
+    model.opt.discretization = a->discretization;
+    model.opt.rank_tol = (braun_real)a->rank_tol;
+    model.opt.energy_max_rel = (braun_real)a->energy_max_rel;
+
+    const int n = model.sys.n;
+    const size_t bytes = braun_data_size(&model);
+    /* One block: final state (2n doubles), the run's workspace, the monitor's. */
+    double *block = malloc(2 * (size_t)n * sizeof(double) + 2 * bytes);
+    if (!block) {
+        braun_cli_error("out of memory");
+        return BRAUN_CLI_FAILED;
+    }
+    unsigned char *buf_run = (unsigned char *)(block + 2 * n);
+    unsigned char *buf_mon = buf_run + bytes;
+
+    FILE *csv = NULL, *summary = open_output(a->summary_path);
+    if (!summary) {
+        free(block);
+        return BRAUN_CLI_USAGE;
+    }
+    if (a->out_path && !(csv = open_output(a->out_path))) {
+        if (summary != stdout) fclose(summary);
+        free(block);
+        return BRAUN_CLI_USAGE;
+    }
+
+    braun_data d;
+    braun_cli_monitor mon;
+    run_ctx ctx;
+    const braun_data *failed = &d; /* whose error to report if a start fails */
+    int exit_status = 0, st_timed;
+    double c0, cpu_s;
+    braun_stats timed_stats;
+
+    /* Run 1: timed, no callback. */
+    st = start(&d, &model, b, buf_run, bytes);
+    if (st) goto init_failed;
+    c0 = braun_cli_cpu_seconds();
+    st_timed = integrate(&d, a, NULL, NULL);
+    cpu_s = braun_cli_cpu_seconds() - c0;
+    timed_stats = d.stats;
+
+    /* Run 2: the same steps, monitored. */
+    st = start(&d, &model, b, buf_run, bytes);
+    if (st) goto init_failed;
+    failed = &mon.scratch;
+    st = braun_cli_monitor_init(&mon, &model, b, a->ref_h, buf_mon, bytes);
+    if (st) goto init_failed;
+    ctx.mon = &mon;
+    ctx.csv = csv;
+    ctx.every = a->every;
+    ctx.n = n;
+    ctx.t_end = (braun_real)a->t_end;
+    ctx.calls = 0;
+    ctx.last_written = 1;
+    ctx.monitor_status = 0;
+    ctx.q = block;
+    ctx.v = block + n;
+    ctx.t = (double)d.t;
+    for (int i = 0; i < n; i++) {
+        ctx.q[i] = (double)d.q[i];
+        ctx.v[i] = (double)d.v[i];
+    }
+    if (csv) braun_cli_csv_header(csv, n);
+    st = integrate(&d, a, on_step, &ctx);
+    /* A failed step leaves the last good state unwritten when K > 1. */
+    if (csv && !ctx.last_written)
+        braun_cli_csv_row(csv, n, ctx.t, ctx.q, ctx.v, &mon.cur, mon.has_ref);
+
+    if (ctx.monitor_status) {
+        char what[256] = "reference evaluation failed";
+        if (mon.scratch.error.status == ctx.monitor_status)
+            braun_error_format(&mon.scratch, what, sizeof what);
+        braun_cli_error("monitoring failed after t = %.10g: %s", ctx.t, what);
+        exit_status = BRAUN_CLI_FAILED;
+    } else if (st) {
+        report_failure(&d, st);
+        exit_status = BRAUN_CLI_FAILED;
+    }
+    if (!ctx.monitor_status &&
+        (st_timed != st || timed_stats.steps != d.stats.steps ||
+         timed_stats.rhs_evals != d.stats.rhs_evals))
+        braun_cli_error("warning: the timed run (%s, %ld steps) differs from the monitored "
+                        "run (%ld steps); cpu_s may not match", braun_status_str(st_timed),
+                        timed_stats.steps, d.stats.steps);
+
+    braun_cli_result r;
+    r.args = a;
+    r.model = &model;
+    r.scene = b->name;
+    r.method = method_name(model.opt.corrections, supported);
+    r.stats = d.stats;
+    r.cpu_s = cpu_s;
+    r.mon = &mon;
+    r.final_t = ctx.t;
+    r.final_q = ctx.q;
+    r.final_v = ctx.v;
+    r.status = st;
+    braun_cli_write_summary(summary, &r);
+    if (close_output(summary, a->summary_path)) exit_status = BRAUN_CLI_FAILED;
+    if (csv && close_output(csv, a->out_path)) exit_status = BRAUN_CLI_FAILED;
+    free(block);
+    return exit_status;
+
+init_failed:
+    /* Nothing was integrated: no summary to speak of. */
+    report_failure(failed, st);
+    if (csv && csv != stdout) fclose(csv);
+    if (summary != stdout) fclose(summary);
+    free(block);
+    return BRAUN_CLI_FAILED;
+}

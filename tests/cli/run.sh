@@ -1,0 +1,185 @@
+#!/bin/sh
+# Tests of the braun command-line tool: sh tests/cli/run.sh path/to/braun
+# Prints "ok - NAME" / "not ok - NAME" per check and a closing line
+# "N passed, M failed"; exit status 1 if anything failed.
+BRAUN=${1:?usage: sh tests/cli/run.sh path/to/braun}
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/braun-cli.XXXXXX") || exit 1
+trap 'rm -rf "$TMP"' EXIT INT TERM
+passed=0
+failed=0
+
+ok() { passed=$((passed + 1)); echo "ok - $1"; }
+not_ok() { failed=$((failed + 1)); echo "not ok - $1"; [ -z "$2" ] || echo "#   $2"; }
+check() { # check NAME COMMAND...: passes when COMMAND succeeds
+    name=$1; shift
+    if "$@"; then ok "$name"; else not_ok "$name"; fi
+}
+
+# Value of "key" in a summary written by braun (one key per line).
+json_value() { sed -n "s/^  \"$1\": \(.*\)$/\1/p" "$2" | sed 's/,$//; s/^"//; s/"$//'; }
+# Awk does the float comparisons: POSIX sh has integers only.
+num_le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a != "null" && a + 0 <= b + 0) }'; }
+num_lt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a != "null" && a + 0 < b + 0) }'; }
+num_eq() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a + 0 == b + 0) }'; }
+lines() { wc -l < "$1" | tr -d ' '; }
+
+if command -v python3 > /dev/null 2>&1; then HAVE_PY=1; else HAVE_PY=0; fi
+json_parses() { python3 -c 'import json,sys; json.load(sys.stdin)' < "$1" 2> /dev/null; }
+
+# ------------------------------------------------------------ help, version, list
+"$BRAUN" --help > "$TMP/help" 2>&1; rc=$?
+check "--help exits 0" [ "$rc" -eq 0 ]
+check "--help shows the run usage" grep -q "braun run MODEL" "$TMP/help"
+check "--help says how cpu_s is measured" \
+    grep -q "cpu_s is the integration alone, measured in a separate run without" "$TMP/help"
+"$BRAUN" --version > "$TMP/version" 2>&1; rc=$?
+check "--version exits 0 and names braun" \
+    sh -c '[ "$1" -eq 0 ] && grep -q "^braun [0-9]" "$2"' sh "$rc" "$TMP/version"
+"$BRAUN" list > "$TMP/list" 2>&1; rc=$?
+check "list exits 0" [ "$rc" -eq 0 ]
+for model in slider-crank four-bar pendulum; do
+    check "list shows $model" grep -q "^$model " "$TMP/list"
+done
+check "list has one line per model" [ "$(lines "$TMP/list")" -eq 3 ]
+
+# ----------------------------------------------------------------- bad arguments
+# Each must exit 2, print nothing on stdout and exactly one "braun: " line on stderr.
+bad() { # bad NAME ARGS...
+    name=$1; shift
+    "$BRAUN" "$@" > "$TMP/bad.out" 2> "$TMP/bad.err"; rc=$?
+    if [ "$rc" -eq 2 ] && [ ! -s "$TMP/bad.out" ] && [ "$(lines "$TMP/bad.err")" -eq 1 ] &&
+        grep -q "^braun: " "$TMP/bad.err"; then
+        ok "bad argument: $name"
+    else
+        not_ok "bad argument: $name" "exit $rc, stderr: $(head -c 300 "$TMP/bad.err")"
+    fi
+}
+run="run slider-crank --t-end 1"
+bad "no arguments"
+bad "unknown command" frobnicate
+bad "unknown option" $run --dt 1e-3 --bogus 1
+bad "unknown single-dash option" $run --dt 1e-3 -x
+bad "missing value at the end" $run --dt
+bad "missing value before an option" run slider-crank --dt --t-end 1
+bad "non-numeric dt" $run --dt abc
+bad "dt with trailing garbage" $run --dt 1e-3s
+bad "dt = 0" $run --dt 0
+bad "dt < 0" $run --dt -1e-3
+bad "dt = inf" $run --dt inf
+bad "dt = nan" $run --dt nan
+bad "t-end = 0" run slider-crank --dt 1e-3 --t-end 0
+bad "t-end < 0" run slider-crank --dt 1e-3 --t-end -5
+bad "missing --dt" $run
+bad "missing MODEL" run --dt 1e-3 --t-end 1
+bad "two models" run slider-crank four-bar --dt 1e-3 --t-end 1
+bad "unknown model" run no-such-model --dt 1e-3 --t-end 1
+bad "unknown integrator" $run --dt 1e-3 --integrator rk45
+bad "unknown correction" $run --dt 1e-3 --corrections position,friction
+bad "empty correction item" $run --dt 1e-3 --corrections position,,velocity
+bad "unknown discretization" $run --dt 1e-3 --discretization per-week
+bad "every = 0" $run --dt 1e-3 --out "$TMP/x.csv" --every 0
+bad "every not an integer" $run --dt 1e-3 --out "$TMP/x.csv" --every 2.5
+bad "negative rank-tol" $run --dt 1e-3 --rank-tol -1
+bad "both tolerances 0" $run --dt 1e-3 --integrator dopri5 --rtol 0 --atol 0
+bad "per-stage with dopri5" $run --dt 1e-3 --integrator dopri5 --discretization per-stage
+bad "csv and summary both on stdout" $run --dt 1e-3 --out -
+bad "unwritable summary" $run --dt 1e-3 --summary "$TMP/no/such/dir/s.json"
+"$BRAUN" run scene.json --dt 1e-3 --t-end 1 > /dev/null 2> "$TMP/scene.err"; rc=$?
+check "scene file: exit 2 and 'not supported yet'" \
+    sh -c '[ "$1" -eq 2 ] && [ "$(cat "$2")" = "braun: scene files are not supported yet: scene.json" ]' \
+    sh "$rc" "$TMP/scene.err"
+
+# ---------------------------------------------------------------- a short run
+"$BRAUN" run slider-crank --dt 1e-3 --t-end 1 > "$TMP/short.json" 2> "$TMP/short.err"; rc=$?
+check "run slider-crank --dt 1e-3 --t-end 1 exits 0" [ "$rc" -eq 0 ]
+check "a successful run prints nothing on stderr" [ ! -s "$TMP/short.err" ]
+if [ "$HAVE_PY" -eq 1 ]; then
+    check "summary is valid JSON" json_parses "$TMP/short.json"
+else
+    echo "ok - summary is valid JSON # SKIP python3 not found"
+fi
+missing=""
+for key in scene method corrections discretization integrator dt t_end steps rhs_evals \
+    rejected_steps mass_factorizations constraint_factorizations rank_deficient \
+    energy_guard_hits cpu_s max_position_constraint_error max_velocity_constraint_error \
+    max_energy_error max_trajectory_error max_point_error final_position_constraint_error \
+    final_velocity_constraint_error final_energy_error final_trajectory_error final_t \
+    final_q final_v status n m p rank_tol libbraun_version; do
+    grep -q "^  \"$key\": " "$TMP/short.json" || missing="$missing $key"
+done
+if [ -z "$missing" ]; then ok "summary has every key"; else not_ok "summary has every key" "missing:$missing"; fi
+check "summary: scene, method, status, steps" sh -c '
+    [ "$(sed -n "s/^  \"scene\": \"\(.*\)\",$/\1/p" "$1")" = slider-crank ] &&
+    grep -q "^  \"method\": \"braun\",$" "$1" &&
+    grep -q "^  \"corrections\": \"position,velocity,energy\",$" "$1" &&
+    grep -q "^  \"status\": \"BRAUN_OK\",$" "$1" &&
+    grep -q "^  \"steps\": 1000,$" "$1"' sh "$TMP/short.json"
+check "summary: no point error for the slider-crank is null" \
+    [ "$(json_value max_point_error "$TMP/short.json")" = null ]
+
+"$BRAUN" run slider-crank --dt 1e-3 --t-end 1 --corrections position,velocity \
+    --summary "$TMP/noen.json" > "$TMP/noen.out" 2>&1; rc=$?
+check "--summary FILE: exit 0, stdout empty" sh -c '[ "$1" -eq 0 ] && [ ! -s "$2" ]' sh "$rc" "$TMP/noen.out"
+check "energy off: method braun-noenergy" [ "$(json_value method "$TMP/noen.json")" = braun-noenergy ]
+
+# ------------------------------------------------------------------ trajectory CSV
+header="t,q0,q1,q2,q3,q4,q5,v0,v1,v2,v3,v4,v5,pos_err,vel_err,energy_err,traj_err"
+"$BRAUN" run slider-crank --dt 1e-3 --t-end 1 --out "$TMP/k1.csv" --summary "$TMP/k1.json"; rc=$?
+check "--out: exit 0" [ "$rc" -eq 0 ]
+check "--out: header" [ "$(head -n 1 "$TMP/k1.csv")" = "$header" ]
+check "--out: 1/1e-3 + 1 rows" [ "$(lines "$TMP/k1.csv")" -eq $((1000 + 1 + 1)) ]
+"$BRAUN" run slider-crank --dt 1e-3 --t-end 1 --out "$TMP/k10.csv" --every 10 --summary /dev/null; rc=$?
+check "--every 10: 1/1e-3/10 + 1 rows" \
+    sh -c '[ "$1" -eq 0 ] && [ "$(wc -l < "$2")" -eq 102 ]' sh "$rc" "$TMP/k10.csv"
+check "--every 10: first row at t = 0, last at t = 1" \
+    sh -c '[ "$(sed -n 2p "$1" | cut -d, -f1)" = 0 ] && [ "$(tail -n 1 "$1" | cut -d, -f1)" = 1 ]' \
+    sh "$TMP/k10.csv"
+check "--every 10: 17 columns, traj_err filled" \
+    awk -F, 'NR > 1 && (NF != 17 || $17 == "") { bad = 1 } END { exit bad }' "$TMP/k10.csv"
+
+# ------------------------------------------------------------------ issue targets
+"$BRAUN" run slider-crank --dt 1e-3 --t-end 100 --integrator rk4 --discretization per-step \
+    --summary "$TMP/long.json"; rc=$?
+check "slider-crank RK4 dt 1e-3 to t = 100 exits 0" [ "$rc" -eq 0 ]
+v=$(json_value max_position_constraint_error "$TMP/long.json")
+if num_le "$v" 1e-9; then ok "max_position_constraint_error <= 1e-9 ($v)"
+else not_ok "max_position_constraint_error <= 1e-9" "got $v"; fi
+v=$(json_value max_trajectory_error "$TMP/long.json")
+if num_le "$v" 1e-6; then ok "max_trajectory_error <= 1e-6 ($v)"
+else not_ok "max_trajectory_error <= 1e-6" "got $v"; fi
+
+# --------------------------------------------------------------- runtime failure
+# Without corrections the slider-crank drifts off its constraints and the step
+# diverges near the singular configuration long before t = 100.
+"$BRAUN" run slider-crank --dt 1e-3 --t-end 100 --corrections none --out "$TMP/none.csv" \
+    --every 7 --summary "$TMP/none.json" 2> "$TMP/none.err"; rc=$?
+check "--corrections none to t = 100 exits 1" [ "$rc" -eq 1 ]
+check "failure: one 'braun: ' line on stderr naming the status" sh -c '
+    [ "$(wc -l < "$1")" -eq 1 ] && grep -q "^braun: .* at t = .*(BRAUN_ERR_" "$1"' sh "$TMP/none.err"
+st=$(json_value status "$TMP/none.json")
+check "failure: summary written, status not BRAUN_OK ($st)" \
+    sh -c '[ -n "$1" ] && [ "$1" != BRAUN_OK ]' sh "$st"
+check "failure: method braun-custom, corrections none" sh -c '
+    grep -q "^  \"method\": \"braun-custom\",$" "$1" &&
+    grep -q "^  \"corrections\": \"none\",$" "$1"' sh "$TMP/none.json"
+ft=$(json_value final_t "$TMP/none.json")
+last=$(tail -n 1 "$TMP/none.csv" | cut -d, -f1)
+if num_lt "$ft" 100 && num_eq "$last" "$ft"; then ok "failure: CSV ends at final_t = $ft < 100"
+else not_ok "failure: CSV ends at final_t < 100" "final_t $ft, last CSV t $last"; fi
+if [ "$HAVE_PY" -eq 1 ]; then
+    check "failure: summary is valid JSON" json_parses "$TMP/none.json"
+fi
+
+# --------------------------------------------------------------- other integrators
+"$BRAUN" run four-bar --dt 1e-2 --t-end 2 --integrator dopri5 --summary "$TMP/dp.json"; rc=$?
+check "four-bar dopri5 exits 0 with a point error" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^  \"integrator\": \"dopri5\",$" "$2" &&
+    grep -q "^  \"max_point_error\": [0-9]" "$2"' sh "$rc" "$TMP/dp.json"
+for m in euler heun; do
+    "$BRAUN" run pendulum --dt 1e-3 --t-end 1 --integrator $m --summary "$TMP/$m.json"; rc=$?
+    check "pendulum $m exits 0" sh -c '[ "$1" -eq 0 ] && grep -q "\"status\": \"BRAUN_OK\"" "$2"' \
+        sh "$rc" "$TMP/$m.json"
+done
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
