@@ -29,7 +29,7 @@ HOST_SRC := $(sort $(wildcard src/host/*.c))
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/obj/%.o) $(HOST_SRC:%.c=$(BUILD)/obj/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/obj/%.o)
-HEADERS  := $(wildcard include/*.h) $(wildcard src/*.h)
+HEADERS  := $(wildcard include/*.h) $(wildcard src/*.h) $(wildcard src/*/*.h)
 
 TEST_SRC  := $(sort $(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
@@ -91,7 +91,7 @@ convergence: $(BUILD)/bin/braun
 # ---------------------------------------------------------------- install
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
-	install -m 644 include/braun.h include/braun_models.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 include/braun.h include/braun_models.h include/braun_host.h $(DESTDIR)$(PREFIX)/include/
 	install -m 644 $(BUILD)/libbraun.a $(DESTDIR)$(PREFIX)/lib/
 	install -m 755 $(BUILD)/bin/braun $(DESTDIR)$(PREFIX)/bin/
 	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/^#define BRAUN_VERSION "\(.*\)"/\1/p' include/braun.h)|g' \

@@ -98,8 +98,11 @@ static int holonomic(braun_real t, const braun_real *q, const braun_real *v,
         }
         if (b) b[r] = BRAUN_R(0.0);
         if (bv) {
-            braun_real ux = v[2 * j] - (a < 0 ? BRAUN_R(0.0) : v[2 * a]);
-            braun_real uy = v[2 * j + 1] - (a < 0 ? BRAUN_R(0.0) : v[2 * a + 1]);
+            braun_real ux = v[2 * j], uy = v[2 * j + 1];
+            if (a >= 0) {
+                ux -= v[2 * a];
+                uy -= v[2 * a + 1];
+            }
             bv[r] = BRAUN_R(-2.0) * (ux * ux + uy * uy);
         }
     }

@@ -163,10 +163,13 @@ static void minimal_to_state(const double *y, double *q, double *v,
 
 /* Fig. 1: released at rest with the crank at 45 degrees. */
 static const braun_real q0[6] = {
-    BRAUN_R(0.35355339059327379), BRAUN_R(0.35355339059327379),  /* √2/4 */
-    BRAUN_R(0.78539816339744828),                                 /* π/4 */
-    BRAUN_R(1.0606601717798214), BRAUN_R(0.35355339059327379),   /* 3√2/4, √2/4 */
-    BRAUN_R(-0.78539816339744828)};
+    BRAUN_R(0.35355339059327379),  /* x1 = √2/4 */
+    BRAUN_R(0.35355339059327379),  /* y1 = √2/4 */
+    BRAUN_R(0.78539816339744828),  /* θ1 = π/4 */
+    BRAUN_R(1.0606601717798214),   /* x2 = 3√2/4 */
+    BRAUN_R(0.35355339059327379),  /* y2 = √2/4 */
+    BRAUN_R(-0.78539816339744828)  /* θ2 = -π/4 */
+};
 static const braun_real v0[6] = {0};
 static const double min_y0[2] = {0.78539816339744828, 0.0};
 
