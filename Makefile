@@ -74,8 +74,15 @@ $(BUILD)/tests/%: tests/%.c tests/test_util.h $(TEST_SUPPORT) $(BUILD)/libbraun.
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) -Itests -Itests/systems $(CFLAGS_ALL) $< $(TEST_SUPPORT) $(BUILD)/libbraun.a -lcmocka $(LDLIBS_ALL) $(LDFLAGS_$*) -o $@
 
+# Suites added by other parts of the project (mk/*.mk append to TEST_SUITES
+# the command of a suite that ends with "N passed, M failed", and to
+# TEST_PREREQS what must be built first).
+TEST_SUITES = "tools/run-tests $(TEST_BIN)" "sh tests/cli/run.sh $(BUILD)/bin/braun"
+TEST_PREREQS = $(TEST_BIN) $(BUILD)/bin/braun
+
 test: deps-test
-	@$(MAKE) --no-print-directory test-unit test-cli
+	@$(MAKE) --no-print-directory $(TEST_PREREQS)
+	@tools/run-suites $(TEST_SUITES)
 
 # Runs every unit test binary; prints one closing line "N passed, N failed".
 test-unit: $(TEST_BIN)
@@ -99,3 +106,6 @@ install: all
 
 clean:
 	rm -rf $(BUILD)
+
+# Feature areas keep their rules in mk/*.mk (scenes, compare, firmware, ...).
+-include $(sort $(wildcard mk/*.mk))
