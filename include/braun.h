@@ -165,10 +165,11 @@ typedef struct braun_options {
     braun_discretization discretization; /* default BRAUN_PER_STEP */
     /* Relative rank tolerance of the pseudoinverses: a pivot |r_kk| of the
      * column-pivoted QR of C^T counts as zero when |r_kk| <= rank_tol·|r_00|.
-     * <= 0 selects the default 10·max(rows, n)·ε of braun_real: MATLAB's pinv
+     * <= 0 selects the default: in double 10·max(rows, n)·ε (MATLAB's pinv
      * tolerance with a margin of 10, because pivots of exactly dependent rows
-     * are a few ε·||C|| after round-off (a missed one amplifies noise). See
-     * docs/method.md for why loose values (1e-6) hurt near singularities. */
+     * are a few ε·||C|| after round-off); in float 30·sqrt(ε) ≈ 1e-2, because
+     * float round-off divided by a pivot below ~sqrt(ε) pushes the state onto
+     * the other branch at a bifurcation. docs/method.md has the measurements. */
     braun_real rank_tol;
     /* Guard of the energy force (Eq. 20): its pseudoinverse divides by
      * ||N_v C_e^T||² ≈ 2·kinetic energy. One step's energy correction may scale

@@ -5,10 +5,7 @@ static braun_real rank_tol(const braun_data *d, int rows)
 {
     const braun_real t = d->model->opt.rank_tol;
     const int n = d->model->sys.n;
-    /* MATLAB's pinv uses max(size)·ε on singular values. QR pivots of exactly
-     * dependent rows come out a few ε·||C|| (4ε measured on a duplicated
-     * row), so the default has a factor 10 of margin over that. */
-    return t > 0 ? t : BRAUN_R(10.0) * (braun_real)(rows > n ? rows : n) * BRAUN_EPS;
+    return t > 0 ? t : braun_default_rank_tol(rows, n);
 }
 
 int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,

@@ -23,6 +23,25 @@
 #define braun_cos cos
 #endif
 
+/* Default relative rank tolerance of the pseudoinverses (docs/method.md,
+ * "Rank tolerance"). Double: MATLAB's pinv max(rows,n)·ε with a margin of
+ * 10 (QR pivots of exactly dependent rows come out a few ε·||C||). Float:
+ * near a bifurcation the round-off ν ~ ε in Φ is divided by the small pivot
+ * σ and kicks the state toward the other branch, which lies ~σ away: kicks
+ * win below σ ~ sqrt(ε). In double that window (1.5e-8) is so narrow that a
+ * wider tolerance costs more than it saves; in float (3.4e-4) it is not, and
+ * 30·sqrt(ε) ≈ 1e-2 is what the slider-crank and four-bar need (measured). */
+static inline braun_real braun_default_rank_tol(int rows, int n)
+{
+#ifdef BRAUN_SINGLE
+    (void)rows;
+    (void)n;
+    return BRAUN_R(30.0) * braun_sqrt(BRAUN_EPS);
+#else
+    return BRAUN_R(10.0) * (braun_real)(rows > n ? rows : n) * BRAUN_EPS;
+#endif
+}
+
 /* x - x is 0 for every finite x and NaN for NaN and ±Inf. */
 static inline int braun_is_finite(braun_real x) { return (x - x) == 0; }
 
