@@ -77,7 +77,8 @@ $(BUILD)/tests/%: tests/%.c tests/test_util.h $(TEST_SUPPORT) $(BUILD)/libbraun.
 # Suites added by other parts of the project (mk/*.mk append to TEST_SUITES
 # the command of a suite that ends with "N passed, M failed", and to
 # TEST_PREREQS what must be built first).
-TEST_SUITES = "tools/run-tests $(TEST_BIN)" "sh tests/cli/run.sh $(BUILD)/bin/braun"
+TEST_SUITES = "tools/run-tests $(TEST_BIN)" "sh tests/cli/run.sh $(BUILD)/bin/braun" \
+              "sh tests/cli/install.sh"
 TEST_PREREQS = $(TEST_BIN) $(BUILD)/bin/braun
 
 test: deps-test

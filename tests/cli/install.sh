@@ -1,0 +1,26 @@
+#!/bin/sh
+# make install into a temporary DESTDIR, then build the README example
+# against it through pkg-config and run it.
+set -u
+top=$(cd "$(dirname "$0")/../.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0; fail=0
+ok() { echo "ok - $1"; pass=$((pass + 1)); }
+no() { echo "not ok - $1"; fail=$((fail + 1)); }
+if make -s -C "$top" install PREFIX=/opt/braun DESTDIR="$tmp" >"$tmp/log" 2>&1; then ok "make install"; else no "make install"; cat "$tmp/log"; fi
+for f in include/braun.h include/braun_models.h include/braun_host.h lib/libbraun.a lib/pkgconfig/braun.pc bin/braun; do
+    [ -f "$tmp/opt/braun/$f" ] && ok "installed $f" || no "installed $f"
+done
+pc="$tmp/opt/braun/lib/pkgconfig"
+flags=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs --static braun 2>&1)
+case "$flags" in *"-lbraun"*) ok "pkg-config --libs braun" ;; *) no "pkg-config --libs braun: $flags" ;; esac
+if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror "$top/examples/pendulum.c" $flags -o "$tmp/pendulum" 2>"$tmp/cc.log"; then
+    ok "README example compiles warning-free against the installed library"
+    out=$("$tmp/pendulum")
+    case "$out" in "t = 10 "*) ok "README example runs: $out" ;; *) no "README example output: $out" ;; esac
+else
+    no "README example compiles"; cat "$tmp/cc.log"
+fi
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
