@@ -37,7 +37,7 @@ TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 # Keep intermediate objects (test support) between runs.
 .SECONDARY:
 
-.PHONY: all lib cli test test-unit test-cli deps-test install clean convergence
+.PHONY: all lib cli test test-unit test-cli test-sanitize test-core-suites deps-test install clean convergence
 all: lib cli
 lib: $(BUILD)/libbraun.a
 cli: $(BUILD)/bin/braun
@@ -77,9 +77,18 @@ $(BUILD)/tests/%: tests/%.c tests/test_util.h $(TEST_SUPPORT) $(BUILD)/libbraun.
 # Suites added by other parts of the project (mk/*.mk append to TEST_SUITES
 # the command of a suite that ends with "N passed, M failed", and to
 # TEST_PREREQS what must be built first).
-TEST_SUITES = "tools/run-tests $(TEST_BIN)" "sh tests/cli/run.sh $(BUILD)/bin/braun" \
-              "sh tests/cli/install.sh"
+CORE_SUITES = "tools/run-tests $(TEST_BIN)" "sh tests/cli/run.sh $(BUILD)/bin/braun"
+TEST_SUITES = $(CORE_SUITES) "sh tests/cli/install.sh" "$(MAKE) -s --no-print-directory test-sanitize"
 TEST_PREREQS = $(TEST_BIN) $(BUILD)/bin/braun
+
+# The unit and CLI tests again under AddressSanitizer + UBSan (own build dir).
+SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+test-sanitize: deps-test
+	@$(MAKE) --no-print-directory BUILD=build/sanitize OPT="-O1 -g $(SANITIZE)" \
+	    LDLIBS="$(SANITIZE)" test-core-suites
+
+test-core-suites: $(TEST_PREREQS)
+	@tools/run-suites $(CORE_SUITES)
 
 test: deps-test
 	@$(MAKE) --no-print-directory $(TEST_PREREQS)
