@@ -1,10 +1,23 @@
-/* Cholesky factorization M = R^T R of the mass matrix and its solves. */
+/* Cholesky factorization M = R^T R of the mass matrix and its solves.
+ * The solves skip the zero envelope of R (diagonal, banded and block mass
+ * matrices cost O(n) or O(n·band) instead of O(n²)) and multiply by the
+ * stored reciprocal pivots. */
 #include "braun_linalg.h"
 
-int braun_chol_factor(int n, const braun_real *M, braun_real *R,
-                      braun_real sym_tol, int *bad_i, int *bad_j,
-                      braun_real *bad_value)
+void braun_chol_bind(braun_chol *c, int n, braun_real *reals, int *ints)
 {
+    c->n = n;
+    c->R = reals;
+    c->dinv = reals + (size_t)n * n;
+    c->first = ints;
+    c->last = ints + n;
+}
+
+int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
+                      int *bad_i, int *bad_j, braun_real *bad_value)
+{
+    const int n = c->n;
+    braun_real *R = c->R;
     braun_real dmax = 0;
     int i, j, k;
     for (i = 0; i < n; i++) {
@@ -37,32 +50,46 @@ int braun_chol_factor(int n, const braun_real *M, braun_real *R,
         }
         braun_real rii = braun_sqrt(s);
         R[i * n + i] = rii;
+        c->dinv[i] = 1 / rii;
         for (j = i + 1; j < n; j++) {
             braun_real t = M[i * n + j];
             for (k = 0; k < i; k++) t -= R[k * n + i] * R[k * n + j];
-            R[i * n + j] = t / rii;
+            R[i * n + j] = t * c->dinv[i];
         }
         for (j = 0; j < i; j++) R[i * n + j] = 0;
+    }
+    /* Envelope: first nonzero row of each column, last nonzero column of
+     * each row (exact zeros of R, e.g. all off-diagonals of a diagonal M). */
+    for (j = 0; j < n; j++) {
+        for (i = 0; i < j && R[i * n + j] == 0; i++) {}
+        c->first[j] = i;
+    }
+    for (i = 0; i < n; i++) {
+        for (j = n - 1; j > i && R[i * n + j] == 0; j--) {}
+        c->last[i] = j;
     }
     return BRAUN_OK;
 }
 
-void braun_chol_solve_rt(int n, const braun_real *R, braun_real *x)
+void braun_chol_solve_rt(const braun_chol *c, braun_real *x)
 {
-    /* R^T is lower triangular: (R^T)_ik = R_ki. */
+    /* R^T is lower triangular: (R^T)_ik = R_ki, nonzero for k >= first[i]. */
+    const int n = c->n;
+    const braun_real *R = c->R;
     for (int i = 0; i < n; i++) {
         braun_real s = x[i];
-        for (int k = 0; k < i; k++) s -= R[k * n + i] * x[k];
-        x[i] = s / R[i * n + i];
+        for (int k = c->first[i]; k < i; k++) s -= R[k * n + i] * x[k];
+        x[i] = s * c->dinv[i];
     }
 }
 
-void braun_chol_solve_r(int n, const braun_real *R, braun_real *x)
+void braun_chol_solve_r(const braun_chol *c, braun_real *x)
 {
+    const int n = c->n;
     for (int i = n - 1; i >= 0; i--) {
+        const braun_real *row = c->R + (size_t)i * n;
         braun_real s = x[i];
-        const braun_real *row = R + i * n;
-        for (int k = i + 1; k < n; k++) s -= row[k] * x[k];
-        x[i] = s / row[i];
+        for (int k = i + 1; k <= c->last[i]; k++) s -= row[k] * x[k];
+        x[i] = s * c->dinv[i];
     }
 }

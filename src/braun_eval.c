@@ -26,7 +26,7 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
     st = braun__check_finite(d, n, pv->Q, "forces", 0, t);
     if (st) return st;
     for (int i = 0; i < n; i++) pv->atil[i] = pv->Q[i];
-    braun_chol_solve_rt(n, pv->R, pv->atil);
+    braun_chol_solve_rt(&pv->chol, pv->atil);
 
     for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i];
     if (rows > 0) {
@@ -64,7 +64,7 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
             braun_real *ci = C + (size_t)i * n;
             const braun_real *ai = pv->A + (size_t)i * n;
             for (int j = 0; j < n; j++) ci[j] = ai[j];
-            braun_chol_solve_rt(n, pv->R, ci);
+            braun_chol_solve_rt(&pv->chol, ci);
             /* Residual of Eq. 10 without corrections: b_v - C_v atil. */
             pv->bv[i] -= braun_dot(n, ci, pv->atil);
         }
@@ -83,7 +83,7 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
     }
     if (vdot) {
         for (int i = 0; i < n; i++) vdot[i] = pv->z[i];
-        braun_chol_solve_r(n, pv->R, vdot);
+        braun_chol_solve_r(&pv->chol, vdot);
     }
     return BRAUN_OK;
 }
@@ -130,7 +130,7 @@ static int energy_correction(braun_data *d, braun_real t, const braun_real *q,
                            braun_dot(n, pv->dEdv, dv));
     /* x = N_v C_e^T, C_e = A_e R^-1. */
     for (int i = 0; i < n; i++) pv->ce[i] = pv->dEdv[i];
-    braun_chol_solve_rt(n, pv->R, pv->ce);
+    braun_chol_solve_rt(&pv->chol, pv->ce);
     if (pv->rows > 0) braun_qrcp_null_project(&pv->fv, pv->ce);
     const braun_real xx = braun_dot(n, pv->ce, pv->ce);
     /* [C_e N_v]^+ = x / ||x||^2 divides by ≈ 2·kinetic energy: at rest or at a
@@ -147,7 +147,7 @@ static int energy_correction(braun_data *d, braun_real t, const braun_real *q,
     }
     if (sigma == 0) return BRAUN_OK;
     for (int i = 0; i < n; i++) pv->tmp[i] = sigma * pv->ce[i];
-    braun_chol_solve_r(n, pv->R, pv->tmp);
+    braun_chol_solve_r(&pv->chol, pv->tmp);
     for (int i = 0; i < n; i++) dv[i] += pv->tmp[i];
     return BRAUN_OK;
 }
@@ -166,14 +166,14 @@ int braun__eval_corrections(braun_data *d, braun_real t, const braun_real *q,
         /* Eq. 16 × h: dq = R^-1 C_q^+ (h (b_q - A_q v) - Φ_q). */
         for (int i = 0; i < m; i++) pv->ep[i] = -(pv->phi[i] + h * pv->ev[i]);
         braun_qrcp_pinv_apply(pv->need_fq ? &pv->fq : &pv->fv, pv->ep, dq);
-        braun_chol_solve_r(n, pv->R, dq);
+        braun_chol_solve_r(&pv->chol, dq);
     }
     if (rows > 0 && (corr & BRAUN_CORRECT_VELOCITY)) {
         /* Δ_v term of Eq. 17 × h: dv = -R^-1 C_v^+ [Φ̇_q; Φ_v]. */
         for (int i = 0; i < rows; i++) pv->ev[i] = -pv->ev[i];
         braun_qrcp_pinv_apply(&pv->fv, pv->ev, dv);
         for (int i = 0; i < rows; i++) pv->ev[i] = -pv->ev[i];
-        braun_chol_solve_r(n, pv->R, dv);
+        braun_chol_solve_r(&pv->chol, dv);
     }
     if ((corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0)
         return energy_correction(d, t, q, v, W, h, vdot, dv);

@@ -9,19 +9,29 @@
 #include "braun_math.h"
 
 /* ---- Cholesky: M = R^T R with R upper triangular (src/braun_chol.c) ---- */
+typedef struct braun_chol {
+    int n;
+    braun_real *R;    /* n x n row-major, upper triangle (strict lower zeroed) */
+    braun_real *dinv; /* n: 1 / R_ii */
+    int *first;       /* n: first nonzero row of column j (envelope) */
+    int *last;        /* n: last nonzero column of row i */
+} braun_chol;
 
-/* Factor the n x n row-major SPD matrix M into R (upper triangle of R; the
- * strict lower triangle is set to zero). M and R may alias. Returns BRAUN_OK,
- * BRAUN_ERR_MASS_NOT_SYMMETRIC (|M_ij - M_ji| > sym_tol·max_i M_ii) or
- * BRAUN_ERR_MASS_NOT_SPD (pivot <= 0 or below n·ε·max diagonal). On error
- * *bad_i, *bad_j (may be NULL) name the entry. */
-int braun_chol_factor(int n, const braun_real *M, braun_real *R,
-                      braun_real sym_tol, int *bad_i, int *bad_j,
-                      braun_real *bad_value);
+/* Reals: n*n + n; ints: 2n. */
+#define BRAUN_CHOL_REALS(n) ((size_t)(n) * (size_t)(n) + (size_t)(n))
+#define BRAUN_CHOL_INTS(n) (2 * (size_t)(n))
+void braun_chol_bind(braun_chol *c, int n, braun_real *reals, int *ints);
+
+/* Factor the n x n row-major SPD matrix M into c (M may alias c->R).
+ * Returns BRAUN_OK, BRAUN_ERR_MASS_NOT_SYMMETRIC (|M_ij - M_ji| >
+ * sym_tol·max_i M_ii) or BRAUN_ERR_MASS_NOT_SPD (pivot <= n·ε·max diagonal).
+ * On error *bad_i, *bad_j, *bad_value (may be NULL) name the entry. */
+int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
+                      int *bad_i, int *bad_j, braun_real *bad_value);
 /* x := R^-T x (forward substitution with the lower triangle R^T). */
-void braun_chol_solve_rt(int n, const braun_real *R, braun_real *x);
+void braun_chol_solve_rt(const braun_chol *c, braun_real *x);
 /* x := R^-1 x (back substitution). */
-void braun_chol_solve_r(int n, const braun_real *R, braun_real *x);
+void braun_chol_solve_r(const braun_chol *c, braun_real *x);
 
 /* ---- Rank-revealing pseudoinverse of a wide matrix C (rows x n) ---------
  * Householder QR with column pivoting of C^T (n x rows):

@@ -54,28 +54,34 @@ static void reflect(int len, const braun_real *vtail, braun_real tau,
     for (int i = 1; i < len; i++) y[i] -= w * vtail[i - 1];
 }
 
+static braun_real sumsq(int len, const braun_real *x)
+{
+    braun_real s = 0;
+    for (int i = 0; i < len; i++) s += x[i] * x[i];
+    return s;
+}
+
 int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
 {
     const int n = f->n, rows = f->rows;
     const int kmax = n < rows ? n : rows;
     braun_real *a = f->a;
+    /* Squared norms of the remaining column parts, downdated after each
+     * reflection (LAPACK xLAQP2); `ref` holds the value at the last exact
+     * computation, to detect cancellation. Both live in scratch that is
+     * free until the second stage. */
+    braun_real *norm2 = f->work, *ref = f->stau;
     braun_real r00 = 0;
-    int k;
 
-    for (int j = 0; j < rows; j++) f->perm[j] = j;
+    for (int j = 0; j < rows; j++) {
+        f->perm[j] = j;
+        norm2[j] = ref[j] = sumsq(n, a + (size_t)j * n);
+    }
     f->rank = 0;
-    for (k = 0; k < kmax; k++) {
-        /* Pivot: the remaining column of largest norm. Norms are recomputed,
-         * not downdated, so cancellation cannot fake a large pivot. */
+    for (int k = 0; k < kmax; k++) {
         int best = k;
-        braun_real bestnorm = -1;
-        for (int j = k; j < rows; j++) {
-            braun_real nj = braun_nrm2(n - k, a + (size_t)j * n + k);
-            if (nj > bestnorm) {
-                bestnorm = nj;
-                best = j;
-            }
-        }
+        for (int j = k + 1; j < rows; j++)
+            if (norm2[j] > norm2[best]) best = j;
         if (best != k) {
             braun_real *ck = a + (size_t)k * n, *cb = a + (size_t)best * n;
             for (int i = 0; i < n; i++) {
@@ -86,14 +92,30 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
             int t = f->perm[k];
             f->perm[k] = f->perm[best];
             f->perm[best] = t;
+            braun_real u = norm2[k];
+            norm2[k] = norm2[best];
+            norm2[best] = u;
+            u = ref[k];
+            ref[k] = ref[best];
+            ref[best] = u;
         }
-        if (k == 0) r00 = bestnorm;
-        /* Rank decision relative to the largest pivot (≈ ||C||_2). */
-        if (bestnorm == 0 || bestnorm <= tol * r00) break;
         braun_real *col = a + (size_t)k * n + k;
-        f->tau[k] = house(n - k, col, bestnorm);
-        for (int j = k + 1; j < rows; j++)
-            reflect(n - k, col + 1, f->tau[k], a + (size_t)j * n + k);
+        /* The pivot's norm is recomputed exactly: the rank decision must not
+         * rest on a downdated value. */
+        const braun_real pivot = braun_sqrt(sumsq(n - k, col));
+        if (k == 0) r00 = pivot;
+        /* Rank decision relative to the largest pivot (≈ ||C||_2). */
+        if (pivot == 0 || pivot <= tol * r00) break;
+        f->tau[k] = house(n - k, col, pivot);
+        for (int j = k + 1; j < rows; j++) {
+            braun_real *cj = a + (size_t)j * n + k;
+            reflect(n - k, col + 1, f->tau[k], cj);
+            norm2[j] -= cj[0] * cj[0];
+            /* Cancellation: recompute once the downdated value has lost
+             * more than half of its digits (LAPACK's sqrt(eps) test). */
+            if (norm2[j] <= braun_sqrt(BRAUN_EPS) * ref[j])
+                norm2[j] = ref[j] = sumsq(n - k - 1, cj + 1);
+        }
         f->rank = k + 1;
     }
 

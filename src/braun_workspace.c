@@ -22,12 +22,11 @@ static size_t layout(const braun_model *model, unsigned char *base,
         nr += (size_t)(count);                             \
     } while (0)
     braun_real *dummy = NULL;
-    braun_real *fvr = NULL, *fqr = NULL;
+    braun_real *fvr = NULL, *fqr = NULL, *cholr = NULL;
     if (!base) pv = NULL;
 #define P(field) (*(pv ? &pv->field : &dummy))
     TAKE(*(q ? q : &dummy), n);
     TAKE(*(v ? v : &dummy), n);
-    TAKE(P(R), (size_t)n * n);
     TAKE(P(Q), n);
     TAKE(P(atil), n);
     TAKE(P(z), n);
@@ -49,15 +48,18 @@ static size_t layout(const braun_model *model, unsigned char *base,
     for (int i = 0; i < BRAUN_MAX_STAGES; i++) TAKE(P(k[i]), N);
     TAKE(P(dq), n);
     TAKE(P(dv), n);
+    TAKE(cholr, BRAUN_CHOL_REALS(n));
     TAKE(fvr, braun_qrcp_reals(n, rows));
     if (need_fq) TAKE(fqr, braun_qrcp_reals(n, m));
 #undef P
 #undef TAKE
     off += nr * sizeof(braun_real);
     off = (off + BRAUN_ALIGN - 1) / BRAUN_ALIGN * BRAUN_ALIGN;
-    size_t ni = braun_qrcp_ints(rows) + (need_fq ? braun_qrcp_ints(m) : 0);
+    size_t ni = BRAUN_CHOL_INTS(n) + braun_qrcp_ints(rows) + (need_fq ? braun_qrcp_ints(m) : 0);
     if (base) {
         int *ints = (int *)(void *)(base + off);
+        braun_chol_bind(&pv->chol, n, cholr, ints);
+        ints += BRAUN_CHOL_INTS(n);
         braun_qrcp_bind(&pv->fv, n, rows, fvr, ints);
         if (need_fq) braun_qrcp_bind(&pv->fq, n, m, fqr, ints + rows);
         pv->n = n;
@@ -100,6 +102,7 @@ int braun__callback(braun_data *d, int rc, const char *where, braun_real t)
 int braun__check_finite(braun_data *d, int n, const braun_real *x,
                         const char *where, int cols, braun_real t)
 {
+    if (braun_all_finite(n, x)) return BRAUN_OK;
     for (int i = 0; i < n; i++)
         if (!braun_is_finite(x[i]))
             return braun__fail(d, BRAUN_ERR_NONFINITE, where,
@@ -117,11 +120,11 @@ static int factor_mass(braun_data *d, braun_real t, const braun_real *q)
                                                    : (braun_real)1e3 * BRAUN_EPS;
     int bi = -1, bj = -1, st;
     braun_real bad = 0;
-    st = braun__callback(d, s->mass(t, q, pv->R, s->user), "mass", t);
+    st = braun__callback(d, s->mass(t, q, pv->chol.R, s->user), "mass", t);
     if (st) return st;
-    st = braun__check_finite(d, n * n, pv->R, "mass", n, t);
+    st = braun__check_finite(d, n * n, pv->chol.R, "mass", n, t);
     if (st) return st;
-    st = braun_chol_factor(n, pv->R, pv->R, tol, &bi, &bj, &bad);
+    st = braun_chol_factor(&pv->chol, pv->chol.R, tol, &bi, &bj, &bad);
     d->stats.mass_factorizations++;
     if (st) return braun__fail(d, st, "mass", bi, bj, (double)bad, (double)t);
     return BRAUN_OK;

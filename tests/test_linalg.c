@@ -12,46 +12,79 @@ static double frand(unsigned *s)
     return ((*s >> 8) & 0xffff) / 32768.0 - 1.0;
 }
 
+static int chol_ints[16];
+static braun_real chol_reals[64];
+
+static braun_chol chol_of(int n)
+{
+    braun_chol c;
+    braun_chol_bind(&c, n, chol_reals, chol_ints);
+    return c;
+}
+
 static void test_chol_known(void **state)
 {
     (void)state;
     /* M = R^T R with R = [2 1 0; 0 3 1; 0 0 4]. */
     const braun_real Rk[9] = {2, 1, 0, 0, 3, 1, 0, 0, 4};
-    braun_real M[9], R[9];
+    braun_real M[9];
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
             double s = 0;
             for (int k = 0; k < 3; k++) s += Rk[k * 3 + i] * Rk[k * 3 + j];
             M[i * 3 + j] = s;
         }
-    assert_int_equal(braun_chol_factor(3, M, R, 1e-12, NULL, NULL, NULL), BRAUN_OK);
-    for (int i = 0; i < 9; i++) assert_near(R[i], Rk[i], 1e-14);
+    braun_chol c = chol_of(3);
+    assert_int_equal(braun_chol_factor(&c, M, 1e-12, NULL, NULL, NULL), BRAUN_OK);
+    for (int i = 0; i < 9; i++) assert_near(c.R[i], Rk[i], 1e-14);
+    /* Envelope: column 2 starts at row 1, row 0 ends at column 1. */
+    assert_int_equal(c.first[2], 1);
+    assert_int_equal(c.last[0], 1);
     /* Solves: R^-T then R^-1 of M x gives x. */
     braun_real x[3] = {1, -2, 3}, y[3];
     braun_gemv(3, 3, M, x, y);
-    braun_chol_solve_rt(3, R, y);
-    braun_chol_solve_r(3, R, y);
+    braun_chol_solve_rt(&c, y);
+    braun_chol_solve_r(&c, y);
     for (int i = 0; i < 3; i++) assert_near(y[i], x[i], 1e-13);
+}
+
+/* Block-diagonal M: the envelope skips the zero blocks and the solves are
+ * still exact. */
+static void test_chol_envelope(void **state)
+{
+    (void)state;
+    const braun_real M[16] = {4, 1, 0, 0, 1, 3, 0, 0, 0, 0, 2, 0.5, 0, 0, 0.5, 1};
+    braun_chol c = chol_of(4);
+    assert_int_equal(braun_chol_factor(&c, M, 1e-12, NULL, NULL, NULL), BRAUN_OK);
+    assert_int_equal(c.first[2], 2);
+    assert_int_equal(c.first[3], 2);
+    assert_int_equal(c.last[1], 1);
+    braun_real x[4] = {0.3, -1, 2, 0.7}, y[4];
+    braun_gemv(4, 4, M, x, y);
+    braun_chol_solve_rt(&c, y);
+    braun_chol_solve_r(&c, y);
+    for (int i = 0; i < 4; i++) assert_near(y[i], x[i], 1e-14);
 }
 
 static void test_chol_rejects(void **state)
 {
     (void)state;
-    braun_real R[9];
     int bi = -1, bj = -1;
     braun_real bad = 0;
+    braun_chol c = chol_of(3);
     const braun_real asym[9] = {2, 1, 0, 0.5, 2, 0, 0, 0, 2};
-    assert_int_equal(braun_chol_factor(3, asym, R, 1e-12, &bi, &bj, &bad),
+    assert_int_equal(braun_chol_factor(&c, asym, 1e-12, &bi, &bj, &bad),
                      BRAUN_ERR_MASS_NOT_SYMMETRIC);
     assert_int_equal(bi, 0);
     assert_int_equal(bj, 1);
     const braun_real indef[9] = {1, 2, 0, 2, 1, 0, 0, 0, 1};
-    assert_int_equal(braun_chol_factor(3, indef, R, 1e-12, &bi, &bj, &bad),
+    assert_int_equal(braun_chol_factor(&c, indef, 1e-12, &bi, &bj, &bad),
                      BRAUN_ERR_MASS_NOT_SPD);
     assert_int_equal(bi, 1);
     assert_true(bad < 0);
     const braun_real singular[4] = {1, 1, 1, 1};
-    assert_int_equal(braun_chol_factor(2, singular, R, 1e-12, &bi, &bj, &bad),
+    braun_chol c2 = chol_of(2);
+    assert_int_equal(braun_chol_factor(&c2, singular, 1e-12, &bi, &bj, &bad),
                      BRAUN_ERR_MASS_NOT_SPD);
 }
 
@@ -192,6 +225,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_chol_known),
+        cmocka_unit_test(test_chol_envelope),
         cmocka_unit_test(test_chol_rejects),
         cmocka_unit_test(test_pinv_full_rank),
         cmocka_unit_test(test_pinv_duplicated_and_scaled_rows),

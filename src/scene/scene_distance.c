@@ -1,0 +1,31 @@
+/* Distance joint: |d|² - L(t)² = 0 with d = P_b - P_a (1 row); a massless
+ * rigid link between two points, or a linear actuator when driven.
+ *   A_q  = 2 dᵀ (J_b - J_a)
+ *   b_q  = -∂Φ/∂t = 2 L L'
+ *   b_qv = -2|d'|² - 2 d·(cc_b - cc_a) + 2 (L'² + L L'')
+ * (Φ'' = 2|d'|² + 2 d·(J_b v' + cc_b - J_a v' - cc_a) - 2(L'² + L L'')). */
+#include "scene_internal.h"
+
+void braun_scene__distance_rows(const braun_scene *s, const braun_scene_joint *j, braun_real t,
+                                const braun_real *q, const braun_real *v, braun_real *phi,
+                                braun_real *A, braun_real *b, braun_real *bv)
+{
+    scene_pt Pa, Pb;
+    braun_real L = j->value, dL = 0, ddL = 0;
+    if (j->driven) braun_scene_fn_eval(&j->drive, t, &L, &dL, &ddL);
+    braun_scene__point(s, j->a, q, v, &Pa);
+    braun_scene__point(s, j->b, q, v, &Pb);
+    const braun_real dx = Pb.pos[0] - Pa.pos[0], dy = Pb.pos[1] - Pa.pos[1];
+    if (phi) phi[0] = dx * dx + dy * dy - L * L;
+    if (A) {
+        braun_scene__add_grad(&Pb, BRAUN_R(2.0) * dx, BRAUN_R(2.0) * dy, A);
+        braun_scene__add_grad(&Pa, BRAUN_R(-2.0) * dx, BRAUN_R(-2.0) * dy, A);
+    }
+    if (b) b[0] = BRAUN_R(2.0) * L * dL;
+    if (bv) {
+        const braun_real ux = Pb.vel[0] - Pa.vel[0], uy = Pb.vel[1] - Pa.vel[1];
+        const braun_real cx = Pb.cc[0] - Pa.cc[0], cy = Pb.cc[1] - Pa.cc[1];
+        bv[0] = BRAUN_R(-2.0) * (ux * ux + uy * uy) - BRAUN_R(2.0) * (dx * cx + dy * cy);
+        if (j->driven) bv[0] += BRAUN_R(2.0) * (dL * dL + L * ddL);
+    }
+}

@@ -1,0 +1,35 @@
+/* Functions of time for drives and applied loads: constant, linear ramp,
+ * sine and step, with their first two derivatives (a drive's b_q = f' and
+ * b_qv = f'' terms, Sec. 2.2). */
+#include "scene_internal.h"
+
+void braun_scene_fn_eval(const braun_scene_fn *f, braun_real t, braun_real *value,
+                         braun_real *rate, braun_real *accel)
+{
+    braun_real x = 0, dx = 0, ddx = 0;
+    switch (f->kind) {
+    case BRAUN_FN_LINEAR:
+        x = f->a + f->b * t;
+        dx = f->b;
+        break;
+    case BRAUN_FN_SINE: {
+        const braun_real arg = f->c * t + f->d;
+        const braun_real s = braun_sin(arg), c = braun_cos(arg);
+        x = f->a + f->b * s;
+        dx = f->b * f->c * c;
+        ddx = -f->b * f->c * f->c * s;
+        break;
+    }
+    case BRAUN_FN_STEP:
+        /* Derivatives are 0 away from the jump; the builder keeps steps
+         * out of drives, where a jump would need a Dirac b_qv. */
+        x = t < f->c ? f->a : f->b;
+        break;
+    default: /* BRAUN_FN_CONSTANT */
+        x = f->a;
+        break;
+    }
+    if (value) *value = x;
+    if (rate) *rate = dx;
+    if (accel) *accel = ddx;
+}

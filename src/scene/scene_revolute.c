@@ -1,0 +1,24 @@
+/* Revolute joint (pin): two points coincide, P_a - P_b = 0 (2 rows). As in
+ * the paper's Eq. 22: with P'' = J v' + cc (scene_point.c),
+ * Φ'' = A_q v' + cc_a - cc_b, so b_q = 0 and b_qv = cc_b - cc_a. */
+#include "scene_internal.h"
+
+void braun_scene__revolute_rows(const braun_scene *s, const braun_scene_joint *j,
+                                const braun_real *q, const braun_real *v, braun_real *phi,
+                                braun_real *A, braun_real *b, braun_real *bv)
+{
+    const int n = s->n;
+    scene_pt Pa, Pb;
+    braun_scene__point(s, j->a, q, v, &Pa);
+    braun_scene__point(s, j->b, q, v, &Pb);
+    for (int k = 0; k < 2; k++) {
+        if (phi) phi[k] = Pa.pos[k] - Pb.pos[k];
+        if (A) {
+            braun_real *row = A + (size_t)k * n;
+            braun_scene__add_grad(&Pa, k == 0, k == 1, row);
+            braun_scene__add_grad(&Pb, -(k == 0), -(k == 1), row);
+        }
+        if (b) b[k] = 0;
+        if (bv) bv[k] = Pb.cc[k] - Pa.cc[k];
+    }
+}
