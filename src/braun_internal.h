@@ -11,6 +11,7 @@ typedef struct braun_priv {
     int n, m, p, rows;
     int need_fq;          /* separate C_q factorization (p > 0 and m > 0) */
     int R_is_constant;    /* R computed once in braun_data_init */
+    int state_integrated; /* the state came from a step, not braun_set_state */
     braun_chol chol;      /* M = R^T R (R, reciprocal pivots, envelope) */
     braun_real *Q;        /* n forces */
     braun_real *atil;     /* n: R^-T Q, the weighted unconstrained acceleration */

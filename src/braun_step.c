@@ -36,16 +36,20 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         braun_real *k = pv->k[s];
         const int wants_corr = corr && (per_stage || s == 0);
         st = braun__eval_ideal(d, ts, ys, ys + n, wants_corr ? BRAUN_WANT_PHI : 0u, k + n);
-        /* Finite at the step's start but not at a later stage: the step left
-         * the region where the model is defined — it diverged. d->error
-         * keeps the callback and entry that overflowed. */
-        if (st == BRAUN_ERR_NONFINITE && s > 0) d->error.status = st = BRAUN_ERR_DIVERGED;
+        /* A NaN/Inf from a callback at a state the integrator produced (a
+         * later stage, or the start of any step after the first): the
+         * solution left the region where the model is defined — it
+         * diverged. d->error keeps the callback and entry that overflowed. */
+        if (st == BRAUN_ERR_NONFINITE && (s > 0 || pv->state_integrated))
+            d->error.status = st = BRAUN_ERR_DIVERGED;
         if (st) return st;
         for (int i = 0; i < n; i++) k[i] = ys[n + i];
         st = braun__power(d, ts, ys, ys + n, &k[2 * n]);
         if (st) return st;
         if (wants_corr) {
             st = braun__eval_corrections(d, ts, ys, ys + n, ys[2 * n], h, k + n, pv->dq, pv->dv);
+            if (st == BRAUN_ERR_NONFINITE && (s > 0 || pv->state_integrated))
+                d->error.status = st = BRAUN_ERR_DIVERGED;
             if (st) return st;
             if (per_stage) /* the literal Eqs. 16-17 with Δ = Φ/h */
                 for (int i = 0; i < n; i++) {
@@ -102,6 +106,7 @@ void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new)
     d->work_in = y1[2 * n];
     d->t = t_new;
     d->stats.steps++;
+    braun__priv(d)->state_integrated = 1;
 }
 
 int braun_step(braun_data *d, braun_method method, braun_real h)

@@ -68,6 +68,7 @@ static size_t layout(const braun_model *model, unsigned char *base,
         pv->rows = rows;
         pv->need_fq = need_fq;
         pv->R_is_constant = 0;
+        pv->state_integrated = 0;
     }
     off += ni * sizeof(int);
     return off;
@@ -185,6 +186,7 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     }
     d->t = t;
     d->work_in = 0;
+    braun__priv(d)->state_integrated = 0;
     d->has_E0 = 0;
     d->E0 = 0;
     if (d->model->sys.energy) {

@@ -1,0 +1,67 @@
+/*
+ * Private to src/scene_json, the host-only scene file reader.
+ *
+ * jansson parses and validates the JSON text; its json_t values carry no
+ * positions. To name FILE:LINE:COLUMN for an error found after parsing,
+ * the reader keeps the JSON path of what it is reading (keys and array
+ * indices) and, only when it reports an error, walks the already-validated
+ * text along that path (scene_json_locate.c) to the key or the value.
+ */
+#ifndef BRAUN_SCENE_JSON_INTERNAL_H
+#define BRAUN_SCENE_JSON_INTERNAL_H
+
+#include <stddef.h>
+#include <jansson.h>
+
+#include "braun_scene.h"
+
+#define SJ_MAX_DEPTH 8
+
+/* One step of a JSON path: an object key, or an array index (key NULL). */
+typedef struct sj_seg {
+    const char *key;
+    int index;
+} sj_seg;
+
+/* Where in the text an error points: the key of the path's last step, or
+ * the start of its value. */
+enum { SJ_AT_VALUE = 0, SJ_AT_KEY = 1 };
+
+/* Line and column (1-based, column in characters) of the path's value or
+ * key in a text jansson has accepted; 1:1 when the path is not found. */
+void sj_locate(const char *text, size_t len, const sj_seg *path, int depth, int at, int *line,
+               int *column);
+
+/* The reader's state: the text, the path being read, the scene being
+ * filled, and the first error. */
+typedef struct sj_reader {
+    const char *file;
+    const char *text;
+    size_t len;
+    char *err;
+    size_t err_size;
+    sj_seg path[SJ_MAX_DEPTH];
+    int depth;
+    braun_scene_file *out;
+    /* Point table under construction. */
+    int npoints, cap_points;
+    const char **point_names;   /* name within its body ("" for implicit ones) */
+    /* JSON index of each knife edge among "joints". */
+    int *knife_json;
+} sj_reader;
+
+/* Format "FILE:LINE:COL: message" at the current path; returns -1. */
+int sj_fail(sj_reader *r, int at, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+void sj_push_key(sj_reader *r, const char *key);
+void sj_push_index(sj_reader *r, int index);
+void sj_pop(sj_reader *r);
+
+/* Read every element of the root object into r->out (scene_json_read.c). */
+int sj_read_scene(sj_reader *r, json_t *root);
+
+#endif
