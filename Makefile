@@ -87,7 +87,9 @@ test-sanitize: deps-test
 	@$(MAKE) --no-print-directory BUILD=build/sanitize OPT="-O1 -g $(SANITIZE)" \
 	    LDLIBS="$(SANITIZE)" test-core-suites
 
-test-core-suites: $(TEST_PREREQS)
+# (prerequisites as a sub-make: mk/*.mk append to TEST_PREREQS after this point)
+test-core-suites:
+	@$(MAKE) --no-print-directory $(TEST_PREREQS)
 	@tools/run-suites $(CORE_SUITES)
 
 test: deps-test
