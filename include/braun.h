@@ -62,6 +62,7 @@ typedef enum braun_status {
     BRAUN_ERR_TOO_MANY_STEPS = -13,
     BRAUN_ERR_MISSING_CALLBACK = -14, /* m > 0 without holonomic(), ... */
     BRAUN_ERR_NO_ENERGY_LAW = -15,    /* energy correction asked, system has none */
+    BRAUN_ERR_INCONSISTENT = -16,     /* dependent constraint rows disagree: no solution */
     BRAUN_STOPPED = 1             /* the output callback asked to stop */
 } braun_status;
 
@@ -180,6 +181,11 @@ typedef struct braun_options {
     /* Mass-matrix symmetry tolerance, relative to the largest diagonal entry.
      * <= 0 selects the default 1e3·ε. */
     braun_real symmetry_tol;
+    /* When the holonomic rows are dependent (rank-deficient factorization),
+     * the part of the position error Φ_q + hΦ̇_q outside the range of C_q
+     * cannot be removed by any motion: above this (absolute, constraint
+     * units) the step fails with BRAUN_ERR_INCONSISTENT. <= 0: sqrt(ε). */
+    braun_real inconsistency_tol;
 } braun_options;
 
 typedef struct braun_model {

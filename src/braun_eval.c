@@ -164,8 +164,23 @@ int braun__eval_corrections(braun_data *d, braun_real t, const braun_real *q,
     for (int i = 0; i < n; i++) dq[i] = dv[i] = 0;
     if (rows > 0 && (corr & BRAUN_CORRECT_POSITION) && m > 0) {
         /* Eq. 16 × h: dq = R^-1 C_q^+ (h (b_q - A_q v) - Φ_q). */
+        const braun_qrcp *fq = pv->need_fq ? &pv->fq : &pv->fv;
         for (int i = 0; i < m; i++) pv->ep[i] = -(pv->phi[i] + h * pv->ev[i]);
-        braun_qrcp_pinv_apply(pv->need_fq ? &pv->fq : &pv->fv, pv->ep, dq);
+        if (fq->rank < fq->rows) {
+            /* Dependent rows must agree: a position error outside range(C_q)
+             * is one no motion can remove — the constraints have no
+             * solution here (e.g. x = 0 and x = 1). Only rank-deficient
+             * factorizations pay for this check. */
+            braun_real resid;
+            braun_qrcp_lsq(fq, pv->ep, dq, &resid);
+            braun_real tol = d->model->opt.inconsistency_tol > 0 ? d->model->opt.inconsistency_tol
+                                                                 : braun_sqrt(BRAUN_EPS);
+            if (resid > tol)
+                return braun__fail(d, BRAUN_ERR_INCONSISTENT, "holonomic constraints", -1, -1,
+                                   (double)resid, (double)t);
+        } else {
+            braun_qrcp_pinv_apply(fq, pv->ep, dq);
+        }
         braun_chol_solve_r(&pv->chol, dq);
     }
     if (rows > 0 && (corr & BRAUN_CORRECT_VELOCITY)) {

@@ -66,6 +66,10 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol);
 /* x[n] := C^+ r, r[rows] (r is not modified). */
 void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
                            braun_real *x);
+/* The same, and *resid := ||r - C C^+ r||_2, the part of r no x can reach
+ * (0 when the rows are independent). */
+void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
+                    braun_real *resid);
 /* z[n] := N z = z - C^+ C z (projection onto the null space of C). */
 void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z);
 

@@ -22,5 +22,6 @@ int braun_model_init(braun_model *model, const braun_system *sys)
     model->opt.rank_tol = 0;
     model->opt.energy_max_rel = 0;
     model->opt.symmetry_tol = 0;
+    model->opt.inconsistency_tol = 0;
     return BRAUN_OK;
 }

@@ -140,12 +140,22 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
 void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
                            braun_real *x)
 {
+    braun_qrcp_lsq(f, r, x, NULL);
+}
+
+void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
+                    braun_real *resid)
+{
     const int n = f->n, rows = f->rows, rk = f->rank;
     const braun_real *a = f->a;
     braun_real *w = f->work;
 
     for (int i = 0; i < n; i++) x[i] = 0;
-    if (rk == 0) return;
+    if (resid) *resid = 0;
+    if (rk == 0) {
+        if (resid) *resid = braun_nrm2(rows, r);
+        return;
+    }
     for (int j = 0; j < rows; j++) w[j] = r[f->perm[j]];
     if (rk == rows) {
         /* S = R11^T is lower triangular: forward substitution. */
@@ -160,6 +170,8 @@ void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
         const braun_real *s = f->s;
         for (int j = 0; j < rk; j++)
             reflect(rows - j, s + (size_t)j * rows + j + 1, f->stau[j], w + j);
+        /* U^T P^T r below the rank: the part of r outside range(C). */
+        if (resid) *resid = braun_nrm2(rows - rk, w + rk);
         for (int i = rk - 1; i >= 0; i--) {
             braun_real sum = w[i];
             for (int c = i + 1; c < rk; c++) sum -= s[(size_t)c * rows + i] * w[c];

@@ -206,10 +206,62 @@ static void test_divergence_is_reported(void **state)
     test_sim_close(&sim);
 }
 
+/* Contradictory constraints (x = 0 and x = 1, on one coordinate): no
+ * state satisfies both; the step says so instead of drifting to a
+ * least-squares compromise. */
+static int line_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t; (void)q; (void)u;
+    M[0] = M[3] = 1;
+    M[1] = M[2] = 0;
+    return 0;
+}
+static int line_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,
+                       void *u)
+{
+    (void)t; (void)q; (void)v; (void)u;
+    Q[0] = Q[1] = 0;
+    return 0;
+}
+static int contradict(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                      braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    const double gap = *(const double *)u;
+    (void)t; (void)v;
+    if (phi) { phi[0] = q[0]; phi[1] = q[0] - gap; }
+    if (A) { A[0] = 1; A[1] = 0; A[2] = 1; A[3] = 0; }
+    if (b) b[0] = b[1] = 0;
+    if (bv) bv[0] = bv[1] = 0;
+    return 0;
+}
+
+static void test_inconsistent_constraints(void **state)
+{
+    (void)state;
+    double gap = 1.0;
+    braun_system s = {2, 2, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, contradict, NULL,
+                      NULL, NULL, &gap};
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
+                     BRAUN_OK);
+    const double q0[2] = {0.5, 0}, v0[2] = {0, 1};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
+    assert_string_equal(sim.data.error.where, "holonomic constraints");
+    assert_near(sim.data.error.value, sqrt(0.5), 1e-12); /* |(Φ1 - Φ2)|/sqrt(2) */
+    assert_true(sim.data.t == 0);
+    /* the same rows agreeing (gap 0) are merely redundant: fine */
+    gap = 0;
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 0, NULL, NULL), BRAUN_OK);
+    assert_near(sim.data.q[0], 0, 1e-12);
+    test_sim_close(&sim);
+}
+
 static void test_status_names(void **state)
 {
     (void)state;
-    for (int st = -15; st <= 1; st++) {
+    for (int st = -16; st <= 1; st++) {
         const char *s = braun_status_str(st);
         assert_non_null(s);
         assert_true(strncmp(s, "BRAUN_", 6) == 0);
@@ -227,6 +279,7 @@ int main(void)
         cmocka_unit_test(test_bad_state_and_steps),
         cmocka_unit_test(test_callback_failures),
         cmocka_unit_test(test_divergence_is_reported),
+        cmocka_unit_test(test_inconsistent_constraints),
         cmocka_unit_test(test_status_names),
     };
     return cmocka_run_group_tests_name("errors", tests, NULL, NULL);

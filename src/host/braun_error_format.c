@@ -155,6 +155,10 @@ static void describe(msg *w, const braun_data *d)
     case BRAUN_ERR_NO_ENERGY_LAW:
         put(w, "energy correction requested but the system has no energy law");
         return;
+    case BRAUN_ERR_INCONSISTENT:
+        put(w, "dependent %s disagree by %.3g: the constraints have no solution here",
+            where ? where : "constraints", e->value);
+        break;
     default:
         put(w, "unknown status %d", e->status);
         if (where) put(w, " in '%s'", where);
