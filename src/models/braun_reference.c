@@ -66,14 +66,14 @@ int braun_reference_eval(braun_reference *ref, double t, double *q, double *v)
     } else {
         if (t < ref->t) return BRAUN_ERR_TIME;
         double span = t - ref->t;
-        double steps = ceil(span / ref->ref_h);
+        long steps = (long)ceil(span / ref->ref_h);
         /* Equal substeps landing exactly on t; each substep's start is
          * t0 + i·h, never an accumulated sum. */
-        double t0 = ref->t, h = steps > 0.0 ? span / steps : 0.0;
+        double t0 = ref->t, h = steps > 0 ? span / (double)steps : 0.0;
         double comp[REF_DIM_MAX] = {0.0};
-        for (double i = 0.0; i < steps; i += 1.0) {
+        for (long i = 0; i < steps; i++) {
             double dy[REF_DIM_MAX];
-            rk4_increment(b, p, t0 + i * h, ref->y, h, dy);
+            rk4_increment(b, p, t0 + (double)i * h, ref->y, h, dy);
             for (int k = 0; k < n; ++k) { /* Kahan summation */
                 double add = dy[k] - comp[k];
                 double sum = ref->y[k] + add;
