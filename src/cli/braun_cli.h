@@ -6,6 +6,7 @@
 
 #include "braun.h"
 #include "braun_models.h"
+#include "braun_scene.h"
 
 /* Exit statuses: the solver failed at run time / the command line is wrong. */
 enum { BRAUN_CLI_FAILED = 1, BRAUN_CLI_USAGE = 2 };
@@ -26,8 +27,8 @@ typedef struct braun_cli_run_args {
     const char *model;          /* MODEL argument, as given */
     double dt, t_end;           /* required; dt is h0 for dopri5 */
     braun_method method;        /* default rk4 */
-    int corrections_default;    /* 1: what the model supports (--corrections all) */
-    unsigned corrections;       /* braun_corrections bits otherwise */
+    int corrections_mode;       /* BRAUN_CLI_CORR_* */
+    unsigned corrections;       /* braun_corrections bits when given as a list */
     braun_discretization discretization;
     double rank_tol;            /* 0: library default */
     double energy_max_rel;      /* 0: library default */
@@ -38,6 +39,13 @@ typedef struct braun_cli_run_args {
     const char *summary_path;   /* "-" for stdout */
 } braun_cli_run_args;
 
+/* Where the corrections of a run come from. */
+enum {
+    BRAUN_CLI_CORR_TARGET = 0, /* no option: what the model or scene declares */
+    BRAUN_CLI_CORR_ALL = 1,    /* --corrections all: every one it supports */
+    BRAUN_CLI_CORR_LIST = 2    /* --corrections LIST or none */
+};
+
 /* Parse the arguments after "run". Returns 0 to run, -1 when --help was
  * asked (usage already printed), else BRAUN_CLI_USAGE after one message. */
 int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a);
@@ -46,12 +54,38 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a);
 const char *braun_cli_corrections_str(unsigned bits, char *buf, size_t size);
 
 /* ------------------------------------------------------ models (cli_model.c) */
-/* The one place that maps MODEL to a system: built-in names today, scene
- * files later. Returns 0, or prints why and returns BRAUN_CLI_USAGE. */
-int braun_cli_find_model(const char *arg, const braun_builtin **out);
+/* What a run simulates: a system with its initial state, a name, an
+ * optional reference and the corrections it asks for. It comes from a
+ * built-in model or from a scene file. */
+typedef struct braun_cli_target {
+    const char *name;             /* "scene" of the summary */
+    const char *source;           /* the scene file, or NULL for a built-in */
+    const char *description;
+    braun_system sys;
+    const braun_real *q0, *v0;
+    const braun_builtin *reference; /* minimal-coordinate reference (same q), or NULL */
+    unsigned corrections;         /* declared default corrections */
+    braun_scene_file *scene;      /* owned when loaded from a file */
+} braun_cli_target;
+
+/* The one place that maps MODEL to a target: a built-in name (braun list)
+ * or a scene file (a name ending in .json or containing '/'). Returns 0, or
+ * prints why ("braun: FILE:LINE:COL: ...") and returns BRAUN_CLI_USAGE. */
+int braun_cli_target_open(const char *arg, braun_cli_target *t);
+void braun_cli_target_close(braun_cli_target *t);
+
+/* Built-in models of this tool beyond braun_models.h (Andrews). */
+int braun_cli_extra_count(void);
+const braun_cli_target *braun_cli_extra_at(int i);
 
 /* `braun list`. */
 int braun_cli_list(void);
+
+/* `braun check SCENE` (cli_check.c): sizes, rank and residuals at t = 0. */
+int braun_cli_check(int argc, char **argv);
+
+/* `braun gen chain N [--rods] [-o FILE]` (cli_gen.c). */
+int braun_cli_gen(int argc, char **argv);
 
 /* ---------------------------------------------------- metrics (cli_metrics.c) */
 /* Residuals and errors at one state, and their maxima over the run.
@@ -64,7 +98,7 @@ typedef struct braun_cli_errors {
 
 typedef struct braun_cli_monitor {
     braun_data scratch;        /* own workspace: never disturbs the run's */
-    const braun_builtin *builtin;
+    const braun_builtin *builtin; /* whose reference, or NULL */
     braun_reference ref;
     int has_ref, has_point;
     double ref_h;              /* effective reference substep, NaN if none */
@@ -73,7 +107,8 @@ typedef struct braun_cli_monitor {
     long samples;
 } braun_cli_monitor;
 
-/* buffer: braun_data_size(model) bytes for the monitor's own scratch. */
+/* buffer: braun_data_size(model) bytes for the monitor's own scratch;
+ * builtin: the model whose exact reference the run is compared to, or NULL. */
 int braun_cli_monitor_init(braun_cli_monitor *mon, const braun_model *model,
                            const braun_builtin *builtin, double ref_h,
                            void *buffer, size_t bytes);

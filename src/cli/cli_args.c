@@ -78,10 +78,10 @@ static int parse_every(const char *s, long *out)
 static int parse_corrections(const char *s, braun_cli_run_args *a)
 {
     if (strcmp(s, "all") == 0) {
-        a->corrections_default = 1;
+        a->corrections_mode = BRAUN_CLI_CORR_ALL;
         return 0;
     }
-    a->corrections_default = 0;
+    a->corrections_mode = BRAUN_CLI_CORR_LIST;
     a->corrections = BRAUN_CORRECT_NONE;
     if (strcmp(s, "none") == 0) return 0;
     /* Walk the comma list without copying: each item is [s, comma). */
@@ -156,7 +156,7 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
     memset(a, 0, sizeof *a);
     a->dt = a->t_end = NAN;
     a->method = BRAUN_RK4;
-    a->corrections_default = 1;
+    a->corrections_mode = BRAUN_CLI_CORR_TARGET;
     a->discretization = BRAUN_PER_STEP;
     a->rtol = 1e-8;
     a->atol = 1e-10;

@@ -1,22 +1,88 @@
-/* MODEL on the command line -> the system to simulate. Scene files will
- * arrive here; nothing else in the tool knows how MODEL is resolved. */
+/* MODEL on the command line -> the target to simulate: a built-in model of
+ * braun_models.h, one of this tool's extra models (Andrews' squeezing
+ * mechanism), or a scene file. Nothing else in the tool knows how MODEL is
+ * resolved. */
 #include <string.h>
 
 #include "braun_cli.h"
 
+/* Models the tool adds to braun_models.h: no minimal-coordinate reference. */
+static const struct {
+    const char *name, *description;
+    const braun_system *sys;
+    const braun_real *q0, *v0;
+} extras[] = {
+    {"andrews", "Andrews' squeezing mechanism (Test Set for IVP Solvers): 7 angles, 6 rows",
+     &braun_andrews_system, braun_andrews_q0, braun_andrews_v0},
+};
+
+int braun_cli_extra_count(void) { return (int)(sizeof extras / sizeof extras[0]); }
+
+static void extra_target(int i, braun_cli_target *t)
+{
+    memset(t, 0, sizeof *t);
+    t->name = extras[i].name;
+    t->description = extras[i].description;
+    t->sys = *extras[i].sys;
+    t->q0 = extras[i].q0;
+    t->v0 = extras[i].v0;
+    t->corrections = BRAUN_CORRECT_ALL;
+}
+
+const braun_cli_target *braun_cli_extra_at(int i)
+{
+    static braun_cli_target t;
+    if (i < 0 || i >= braun_cli_extra_count()) return NULL;
+    extra_target(i, &t);
+    return &t;
+}
+
+/* A scene file: ends in .json or names a path. */
 static int is_scene_file(const char *arg)
 {
     size_t len = strlen(arg);
-    return len >= 5 && strcmp(arg + len - 5, ".json") == 0;
+    return (len >= 5 && strcmp(arg + len - 5, ".json") == 0) || strchr(arg, '/') != NULL;
 }
 
-int braun_cli_find_model(const char *arg, const braun_builtin **out)
+int braun_cli_target_open(const char *arg, braun_cli_target *t)
 {
-    *out = NULL;
-    if (is_scene_file(arg))
-        return braun_cli_error("scene files are not supported yet: %s", arg);
+    memset(t, 0, sizeof *t);
+    if (is_scene_file(arg)) {
+        char err[512];
+        braun_scene_file *f = braun_scene_load(arg, err, sizeof err);
+        if (!f) return braun_cli_error("%s", err);
+        t->name = f->name;
+        t->source = f->path;
+        t->description = f->description;
+        t->sys = f->sys;
+        t->q0 = f->q0;
+        t->v0 = f->v0;
+        t->reference = f->reference ? braun_builtin_find(f->reference) : NULL;
+        t->corrections = f->corrections;
+        t->scene = f;
+        return 0;
+    }
     const braun_builtin *b = braun_builtin_find(arg);
-    if (!b) return braun_cli_error("unknown model '%s' (see braun list)", arg);
-    *out = b;
-    return 0;
+    if (b) {
+        t->name = b->name;
+        t->description = b->description;
+        t->sys = b->sys;
+        t->q0 = b->q0;
+        t->v0 = b->v0;
+        t->reference = b;
+        t->corrections = BRAUN_CORRECT_ALL;
+        return 0;
+    }
+    for (int i = 0; i < braun_cli_extra_count(); i++)
+        if (strcmp(extras[i].name, arg) == 0) {
+            extra_target(i, t);
+            return 0;
+        }
+    return braun_cli_error("unknown model '%s' (see braun list, or give a scene file)", arg);
+}
+
+void braun_cli_target_close(braun_cli_target *t)
+{
+    braun_scene_free(t->scene);
+    t->scene = NULL;
 }

@@ -47,11 +47,11 @@ static int on_step(const braun_data *d, void *user)
     return 0;
 }
 
-static int start(braun_data *d, const braun_model *model, const braun_builtin *b,
+static int start(braun_data *d, const braun_model *model, const braun_cli_target *tg,
                  void *buf, size_t bytes)
 {
     int st = braun_data_init(d, model, buf, bytes);
-    if (!st) st = braun_set_state(d, 0, b->q0, b->v0);
+    if (!st) st = braun_set_state(d, 0, tg->q0, tg->v0);
     return st;
 }
 
@@ -71,8 +71,8 @@ static int integrate(braun_data *d, const braun_cli_run_args *a, braun_output_fn
  * belongs to this failure (early argument checks record nothing). */
 static void report_failure(const braun_data *d, int st)
 {
-    char what[256];
     if (d->error.status == st) {
+        char what[256];
         braun_error_format(d, what, sizeof what);
         braun_cli_error("%s (%s)", what, braun_status_str(st));
     } else {
@@ -105,25 +105,36 @@ static int close_output(FILE *f, const char *path)
     return bad;
 }
 
+static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg);
+
 int braun_cli_run(const braun_cli_run_args *a)
 {
-    const braun_builtin *b;
-    int rc = braun_cli_find_model(a->model, &b);
+    braun_cli_target tg;
+    int rc = braun_cli_target_open(a->model, &tg);
     if (rc) return rc;
+    rc = run_target(a, &tg);
+    braun_cli_target_close(&tg);
+    return rc;
+}
 
+static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg)
+{
     braun_model model;
-    int st = braun_model_init(&model, &b->sys);
+    int st = braun_model_init(&model, &tg->sys);
     if (st) {
-        braun_cli_error("model '%s' is invalid: %s", b->name, braun_status_str(st));
+        braun_cli_error("model '%s' is invalid: %s", tg->name, braun_status_str(st));
         return BRAUN_CLI_FAILED;
     }
-    /* braun_model_init enables every correction the system supports. */
+    /* braun_model_init enables every correction the system supports; the
+     * target declares its default, the command line may override it. */
     const unsigned supported = model.opt.corrections;
-    if (!a->corrections_default) {
+    if (a->corrections_mode == BRAUN_CLI_CORR_LIST) {
         if ((a->corrections & BRAUN_CORRECT_ENERGY) && !(supported & BRAUN_CORRECT_ENERGY))
             return braun_cli_error("model '%s' has no energy law: cannot apply the energy "
-                                   "correction", b->name);
+                                   "correction", tg->name);
         model.opt.corrections = a->corrections;
+    } else if (a->corrections_mode == BRAUN_CLI_CORR_TARGET) {
+        model.opt.corrections = tg->corrections & supported;
     }
     model.opt.discretization = a->discretization;
     model.opt.rank_tol = (braun_real)a->rank_tol;
@@ -160,7 +171,7 @@ int braun_cli_run(const braun_cli_run_args *a)
     braun_stats timed_stats;
 
     /* Run 1: timed, no callback. */
-    st = start(&d, &model, b, buf_run, bytes);
+    st = start(&d, &model, tg, buf_run, bytes);
     if (st) goto init_failed;
     c0 = braun_cli_cpu_seconds();
     st_timed = integrate(&d, a, NULL, NULL);
@@ -168,10 +179,10 @@ int braun_cli_run(const braun_cli_run_args *a)
     timed_stats = d.stats;
 
     /* Run 2: the same steps, monitored. */
-    st = start(&d, &model, b, buf_run, bytes);
+    st = start(&d, &model, tg, buf_run, bytes);
     if (st) goto init_failed;
     failed = &mon.scratch;
-    st = braun_cli_monitor_init(&mon, &model, b, a->ref_h, buf_mon, bytes);
+    st = braun_cli_monitor_init(&mon, &model, tg->reference, a->ref_h, buf_mon, bytes);
     if (st) goto init_failed;
     ctx.mon = &mon;
     ctx.csv = csv;
@@ -214,7 +225,7 @@ int braun_cli_run(const braun_cli_run_args *a)
     braun_cli_result r;
     r.args = a;
     r.model = &model;
-    r.scene = b->name;
+    r.scene = tg->name;
     r.method = method_name(model.opt.corrections, supported);
     r.stats = d.stats;
     r.cpu_s = cpu_s;

@@ -5,6 +5,8 @@ void braun_cli_usage(FILE *f)
 {
     fputs(
 "Usage: braun run MODEL --dt H --t-end T [options]\n"
+"       braun check SCENE\n"
+"       braun gen chain N [--rods] [-o FILE]\n"
 "       braun list\n"
 "       braun --help | --version\n"
 "\n"
@@ -13,8 +15,16 @@ void braun_cli_usage(FILE *f)
 "constraint, energy and trajectory errors.\n"
 "\n"
 "Commands:\n"
-"  run MODEL              integrate built-in MODEL (see 'braun list') from its\n"
-"                         initial state to T and write a JSON summary\n"
+"  run MODEL              integrate MODEL from its initial state to T and write a\n"
+"                         JSON summary; MODEL is a built-in model (see 'braun\n"
+"                         list') or a scene file (data/*.json, any name ending in\n"
+"                         .json or containing '/'; docs/scene-format.md)\n"
+"  check SCENE            read and build a scene (or a built-in model) and print\n"
+"                         n, m, p, the rank of its rows at t = 0 (redundant rows,\n"
+"                         degrees of freedom), its initial residuals, its energy\n"
+"                         law and corrections, one 'key: value' per line\n"
+"  gen chain N            write an N-link pendulum chain scene (rigid links, or\n"
+"                         uniform rods with --rods) to stdout or -o FILE\n"
 "  list                   built-in models, one per line: name, n, m, p, description\n"
 "\n"
 "Options of run:\n"
@@ -23,7 +33,8 @@ void braun_cli_usage(FILE *f)
 "  --integrator NAME      euler | heun | rk4 | dopri5 (default rk4);\n"
 "                         dopri5 is adaptive and reports every accepted step\n"
 "  --corrections LIST     comma list of position,velocity,energy, or all | none\n"
-"                         (default all: every correction the model supports)\n"
+"                         (default: what the scene declares; every correction a\n"
+"                         built-in model supports; all: every one supported)\n"
 "  --discretization D     per-step | per-stage (default per-step; dopri5 is\n"
 "                         always per-step)\n"
 "  --rank-tol X           relative rank tolerance of the pseudoinverses\n"
@@ -44,7 +55,10 @@ void braun_cli_usage(FILE *f)
 "reference. cpu_s is the integration alone, measured in a separate run without\n"
 "monitoring.\n"
 "\n"
+"A scene file that cannot be read is reported as one line\n"
+"'braun: FILE:LINE:COLUMN: message' and nothing is simulated.\n"
+"\n"
 "Exit status: 0 success; 1 the solver failed (message on stderr, summary and\n"
-"CSV written up to the last good step); 2 bad arguments.\n",
+"CSV written up to the last good step); 2 bad arguments or a bad scene file.\n",
         f);
 }

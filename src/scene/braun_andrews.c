@@ -19,22 +19,25 @@
  */
 #include "scene_internal.h"
 
-#define R(x) BRAUN_R(x)
-
-/* Test set parameters (andrews.f, andpar). */
-static const braun_real m1 = R(.04325), m2 = R(.00365), m3 = R(.02373), m4 = R(.00706),
-                        m5 = R(.07050), m6 = R(.00706), m7 = R(.05498);
-static const braun_real xa = R(-.06934), ya = R(-.00227), xb = R(-.03635), yb = R(.03273),
-                        xc = R(.014), yc = R(.072), c0 = R(4530.);
-static const braun_real i1 = R(2.194e-6), i2 = R(4.410e-7), i3 = R(5.255e-6),
-                        i4 = R(5.667e-7), i5 = R(1.169e-5), i6 = R(5.667e-7),
-                        i7 = R(1.912e-5);
-static const braun_real d = R(28.e-3), da = R(115.e-4), e = R(2.e-2), ea = R(1421.e-5),
-                        rr = R(7.e-3), ra = R(92.e-5), l0 = R(7785.e-5);
-static const braun_real ss = R(35.e-3), sa = R(1874.e-5), sb = R(1043.e-5), sc = R(18.e-3),
-                        sd = R(2.e-2), ta = R(2308.e-5), tb = R(916.e-5);
-static const braun_real u = R(4.e-2), ua = R(1228.e-5), ub = R(449.e-5), zf = R(2.e-2),
-                        zt = R(4.e-2), fa = R(1421.e-5), mom = R(33.e-3);
+/* Test set parameters (andrews.f, andpar), written with a leading 0. */
+static const braun_real m1 = BRAUN_R(0.04325), m2 = BRAUN_R(0.00365), m3 = BRAUN_R(0.02373),
+                        m4 = BRAUN_R(0.00706), m5 = BRAUN_R(0.07050), m6 = BRAUN_R(0.00706),
+                        m7 = BRAUN_R(0.05498);
+static const braun_real xa = BRAUN_R(-0.06934), ya = BRAUN_R(-0.00227), xb = BRAUN_R(-0.03635),
+                        yb = BRAUN_R(0.03273), xc = BRAUN_R(0.014), yc = BRAUN_R(0.072),
+                        c0 = BRAUN_R(4530.0);
+static const braun_real i1 = BRAUN_R(2.194e-6), i2 = BRAUN_R(4.410e-7), i3 = BRAUN_R(5.255e-6),
+                        i4 = BRAUN_R(5.667e-7), i5 = BRAUN_R(1.169e-5), i6 = BRAUN_R(5.667e-7),
+                        i7 = BRAUN_R(1.912e-5);
+static const braun_real d = BRAUN_R(28.0e-3), da = BRAUN_R(115.0e-4), e = BRAUN_R(2.0e-2),
+                        ea = BRAUN_R(1421.0e-5), rr = BRAUN_R(7.0e-3), ra = BRAUN_R(92.0e-5),
+                        l0 = BRAUN_R(7785.0e-5);
+static const braun_real ss = BRAUN_R(35.0e-3), sa = BRAUN_R(1874.0e-5), sb = BRAUN_R(1043.0e-5),
+                        sc = BRAUN_R(18.0e-3), sd = BRAUN_R(2.0e-2), ta = BRAUN_R(2308.0e-5),
+                        tb = BRAUN_R(916.0e-5);
+static const braun_real u = BRAUN_R(4.0e-2), ua = BRAUN_R(1228.0e-5), ub = BRAUN_R(449.0e-5),
+                        zf = BRAUN_R(2.0e-2), zt = BRAUN_R(4.0e-2), fa = BRAUN_R(1421.0e-5),
+                        mom = BRAUN_R(33.0e-3);
 
 static int mass(braun_real t, const braun_real *q, braun_real *M, void *user)
 {
@@ -67,7 +70,7 @@ static braun_real spring(const braun_real *q, braun_real *f3)
     const braun_real force = -c0 * (lang - l0) / lang;
     const braun_real fx = force * (xd - xc), fy = force * (yd - yc);
     if (f3) *f3 = fx * (sc * coga - sd * siga) + fy * (sd * coga + sc * siga);
-    return R(0.5) * c0 * (lang - l0) * (lang - l0);
+    return BRAUN_R(0.5) * c0 * (lang - l0) * (lang - l0);
 }
 
 static int forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *f,
@@ -168,7 +171,7 @@ static int energy(braun_real t, const braun_real *q, const braun_real *v, braun_
     if (E) {
         braun_real T = 0;
         for (int i = 0; i < 7; i++) T += v[i] * Mv[i];
-        *E = R(0.5) * T + V;
+        *E = BRAUN_R(0.5) * T + V;
     }
     if (dE_dq) {
         /* ½ vᵀ(∂M/∂q_j)v for the three angles M depends on, and ∂V/∂γ. */
@@ -204,9 +207,10 @@ const braun_system braun_andrews_system = {7,      6,         0,    BRAUN_ENERGY
 
 /* andrews.f, init: a consistent state at rest. */
 const braun_real braun_andrews_q0[7] = {
-    R(-0.0617138900142764496358948458001), R(0.), R(0.455279819163070380255912382449),
-    R(0.222668390165885884674473185609),   R(0.487364979543842550225598953530),
-    R(-0.222668390165885884674473185609),  R(1.23054744454982119249735015568)};
+    BRAUN_R(-0.0617138900142764496358948458001), BRAUN_R(0.0),
+    BRAUN_R(0.455279819163070380255912382449),   BRAUN_R(0.222668390165885884674473185609),
+    BRAUN_R(0.487364979543842550225598953530),   BRAUN_R(-0.222668390165885884674473185609),
+    BRAUN_R(1.23054744454982119249735015568)};
 const braun_real braun_andrews_v0[7] = {0};
 
 /* andrews.f, andsoln: y(1..7) at t = 0.03. */

@@ -5,9 +5,9 @@
 void braun_scene__body_mass(const braun_scene *s, const braun_scene_body *bd, braun_real *M)
 {
     const int n = s->n, i = bd->iq;
-    M[(size_t)i * n + i] += bd->mass;
-    M[(size_t)(i + 1) * n + i + 1] += bd->mass;
-    if (bd->kind == BRAUN_BODY_RIGID) M[(size_t)(i + 2) * n + i + 2] += bd->inertia;
+    M[braun_scene__at(i, i, n)] += bd->mass;
+    M[braun_scene__at(i + 1, i + 1, n)] += bd->mass;
+    if (bd->kind == BRAUN_BODY_RIGID) M[braun_scene__at(i + 2, i + 2, n)] += bd->inertia;
 }
 
 braun_real braun_scene__body_kinetic(const braun_scene_body *bd, const braun_real *v,

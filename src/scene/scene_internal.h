@@ -114,6 +114,12 @@ void braun_scene__motor_forces(const braun_scene *s, const braun_scene_effect *e
 braun_real braun_scene__motor_power(const braun_scene *s, const braun_scene_effect *e,
                                     const braun_real *q, const braun_real *v);
 
+/* Offset of entry (row, col) of a row-major matrix with n columns. */
+static inline size_t braun_scene__at(int row, int col, int n)
+{
+    return (size_t)row * (size_t)n + (size_t)col;
+}
+
 /* Column of θ of body i, -1 for the ground (or a particle). */
 static inline int braun_scene__theta_col(const braun_scene *s, int body)
 {

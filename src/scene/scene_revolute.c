@@ -14,9 +14,10 @@ void braun_scene__revolute_rows(const braun_scene *s, const braun_scene_joint *j
     for (int k = 0; k < 2; k++) {
         if (phi) phi[k] = Pa.pos[k] - Pb.pos[k];
         if (A) {
-            braun_real *row = A + (size_t)k * n;
-            braun_scene__add_grad(&Pa, k == 0, k == 1, row);
-            braun_scene__add_grad(&Pb, -(k == 0), -(k == 1), row);
+            braun_real *row = A + braun_scene__at(k, 0, n);
+            const braun_real ex = k == 0 ? BRAUN_R(1.0) : BRAUN_R(0.0), ey = 1 - ex;
+            braun_scene__add_grad(&Pa, ex, ey, row);
+            braun_scene__add_grad(&Pb, -ex, -ey, row);
         }
         if (b) b[k] = 0;
         if (bv) bv[k] = Pb.cc[k] - Pa.cc[k];

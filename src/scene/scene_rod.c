@@ -17,11 +17,11 @@ void braun_scene__rod_mass(const braun_scene *s, const braun_scene_rod *r, braun
     const int n = s->n, ia = end_col(s, r->a), ib = end_col(s, r->b);
     const braun_real d = r->mass / BRAUN_R(3.0), o = r->mass / BRAUN_R(6.0);
     for (int k = 0; k < 2; k++) {
-        if (ia >= 0) M[(size_t)(ia + k) * n + ia + k] += d;
-        if (ib >= 0) M[(size_t)(ib + k) * n + ib + k] += d;
+        if (ia >= 0) M[braun_scene__at(ia + k, ia + k, n)] += d;
+        if (ib >= 0) M[braun_scene__at(ib + k, ib + k, n)] += d;
         if (ia >= 0 && ib >= 0) {
-            M[(size_t)(ia + k) * n + ib + k] += o;
-            M[(size_t)(ib + k) * n + ia + k] += o;
+            M[braun_scene__at(ia + k, ib + k, n)] += o;
+            M[braun_scene__at(ib + k, ia + k, n)] += o;
         }
     }
 }

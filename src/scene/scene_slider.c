@@ -58,7 +58,7 @@ void braun_scene__slider_rows(const braun_scene *s, const braun_scene_joint *j, 
     const braun_real u[2] = {j->axis[0] / norm, j->axis[1] / norm};
     const braun_real nl[2] = {-u[1], u[0]};
     int r = 0;
-#define ROW(k) (phi ? phi + (k) : NULL), (A ? A + (size_t)(k) * n : NULL), \
+#define ROW(k) (phi ? phi + (k) : NULL), (A ? A + braun_scene__at(k, 0, n) : NULL), \
                (b ? b + (k) : NULL), (bv ? bv + (k) : NULL)
     line_row(s, body_l, &P, &Pa, nl, NULL, t, q, v, ROW(r));
     r++;

@@ -12,7 +12,7 @@ int braun_scene__mass(braun_real t, const braun_real *q, braun_real *M, void *us
     const int n = s->n;
     (void)t;
     (void)q;
-    for (size_t i = 0; i < (size_t)n * n; i++) M[i] = 0;
+    for (size_t i = 0; i < braun_scene__at(n, 0, n); i++) M[i] = 0;
     for (int k = 0; k < s->nbodies; k++) braun_scene__body_mass(s, &s->bodies[k], M);
     for (int k = 0; k < s->nrods; k++) braun_scene__rod_mass(s, &s->rods[k], M);
     return 0;
@@ -44,7 +44,7 @@ int braun_scene__forces(braun_real t, const braun_real *q, const braun_real *v, 
 
 /* Pointer to row r of an output, or NULL when the output is not wanted. */
 #define AT(x, r) ((x) ? (x) + (r) : NULL)
-#define ROW(A, r, n) ((A) ? (A) + (size_t)(r) * (n) : NULL)
+#define ROW(A, r, n) ((A) ? (A) + braun_scene__at(r, 0, n) : NULL)
 
 int braun_scene__holonomic(braun_real t, const braun_real *q, const braun_real *v,
                            braun_real *phi, braun_real *A, braun_real *b, braun_real *bv,
@@ -53,7 +53,7 @@ int braun_scene__holonomic(braun_real t, const braun_real *q, const braun_real *
     const braun_scene *s = user;
     const int n = s->n;
     if (A)
-        for (size_t i = 0; i < (size_t)s->m * n; i++) A[i] = 0;
+        for (size_t i = 0; i < braun_scene__at(s->m, 0, n); i++) A[i] = 0;
     for (int k = 0; k < s->nrods; k++) {
         const braun_scene_rod *r = &s->rods[k];
         braun_scene__rod_rows(s, r, q, v, AT(phi, r->row), ROW(A, r->row, n), AT(b, r->row),
@@ -87,7 +87,7 @@ int braun_scene__nonholonomic(braun_real t, const braun_real *q, const braun_rea
     const int n = s->n;
     (void)t;
     if (A)
-        for (size_t i = 0; i < (size_t)s->p * n; i++) A[i] = 0;
+        for (size_t i = 0; i < braun_scene__at(s->p, 0, n); i++) A[i] = 0;
     for (int k = 0; k < s->nknives; k++) {
         const braun_scene_knife *kn = &s->knives[k];
         braun_scene__knife_rows(s, kn, q, v, AT(phi, kn->row), ROW(A, kn->row, n),

@@ -32,6 +32,12 @@ enum { SJ_AT_VALUE = 0, SJ_AT_KEY = 1 };
 void sj_locate(const char *text, size_t len, const sj_seg *path, int depth, int at, int *line,
                int *column);
 
+/* The JSON path ("bodies[0].mass") leading to byte offset pos of a text
+ * that is valid up to pos, and the offset where the last token before pos
+ * starts: the field and position of a syntax error. */
+void sj_context(const char *text, size_t len, size_t pos, char *path, size_t size,
+                size_t *token_start);
+
 /* The reader's state: the text, the path being read, the scene being
  * filled, and the first error. */
 typedef struct sj_reader {
@@ -46,8 +52,12 @@ typedef struct sj_reader {
     /* Point table under construction. */
     int npoints, cap_points;
     const char **point_names;   /* name within its body ("" for implicit ones) */
-    /* JSON index of each knife edge among "joints". */
-    int *knife_json;
+    /* JSON index among "joints" of each knife edge and of each joint
+     * (knife edges are joints in the file, a separate array in a scene). */
+    int *knife_json, *joint_json;
+    const char **rod_names;
+    /* The element being read, for messages: "body 'crank'", "joint #3". */
+    char who[160];
 } sj_reader;
 
 /* Format "FILE:LINE:COL: message" at the current path; returns -1. */

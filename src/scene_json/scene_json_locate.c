@@ -3,6 +3,7 @@
  * column of the key or value found. Because the text is known to be valid
  * JSON, the walk only needs to skip strings (with their escapes) and
  * nested brackets; it never decides what is valid. */
+#include <stdio.h>
 #include <string.h>
 
 #include "scene_json_internal.h"
@@ -65,8 +66,8 @@ static int string_equals(cursor *c, const char *key)
     int same = 1;
     c->p++;
     while (c->p < c->end && *c->p != '"') {
-        unsigned long cp;
         if (*c->p == '\\' && c->p + 1 < c->end) {
+            unsigned long cp;
             const char e = c->p[1];
             c->p += 2;
             switch (e) {
@@ -165,4 +166,82 @@ void sj_locate(const char *text, size_t len, const sj_seg *path, int depth, int 
     }
     *line = ln;
     *column = col;
+}
+
+/* The JSON path leading to byte offset pos of a text that may be invalid
+ * from pos on (jansson stopped there), e.g. "bodies[0].mass", and where
+ * the last token before pos starts. Used to name the field of a syntax
+ * error; a string met where a comma was due is taken as the next key (the
+ * usual mistake is a missing comma). */
+void sj_context(const char *text, size_t len, size_t pos, char *path, size_t size,
+                size_t *token_start)
+{
+    struct level {
+        int object, index, expect_key;
+        const char *key;
+        size_t key_len;
+    } st[SJ_MAX_DEPTH * 4];
+    int depth = 0;
+    memset(st, 0, sizeof st);
+    const int max_depth = (int)(sizeof st / sizeof st[0]);
+    size_t i = 0, last = 0;
+    if (pos > len) pos = len;
+    while (i < pos) {
+        const char ch = text[i];
+        if (ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r') {
+            i++;
+            continue;
+        }
+        last = i;
+        if (ch == '"') {
+            const size_t start = i++;
+            while (i < pos && text[i] != '"') i += text[i] == '\\' ? 2 : 1;
+            i++;
+            if (depth > 0 && depth <= max_depth && st[depth - 1].object &&
+                st[depth - 1].expect_key >= 0) {
+                st[depth - 1].key = text + start + 1;
+                st[depth - 1].key_len = (i <= pos ? i - 1 : pos) - (start + 1);
+                st[depth - 1].expect_key = -1; /* a key: its value comes next */
+            } else if (depth > 0 && depth <= max_depth && st[depth - 1].object) {
+                st[depth - 1].expect_key = 0; /* a value: a comma is due */
+            }
+        } else if (ch == '{' || ch == '[') {
+            if (depth > 0 && depth <= max_depth && st[depth - 1].object) st[depth - 1].expect_key = 0;
+            if (depth < max_depth) st[depth] = (struct level){ch == '{', 0, 1, NULL, 0};
+            depth++;
+            i++;
+        } else if (ch == '}' || ch == ']') {
+            if (depth > 0) depth--;
+            if (depth > 0 && depth <= max_depth && st[depth - 1].object) st[depth - 1].expect_key = 0;
+            i++;
+        } else if (ch == ',') {
+            if (depth > 0 && depth <= max_depth) {
+                if (st[depth - 1].object) st[depth - 1].expect_key = 1;
+                else st[depth - 1].index++;
+            }
+            i++;
+        } else if (ch == ':') {
+            i++;
+        } else {
+            while (i < pos && !strchr(",]}: \t\r\n", text[i])) i++;
+            if (depth > 0 && depth <= max_depth && st[depth - 1].object) st[depth - 1].expect_key = 0;
+            if (i == last) i++;
+        }
+    }
+    *token_start = last;
+    size_t used = 0;
+    if (size) path[0] = '\0';
+    for (int d = 0; d < depth && d < max_depth && used + 1 < size; d++) {
+        int k;
+        if (st[d].object && st[d].key)
+            k = snprintf(path + used, size - used, "%s%.*s", used ? "." : "", (int)st[d].key_len,
+                         st[d].key);
+        else if (!st[d].object)
+            k = snprintf(path + used, size - used, "[%d]", st[d].index);
+        else
+            k = 0;
+        if (k < 0) break;
+        used += (size_t)k;
+        if (used >= size) used = size - 1;
+    }
 }

@@ -37,10 +37,10 @@ check "--version exits 0 and names braun" \
     sh -c '[ "$1" -eq 0 ] && grep -q "^braun [0-9]" "$2"' sh "$rc" "$TMP/version"
 "$BRAUN" list > "$TMP/list" 2>&1; rc=$?
 check "list exits 0" [ "$rc" -eq 0 ]
-for model in slider-crank four-bar pendulum; do
+for model in slider-crank four-bar pendulum andrews; do
     check "list shows $model" grep -q "^$model " "$TMP/list"
 done
-check "list has one line per model" [ "$(lines "$TMP/list")" -eq 3 ]
+check "list has one line per model" [ "$(lines "$TMP/list")" -eq 4 ]
 
 # ----------------------------------------------------------------- bad arguments
 # Each must exit 2, print nothing on stdout and exactly one "braun: " line on stderr.
@@ -85,8 +85,8 @@ bad "per-stage with dopri5" $run --dt 1e-3 --integrator dopri5 --discretization 
 bad "csv and summary both on stdout" $run --dt 1e-3 --out -
 bad "unwritable summary" $run --dt 1e-3 --summary "$TMP/no/such/dir/s.json"
 "$BRAUN" run scene.json --dt 1e-3 --t-end 1 > /dev/null 2> "$TMP/scene.err"; rc=$?
-check "scene file: exit 2 and 'not supported yet'" \
-    sh -c '[ "$1" -eq 2 ] && [ "$(cat "$2")" = "braun: scene files are not supported yet: scene.json" ]' \
+check "missing scene file: exit 2 and 'cannot open'" \
+    sh -c '[ "$1" -eq 2 ] && [ "$(cat "$2")" = "braun: scene.json: cannot open: No such file or directory" ]' \
     sh "$rc" "$TMP/scene.err"
 
 # ---------------------------------------------------------------- a short run

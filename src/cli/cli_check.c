@@ -1,0 +1,198 @@
+/* braun check SCENE: read and build a scene (or name a built-in model) and
+ * report its sizes, the rank of its constraint rows at the initial state
+ * (redundant rows and degrees of freedom) and its initial residuals.
+ * Output: one "key: value" per line, for people and scripts. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "braun_cli.h"
+#include "braun_host.h"
+#include "braun_math.h"
+
+/* Rank of the rows of C (rows x n, row-major, destroyed) by Householder QR
+ * with column pivoting of Cᵀ, pivots counted as zero below tol·|r_00| — the
+ * rule of the library's pseudoinverse (docs/method.md, "Rank tolerance"). */
+static int rank_of_rows(int rows, int n, double *C, double tol)
+{
+    /* Column j of Cᵀ is row j of C: work on rows of C directly. */
+    double *norm = calloc((size_t)(rows > 0 ? rows : 1), sizeof(double));
+    int rank = 0;
+    double r00 = 0;
+    if (!norm) return -1;
+    for (int j = 0; j < rows; j++) {
+        double s = 0;
+        for (int i = 0; i < n; i++) s += C[(size_t)j * n + i] * C[(size_t)j * n + i];
+        norm[j] = s;
+    }
+    for (int k = 0; k < rows && k < n; k++) {
+        int p = k;
+        for (int j = k + 1; j < rows; j++)
+            if (norm[j] > norm[p]) p = j;
+        if (p != k) {
+            for (int i = 0; i < n; i++) {
+                double t = C[(size_t)k * n + i];
+                C[(size_t)k * n + i] = C[(size_t)p * n + i];
+                C[(size_t)p * n + i] = t;
+            }
+            double t = norm[k];
+            norm[k] = norm[p];
+            norm[p] = t;
+        }
+        /* Householder reflection on entries k..n-1 of row k (a column of Cᵀ). */
+        double *x = C + (size_t)k * n;
+        double s = 0;
+        for (int i = k; i < n; i++) s += x[i] * x[i];
+        const double alpha = x[k] > 0 ? -sqrt(s) : sqrt(s);
+        if (k == 0) r00 = fabs(alpha);
+        if (!(fabs(alpha) > tol * r00) || r00 == 0) break;
+        rank++;
+        x[k] -= alpha;
+        double vv = 0;
+        for (int i = k; i < n; i++) vv += x[i] * x[i];
+        for (int j = k + 1; j < rows; j++) {
+            double *y = C + (size_t)j * n, d = 0;
+            for (int i = k; i < n; i++) d += x[i] * y[i];
+            d = vv > 0 ? 2 * d / vv : 0;
+            for (int i = k; i < n; i++) y[i] -= d * x[i];
+            norm[j] = 0;
+            for (int i = k + 1; i < n; i++) norm[j] += y[i] * y[i];
+        }
+    }
+    free(norm);
+    return rank;
+}
+
+/* C = A R^-1 with M = RᵀR (rows of C solve Rᵀ c = a). Returns 0, or -1 if
+ * M is not positive definite. */
+static int weight_rows(int rows, int n, const double *M, double *A)
+{
+    if (n <= 0) return -1;
+    double *R = calloc((size_t)n * n, sizeof(double));
+    if (!R) return -1;
+    memcpy(R, M, sizeof(double) * (size_t)n * n);
+    for (int j = 0; j < n; j++) {
+        for (int i = 0; i < j; i++) {
+            double s = R[(size_t)i * n + j];
+            for (int k = 0; k < i; k++) s -= R[(size_t)k * n + i] * R[(size_t)k * n + j];
+            R[(size_t)i * n + j] = s / R[(size_t)i * n + i];
+        }
+        double s = R[(size_t)j * n + j];
+        for (int k = 0; k < j; k++) s -= R[(size_t)k * n + j] * R[(size_t)k * n + j];
+        if (!(s > 0)) {
+            free(R);
+            return -1;
+        }
+        R[(size_t)j * n + j] = sqrt(s);
+    }
+    for (int r = 0; r < rows; r++) {
+        double *c = A + (size_t)r * n;
+        for (int i = 0; i < n; i++) {
+            double s = c[i];
+            for (int k = 0; k < i; k++) s -= R[(size_t)k * n + i] * c[k];
+            c[i] = s / R[(size_t)i * n + i];
+        }
+    }
+    free(R);
+    return 0;
+}
+
+static int report(const braun_cli_target *tg)
+{
+    const braun_system *s = &tg->sys;
+    const int n = s->n, m = s->m, p = s->p, rows = m + p;
+    braun_model model;
+    int st = braun_model_init(&model, s);
+    if (st) {
+        braun_cli_error("model '%s' is invalid: %s", tg->name, braun_status_str(st));
+        return BRAUN_CLI_FAILED;
+    }
+    const size_t bytes = braun_data_size(&model);
+    const size_t nn = (size_t)n * n, rn = (size_t)(rows > 0 ? rows : 1) * n;
+    /* calloc: every entry starts defined, whatever the callbacks skip. */
+    void *buf = malloc(bytes);
+    braun_real *M = calloc(nn, sizeof(braun_real)), *A = calloc(rn, sizeof(braun_real));
+    braun_real *scratch = calloc(3 * (size_t)rows + 3, sizeof(braun_real));
+    double *Md = calloc(nn, sizeof(double)), *Ad = calloc(rn, sizeof(double));
+    int rc = BRAUN_CLI_FAILED;
+    if (!buf || !M || !A || !scratch || !Md || !Ad) {
+        braun_cli_error("out of memory");
+        goto done;
+    }
+    braun_data d;
+    braun_real pos = 0, vel = 0;
+    st = braun_data_init(&d, &model, buf, bytes);
+    if (!st) st = braun_set_state(&d, 0, tg->q0, tg->v0);
+    if (!st) st = braun_residuals(&d, 0, tg->q0, tg->v0, &pos, &vel, NULL);
+    if (st) {
+        char what[256] = "";
+        if (d.error.status == st) braun_error_format(&d, what, sizeof what);
+        braun_cli_error("%s at the initial state: %s (%s)", tg->name, what, braun_status_str(st));
+        goto done;
+    }
+    /* Rank of A_v = [A_q; A_vv] weighted by R^-1, as the solver sees it. */
+    if (s->mass(0, tg->q0, M, s->user) != 0) {
+        braun_cli_error("%s: the mass callback failed at the initial state", tg->name);
+        goto done;
+    }
+    for (size_t i = 0; i < rn; i++) A[i] = 0;
+    if (m > 0 && s->holonomic(0, tg->q0, tg->v0, scratch, A, scratch + rows, scratch + 2 * rows,
+                              s->user) != 0) {
+        braun_cli_error("%s: the holonomic callback failed at the initial state", tg->name);
+        goto done;
+    }
+    if (p > 0 && s->nonholonomic(0, tg->q0, tg->v0, scratch, A + (size_t)m * n,
+                                 scratch + 2 * rows, s->user) != 0) {
+        braun_cli_error("%s: the nonholonomic callback failed at the initial state", tg->name);
+        goto done;
+    }
+    for (size_t i = 0; i < nn; i++) Md[i] = (double)M[i];
+    for (size_t i = 0; i < rn; i++) Ad[i] = (double)A[i];
+    int rank = 0;
+    if (rows > 0) {
+        if (weight_rows(rows, n, Md, Ad)) {
+            braun_cli_error("%s: the mass matrix is not positive definite", tg->name);
+            goto done;
+        }
+        rank = rank_of_rows(rows, n, Ad, (double)braun_default_rank_tol(rows, n));
+    }
+    char corr[64];
+    const unsigned supported = model.opt.corrections;
+    printf("scene: %s\n", tg->name);
+    printf("file: %s\n", tg->source ? tg->source : "(built-in)");
+    printf("description: %s\n", tg->description ? tg->description : "");
+    printf("n: %d\nm: %d\np: %d\n", n, m, p);
+    printf("rank: %d\nredundant: %d\ndof: %d\n", rank, rows - rank, n - rank);
+    printf("position_residual: %.3g\nvelocity_residual: %.3g\n", (double)pos, (double)vel);
+    printf("mass_matrix: %s\n", s->flags & BRAUN_MASS_CONSTANT ? "constant" : "varies");
+    printf("energy_law: %s\n", s->energy ? "yes" : "no");
+    printf("energy_input: %s\n", s->flags & BRAUN_ENERGY_INPUT ? "yes" : "no");
+    printf("corrections: %s\n",
+           braun_cli_corrections_str(tg->corrections & supported, corr, sizeof corr));
+    printf("reference: %s\n", tg->reference ? tg->reference->name : "none");
+    rc = fflush(stdout) == 0 ? 0 : BRAUN_CLI_FAILED;
+done:
+    free(buf);
+    free(M);
+    free(A);
+    free(scratch);
+    free(Md);
+    free(Ad);
+    return rc;
+}
+
+int braun_cli_check(int argc, char **argv)
+{
+    if (argc == 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
+        braun_cli_usage(stdout);
+        return 0;
+    }
+    if (argc != 1) return braun_cli_error("check needs exactly one SCENE (a .json file or a "
+                                          "built-in model)");
+    braun_cli_target tg;
+    int rc = braun_cli_target_open(argv[0], &tg);
+    if (rc) return rc;
+    rc = report(&tg);
+    braun_cli_target_close(&tg);
+    return rc;
+}
