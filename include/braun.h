@@ -120,7 +120,11 @@ typedef int (*braun_power_fn)(braun_real t, const braun_real *q,
 
 enum braun_system_flags {
     BRAUN_MASS_CONSTANT = 1u << 0, /* M called and factored once */
-    BRAUN_ENERGY_INPUT = 1u << 1   /* Ė not identically zero: power() used */
+    BRAUN_ENERGY_INPUT = 1u << 1,  /* Ė not identically zero: power() used */
+    /* The ideal constraint forces do work (rheonomic constraints: a driven
+     * joint): their power Q_c·v = (R v)·C_v^+(b_v - A_v a) is added to Ė,
+     * so the energy law stays right without a power callback for it. */
+    BRAUN_CONSTRAINT_WORK = 1u << 2
 };
 
 typedef struct braun_system {

@@ -21,9 +21,9 @@
  * Only what a scene calls for is computed: no nonholonomic callback when it
  * has no knife edge (p = 0), no power callback (and no BRAUN_ENERGY_INPUT)
  * when nothing puts energy in or takes it out, no holonomic callback when
- * m = 0. A scene with driven (rheonomic) joints has no energy law: the
- * prescribed motion does work through the ideal constraint forces, which no
- * callback can see, so sys.energy is NULL there.
+ * m = 0. A scene with driven (rheonomic) joints keeps its energy law: the
+ * prescribed motion does work through the ideal constraint forces, which the
+ * core adds to Ė when the system sets BRAUN_CONSTRAINT_WORK.
  *
  * Memory: the builder and the callbacks allocate nothing; the caller owns
  * every array (static, stack or heap). Firmware code may define a scene as
@@ -180,7 +180,7 @@ typedef struct braun_scene {
     int neffects;  braun_scene_effect *effects;
     /* Derived by braun_scene_build. */
     int n, m, p;          /* coordinates, holonomic rows, nonholonomic rows */
-    int driven;           /* number of driven joints (then no energy law) */
+    int driven;           /* number of driven joints (then BRAUN_CONSTRAINT_WORK) */
     int energy_input;     /* dampers, forces, torques or motors present */
 } braun_scene;
 

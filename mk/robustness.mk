@@ -1,7 +1,7 @@
 # Tools that find what tests miss (issue: robustness). All part of make test.
 #   make lint           cppcheck + clang-tidy on the library and the tool
 #   make test-valgrind  memcheck on a subset of the tests and a CLI run
-LINT_SRC = $(LIB_SRC) $(HOST_SRC) $(CLI_SRC)
+LINT_SRC = $(LIB_SRC) $(HOST_SRC) $(CLI_SRC) $(wildcard src/scene/*.c) $(wildcard src/scene_json/*.c)
 
 .PHONY: lint test-valgrind
 lint:

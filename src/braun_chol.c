@@ -93,3 +93,14 @@ void braun_chol_solve_r(const braun_chol *c, braun_real *x)
         x[i] = s * c->dinv[i];
     }
 }
+
+void braun_chol_mul_r(const braun_chol *c, const braun_real *x, braun_real *y)
+{
+    const int n = c->n;
+    for (int i = 0; i < n; i++) {
+        const braun_real *row = c->R + (size_t)i * (size_t)n;
+        braun_real s = 0;
+        for (int k = i; k <= c->last[i]; k++) s += row[k] * x[k];
+        y[i] = s;
+    }
+}

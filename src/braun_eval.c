@@ -92,11 +92,20 @@ int braun__power(braun_data *d, braun_real t, const braun_real *q,
                  const braun_real *v, braun_real *Edot)
 {
     const braun_system *s = &d->model->sys;
+    braun_priv *pv = braun__priv(d);
     *Edot = 0;
-    if (!(s->flags & BRAUN_ENERGY_INPUT)) return BRAUN_OK;
-    int st = braun__callback(d, s->power(t, q, v, Edot, s->user), "power", t);
-    if (!st) st = braun__check_finite(d, 1, Edot, "power", 0, t);
-    return st;
+    if (s->flags & BRAUN_ENERGY_INPUT) {
+        int st = braun__callback(d, s->power(t, q, v, Edot, s->user), "power", t);
+        if (!st) st = braun__check_finite(d, 1, Edot, "power", 0, t);
+        if (st) return st;
+    }
+    if ((s->flags & BRAUN_CONSTRAINT_WORK) && pv->rows > 0) {
+        /* Power of the ideal constraint force Q_c = R^T u at this state
+         * (u from the braun__eval_ideal just done): Q_c·v = u·(R v). */
+        braun_chol_mul_r(&pv->chol, v, pv->tmp);
+        *Edot += braun_dot(pv->n, pv->u, pv->tmp);
+    }
+    return BRAUN_OK;
 }
 
 /* Energy force of Eq. 20, scaled by h, added to dv: the minimum-norm

@@ -32,6 +32,8 @@ int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
 void braun_chol_solve_rt(const braun_chol *c, braun_real *x);
 /* x := R^-1 x (back substitution). */
 void braun_chol_solve_r(const braun_chol *c, braun_real *x);
+/* y := R x (y and x distinct). */
+void braun_chol_mul_r(const braun_chol *c, const braun_real *x, braun_real *y);
 
 /* ---- Rank-revealing pseudoinverse of a wide matrix C (rows x n) ---------
  * Householder QR with column pivoting of C^T (n x rows):

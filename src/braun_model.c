@@ -13,7 +13,7 @@ int braun_model_init(braun_model *model, const braun_system *sys)
     if (sys->p > 0 && !sys->nonholonomic) return BRAUN_ERR_MISSING_CALLBACK;
     if ((sys->flags & BRAUN_ENERGY_INPUT) && !sys->power)
         return BRAUN_ERR_MISSING_CALLBACK;
-    if (sys->flags & ~(unsigned)(BRAUN_MASS_CONSTANT | BRAUN_ENERGY_INPUT))
+    if (sys->flags & ~(unsigned)(BRAUN_MASS_CONSTANT | BRAUN_ENERGY_INPUT | BRAUN_CONSTRAINT_WORK))
         return BRAUN_ERR_ARGUMENT;
     model->sys = *sys;
     model->opt.corrections = BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY |

@@ -325,6 +325,28 @@ static void test_rheonomic_bead_exact(void **state)
     test_sim_close(&sim);
 }
 
+/* The same bead without a power callback: BRAUN_CONSTRAINT_WORK makes the
+ * library add the power of the ideal constraint force, Q_c·v, to Ė. */
+static void test_constraint_work_flag(void **state)
+{
+    (void)state;
+    double w = 1.3;
+    braun_system s = bead_system(&w);
+    s.flags = BRAUN_MASS_CONSTANT | BRAUN_CONSTRAINT_WORK;
+    s.power = NULL;
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double q0[2] = {1, 0}, v0[2] = {0, w};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    track tr = {0, 0, 0};
+    const double T = 2.0, r = cosh(w * T);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, T, 1, track_out, &tr), BRAUN_OK);
+    assert_near(sim.data.work_in, w * w * (r * r - 1), 1e-8 * r * r);
+    assert_near(sim.data.q[0], r * cos(w * T), 1e-8 * r);
+    assert_le(tr.maxE, 1e-9 * r * r);
+    test_sim_close(&sim);
+}
+
 /* Same binary, same input: bitwise-identical trajectories. */
 static void test_deterministic(void **state)
 {
@@ -372,6 +394,7 @@ int main(void)
         cmocka_unit_test(test_inconsistent_start_is_pulled_back),
         cmocka_unit_test(test_knife_edge_exact),
         cmocka_unit_test(test_rheonomic_bead_exact),
+        cmocka_unit_test(test_constraint_work_flag),
         cmocka_unit_test(test_deterministic),
         cmocka_unit_test(test_adaptive_knife),
     };

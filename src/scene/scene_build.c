@@ -292,12 +292,15 @@ int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err)
     sys->n = s->n;
     sys->m = s->m;
     sys->p = s->p;
-    sys->flags = BRAUN_MASS_CONSTANT | (s->energy_input ? BRAUN_ENERGY_INPUT : 0u);
+    /* Driven joints do work through their ideal constraint forces: the core
+     * adds that power to Ė (BRAUN_CONSTRAINT_WORK), so the energy law holds. */
+    sys->flags = BRAUN_MASS_CONSTANT | (s->energy_input ? BRAUN_ENERGY_INPUT : 0u) |
+                 (s->driven ? BRAUN_CONSTRAINT_WORK : 0u);
     sys->mass = braun_scene__mass;
     sys->forces = braun_scene__forces;
     sys->holonomic = s->m > 0 ? braun_scene__holonomic : NULL;
     sys->nonholonomic = s->p > 0 ? braun_scene__nonholonomic : NULL;
-    sys->energy = s->driven ? NULL : braun_scene__energy;
+    sys->energy = braun_scene__energy;
     sys->power = s->energy_input ? braun_scene__power : NULL;
     sys->user = s;
     return BRAUN_OK;

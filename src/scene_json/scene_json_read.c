@@ -693,10 +693,11 @@ static int read_effect(sj_reader *r, json_t *obj, int k)
 }
 
 /* ------------------------------------------------- corrections, reference */
-static int read_corrections(sj_reader *r, json_t *root, int has_energy)
+static int read_corrections(sj_reader *r, json_t *root)
 {
-    const unsigned all = BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY |
-                         (has_energy ? BRAUN_CORRECT_ENERGY : 0u);
+    /* Every scene has an energy law: driven joints add the work of their
+     * constraint forces through BRAUN_CONSTRAINT_WORK. */
+    const unsigned all = BRAUN_CORRECT_ALL;
     json_t *v = json_object_get(root, "corrections");
     r->out->corrections = all;
     if (!v) return 0;
@@ -720,13 +721,8 @@ static int read_corrections(sj_reader *r, json_t *root, int has_energy)
         sj_push_index(r, (int)i);
         if (strcmp(s, "position") == 0) bits |= BRAUN_CORRECT_POSITION;
         else if (strcmp(s, "velocity") == 0) bits |= BRAUN_CORRECT_VELOCITY;
-        else if (strcmp(s, "energy") == 0) {
-            if (!has_energy)
-                return sj_fail(r, SJ_AT_VALUE, "scene: field 'corrections': 'energy' needs an "
-                                               "energy law, and the scene's driven joints do work "
-                                               "that none can account for");
-            bits |= BRAUN_CORRECT_ENERGY;
-        } else
+        else if (strcmp(s, "energy") == 0) bits |= BRAUN_CORRECT_ENERGY;
+        else
             return sj_fail(r, SJ_AT_VALUE, "scene: field 'corrections': unknown correction '%s' "
                                            "(position, velocity, energy)",
                            json_is_string(item) ? s : "(not a string)");
@@ -883,9 +879,7 @@ int sj_read_scene(sj_reader *r, json_t *root)
     sj_pop(r);
     snprintf(r->who, sizeof r->who, "scene");
 
-    int driven = 0;
-    for (int k = 0; k < s->njoints; k++) driven |= s->joints[k].driven;
-    if (read_corrections(r, root, !driven)) return -1;
+    if (read_corrections(r, root)) return -1;
 
     /* Build: what the builder refuses is reported at its element. */
     braun_scene_error berr;

@@ -1,0 +1,108 @@
+#!/bin/sh
+# make firmware-test: the firmware build, the demo on the emulated
+# Cortex-M4F (QEMU mps2-an386) against the host build of the same runs, and
+# the float study of the issue. Usage: sh tests/firmware/run.sh build/firmware
+# Prints "ok - NAME" / "not ok - NAME" per check and a closing line
+# "N passed, M failed"; exit status 1 if anything failed.
+FW=${1:?usage: sh tests/firmware/run.sh BUILD/firmware}
+QEMU=${QEMU:-qemu-system-arm}
+NM=${FW_NM:-arm-none-eabi-nm}
+QFLAGS=${FW_QEMU_FLAGS:-"-M mps2-an386 -nographic -semihosting-config enable=on,target=native -icount shift=0"}
+OUT=$FW/test
+mkdir -p "$OUT"
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); echo "ok - $1"; }
+not_ok() { failed=$((failed + 1)); echo "not ok - $1"; [ -z "$2" ] || echo "#   $2"; }
+check() { name=$1; shift; if "$@"; then ok "$name"; else not_ok "$name"; fi; }
+# emu ELF OUTFILE WORDS...: run on the emulator; sets rc.
+emu() {
+    elf=$1; out=$2; shift 2
+    # shellcheck disable=SC2086
+    timeout 120 "$QEMU" $QFLAGS -kernel "$elf" -append "$*" > "$out" 2>&1
+    rc=$?
+}
+# Value of key=VALUE in the first line starting with TAG.
+val() { sed -n "/^$1 /{s/.* $2=\([^ ]*\).*/\1/p;q}" "$3"; }
+
+start=$(date +%s)
+for p in double float; do
+    # ------------------------------------------------------------ build
+    logs=$(find "$FW/$p/obj" -name '*.o.log' -size +0 2>/dev/null | sort)
+    check "$p: firmware library and demo compiled without warnings (-Wdouble-promotion -Wconversion ...)" [ -z "$logs" ]
+    [ -z "$logs" ] || for f in $logs; do sed 's/^/#   /' "$f" | head -5; done
+    # Undefined symbols of the library: nothing of the heap, stdio or abort.
+    bad=$("$NM" -u "$FW/$p/libbraun.a" 2>/dev/null | awk '{print $NF}' |
+          grep -E '^(malloc|calloc|realloc|free|_malloc_r|_free_r|abort|exit|_exit|_sbrk|printf|fprintf|sprintf|snprintf|vprintf|vfprintf|vsnprintf|puts|putchar|fputs|fwrite)$' | sort -u | tr '\n' ' ')
+    check "$p: libbraun.a references no malloc/free/printf/abort (nm -u)${bad:+: $bad}" [ -z "$bad" ]
+    # What the library takes from outside itself (libm, libgcc, string.h).
+    "$NM" --defined-only "$FW/$p/libbraun.a" 2>/dev/null | awk 'NF == 3 {print $3}' | sort -u > "$OUT/$p-defined"
+    undef=$("$NM" -u "$FW/$p/libbraun.a" 2>/dev/null | awk 'NF == 2 {print $2}' | sort -u |
+            comm -23 - "$OUT/$p-defined" | tr '\n' ' ')
+    echo "#   $p: libbraun.a needs from outside: $undef"
+    heap=$("$NM" "$FW/$p/demo.elf" | awk '{print $NF}' | grep -E '^(malloc|free|_malloc_r|_sbrk|printf)$' | tr '\n' ' ')
+    check "$p: demo image links no allocator or printf${heap:+: $heap}" [ -z "$heap" ]
+
+    # ------------------------------------------------------------ emulator
+    emu "$FW/$p/demo.elf" "$OUT/$p-target.txt" test
+    check "$p: demo exits with status 0 on the emulator (semihosting SYS_EXIT_EXTENDED)" [ "$rc" -eq 0 ]
+    [ "$rc" -eq 0 ] || sed 's/^/#   /' "$OUT/$p-target.txt" | tail -5
+    "$FW/host-$p/fw_host" test > "$OUT/$p-host.txt" 2>&1
+    check "$p: host build of the demo exits with status 0" [ $? -eq 0 ]
+    instr=$(val calib instructions "$OUT/$p-target.txt"); ticks=$(val calib ticks "$OUT/$p-target.txt")
+    check "$p: timer calibration: 40 instructions per 25 MHz tick under -icount shift=0 ($instr / $ticks)" \
+        awk -v i="${instr:-0}" -v t="${ticks:-1}" 'BEGIN { r = i / t; exit !(r > 39.99 && r < 40.01) }'
+    check "$p: workspace sizes fixed at build time equal braun_data_size()" \
+        grep -q '^sizes_check result=ok' "$OUT/$p-target.txt"
+    used=$(val stack used "$OUT/$p-target.txt"); size=$(val stack size "$OUT/$p-target.txt")
+    check "$p: stack high-water mark ${used:-?} of ${size:-?} bytes" [ -n "$used" ] && [ "${used:-0}" -gt 0 ] && [ "${used:-0}" -lt "${size:-0}" ]
+    emu "$FW/$p/demo.elf" "$OUT/$p-usage.txt" no-such-command
+    check "$p: a failing program's status reaches the host (usage error -> exit 2, got $rc)" [ "$rc" -eq 2 ]
+    for v in ideal pv all; do
+        emu "$FW/$p/gc-$v.elf" "$OUT/$p-gc-$v.txt" ""
+        check "$p: gc-sections image '$v' runs (1000 RK4 steps of a pendulum)" [ "$rc" -eq 0 ]
+    done
+done
+
+# ---------------------------------------------------------------- fixed sizes
+# With the core's compile-time sizes (BRAUN_FIXED_N), the float library
+# built for n = 6, rows = 5 at -O3 -flto must give the generic float
+# library's results bit for bit, and refuse a model of another size.
+case " ${FW_CONFIGS:-} " in
+*" float-fixed "*)
+    logs=$(find "$FW/float-fixed/obj" -name '*.o.log' -size +0 2>/dev/null | sort)
+    check "float-fixed: compiled without warnings" [ -z "$logs" ]
+    emu "$FW/float-fixed/demo.elf" "$OUT/float-fixed-target.txt" test
+    check "float-fixed: demo exits with status 0 on the emulator" [ "$rc" -eq 0 ]
+    grep -E '^(run|max|final|q|v|stats|status) ' "$OUT/float-fixed-target.txt" > "$OUT/float-fixed.rec"
+    grep -E '^(run|max|final|q|v|stats|status) ' "$OUT/float-target.txt" > "$OUT/float.rec"
+    check "float-fixed: every record equal, bit for bit, to the generic float library's" \
+        cmp -s "$OUT/float-fixed.rec" "$OUT/float.rec"
+    emu "$FW/float-fixed/demo.elf" "$OUT/float-fixed-sizes.txt" sizes
+    check "float-fixed: a model of another size (pendulum, n = 2) is refused" \
+        grep -q '^sizes model=pendulum .*data_bytes=unsupported' "$OUT/float-fixed-sizes.txt"
+    ;;
+*) echo "# float-fixed: skipped (the core has no BRAUN_FIXED_N; see firmware/core-perf.patch)" ;;
+esac
+
+# ---------------------------------------------------------------- comparison
+"$FW/fw_compare" --exact four-bar "$OUT/double-target.txt" "$OUT/double-host.txt" \
+    "$OUT/float-target.txt" "$OUT/float-host.txt" > "$OUT/compare.txt" 2>&1
+cat "$OUT/compare.txt"
+p=$(grep -c '^ok - ' "$OUT/compare.txt"); f=$(grep -c '^not ok - ' "$OUT/compare.txt")
+passed=$((passed + p)); failed=$((failed + f))
+[ "$p" -gt 0 ] || not_ok "fw_compare produced no checks"
+
+# ---------------------------------------------------------------- float study
+# The issue's criterion, on the emulator: float slider-crank, h = 1e-3,
+# 100 s through its bifurcation points (~6 s of emulation).
+emu "$FW/float/demo.elf" "$OUT/float-long.txt" long slider-crank 1e-3 100000 1
+"$FW/fw_traj" "$OUT/float-long.txt" 1e-5 2 > "$OUT/float-long-traj.txt" 2>&1
+cat "$OUT/float-long-traj.txt"
+p=$(grep -c '^ok - ' "$OUT/float-long-traj.txt"); f=$(grep -c '^not ok - ' "$OUT/float-long-traj.txt")
+passed=$((passed + p)); failed=$((failed + f))
+[ "$p" -eq 3 ] || not_ok "float 100 s study produced its three checks"
+
+echo "# firmware-test took $(( $(date +%s) - start )) s"
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
