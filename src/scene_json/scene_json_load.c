@@ -35,6 +35,14 @@ void sj_pop(sj_reader *r)
     if (r->depth > 0) r->depth--;
 }
 
+/* Messages are one line: control bytes a file smuggles in through a key
+ * or a string (a "\n" escape) are shown as '?'. Found by fuzz_scene. */
+static void one_line(char *s)
+{
+    for (; *s; s++)
+        if ((unsigned char)*s < 0x20 || *s == 0x7f) *s = '?';
+}
+
 int sj_fail(sj_reader *r, int at, const char *fmt, ...)
 {
     int line, col, len;
@@ -49,12 +57,16 @@ int sj_fail(sj_reader *r, int at, const char *fmt, ...)
         vsnprintf(r->err + len, r->err_size - (size_t)len, fmt, ap);
         va_end(ap);
     }
+    one_line(r->err);
     return -1;
 }
 
 static void set_err(char *err, size_t size, const char *file, int line, int col, const char *msg)
 {
-    if (err && size) snprintf(err, size, "%s:%d:%d: %s", file, line, col, msg);
+    if (err && size) {
+        snprintf(err, size, "%s:%d:%d: %s", file, line, col, msg);
+        one_line(err);
+    }
 }
 
 void braun_scene_free(braun_scene_file *f)

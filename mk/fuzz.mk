@@ -1,0 +1,32 @@
+# Coverage-guided fuzzing with libFuzzer (clang): the scene reader/builder
+# and the CLI's option parsing, under AddressSanitizer and UBSan.
+#   make fuzz            each target for FUZZ_SECONDS (default 30) from its
+#                        seed corpus in tests/fuzz/corpus_*; part of make test
+#   make fuzz-regress    replay the corpora and tests/fuzz/regressions/ only
+# A crash leaves its input in $(BUILD)/fuzz/; copy it to
+# tests/fuzz/regressions/scene/ or .../args/ so it is replayed from then on.
+FUZZ_SECONDS ?= 30
+FUZZ_CC := clang
+FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+              -Iinclude -Isrc -Isrc/cli -std=c99 -D_POSIX_C_SOURCE=200809L
+FUZZ_LIB_SRC = $(LIB_SRC) $(wildcard src/scene/*.c) $(wildcard src/scene_json/*.c) $(HOST_SRC)
+FUZZ_CLI_SRC = src/cli/cli_args.c src/cli/cli_error.c src/cli/cli_usage.c
+
+$(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_LIB_SRC) $(HEADERS) | deps-fuzz
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_FLAGS) tests/fuzz/fuzz_scene.c $(FUZZ_LIB_SRC) -ljansson -lm -o $@
+$(BUILD)/fuzz/fuzz_args: tests/fuzz/fuzz_args.c $(FUZZ_CLI_SRC) $(LIB_SRC) $(HEADERS) | deps-fuzz
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_FLAGS) tests/fuzz/fuzz_args.c $(FUZZ_CLI_SRC) $(LIB_SRC) -lm -o $@
+
+deps-fuzz:
+	@tools/ensure-deps clang libclang-rt-14-dev libjansson-dev
+
+FUZZ_BIN := $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_args
+.PHONY: fuzz fuzz-regress deps-fuzz
+fuzz: $(FUZZ_BIN)
+	@sh tools/fuzz-run $(BUILD)/fuzz $(FUZZ_SECONDS)
+fuzz-regress: $(FUZZ_BIN)
+	@sh tools/fuzz-run $(BUILD)/fuzz 0
+
+TEST_SUITES += "$(MAKE) -s --no-print-directory fuzz"
