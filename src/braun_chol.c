@@ -8,7 +8,7 @@ void braun_chol_bind(braun_chol *c, int n, braun_real *reals, int *ints)
 {
     c->n = n;
     c->R = reals;
-    c->dinv = reals + (size_t)n * n;
+    c->dinv = reals + (size_t)n * (size_t)n;
     c->first = ints;
     c->last = ints + n;
 }
@@ -16,7 +16,7 @@ void braun_chol_bind(braun_chol *c, int n, braun_real *reals, int *ints)
 int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
                       int *bad_i, int *bad_j, braun_real *bad_value)
 {
-    const int n = c->n;
+    const int n = BRAUN_N(c->n);
     braun_real *R = c->R;
     braun_real dmax = 0;
     int i, j, k;
@@ -74,7 +74,7 @@ int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
 void braun_chol_solve_rt(const braun_chol *c, braun_real *x)
 {
     /* R^T is lower triangular: (R^T)_ik = R_ki, nonzero for k >= first[i]. */
-    const int n = c->n;
+    const int n = BRAUN_N(c->n);
     const braun_real *R = c->R;
     for (int i = 0; i < n; i++) {
         braun_real s = x[i];
@@ -85,9 +85,9 @@ void braun_chol_solve_rt(const braun_chol *c, braun_real *x)
 
 void braun_chol_solve_r(const braun_chol *c, braun_real *x)
 {
-    const int n = c->n;
+    const int n = BRAUN_N(c->n);
     for (int i = n - 1; i >= 0; i--) {
-        const braun_real *row = c->R + (size_t)i * n;
+        const braun_real *row = c->R + (size_t)i * (size_t)n;
         braun_real s = x[i];
         for (int k = i + 1; k <= c->last[i]; k++) s -= row[k] * x[k];
         x[i] = s * c->dinv[i];
@@ -96,7 +96,7 @@ void braun_chol_solve_r(const braun_chol *c, braun_real *x)
 
 void braun_chol_mul_r(const braun_chol *c, const braun_real *x, braun_real *y)
 {
-    const int n = c->n;
+    const int n = BRAUN_N(c->n);
     for (int i = 0; i < n; i++) {
         const braun_real *row = c->R + (size_t)i * (size_t)n;
         braun_real s = 0;

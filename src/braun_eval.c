@@ -13,7 +13,7 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
 {
     braun_priv *pv = braun__priv(d);
     const braun_system *s = &d->model->sys;
-    const int n = pv->n, m = pv->m, p = pv->p, rows = pv->rows;
+    const int n = BRAUN_N(pv->n), m = pv->m, p = pv->p, rows = BRAUN_ROWS(pv->rows);
     int st;
 
     d->stats.rhs_evals++;
@@ -39,7 +39,7 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
         }
         if (p > 0) {
             st = braun__callback(d, s->nonholonomic(t, q, v, wphi ? pv->phi + m : NULL,
-                                                    pv->A + (size_t)m * n, pv->bv + m,
+                                                    pv->A + (size_t)m * (size_t)n, pv->bv + m,
                                                     s->user),
                                  "nonholonomic", t);
             if (st) return st;
@@ -54,22 +54,22 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
         if (wphi) {
             /* Velocity-level error [Φ̇_q; Φ_v] (Sec. 2.2). */
             for (int i = 0; i < m; i++)
-                pv->ev[i] = braun_dot(n, pv->A + (size_t)i * n, v) - pv->b[i];
+                pv->ev[i] = braun_dot(n, pv->A + (size_t)i * (size_t)n, v) - pv->b[i];
             for (int i = m; i < rows; i++) pv->ev[i] = pv->phi[i];
         }
 
         /* C_v = A_v R^-1, row by row: row_i(C) = R^-T A_i^T. */
         braun_real *C = pv->fv.a;
         for (int i = 0; i < rows; i++) {
-            braun_real *ci = C + (size_t)i * n;
-            const braun_real *ai = pv->A + (size_t)i * n;
+            braun_real *ci = C + (size_t)i * (size_t)n;
+            const braun_real *ai = pv->A + (size_t)i * (size_t)n;
             for (int j = 0; j < n; j++) ci[j] = ai[j];
             braun_chol_solve_rt(&pv->chol, ci);
             /* Residual of Eq. 10 without corrections: b_v - C_v atil. */
             pv->bv[i] -= braun_dot(n, ci, pv->atil);
         }
         if (pv->need_fq && (want & BRAUN_WANT_PHI)) {
-            for (size_t i = 0; i < (size_t)m * n; i++) pv->fq.a[i] = C[i];
+            for (size_t i = 0; i < (size_t)m * (size_t)n; i++) pv->fq.a[i] = C[i];
             int rq = braun_qrcp_factor(&pv->fq, rank_tol(d, m));
             d->stats.constraint_factorizations++;
             if (rq < m) d->stats.rank_deficient++;
@@ -117,7 +117,7 @@ static int energy_correction(braun_data *d, braun_real t, const braun_real *q,
 {
     braun_priv *pv = braun__priv(d);
     const braun_system *s = &d->model->sys;
-    const int n = pv->n;
+    const int n = BRAUN_N(pv->n);
     braun_real E = 0, dEdt = 0, Edot = 0;
     int st = braun__callback(d, s->energy(t, q, v, &E, pv->dEdq, pv->dEdv, &dEdt, s->user),
                              "energy", t);
@@ -168,7 +168,7 @@ int braun__eval_corrections(braun_data *d, braun_real t, const braun_real *q,
 {
     braun_priv *pv = braun__priv(d);
     const unsigned corr = d->model->opt.corrections;
-    const int n = pv->n, m = pv->m, rows = pv->rows;
+    const int n = BRAUN_N(pv->n), m = pv->m, rows = BRAUN_ROWS(pv->rows);
 
     for (int i = 0; i < n; i++) dq[i] = dv[i] = 0;
     if (rows > 0 && (corr & BRAUN_CORRECT_POSITION) && m > 0) {
@@ -268,10 +268,10 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
                              "holonomic", t);
         if (st) return st;
         for (int i = 0; i < m; i++)
-            pv->ev[i] = braun_dot(n, pv->A + (size_t)i * n, v) - pv->b[i];
+            pv->ev[i] = braun_dot(n, pv->A + (size_t)i * (size_t)n, v) - pv->b[i];
     }
     if (p > 0) {
-        st = braun__callback(d, s->nonholonomic(t, q, v, pv->phi + m, pv->A + (size_t)m * n,
+        st = braun__callback(d, s->nonholonomic(t, q, v, pv->phi + m, pv->A + (size_t)m * (size_t)n,
                                                 pv->bv + m, s->user),
                              "nonholonomic", t);
         if (st) return st;

@@ -8,6 +8,24 @@
 #include "braun.h"
 #include "braun_math.h"
 
+/* ---- Compile-time sizes (firmware builds) --------------------------------
+ * An image that runs one model may build the library with
+ * -DBRAUN_FIXED_N=n (coordinates) and -DBRAUN_FIXED_ROWS=m+p (constraint
+ * rows): the sizes of the small dense kernels become constants the compiler
+ * unrolls (best with -O3 -flto). Same results bit for bit; measured on the
+ * emulated Cortex-M4F in docs/firmware.md. braun_model_init refuses every
+ * other size with BRAUN_ERR_SIZE. */
+#ifdef BRAUN_FIXED_N
+#define BRAUN_N(n) (BRAUN_FIXED_N)
+#else
+#define BRAUN_N(n) (n)
+#endif
+#ifdef BRAUN_FIXED_ROWS
+#define BRAUN_ROWS(rows) (BRAUN_FIXED_ROWS)
+#else
+#define BRAUN_ROWS(rows) (rows)
+#endif
+
 /* ---- Cholesky: M = R^T R with R upper triangular (src/braun_chol.c) ---- */
 typedef struct braun_chol {
     int n;

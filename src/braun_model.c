@@ -8,6 +8,16 @@ int braun_model_init(braun_model *model, const braun_system *sys)
     if (sys->n <= 0 || sys->m < 0 || sys->p < 0 || sys->n > 4096 ||
         sys->m > 4096 || sys->p > 4096)
         return BRAUN_ERR_SIZE;
+#ifdef BRAUN_FIXED_N
+    /* A library built for one size (braun_linalg.h) runs only that size. */
+    if (sys->n != BRAUN_FIXED_N) return BRAUN_ERR_SIZE;
+#endif
+#ifdef BRAUN_FIXED_ROWS
+    /* ... and one row count; the separate C_q factorization of a system with
+     * both kinds of rows has m rows, so such a system cannot use it. */
+    if (sys->m + sys->p != BRAUN_FIXED_ROWS || (sys->m > 0 && sys->p > 0))
+        return BRAUN_ERR_SIZE;
+#endif
     if (!sys->mass || !sys->forces) return BRAUN_ERR_MISSING_CALLBACK;
     if (sys->m > 0 && !sys->holonomic) return BRAUN_ERR_MISSING_CALLBACK;
     if (sys->p > 0 && !sys->nonholonomic) return BRAUN_ERR_MISSING_CALLBACK;

@@ -22,9 +22,9 @@ void braun_qrcp_bind(braun_qrcp *f, int n, int rows, braun_real *reals,
     f->rows = rows;
     f->rank = 0;
     f->a = reals;
-    f->tau = f->a + (size_t)rows * n;
+    f->tau = f->a + (size_t)rows * (size_t)n;
     f->s = f->tau + rows;
-    f->stau = f->s + (size_t)rows * rows;
+    f->stau = f->s + (size_t)rows * (size_t)rows;
     f->work = f->stau + rows;
     f->perm = ints;
 }
@@ -63,7 +63,7 @@ static braun_real sumsq(int len, const braun_real *x)
 
 int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
 {
-    const int n = f->n, rows = f->rows;
+    const int n = BRAUN_N(f->n), rows = BRAUN_ROWS(f->rows);
     const int kmax = n < rows ? n : rows;
     braun_real *a = f->a;
     /* Squared norms of the remaining column parts, downdated after each
@@ -75,7 +75,7 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
 
     for (int j = 0; j < rows; j++) {
         f->perm[j] = j;
-        norm2[j] = ref[j] = sumsq(n, a + (size_t)j * n);
+        norm2[j] = ref[j] = sumsq(n, a + (size_t)j * (size_t)n);
     }
     f->rank = 0;
     for (int k = 0; k < kmax; k++) {
@@ -83,7 +83,7 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
         for (int j = k + 1; j < rows; j++)
             if (norm2[j] > norm2[best]) best = j;
         if (best != k) {
-            braun_real *ck = a + (size_t)k * n, *cb = a + (size_t)best * n;
+            braun_real *ck = a + (size_t)k * (size_t)n, *cb = a + (size_t)best * (size_t)n;
             for (int i = 0; i < n; i++) {
                 braun_real t = ck[i];
                 ck[i] = cb[i];
@@ -99,7 +99,7 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
             ref[k] = ref[best];
             ref[best] = u;
         }
-        braun_real *col = a + (size_t)k * n + k;
+        braun_real *col = a + (size_t)k * (size_t)n + k;
         /* The pivot's norm is recomputed exactly: the rank decision must not
          * rest on a downdated value. */
         const braun_real pivot = braun_sqrt(sumsq(n - k, col));
@@ -108,7 +108,7 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
         if (pivot == 0 || pivot <= tol * r00) break;
         f->tau[k] = house(n - k, col, pivot);
         for (int j = k + 1; j < rows; j++) {
-            braun_real *cj = a + (size_t)j * n + k;
+            braun_real *cj = a + (size_t)j * (size_t)n + k;
             reflect(n - k, col + 1, f->tau[k], cj);
             norm2[j] -= cj[0] * cj[0];
             /* Cancellation: recompute once the downdated value has lost
@@ -126,12 +126,13 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
         braun_real *s = f->s;
         for (int j = 0; j < rk; j++)
             for (int i = 0; i < rows; i++)
-                s[(size_t)j * rows + i] = i >= j ? a[(size_t)i * n + j] : 0;
+                s[(size_t)j * (size_t)rows + (size_t)i] =
+                    i >= j ? a[(size_t)i * (size_t)n + (size_t)j] : 0;
         for (int j = 0; j < rk; j++) {
-            braun_real *cj = s + (size_t)j * rows + j;
+            braun_real *cj = s + (size_t)j * (size_t)rows + j;
             f->stau[j] = house(rows - j, cj, braun_nrm2(rows - j, cj));
             for (int c = j + 1; c < rk; c++)
-                reflect(rows - j, cj + 1, f->stau[j], s + (size_t)c * rows + j);
+                reflect(rows - j, cj + 1, f->stau[j], s + (size_t)c * (size_t)rows + j);
         }
     }
     return rk;
@@ -146,7 +147,7 @@ void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
 void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
                     braun_real *resid)
 {
-    const int n = f->n, rows = f->rows, rk = f->rank;
+    const int n = BRAUN_N(f->n), rows = BRAUN_ROWS(f->rows), rk = f->rank;
     const braun_real *a = f->a;
     braun_real *w = f->work;
 
@@ -161,7 +162,7 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
         /* S = R11^T is lower triangular: forward substitution. */
         for (int i = 0; i < rk; i++) {
             braun_real sum = w[i];
-            const braun_real *ci = a + (size_t)i * n; /* R(j,i) = ci[j] */
+            const braun_real *ci = a + (size_t)i * (size_t)n; /* R(j,i) = ci[j] */
             for (int j = 0; j < i; j++) sum -= ci[j] * w[j];
             w[i] = sum / ci[i];
         }
@@ -169,29 +170,29 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
         /* Least squares through S = U T: w = T^-1 (U^T P^T r)[0..k). */
         const braun_real *s = f->s;
         for (int j = 0; j < rk; j++)
-            reflect(rows - j, s + (size_t)j * rows + j + 1, f->stau[j], w + j);
+            reflect(rows - j, s + (size_t)j * (size_t)rows + j + 1, f->stau[j], w + j);
         /* U^T P^T r below the rank: the part of r outside range(C). */
         if (resid) *resid = braun_nrm2(rows - rk, w + rk);
         for (int i = rk - 1; i >= 0; i--) {
             braun_real sum = w[i];
-            for (int c = i + 1; c < rk; c++) sum -= s[(size_t)c * rows + i] * w[c];
-            w[i] = sum / s[(size_t)i * rows + i];
+            for (int c = i + 1; c < rk; c++) sum -= s[(size_t)c * (size_t)rows + (size_t)i] * w[c];
+            w[i] = sum / s[(size_t)i * (size_t)rows + (size_t)i];
         }
     }
     /* x = Q1 w = H_0 ... H_{k-1} [w; 0]. */
     for (int i = 0; i < rk; i++) x[i] = w[i];
     for (int j = rk - 1; j >= 0; j--)
-        reflect(n - j, a + (size_t)j * n + j + 1, f->tau[j], x + j);
+        reflect(n - j, a + (size_t)j * (size_t)n + j + 1, f->tau[j], x + j);
 }
 
 void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
 {
-    const int n = f->n, rk = f->rank;
+    const int n = BRAUN_N(f->n), rk = f->rank;
     const braun_real *a = f->a;
     if (rk == 0) return;
     for (int j = 0; j < rk; j++)
-        reflect(n - j, a + (size_t)j * n + j + 1, f->tau[j], z + j);
+        reflect(n - j, a + (size_t)j * (size_t)n + j + 1, f->tau[j], z + j);
     for (int j = 0; j < rk; j++) z[j] = 0;
     for (int j = rk - 1; j >= 0; j--)
-        reflect(n - j, a + (size_t)j * n + j + 1, f->tau[j], z + j);
+        reflect(n - j, a + (size_t)j * (size_t)n + j + 1, f->tau[j], z + j);
 }

@@ -11,7 +11,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
                       int per_stage, braun_real *y1, braun_real *yerr)
 {
     braun_priv *pv = braun__priv(d);
-    const int n = pv->n, N = 2 * n + 1;
+    const int n = BRAUN_N(pv->n), N = 2 * n + 1;
     const unsigned corr = d->model->opt.corrections;
     const braun_real *y0 = pv->y0;
     int st;
@@ -88,7 +88,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
 void braun__load_state(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
-    const int n = pv->n;
+    const int n = BRAUN_N(pv->n);
     for (int i = 0; i < n; i++) {
         pv->y0[i] = d->q[i];
         pv->y0[n + i] = d->v[i];
@@ -98,7 +98,7 @@ void braun__load_state(braun_data *d)
 
 void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new)
 {
-    const int n = braun__priv(d)->n;
+    const int n = BRAUN_N(braun__priv(d)->n);
     for (int i = 0; i < n; i++) {
         d->q[i] = y1[i];
         d->v[i] = y1[n + i];

@@ -8,10 +8,12 @@ typedef struct braun_tableau {
     const char *name;
     int stages;
     int order;
-    double c[BRAUN_MAX_STAGES];
-    double a[BRAUN_MAX_STAGES][BRAUN_MAX_STAGES];
-    double b[BRAUN_MAX_STAGES];      /* solution weights */
-    double e[BRAUN_MAX_STAGES];      /* b - b_hat (embedded error), zero if none */
+    /* In working precision: a float build would otherwise convert a double
+     * coefficient in software (__aeabi_d2f) at every use. */
+    braun_real c[BRAUN_MAX_STAGES];
+    braun_real a[BRAUN_MAX_STAGES][BRAUN_MAX_STAGES];
+    braun_real b[BRAUN_MAX_STAGES];      /* solution weights */
+    braun_real e[BRAUN_MAX_STAGES];      /* b - b_hat (embedded error), zero if none */
 } braun_tableau;
 
 const braun_tableau *braun__tableau(braun_method method);

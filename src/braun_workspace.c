@@ -31,7 +31,7 @@ static size_t layout(const braun_model *model, unsigned char *base,
     TAKE(P(atil), n);
     TAKE(P(z), n);
     TAKE(P(u), n);
-    TAKE(P(A), (size_t)rows * n);
+    TAKE(P(A), (size_t)rows * (size_t)n);
     TAKE(P(phi), rows);
     TAKE(P(b), m);
     TAKE(P(bv), rows);

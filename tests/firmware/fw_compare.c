@@ -59,8 +59,13 @@ static int load(file *f, const char *path)
     char buf[2048];
     f->path = path;
     f->n = 0;
+    f->l = NULL;
+    if (!fp) return -1;
     f->l = calloc(MAX_LINES, sizeof *f->l);
-    if (!fp || !f->l) return -1;
+    if (!f->l) {
+        fclose(fp);
+        return -1;
+    }
     while (fgets(buf, sizeof buf, fp) && f->n < MAX_LINES) {
         if (buf[0] == '#' || buf[0] == '\n') continue;
         line *ln = &f->l[f->n];
@@ -253,13 +258,22 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: fw_compare [--exact MODEL]... DOUBLE_TARGET DOUBLE_HOST FLOAT_TARGET FLOAT_HOST\n");
         return 2;
     }
-    file dt, dh, ft, fh;
-    if (load(&dt, argv[i]) || load(&dh, argv[i + 1]) || load(&ft, argv[i + 2]) ||
-        load(&fh, argv[i + 3])) {
+    file dt = {0}, dh = {0}, ft = {0}, fh = {0};
+    int bad = load(&dt, argv[i]) | load(&dh, argv[i + 1]) | load(&ft, argv[i + 2]) |
+              load(&fh, argv[i + 3]);
+    if (bad) {
         fprintf(stderr, "fw_compare: cannot read the outputs\n");
+        free(dt.l);
+        free(dh.l);
+        free(ft.l);
+        free(fh.l);
         return 2;
     }
     compare(&dt, &dh, NULL, "double", 1e-10, 0, 2.220446049250313e-16, exact, nexact);
     compare(&ft, &fh, &dh, "float", 2e-3, 1e-3, 1.1920928955078125e-07, exact, nexact);
+    free(dt.l);
+    free(dh.l);
+    free(ft.l);
+    free(fh.l);
     return failed ? 1 : 0;
 }

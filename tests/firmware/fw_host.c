@@ -37,9 +37,16 @@ const fw_scene *fw_platform_scene_at(int i)
         FW_SCENES
 #undef FW_SCENE
         NULL};
+    static const char *const labels[] = {
+#define FW_SCENE(sym, name) "scene:" name,
+        FW_SCENES
+#undef FW_SCENE
+        NULL};
     static fw_scene scenes[sizeof names / sizeof names[0]];
     static int state[sizeof names / sizeof names[0]];
-    if (i < 0 || i >= (int)(sizeof names / sizeof names[0]) - 1) return NULL;
+    if (i < 0) return NULL;
+    for (int k = 0; k <= i; k++)
+        if (!names[k]) return NULL; /* past the end */
     if (state[i] == 0) {
         char path[512], err[512];
         const char *dir = getenv("FW_DATA_DIR") ? getenv("FW_DATA_DIR") : FW_DATA_DIR;
@@ -52,6 +59,7 @@ const fw_scene *fw_platform_scene_at(int i)
         } else if (sf->scene.n <= FW_SCENE_MAX_N) {
             fw_scene *s = &scenes[i];
             s->name = names[i];
+            s->label = labels[i];
             s->sys = sf->sys;
             s->corrections = sf->corrections;
             for (int k = 0; k < sf->scene.n; k++) {

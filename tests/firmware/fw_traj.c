@@ -60,8 +60,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: fw_traj LONG_OUTPUT [MAX_POS_BOUND [RATIO_BOUND]]\n");
         return 2;
     }
-    const double pos_bound = argc > 2 ? atof(argv[2]) : 1e-5;
-    const double ratio_bound = argc > 3 ? atof(argv[3]) : 2.0;
+    const double pos_bound = argc > 2 ? strtod(argv[2], NULL) : 1e-5;
+    const double ratio_bound = argc > 3 ? strtod(argv[3], NULL) : 2.0;
     FILE *fp = fopen(argv[1], "r");
     if (!fp) {
         perror(argv[1]);
@@ -84,14 +84,16 @@ int main(int argc, char **argv)
                 return 2;
             }
             h = hex_real(field(line, "h"));
-            steps = atol(field(line, "steps") ? field(line, "steps") : "0");
+            steps = strtol(field(line, "steps") ? field(line, "steps") : "0", NULL, 10);
             snprintf(prec, sizeof prec, "%s", field(line, "precision") ? field(line, "precision") : "?");
         } else if (line[0] == 's' && line[1] == ' ' && b) {
             const int n = b->sys.n;
-            double q[BRAUN_MODEL_MAX_N], qr[BRAUN_MODEL_MAX_N], vr[BRAUN_MODEL_MAX_N];
-            double y[2], qm[BRAUN_MODEL_MAX_N], vm[BRAUN_MODEL_MAX_N];
+            double q[BRAUN_MODEL_MAX_N] = {0}, qr[BRAUN_MODEL_MAX_N] = {0};
+            double vr[BRAUN_MODEL_MAX_N] = {0}, y[2] = {0, 0};
+            double qm[BRAUN_MODEL_MAX_N] = {0}, vm[BRAUN_MODEL_MAX_N] = {0};
+            if (n > BRAUN_MODEL_MAX_N) return 2;
             char *save = NULL, *tok = strtok_r(line + 2, " \n", &save);
-            const long i = atol(tok);
+            const long i = strtol(tok, NULL, 10);
             for (int k = 0; k < n + 2; k++) {
                 tok = strtok_r(NULL, " \n", &save);
                 if (!tok) return 2;
@@ -116,9 +118,9 @@ int main(int argc, char **argv)
         } else if (strncmp(line, "max ", 4) == 0) {
             max_pos = hex_real(field(line, "pos"));
             t_max_pos = hex_real(field(line, "t_max_pos"));
-            done = atol(field(line, "steps_done") ? field(line, "steps_done") : "-1");
+            done = strtol(field(line, "steps_done") ? field(line, "steps_done") : "-1", NULL, 10);
         } else if (strncmp(line, "status ", 7) == 0) {
-            status = atoi(field(line, "code") ? field(line, "code") : "-1");
+            status = (int)strtol(field(line, "code") ? field(line, "code") : "-1", NULL, 10);
         }
     }
     fclose(fp);

@@ -72,10 +72,12 @@ case " ${FW_CONFIGS:-} " in
 *" float-fixed "*)
     logs=$(find "$FW/float-fixed/obj" -name '*.o.log' -size +0 2>/dev/null | sort)
     check "float-fixed: compiled without warnings" [ -z "$logs" ]
-    emu "$FW/float-fixed/demo.elf" "$OUT/float-fixed-target.txt" test
+    emu "$FW/float-fixed/demo.elf" "$OUT/float-fixed-target.txt" test builtin
     check "float-fixed: demo exits with status 0 on the emulator" [ "$rc" -eq 0 ]
-    grep -E '^(run|max|final|q|v|stats|status) ' "$OUT/float-fixed-target.txt" > "$OUT/float-fixed.rec"
-    grep -E '^(run|max|final|q|v|stats|status) ' "$OUT/float-target.txt" > "$OUT/float.rec"
+    # The built-in runs (n = 6, rows = 5) of both images.
+    records() { awk '/^run model=scene:/ { exit } /^(run|max|final|q|v|stats|status) / { print }' "$1"; }
+    records "$OUT/float-fixed-target.txt" > "$OUT/float-fixed.rec"
+    records "$OUT/float-target.txt" > "$OUT/float.rec"
     check "float-fixed: every record equal, bit for bit, to the generic float library's" \
         cmp -s "$OUT/float-fixed.rec" "$OUT/float.rec"
     emu "$FW/float-fixed/demo.elf" "$OUT/float-fixed-sizes.txt" sizes
@@ -84,6 +86,28 @@ case " ${FW_CONFIGS:-} " in
     ;;
 *) echo "# float-fixed: skipped (the core has no BRAUN_FIXED_N; see firmware/core-perf.patch)" ;;
 esac
+
+# ---------------------------------------------------------------- scene to C
+# The demo ran its scenes from C written by the generator (compiled above,
+# warning-free); fw_compare below checks them against the host's runs of
+# the same scene files. Every shipped scene must convert and compile.
+nscenes=$(grep -c '^run model=scene:' "$OUT/float-target.txt")
+check "scene to C: the emulator ran $nscenes scenes from generated C (static data, no parser)" [ "$nscenes" -ge 3 ]
+gen_bad=""
+for json in data/*.json; do
+    [ -f "$json" ] || continue
+    sym=$(basename "$json" .json | tr -c 'A-Za-z0-9_\n' '_')
+    if ! "$FW/fw-gen-c" "$json" "s_$sym" "$OUT/gen-$sym.c" 2> "$OUT/gen-$sym.log"; then
+        gen_bad="$gen_bad $json(gen)"; continue
+    fi
+    for def in "" -DBRAUN_SINGLE; do
+        # shellcheck disable=SC2086
+        ${FW_CC:-arm-none-eabi-gcc} -std=c99 -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
+            -Wall -Wextra -Wpedantic -Wdouble-promotion -Wconversion -Werror $def -Iinclude \
+            -c "$OUT/gen-$sym.c" -o "$OUT/gen-$sym.o" 2>> "$OUT/gen-$sym.log" || gen_bad="$gen_bad $json$def"
+    done
+done
+check "scene to C: every data/*.json converts to C that compiles for the M4F, double and float, -Werror${gen_bad:+:$gen_bad}" [ -z "$gen_bad" ]
 
 # ---------------------------------------------------------------- comparison
 "$FW/fw_compare" --exact four-bar "$OUT/double-target.txt" "$OUT/double-host.txt" \
