@@ -59,10 +59,10 @@ FW_SCENES := slider-crank sleigh damped-motor
 FW_GEN_DIR := $(FW_DIR)/gen
 FW_GEN_SRC := $(foreach s,$(FW_SCENES),$(FW_GEN_DIR)/scene_$(subst -,_,$(s)).c)
 
-# Configurations: double and float (-O2, -fstack-usage), and, when the core
-# offers compile-time sizes (BRAUN_FIXED_N, firmware/core-perf.patch), a
-# float library fixed to n = 6, rows = 5 (slider-crank, four-bar) at
-# -O3 -flto: the fastest build for one model.
+# Configurations: double and float (-O2, -fstack-usage), and, with the
+# core's compile-time sizes (BRAUN_FIXED_N/ROWS, braun_linalg.h), a float
+# library fixed to n = 6, rows = 5 (slider-crank, four-bar) at -O3 -flto:
+# the fastest build for one model.
 FW_CONFIGS := double float
 FW_DEF_double :=
 FW_DEF_float := -DBRAUN_SINGLE
@@ -146,17 +146,11 @@ FW_EXTRA_demo_scenes := -DFW_HAVE_SCENE_LIST -I$(FW_GEN_DIR)
 $(foreach c,$(FW_CONFIGS),$(eval $(call FW_CONFIG_RULES,$(c))))
 
 # ---------------------------------------------------------------- scene to C
-# The generator as a host tool (the function `braun gen-c` is to call):
-# reads a scene file with the host's JSON reader, writes static C.
-$(FW_DIR)/fw-gen-c: firmware/gen_c/braun_gen_c.c firmware/gen_c/gen_c_main.c \
-        firmware/gen_c/braun_gen_c.h $(BUILD)/libbraun_scene.a $(BUILD)/libbraun.a | firmware-deps
+# `braun gen-c` reads a scene file with the host's JSON reader and writes
+# static C (src/scene_json/scene_gen_c.c).
+$(FW_GEN_DIR)/scene_%.c: $(BUILD)/bin/braun
 	@mkdir -p $(dir $@)
-	$(CC) -std=c99 $(OPT) $(WARN) -Iinclude -Ifirmware/gen_c $(filter %.c,$^) \
-	    $(BUILD)/libbraun_scene.a $(BUILD)/libbraun.a -ljansson -lm -o $@
-
-$(FW_GEN_DIR)/scene_%.c: $(FW_DIR)/fw-gen-c
-	@mkdir -p $(dir $@)
-	$(FW_DIR)/fw-gen-c data/$(subst _,-,$*).json $* $@
+	$(BUILD)/bin/braun gen-c data/$(subst _,-,$*).json --symbol $* -o $@
 
 # Regenerated when a scene file changes.
 $(foreach s,$(FW_SCENES),$(eval $(FW_GEN_DIR)/scene_$(subst -,_,$(s)).c: data/$(s).json))
@@ -221,7 +215,7 @@ FW_ALL := $(foreach c,$(FW_CONFIGS),$(FW_DIR)/$(c)/libbraun.a $(FW_DIR)/$(c)/dem
           $(foreach p,double float,$(FW_DIR)/$(p)/size.txt $(FW_DIR)/$(p)/stack-usage.txt \
               $(FW_GC_ELF_$(p)))
 FW_TEST_PREREQS := $(FW_ALL) $(FW_DIR)/host-double/fw_host $(FW_DIR)/host-float/fw_host \
-                   $(FW_DIR)/fw_compare $(FW_DIR)/fw_traj $(FW_DIR)/fw-gen-c
+                   $(FW_DIR)/fw_compare $(FW_DIR)/fw_traj $(BUILD)/bin/braun
 
 firmware: $(FW_ALL)
 

@@ -87,6 +87,9 @@ int braun_cli_check(int argc, char **argv);
 /* `braun gen chain N [--rods] [-o FILE]` (cli_gen.c). */
 int braun_cli_gen(int argc, char **argv);
 
+/* braun gen-c SCENE [--symbol NAME] [-o FILE] (cli_gen_c.c). */
+int braun_cli_gen_c(int argc, char **argv);
+
 /* ---------------------------------------------------- metrics (cli_metrics.c) */
 /* Residuals and errors at one state, and their maxima over the run.
  * NaN where a quantity does not exist (no reference, no point). */

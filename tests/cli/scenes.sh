@@ -148,5 +148,17 @@ check "andrews at t = 0.03 within 1e-6 relative of the test set (h = 1e-4)" \
         for (i = 1; i <= 7; i++) { d = (x[i] - r[i]) / r[i]; if (d < 0) d = -d; if (d > 1e-6) exit 1 }
         exit n != 7 }'
 
+# ------------------------------------------------------------ gen-c
+"$BRAUN" gen-c data/sleigh.json -o "$TMP/sleigh.c"; rc=$?
+check "gen-c sleigh: exit 0, defines sleigh_build and SLEIGH_N 3" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^int sleigh_build(" "$2" && grep -q "^#define SLEIGH_N 3$" "$2"' \
+    sh "$rc" "$TMP/sleigh.c"
+check "gen-c output compiles warning-free (double, -Werror)" \
+    ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -Iinclude -c "$TMP/sleigh.c" -o "$TMP/sleigh.o"
+"$BRAUN" gen-c data/sleigh.json --symbol 9bad > /dev/null 2> "$TMP/gce"; rc=$?
+check "gen-c --symbol 9bad: exit 2, one line" sh -c '[ "$1" -eq 2 ] && [ "$(wc -l < "$2")" -eq 1 ]' sh "$rc" "$TMP/gce"
+"$BRAUN" gen-c data/no-such.json > /dev/null 2> "$TMP/gce"; rc=$?
+check "gen-c of a missing file: exit 2, names the file" sh -c '[ "$1" -eq 2 ] && grep -q "no-such.json" "$2"' sh "$rc" "$TMP/gce"
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

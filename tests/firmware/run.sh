@@ -84,7 +84,7 @@ case " ${FW_CONFIGS:-} " in
     check "float-fixed: a model of another size (pendulum, n = 2) is refused" \
         grep -q '^sizes model=pendulum .*data_bytes=unsupported' "$OUT/float-fixed-sizes.txt"
     ;;
-*) echo "# float-fixed: skipped (the core has no BRAUN_FIXED_N; see firmware/core-perf.patch)" ;;
+*) echo "# float-fixed: skipped (the core has no BRAUN_FIXED_N)" ;;
 esac
 
 # ---------------------------------------------------------------- scene to C
@@ -97,7 +97,7 @@ gen_bad=""
 for json in data/*.json; do
     [ -f "$json" ] || continue
     sym=$(basename "$json" .json | tr -c 'A-Za-z0-9_\n' '_')
-    if ! "$FW/fw-gen-c" "$json" "s_$sym" "$OUT/gen-$sym.c" 2> "$OUT/gen-$sym.log"; then
+    if ! "${BRAUN:-build/bin/braun}" gen-c "$json" --symbol "s_$sym" -o "$OUT/gen-$sym.c" 2> "$OUT/gen-$sym.log"; then
         gen_bad="$gen_bad $json(gen)"; continue
     fi
     for def in "" -DBRAUN_SINGLE; do

@@ -1,5 +1,5 @@
-/* Scene to C: a loaded scene as static C data (see braun_gen_c.h). */
-#include "braun_gen_c.h"
+/* Scene to C: a loaded scene as static C data (braun_scene.h, braun_gen_c_write). */
+#include "braun_scene.h"
 
 #include <ctype.h>
 #include <string.h>
