@@ -8,6 +8,23 @@ static braun_real rank_tol(const braun_data *d, int rows)
     return t > 0 ? t : braun_default_rank_tol(rows, n);
 }
 
+/* A result of braun__eval_ideal was NaN/Inf: find the callback output that
+ * made it (in evaluation order), or blame the arithmetic (overflow). */
+static int nonfinite_culprit(braun_data *d, braun_real t, unsigned want)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n, m = pv->m, rows = pv->rows;
+    int st = braun__check_finite(d, n, pv->Q, "forces", 0, t);
+    if (!st && rows > 0) st = braun__check_finite(d, rows * n, pv->A, "constraint Jacobian", n, t);
+    if (!st && rows > 0) st = braun__check_finite(d, rows, pv->bv, "constraint b_v", 0, t);
+    if (!st && rows > 0 && (want & BRAUN_WANT_PHI)) {
+        st = braun__check_finite(d, rows, pv->phi, "constraint Φ", 0, t);
+        if (!st && m > 0) st = braun__check_finite(d, m, pv->b, "constraint b_q", 0, t);
+    }
+    if (!st) st = braun__fail(d, BRAUN_ERR_NONFINITE, "acceleration (overflow)", -1, -1, 0, (double)t);
+    return st;
+}
+
 int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
                       const braun_real *v, unsigned want, braun_real *vdot)
 {
@@ -22,8 +39,6 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
 
     /* a = M^-1 Q is kept in weighted form atil = R^-T Q (a = R^-1 atil). */
     st = braun__callback(d, s->forces(t, q, v, pv->Q, s->user), "forces", t);
-    if (st) return st;
-    st = braun__check_finite(d, n, pv->Q, "forces", 0, t);
     if (st) return st;
     for (int i = 0; i < n; i++) pv->atil[i] = pv->Q[i];
     braun_chol_solve_rt(&pv->chol, pv->atil);
@@ -44,13 +59,6 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
                                  "nonholonomic", t);
             if (st) return st;
         }
-        st = braun__check_finite(d, rows * n, pv->A, "constraint Jacobian", n, t);
-        if (!st) st = braun__check_finite(d, rows, pv->bv, "constraint b_v", 0, t);
-        if (!st && wphi) {
-            st = braun__check_finite(d, rows, pv->phi, "constraint Φ", 0, t);
-            if (!st && m > 0) st = braun__check_finite(d, m, pv->b, "constraint b_q", 0, t);
-        }
-        if (st) return st;
         if (wphi) {
             /* Velocity-level error [Φ̇_q; Φ_v] (Sec. 2.2). */
             for (int i = 0; i < m; i++)
@@ -81,6 +89,13 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
         braun_qrcp_pinv_apply(&pv->fv, pv->bv, pv->u);
         for (int i = 0; i < n; i++) pv->z[i] += pv->u[i];
     }
+    /* NaN and Inf propagate through every operation above, so one check of
+     * the results covers all callback outputs; only on failure are they
+     * scanned, to name the culprit. */
+    if (!braun_all_finite(n, pv->z) ||
+        ((want & BRAUN_WANT_PHI) && rows > 0 &&
+         (!braun_all_finite(rows, pv->ev) || !braun_all_finite(m, pv->phi))))
+        return nonfinite_culprit(d, t, want);
     if (vdot) {
         for (int i = 0; i < n; i++) vdot[i] = pv->z[i];
         braun_chol_solve_r(&pv->chol, vdot);

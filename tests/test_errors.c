@@ -258,6 +258,52 @@ static void test_inconsistent_constraints(void **state)
     test_sim_close(&sim);
 }
 
+/* A NaN from a callback at the user's state is named with its entry. The
+ * library checks only the results and scans the outputs on failure. */
+static int nan_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,
+                      void *u)
+{
+    (void)t; (void)q; (void)v; (void)u;
+    Q[0] = 0;
+    Q[1] = NAN;
+    return 0;
+}
+static int nan_rod(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                   braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    (void)t; (void)v; (void)u;
+    if (phi) phi[0] = q[0] * q[0] + q[1] * q[1] - 1;
+    if (A) { A[0] = 2 * q[0]; A[1] = INFINITY; }
+    if (b) b[0] = 0;
+    if (bv) bv[0] = 0;
+    return 0;
+}
+
+static void test_nonfinite_callback_outputs_are_named(void **state)
+{
+    (void)state;
+    pendulum_params prm = pend(0);
+    braun_system s = pendulum_system(&prm);
+    s.forces = nan_forces;
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double q0[2] = {1, 0}, v0[2] = {0, 0};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_NONFINITE);
+    assert_string_equal(sim.data.error.where, "forces");
+    assert_int_equal(sim.data.error.index, 1);
+    test_sim_close(&sim);
+    s = pendulum_system(&prm);
+    s.holonomic = nan_rod;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_NONFINITE);
+    assert_string_equal(sim.data.error.where, "constraint Jacobian");
+    assert_int_equal(sim.data.error.index, 0);
+    assert_int_equal(sim.data.error.index2, 1);
+    test_sim_close(&sim);
+}
+
 static void test_status_names(void **state)
 {
     (void)state;
@@ -280,6 +326,7 @@ int main(void)
         cmocka_unit_test(test_callback_failures),
         cmocka_unit_test(test_divergence_is_reported),
         cmocka_unit_test(test_inconsistent_constraints),
+        cmocka_unit_test(test_nonfinite_callback_outputs_are_named),
         cmocka_unit_test(test_status_names),
     };
     return cmocka_run_group_tests_name("errors", tests, NULL, NULL);
