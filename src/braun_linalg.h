@@ -93,12 +93,27 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
 /* z[n] := N z = z - C^+ C z (projection onto the null space of C). */
 void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z);
 
-/* ---- small vector helpers (src/braun_vec.c) ---- */
-braun_real braun_dot(int n, const braun_real *x, const braun_real *y);
+/* ---- small vector helpers (inline: n is small and the calls are hot) ---- */
+static inline braun_real braun_dot(int n, const braun_real *x, const braun_real *y)
+{
+    braun_real s = 0;
+    for (int i = 0; i < n; i++) s += x[i] * y[i];
+    return s;
+}
+
+/* x·0 is 0 for finite x and NaN for NaN and ±Inf: one branch-free pass
+ * (vectorisable), no overflow, whatever the magnitudes. */
+static inline int braun_all_finite(int n, const braun_real *x)
+{
+    braun_real s = 0;
+    for (int i = 0; i < n; i++) s += x[i] * 0;
+    return s == 0;
+}
+
+/* (src/braun_vec.c) */
 braun_real braun_nrm2(int n, const braun_real *x);
 /* y := A x, A rows x n row-major. */
 void braun_gemv(int rows, int n, const braun_real *A, const braun_real *x,
                 braun_real *y);
-int braun_all_finite(int n, const braun_real *x);
 
 #endif

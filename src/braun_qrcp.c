@@ -43,7 +43,7 @@ static braun_real house(int len, braun_real *x, braun_real normx)
 }
 
 /* y[0..len) := (I - tau v v^T) y with v = (1, vtail[0..len-1)). */
-static void reflect(int len, const braun_real *vtail, braun_real tau,
+static inline void reflect(int len, const braun_real *vtail, braun_real tau,
                     braun_real *y)
 {
     if (tau == 0) return;

@@ -1,13 +1,6 @@
 /* Small dense vector helpers. */
 #include "braun_linalg.h"
 
-braun_real braun_dot(int n, const braun_real *x, const braun_real *y)
-{
-    braun_real s = 0;
-    for (int i = 0; i < n; i++) s += x[i] * y[i];
-    return s;
-}
-
 braun_real braun_nrm2(int n, const braun_real *x)
 {
     /* Scaled to avoid overflow/underflow of the squares (as BLAS dnrm2). */
@@ -31,11 +24,3 @@ void braun_gemv(int rows, int n, const braun_real *A, const braun_real *x,
     for (int i = 0; i < rows; i++) y[i] = braun_dot(n, A + i * n, x);
 }
 
-int braun_all_finite(int n, const braun_real *x)
-{
-    /* x·0 is 0 for finite x and NaN for NaN and ±Inf: one branch-free pass
-     * (vectorisable), no overflow, whatever the magnitudes. */
-    braun_real s = 0;
-    for (int i = 0; i < n; i++) s += x[i] * 0;
-    return s == 0;
-}
