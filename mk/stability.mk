@@ -17,8 +17,8 @@ $(BUILD)/tests/stability_float: tests/stability/test_stability.c tests/test_util
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) -DBRAUN_SINGLE -Itests $(CFLAGS_ALL) $< $(BUILD)/float/libbraun.a -lcmocka $(LDLIBS_ALL) -o $@
 
-TEST_SUITES += "tools/run-tests $(STABILITY_BIN)"
 TEST_PREREQS += $(STABILITY_BIN)
+# CORE_SUITES is part of TEST_SUITES and of the sanitizer run.
 CORE_SUITES += "tools/run-tests $(STABILITY_BIN)"
 
 .PHONY: stress
