@@ -1,0 +1,293 @@
+/*
+ * braun-compare: the comparison harness of `make compare` (docs/compare.md).
+ *
+ * Every method is driven from the same target: a braun_system with its
+ * initial state and, where one exists, a minimal-coordinate reference.
+ * The harness links SUNDIALS IDA and GSL (GPL-3); libbraun.a never does.
+ *
+ * Layers: target (cmp_target.c) -> reference (cmp_reference.c) ->
+ * methods (cmp_braun.c, cmp_baumgarte.c, cmp_ida.c, cmp_ode.c), each filling
+ * a trajectory sampled on a common output grid -> metrics (cmp_metrics.c)
+ * -> study (cmp_study.c: runs, best-of-k timing, CSV) -> report (cmp_report.c).
+ */
+#ifndef CMP_H
+#define CMP_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "braun.h"
+#include "braun_models.h"
+
+#ifdef BRAUN_SINGLE
+#error "braun-compare measures errors down to 1e-12: build it with braun_real = double"
+#endif
+
+/* ------------------------------------------------------------ targets */
+/* Where a target's reference comes from. */
+typedef enum cmp_ref_kind {
+    CMP_REF_NONE = 0,   /* no reference: trajectory errors are NaN */
+    CMP_REF_CLOSED,     /* closed form of the minimal equation (minimal_exact) */
+    CMP_REF_RK8PD,      /* GSL rk8pd on the minimal equation, rtol = atol = tol */
+    CMP_REF_TRAJ,       /* braun RK4 at a small step, tabulated and interpolated */
+    CMP_REF_POINT       /* published values at one time (Andrews at t = 0.03) */
+} cmp_ref_kind;
+
+/* A target: a system, its initial state, optionally a minimal-coordinate
+ * model (equation, closed form, lift to q, v) and an observable point. */
+typedef struct cmp_target {
+    char name[64];
+    braun_system sys;
+    double *q0, *v0;                    /* n entries each, owned */
+    /* Minimal-coordinate model (NULL builtin: none). */
+    const braun_builtin *builtin;
+    /* The point whose planar error is the paper's ε (slider end of Fig. 2,
+     * joint 3 of Fig. 7); has_point = 0 if none. */
+    int has_point;
+    const char *point_name;
+    void (*point)(const struct cmp_target *tg, const double *q, double *xy);
+    /* How the study treats it: the paper's grid, or a reduced one over
+     * [0, T_reduced] sampled every dt_out with steps scaled by h_scale. */
+    int paper;
+    double T_reduced, dt_out, h_scale;
+    /* Preferred reference when there is no minimal-coordinate model. */
+    cmp_ref_kind ref_kind;
+    double ref_t;                       /* CMP_REF_POINT: its time ... */
+    const double *ref_q;                /* ... and q there (n entries) */
+    void *scene_file;                   /* braun_scene_file *, owned */
+    int scene_point;                    /* scene point of ε, -1 if none */
+} cmp_target;
+
+/* Fill tg for a name: a built-in model, or (later) a scene file. Returns 0,
+ * or -1 with a message in err. */
+int cmp_target_find(const char *name, cmp_target *tg, char *err, size_t errsize);
+void cmp_target_free(cmp_target *tg);
+
+/* Kind of reference the target supports best: closed form, else rk8pd on the
+ * minimal equation, else the target's own (trajectory or published point). */
+cmp_ref_kind cmp_target_ref_kind(const cmp_target *tg);
+
+/* ------------------------------------------------------------ references */
+typedef struct cmp_ref cmp_ref;
+
+/* A reference evaluator: closed form (any t) or rk8pd (t non-decreasing
+ * between calls). tol: rk8pd rtol = atol (ignored for the closed form).
+ * NULL if the target has no such reference. */
+cmp_ref *cmp_ref_new(const cmp_target *tg, cmp_ref_kind kind, double tol);
+/* A trajectory reference: braun (all corrections the system supports) with
+ * fixed-step RK4 of step h from 0 to T, tabulated every dt_tab (a multiple
+ * of h) and interpolated by cubic Hermite polynomials in q (v linear).
+ * NULL if the run fails. */
+cmp_ref *cmp_ref_new_traj(const cmp_target *tg, double T, double h, double dt_tab);
+/* q, v at time t (n each); 0, 1 if the reference does not know this time
+ * (CMP_REF_POINT), or -1 if it failed. */
+int cmp_ref_eval(cmp_ref *r, double t, double *q, double *v);
+/* ∫Ė dτ from 0 to t along a trajectory reference (CMP_REF_TRAJ: libbraun's
+ * work integral, constraint work included); 0, or -1 if r has none. */
+int cmp_ref_work(cmp_ref *r, double t, double *W);
+void cmp_ref_free(cmp_ref *r);
+/* Evaluate r once on t_j = j·dt, 0 <= t_j <= T, and answer those times from
+ * the table from now on (other times: a private evaluator of the same kind
+ * and tolerance). 0, or -1 if the reference failed. */
+int cmp_ref_tabulate(cmp_ref *r, double dt, double T);
+const char *cmp_ref_kind_name(cmp_ref_kind kind);
+
+/* ------------------------------------------------------------ trajectories */
+/* States sampled by a run: on the common grid t_j = j·dt_out for the fixed-
+ * step methods and IDA; at each accepted step for the adaptive braun driver. */
+typedef struct cmp_traj {
+    int n;
+    long count, cap;
+    double *t, *q, *v;   /* count, count·n, count·n */
+} cmp_traj;
+
+int cmp_traj_init(cmp_traj *tr, int n, long cap);
+void cmp_traj_clear(cmp_traj *tr);
+void cmp_traj_free(cmp_traj *tr);
+/* Append a sample (grows the arrays if needed); 0 or -1 out of memory. */
+int cmp_traj_push(cmp_traj *tr, double t, const double *q, const double *v);
+
+/* ------------------------------------------------------------ methods */
+typedef enum cmp_method_id {
+    CMP_BRAUN = 0,       /* Eqs. 16, 17, 20: all corrections */
+    CMP_BRAUN_NOENERGY,  /* Eqs. 16, 17: position and velocity corrections */
+    CMP_BAUMGARTE,       /* ideal acceleration with -2αΦ̇ - β²Φ, RK4 */
+    CMP_IDA_GGL,         /* SUNDIALS IDA, stabilised index-2 (GGL) */
+    CMP_IDA_INDEX1,      /* SUNDIALS IDA, acceleration-level index-1 */
+    CMP_ODE_RK4,         /* minimal-coordinate equation, RK4 */
+    CMP_METHOD_COUNT
+} cmp_method_id;
+
+const char *cmp_method_name(cmp_method_id m);
+int cmp_method_from_name(const char *name); /* -1 if unknown */
+
+/* IDA's linear solver. */
+typedef enum cmp_linsol {
+    CMP_LS_AUTO = 0,   /* dense below CMP_KLU_MIN_N unknowns, KLU from there */
+    CMP_LS_DENSE,      /* SUNLinSol_Dense: LU with partial pivoting */
+    CMP_LS_KLU,        /* SUNLinSol_KLU, sparse finite-difference Jacobian */
+    CMP_LS_COD         /* the harness's rank-revealing solver (cmp_ida_cod.c) */
+} cmp_linsol;
+
+/* Unknowns from which CMP_LS_AUTO picks KLU (the paper's mechanisms have 22). */
+#define CMP_KLU_MIN_N 200
+
+/* IDA settings under investigation (docs/compare.md, "IDA"). */
+typedef struct cmp_ida_opts {
+    double alg_atol;     /* absolute tolerance of λ, μ (Newton test only); 0: atol */
+    double max_step;     /* IDASetMaxStep, 0: none */
+    cmp_linsol linsol;
+    double cod_rtol;     /* CMP_LS_COD rank tolerance relative to max|R_ii|; 0: GSL default */
+    double reg;          /* ε of the regularised constraint rows (0 = Φ - ελ); 0: none */
+    int restarts;        /* after a failed step: re-project the last good state and
+                          * restart IDA (IDAReInit) up to this many times; 0: never */
+    double restart_h0;   /* first step after a restart [s] */
+    int no_suppress;     /* 1: keep λ, μ in the error test */
+    int max_order;       /* IDASetMaxOrd, 0: default 5 */
+    double nl_conv_coef; /* IDASetNonlinConvCoef, 0: default 0.33 */
+} cmp_ida_opts;
+
+/* One run: a method, its integrator and its step size or tolerance. */
+typedef struct cmp_spec {
+    cmp_method_id method;
+    int integrator;      /* braun_method (explicit methods); -1: IDA's BDF */
+    double h;            /* fixed step; 0 for adaptive methods */
+    double rtol, atol;   /* adaptive methods and IDA; 0 for fixed-step */
+    double alpha, beta;  /* Baumgarte gains [1/s] */
+    char variant[32];    /* "" or a label such as "ab=0.3/h", "atol_alg=1e+06" */
+    cmp_ida_opts ida;
+    double T;            /* end time */
+    double dt_out;       /* output grid */
+} cmp_spec;
+
+/* Work done by a run (docs/compare.md lists what each counts per method). */
+typedef struct cmp_counts {
+    long steps, rejected, rhs_evals, jac_evals, lin_setups, lin_solves;
+    long err_fails, conv_fails;
+    long restarts;       /* IDA restarts after failures (cmp_ida_opts.restarts) */
+} cmp_counts;
+
+/* Outcome of a run. status 0: reached T; otherwise t_reached < T and
+ * status_name says why (a libbraun or IDA return flag name). */
+typedef struct cmp_outcome {
+    int status;
+    char status_name[48];
+    char detail[160];
+    double t_reached;
+    cmp_counts counts;
+} cmp_outcome;
+
+/* Integrate tg per spec, sampling into tr (cleared first). Never aborts:
+ * failures are returned in out. */
+void cmp_run(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr,
+             cmp_outcome *out);
+
+/* Per-method runners (cmp_run dispatches). */
+void cmp_run_braun(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr,
+                   cmp_outcome *out);
+void cmp_run_baumgarte(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr,
+                       cmp_outcome *out);
+void cmp_run_ida(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr,
+                 cmp_outcome *out);
+void cmp_run_ode(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr,
+                 cmp_outcome *out);
+
+/* Baumgarte: a system whose b_qv, b_vv carry the stabilisation terms
+ * (b_qv - 2αΦ̇_q - β²Φ_q, b_vv - 2αΦ_v), so that the ideal acceleration of
+ * the wrapped system (braun_eval, corrections off) is Baumgarte's. */
+typedef struct cmp_baumgarte_sys {
+    braun_system inner;
+    double alpha, beta;
+    double *phi, *b, *A; /* scratch: m, m, m·n */
+} cmp_baumgarte_sys;
+int cmp_baumgarte_wrap(cmp_baumgarte_sys *bs, const braun_system *inner,
+                       double alpha, double beta, braun_system *out);
+void cmp_baumgarte_free(cmp_baumgarte_sys *bs);
+
+/* IDA residuals, exposed for the tests. Unknowns y = [q, v, λ, μ] (GGL, N =
+ * 2n + m + p + m) or [q, v, λ] (index-1, N = 2n + m + p). */
+typedef struct cmp_dae cmp_dae;
+cmp_dae *cmp_dae_new(const cmp_target *tg, int index1);
+/* Regularise the constraint rows: each algebraic row r_k gets -ε·y_k (y_k its
+ * multiplier), a damped-least-squares version of the KKT system. */
+void cmp_dae_set_reg(cmp_dae *dae, double eps);
+void cmp_dae_free(cmp_dae *dae);
+int cmp_dae_size(const cmp_dae *dae);
+int cmp_dae_residual(cmp_dae *dae, double t, const double *y, const double *yp,
+                     double *r);
+/* Consistent y, yp from (q0, v0): q projected on Φ_q = 0, v on the velocity
+ * constraints, v' and λ from the constrained equations, μ = 0. */
+int cmp_dae_consistent(cmp_dae *dae, double t, const double *q0, const double *v0,
+                       double *y, double *yp);
+
+/* A SUNDIALS linear solver (direct, dense SUNMatrix) that solves each Newton
+ * system in the least-squares minimum-norm sense through GSL's complete
+ * orthogonal decomposition, dropping pivots below rtol·max|R_ii| (rtol <= 0:
+ * GSL's default 20(M+N)ε). Returns NULL on failure. */
+struct _generic_SUNLinearSolver;
+struct _SUNContext;
+struct _generic_SUNLinearSolver *cmp_sunlinsol_cod(int N, double rtol,
+                                                   struct _SUNContext *ctx);
+/* Rank-deficient factorizations seen by a solver from cmp_sunlinsol_cod. */
+long cmp_sunlinsol_cod_deficient(struct _generic_SUNLinearSolver *S);
+
+/* Minimum-M-norm solutions with the harness's own linear algebra (GSL SVD):
+ *   dx = M⁻¹Aᵀ (A M⁻¹ Aᵀ)⁺ r       (rows x n matrix A)
+ * and the constrained acceleration with multipliers (KKT, pseudoinverse):
+ *   M a = Q + Aᵀ λ,  A a = b. */
+int cmp_min_norm_step(int n, int rows, const double *M, const double *A,
+                      const double *r, double *dx);
+int cmp_kkt_accel(int n, int rows, const double *M, const double *Q,
+                  const double *A, const double *b, double *acc, double *lambda);
+/* σ_min/σ_max of C = A R⁻¹: how close the rows are to losing rank
+ * (0 at a kinematic singularity or with redundant rows). NaN on failure. */
+double cmp_sigma_ratio(int n, int rows, const double *M, const double *A);
+
+/* Kinematic singularities of a target with a minimal-coordinate model: scan
+ * the minimal angle over one turn, find where σ_min/σ_max of C_q has a local
+ * minimum below 1e-3, and near each such angle θ* write the minimum-norm
+ * multipliers max|λ| and the constraint force max|A_qᵀλ| at θ* + δ
+ * (δ = 1e-1 .. 1e-7). Rows: scene,theta_star,delta,sigma_ratio,lambda_max,
+ * force_max. Returns the number of singular angles found, -1 if none can
+ * be looked for. */
+int cmp_singularity_scan(const cmp_target *tg, FILE *f);
+/* σ_min/σ_max of C_q at configuration q (NaN without holonomic rows). */
+double cmp_target_sigma(const cmp_target *tg, double t, const double *q);
+
+/* ------------------------------------------------------------ metrics */
+typedef struct cmp_metrics {
+    double pos_max, pos_final;       /* ||Φ_q||_2 */
+    double vel_max, vel_final;       /* ||[Φ̇_q; Φ_v]||_2 */
+    double energy_max, energy_final; /* |Φ_e| */
+    double traj_max, traj_final;     /* ||q - q_ref||_2 (NaN without reference) */
+    double point_max, point_final;   /* planar distance of the observable point */
+    long samples;
+} cmp_metrics;
+
+/* One sample's errors, for histories (Figs. 3 and 7). */
+typedef struct cmp_sample_err {
+    double t, pos, vel, energy, traj, point;
+    double obs, obs_ref;  /* x of the observable point (Fig. 2) and its reference */
+} cmp_sample_err;
+
+typedef void (*cmp_sample_fn)(const cmp_sample_err *e, void *user);
+
+/* Metrics of a trajectory against a reference (ref may be NULL). Samples
+ * must be in non-decreasing time (rk8pd references). each, if not NULL, is
+ * called for every sample. Returns 0 or -1 (residual or reference failure). */
+int cmp_metrics_compute(const cmp_target *tg, const cmp_traj *tr, cmp_ref *ref,
+                        cmp_metrics *mt, cmp_sample_fn each, void *user);
+
+/* ------------------------------------------------------------ utilities */
+/* Sampling interval in steps: dt_out/h when that is a whole number, else 1. */
+long cmp_every(double dt_out, double h);
+/* Outcome status from a libbraun status (name without its meaning). */
+void cmp_status_from_braun(cmp_outcome *out, int st);
+/* mkdir -p; 0 or -1 (cmp_posix.c). */
+int cmp_mkdir_p(const char *path);
+/* CPU time of this process in seconds (cmp_posix.c). */
+double cmp_cpu_seconds(void);
+/* Wall clock in seconds. */
+double cmp_wall_seconds(void);
+
+#endif

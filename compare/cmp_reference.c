@@ -1,0 +1,261 @@
+/* Reference ("numerically exact") solutions, Sec. 4: the minimal-coordinate
+ * equation of a target in closed form (minimal_exact: Jacobi elliptic
+ * functions for the four-bar and the pendulum) or integrated with GSL's
+ * Prince–Dormand 8(9) pair at rtol = atol = tol, lifted to q, v by
+ * minimal_to_state. GSL is GPL-3 and is linked into the harness only. */
+#include <math.h>
+#include <stdlib.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+
+#include "cmp.h"
+
+#define REF_DIM_MAX 4
+
+struct cmp_ref {
+    const cmp_target *tg;
+    cmp_ref_kind kind;
+    double tol;
+    /* Tabulated on t_j = j·dt (cmp_ref_tabulate); other times go to a
+     * private evaluator, restarted if asked to go back in time. */
+    double dt;
+    long count;
+    double *table;     /* count x width: q, v (and W for CMP_REF_TRAJ) */
+    int width;
+    cmp_ref *offgrid;
+    gsl_odeiv2_system sys;
+    gsl_odeiv2_driver *drv;
+    double t, y[REF_DIM_MAX];
+    int failed;
+};
+
+/* Cubic Hermite interpolation of q (nodes q, v every dt) and linear of v. */
+static int traj_eval(cmp_ref *r, double t, double *q, double *v)
+{
+    const int n = r->tg->sys.n;
+    const double x = t / r->dt;
+    long j = (long)floor(x);
+    if (j < 0 || x > (double)(r->count - 1) * (1.0 + 1e-12)) return -1;
+    if (j >= r->count - 1) j = r->count - 2;
+    const double s = x - (double)j, h = r->dt;
+    const double *a = r->table + (size_t)j * (size_t)r->width, *b = a + r->width;
+    const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
+    const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+    for (int i = 0; i < n; i++) {
+        q[i] = h00 * a[i] + h10 * h * a[n + i] + h01 * b[i] + h11 * h * b[n + i];
+        v[i] = (1 - s) * a[n + i] + s * b[n + i];
+    }
+    return 0;
+}
+
+typedef struct traj_sink {
+    cmp_ref *r;
+    long every, calls;
+} traj_sink;
+
+static int traj_out(const braun_data *d, void *user)
+{
+    traj_sink *k = user;
+    const int n = k->r->tg->sys.n;
+    if (k->calls >= k->r->count) return 1;
+    double *row = k->r->table + (size_t)k->calls * (size_t)k->r->width;
+    for (int i = 0; i < n; i++) {
+        row[i] = (double)d->q[i];
+        row[n + i] = (double)d->v[i];
+    }
+    /* ∫Ė dτ along the reference, with the constraint work libbraun counts. */
+    row[2 * n] = (double)d->work_in;
+    k->calls++;
+    return 0;
+}
+
+cmp_ref *cmp_ref_new_traj(const cmp_target *tg, double T, double h, double dt_tab)
+{
+    const int n = tg->sys.n;
+    const long every = cmp_every(dt_tab, h);
+    cmp_ref *r = calloc(1, sizeof *r);
+    braun_model model;
+    braun_data d;
+    void *buf = NULL;
+    if (!r) return NULL;
+    r->tg = tg;
+    r->kind = CMP_REF_TRAJ;
+    r->tol = h;
+    r->dt = (double)every * h;
+    r->count = (long)floor(T / r->dt + 0.5) + 1;
+    r->width = 2 * n + 1;
+    r->table = malloc((size_t)r->count * (size_t)r->width * sizeof(double));
+    int st = r->table ? braun_model_init(&model, &tg->sys) : -1;
+    if (!st) {
+        size_t bytes = braun_data_size(&model);
+        buf = malloc(bytes);
+        st = buf ? braun_data_init(&d, &model, buf, bytes) : -1;
+    }
+    if (!st) st = braun_set_state(&d, 0, tg->q0, tg->v0);
+    traj_sink k = {r, every, 0};
+    if (!st) st = braun_integrate(&d, BRAUN_RK4, h, T, every, traj_out, &k);
+    free(buf);
+    if (st || k.calls != r->count) {
+        cmp_ref_free(r);
+        return NULL;
+    }
+    return r;
+}
+
+/* GSL calls this: the model's minimal right-hand side. */
+static int minimal_rhs(double t, const double y[], double dydt[], void *params)
+{
+    const cmp_target *tg = params;
+    tg->builtin->minimal_rhs(t, y, dydt, tg->builtin->sys.user);
+    for (int i = 0; i < tg->builtin->minimal_dim; i++)
+        if (!isfinite(dydt[i])) return GSL_EBADFUNC;
+    return GSL_SUCCESS;
+}
+
+cmp_ref *cmp_ref_new(const cmp_target *tg, cmp_ref_kind kind, double tol)
+{
+    const braun_builtin *b = tg->builtin;
+    if (kind == CMP_REF_POINT) {
+        if (!tg->ref_q) return NULL;
+        cmp_ref *r = calloc(1, sizeof *r);
+        if (r) {
+            r->tg = tg;
+            r->kind = kind;
+        }
+        return r;
+    }
+    if (!b || !b->minimal_to_state || b->minimal_dim > REF_DIM_MAX) return NULL;
+    if (kind == CMP_REF_CLOSED && !b->minimal_exact) return NULL;
+    if (kind == CMP_REF_RK8PD && !b->minimal_rhs) return NULL;
+    if (kind != CMP_REF_CLOSED && kind != CMP_REF_RK8PD) return NULL;
+    cmp_ref *r = calloc(1, sizeof *r);
+    if (!r) return NULL;
+    r->tg = tg;
+    r->kind = kind;
+    r->tol = tol;
+    for (int i = 0; i < b->minimal_dim; i++) r->y[i] = b->minimal_y0[i];
+    if (kind == CMP_REF_RK8PD) {
+        /* Errors are returned, never aborted on. */
+        gsl_set_error_handler_off();
+        r->sys.function = minimal_rhs;
+        r->sys.jacobian = NULL;
+        r->sys.dimension = (size_t)b->minimal_dim;
+        r->sys.params = (void *)tg;
+        r->drv = gsl_odeiv2_driver_alloc_y_new(&r->sys, gsl_odeiv2_step_rk8pd, 1e-6, tol,
+                                               tol);
+        if (!r->drv) {
+            free(r);
+            return NULL;
+        }
+    }
+    return r;
+}
+
+int cmp_ref_eval(cmp_ref *r, double t, double *q, double *v)
+{
+    const braun_builtin *b = r->tg->builtin;
+    double y[REF_DIM_MAX];
+    if (r->failed || !isfinite(t)) return -1;
+    if (r->kind == CMP_REF_POINT) {
+        const cmp_target *tg = r->tg;
+        if (fabs(t - tg->ref_t) > 1e-12 * fmax(1.0, fabs(tg->ref_t))) return 1;
+        for (int i = 0; i < tg->sys.n; i++) {
+            q[i] = tg->ref_q[i];
+            v[i] = NAN;
+        }
+        return 0;
+    }
+    if (r->kind == CMP_REF_TRAJ) return traj_eval(r, t, q, v);
+    if (r->table) {
+        const double x = t / r->dt;
+        const long j = (long)floor(x + 0.5);
+        if (j >= 0 && j < r->count && fabs(x - (double)j) <= 1e-9 * (1.0 + fabs(x))) {
+            const int n = r->tg->sys.n;
+            const double *row = r->table + (size_t)j * (size_t)r->width;
+            for (int i = 0; i < n; i++) {
+                q[i] = row[i];
+                v[i] = row[n + i];
+            }
+            return 0;
+        }
+        if (r->offgrid && r->kind == CMP_REF_RK8PD && t < r->offgrid->t) {
+            cmp_ref_free(r->offgrid);
+            r->offgrid = NULL;
+        }
+        if (!r->offgrid) r->offgrid = cmp_ref_new(r->tg, r->kind, r->tol);
+        return r->offgrid ? cmp_ref_eval(r->offgrid, t, q, v) : -1;
+    }
+    if (r->kind == CMP_REF_CLOSED) {
+        if (b->minimal_exact(t, y, b->sys.user) < 0) return -1;
+    } else {
+        if (t < r->t) return -1;
+        if (t > r->t) {
+            /* The driver lands exactly on t; successive calls continue. */
+            int st = gsl_odeiv2_driver_apply(r->drv, &r->t, t, r->y);
+            if (st != GSL_SUCCESS) {
+                r->failed = 1;
+                return -1;
+            }
+        }
+        for (int i = 0; i < b->minimal_dim; i++) y[i] = r->y[i];
+    }
+    b->minimal_to_state(y, q, v, b->sys.user);
+    return 0;
+}
+
+int cmp_ref_tabulate(cmp_ref *r, double dt, double T)
+{
+    /* Trajectory and point references are tables already. */
+    if (r->kind == CMP_REF_TRAJ || r->kind == CMP_REF_POINT) return 0;
+    const int n = r->tg->sys.n;
+    const long count = (long)floor(T / dt + 0.5) + 1;
+    double *table = malloc((size_t)count * 2 * (size_t)n * sizeof(double));
+    if (!table) return -1;
+    for (long j = 0; j < count; j++) {
+        double *row = table + (size_t)j * 2 * (size_t)n;
+        if (cmp_ref_eval(r, (double)j * dt, row, row + n)) {
+            free(table);
+            return -1;
+        }
+    }
+    r->table = table;
+    r->width = 2 * n;
+    r->dt = dt;
+    r->count = count;
+    return 0;
+}
+
+int cmp_ref_work(cmp_ref *r, double t, double *W)
+{
+    if (!r || r->kind != CMP_REF_TRAJ || !r->table) return -1;
+    const int n = r->tg->sys.n;
+    const double x = t / r->dt;
+    long j = (long)floor(x);
+    if (j < 0 || x > (double)(r->count - 1) * (1.0 + 1e-12)) return -1;
+    if (j >= r->count - 1) j = r->count - 2;
+    const double s = x - (double)j;
+    const double *a = r->table + (size_t)j * (size_t)r->width, *b = a + r->width;
+    *W = (1 - s) * a[2 * n] + s * b[2 * n];
+    return 0;
+}
+
+void cmp_ref_free(cmp_ref *r)
+{
+    if (!r) return;
+    free(r->table);
+    cmp_ref_free(r->offgrid);
+    if (r->drv) gsl_odeiv2_driver_free(r->drv);
+    free(r);
+}
+
+const char *cmp_ref_kind_name(cmp_ref_kind kind)
+{
+    switch (kind) {
+    case CMP_REF_CLOSED: return "closed-form";
+    case CMP_REF_RK8PD: return "gsl-rk8pd";
+    case CMP_REF_TRAJ: return "braun-rk4-fine";
+    case CMP_REF_POINT: return "published-point";
+    default: return "none";
+    }
+}

@@ -1,0 +1,35 @@
+/* The study driver (cmp_study.c) and the report (cmp_report.c). */
+#ifndef CMP_STUDY_H
+#define CMP_STUDY_H
+
+#include "cmp.h"
+
+#define CMP_MAX_SCENES 32
+
+typedef struct cmp_study_opts {
+    const char *study;                     /* "default" or "quick" */
+    const char *scenes[CMP_MAX_SCENES];
+    int nscenes;
+    int methods[CMP_METHOD_COUNT];         /* 1: run this method */
+    int reps;                              /* k of best-of-k CPU time */
+    int probe;                             /* 1: the IDA settings probe too */
+    const char *out_dir;
+} cmp_study_opts;
+
+/* The scenes a study runs when none are named (space separated). */
+const char *cmp_default_scenes(const char *study);
+
+/* Run the study into out_dir/{runs,history,references,ida_probe}.csv with a
+ * progress line per run on stderr. 0 or 1. */
+int cmp_study_run(const cmp_study_opts *o);
+
+/* Column lists (docs/compare.md documents each column). */
+extern const char *const cmp_runs_header;
+extern const char *const cmp_history_header;
+extern const char *const cmp_references_header;
+extern const char *const cmp_singular_header;
+
+/* Write dir/report.md from the CSV files in dir. 0 or 1. */
+int cmp_report_write(const char *dir);
+
+#endif

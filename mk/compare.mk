@@ -1,0 +1,74 @@
+# make compare: libbraun against SUNDIALS IDA, Baumgarte and exact references
+# (docs/compare.md). The harness links SUNDIALS and GSL (GPL-3); libbraun.a
+# never does.
+#
+#   make compare                  the default study -> results/compare/
+#   make compare SCENES="four-bar" METHODS="braun ida-ggl"
+#   make compare-quick            a short version -> results/compare-quick/
+# Options: COMPARE_JOBS (parallel processes, default 2), COMPARE_REPS (best of
+# K CPU times, default 3), COMPARE_OUT.
+
+COMPARE_DEPS := libsundials-dev libgsl-dev gnuplot-nox libsuitesparse-dev
+COMPARE_SRC := $(sort $(wildcard compare/*.c))
+COMPARE_OBJ := $(COMPARE_SRC:%.c=$(BUILD)/obj/%.o)
+# Everything but main(), for the harness tests.
+COMPARE_LIB_OBJ := $(filter-out $(BUILD)/obj/compare/cmp_main.o,$(COMPARE_OBJ))
+COMPARE_HDR := $(wildcard compare/*.h)
+COMPARE_CPPFLAGS := -Icompare -I/usr/include/suitesparse
+COMPARE_LDLIBS := -lsundials_ida -lsundials_sunlinsolklu -lsundials_sunlinsoldense \
+	-lsundials_sunmatrixsparse -lsundials_sunmatrixdense -lsundials_nvecserial \
+	-lklu -lgsl -lgslcblas
+COMPARE_BIN := $(BUILD)/bin/braun-compare
+COMPARE_TEST := $(BUILD)/tests/compare/test_compare
+COMPARE_OUT ?= results/compare
+COMPARE_JOBS ?= 2
+COMPARE_REPS ?= 3
+SCENES ?=
+METHODS ?=
+
+.PHONY: compare compare-quick deps-compare compare-bin
+
+deps-compare:
+	@tools/ensure-deps $(COMPARE_DEPS)
+
+compare-bin: $(COMPARE_BIN)
+
+$(BUILD)/obj/compare/%.o: compare/%.c $(COMPARE_HDR) $(HEADERS) | deps-compare
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(CFLAGS_ALL) -c $< -o $@
+
+$(COMPARE_BIN): $(COMPARE_OBJ) $(BUILD)/libbraun.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) $(COMPARE_OBJ) $(COMPARE_PRE_LIBS) $(BUILD)/libbraun.a $(COMPARE_LDLIBS) \
+	    $(LDLIBS_ALL) -o $@
+
+compare: deps-compare
+	@$(MAKE) --no-print-directory $(COMPARE_BIN)
+	@sh compare/run.sh --bin $(COMPARE_BIN) --out $(COMPARE_OUT) --study default \
+	    --jobs $(COMPARE_JOBS) --reps $(COMPARE_REPS) --scenes "$(SCENES)" --methods "$(METHODS)"
+
+compare-quick: deps-compare
+	@$(MAKE) --no-print-directory $(COMPARE_BIN)
+	@sh compare/run.sh --bin $(COMPARE_BIN) --out results/compare-quick --study quick \
+	    --jobs $(COMPARE_JOBS) --reps $(COMPARE_REPS) --scenes "$(SCENES)" --methods "$(METHODS)"
+
+# ---------------------------------------------------------------- tests
+# Harness tests need SUNDIALS and GSL, so they are not tests/test_*.c (those
+# link libbraun.a and cmocka only).
+$(COMPARE_TEST): tests/compare/test_compare.c tests/test_util.h $(COMPARE_LIB_OBJ) \
+		$(BUILD)/libbraun.a | deps-test deps-compare
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) -Itests $(CFLAGS_ALL) $< $(COMPARE_LIB_OBJ) \
+	    $(COMPARE_PRE_LIBS) $(BUILD)/libbraun.a -lcmocka $(COMPARE_LDLIBS) $(LDLIBS_ALL) -o $@
+
+TEST_SUITES += "tools/run-tests $(COMPARE_TEST)" "sh tests/compare/quick.sh $(COMPARE_BIN)"
+TEST_PREREQS += $(COMPARE_TEST) $(COMPARE_BIN)
+
+# Scenes (mk/scenes.mk): scene files and Andrews' mechanism become targets.
+ifneq ($(wildcard include/braun_scene.h mk/scenes.mk),)
+COMPARE_CPPFLAGS += -DCMP_HAVE_SCENES
+COMPARE_PRE_LIBS := $(BUILD)/libbraun_scene.a
+COMPARE_LDLIBS += -ljansson
+$(COMPARE_BIN) $(COMPARE_TEST): $(BUILD)/libbraun_scene.a
+$(COMPARE_OBJ): | deps-scene
+endif

@@ -1,0 +1,82 @@
+#!/bin/sh
+# `make compare-quick` produces well-formed CSV files, plots and a report.
+# Runs the quick study (compare/run.sh --study quick) into a temporary
+# directory and checks what it wrote.
+# Usage: sh tests/compare/quick.sh build/bin/braun-compare
+# Prints "ok - NAME" / "not ok - NAME" and a closing "N passed, M failed".
+BIN=${1:?usage: sh tests/compare/quick.sh path/to/braun-compare}
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/braun-compare-quick.XXXXXX") || exit 1
+trap 'rm -rf "$TMP"' EXIT INT TERM
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); echo "ok - $1"; }
+not_ok() { failed=$((failed + 1)); echo "not ok - $1"; [ -z "${2:-}" ] || echo "#   $2"; }
+check() { # check NAME COMMAND...
+    name=$1; shift
+    if "$@"; then ok "$name"; else not_ok "$name"; fi
+}
+
+out="$TMP/out"
+sh compare/run.sh --bin "$BIN" --out "$out" --study quick --reps 1 > "$TMP/log" 2>&1; rc=$?
+check "compare-quick exits 0" [ "$rc" -eq 0 ]
+[ "$rc" -eq 0 ] || sed 's/^/#   /' "$TMP/log" | tail -n 20
+check "progress lines on stderr" grep -q '^\[p[0-9]\] \[ *1/' "$TMP/log"
+
+# well_formed FILE HEADER: the header as given and every row with its field count.
+well_formed() {
+    [ -s "$1" ] || return 1
+    [ "$(head -n 1 "$1")" = "$2" ] || { echo "#   header of $1: $(head -n 1 "$1")"; return 1; }
+    awk -F, -v n="$(printf '%s' "$2" | awk -F, '{ print NF }')" \
+        'NF != n { print "#   " FILENAME ":" NR ": " NF " fields"; bad = 1 } END { exit bad }' "$1"
+}
+runs_hdr="scene,T,method,integrator,variant,h,rtol,atol,alpha,beta,status,t_reached,cpu_s,cpu_s_max,reps,steps,rejected,rhs_evals,jac_evals,lin_setups,lin_solves,err_test_fails,conv_fails,restarts,pos_max,pos_final,vel_max,vel_final,energy_max,energy_final,traj_max,traj_final,point_max,point_final,samples,sigma_end,reference,detail"
+check "runs.csv well formed" well_formed "$out/runs.csv" "$runs_hdr"
+check "ida_probe.csv well formed" well_formed "$out/ida_probe.csv" "$runs_hdr"
+check "history.csv well formed" well_formed "$out/history.csv" \
+    "scene,T,method,integrator,variant,h,rtol,t,pos,vel,energy,traj,point,obs,obs_ref"
+check "references.csv well formed" well_formed "$out/references.csv" \
+    "scene,T,reference,tol,compared_with,tol2,max_q_diff,final_q_diff,max_point_diff,note"
+check "singular.csv well formed" well_formed "$out/singular.csv" \
+    "scene,theta_star,delta,sigma_ratio,lambda_max,force_max"
+
+# Numbers where numbers belong (nan allowed), a status everywhere.
+numeric() {
+    awk -F, 'NR > 1 {
+        for (i = 1; i <= NF; i++) if (i == 2 || (i >= 6 && i <= 10) || (i >= 12 && i <= 36)) {
+            if ($i !~ /^-?(nan|inf|[0-9.]+([eE][-+]?[0-9]+)?)$/) { print "#   row " NR " col " i ": " $i; bad = 1 }
+        }
+        if ($11 == "") { print "#   row " NR ": empty status"; bad = 1 }
+    } END { exit bad }' "$1"
+}
+check "runs.csv fields are numbers" numeric "$out/runs.csv"
+for m in braun braun-noenergy baumgarte ida-ggl ida-index1 ode-rk4; do
+    check "runs.csv has $m on both scenes" sh -c \
+        "[ \$(awk -F, -v m=$m 'NR > 1 && \$3 == m { print \$1 }' '$out/runs.csv' | sort -u | wc -l) -eq 2 ]"
+done
+check "every fixed-step RK4 braun run reached T" sh -c \
+    "awk -F, 'NR > 1 && \$3 == \"braun\" && \$4 == \"rk4\" && \$11 != \"ok\" { bad = 1 } END { exit bad }' '$out/runs.csv'"
+check "failed runs keep their row and time reached" sh -c \
+    "awk -F, 'FNR > 1 && \$11 != \"ok\" && !(\$12 + 0 < \$2 + 0) { bad = 1 } END { exit bad }' '$out/runs.csv' '$out/ida_probe.csv'"
+check "braun RK4 at h = 0.01 is accurate on the four-bar" sh -c \
+    "awk -F, 'NR > 1 && \$1 == \"four-bar\" && \$3 == \"braun\" && \$4 == \"rk4\" && \$6 == 0.01 { f = 1; if (!(\$31 < 1e-3)) bad = 1 } END { exit bad || !f }' '$out/runs.csv'"
+
+# Plots: PNG and SVG of every kind.
+for sc in four-bar slider-crank; do
+    for kind in wp steps history ida; do
+        f="$out/${kind}_${sc}_20"
+        check "$kind plot of $sc is a PNG" sh -c "[ \"\$(head -c 8 '$f.png' | od -An -tx1 | tr -d ' \n')\" = 89504e470d0a1a0a ]"
+        check "$kind plot of $sc is an SVG" grep -q "<svg" "$f.svg"
+    done
+done
+check "slider plot (Fig. 2)" sh -c "[ -s '$out/slider_slider-crank.png' ] && grep -q '<svg' '$out/slider_slider-crank.svg'"
+
+# The report embeds the plots and states verdicts.
+check "report.md written" [ -s "$out/report.md" ]
+check "report embeds every PNG" sh -c \
+    "for p in '$out'/*.png; do grep -q \"(\$(basename \"\$p\"))\" '$out/report.md' || exit 1; done"
+check "report has the claims table" grep -q "^## The paper's claims" "$out/report.md"
+check "report has the IDA section" grep -q "^## IDA: best achievable error" "$out/report.md"
+check "report states verdicts" grep -q "claims confirmed, [0-9]* refuted" "$out/report.md"
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
