@@ -4,22 +4,7 @@
 #include "test_util.h"
 #include "test_systems.h"
 
-void *__real_malloc(size_t size);
-void *__real_calloc(size_t n, size_t size);
-void *__real_realloc(void *p, size_t size);
-void __real_free(void *p);
-void *__wrap_malloc(size_t size);
-void *__wrap_calloc(size_t n, size_t size);
-void *__wrap_realloc(void *p, size_t size);
-void __wrap_free(void *p);
-
-/* volatile: GCC assumes malloc() touches no program globals. */
-static volatile long heap_calls;
-
-void *__wrap_malloc(size_t size) { heap_calls++; return __real_malloc(size); }
-void *__wrap_calloc(size_t n, size_t size) { heap_calls++; return __real_calloc(n, size); }
-void *__wrap_realloc(void *p, size_t size) { heap_calls++; return __real_realloc(p, size); }
-void __wrap_free(void *p) { heap_calls++; __real_free(p); }
+#include "heap_count.h"
 
 static void run_counted(const braun_system *s, const double *q0, const double *v0,
                         braun_discretization disc)

@@ -6,21 +6,7 @@
 #include "test_util.h"
 #include "braun_scene.h"
 
-void *__real_malloc(size_t size);
-void *__real_calloc(size_t n, size_t size);
-void *__real_realloc(void *p, size_t size);
-void __real_free(void *p);
-void *__wrap_malloc(size_t size);
-void *__wrap_calloc(size_t n, size_t size);
-void *__wrap_realloc(void *p, size_t size);
-void __wrap_free(void *p);
-
-static volatile long heap_calls;
-
-void *__wrap_malloc(size_t size) { heap_calls++; return __real_malloc(size); }
-void *__wrap_calloc(size_t n, size_t size) { heap_calls++; return __real_calloc(n, size); }
-void *__wrap_realloc(void *p, size_t size) { heap_calls++; return __real_realloc(p, size); }
-void __wrap_free(void *p) { heap_calls++; __real_free(p); }
+#include "heap_count.h"
 
 static void test_no_heap_in_scene_steps(void **state)
 {
