@@ -11,6 +11,7 @@ void braun_chol_bind(braun_chol *c, int n, braun_real *reals, int *ints)
     c->dinv = reals + (size_t)n * (size_t)n;
     c->first = ints;
     c->last = ints + n;
+    c->diagonal = 0;
 }
 
 int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
@@ -64,35 +65,49 @@ int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
         for (i = 0; i < j && R[i * n + j] == 0; i++) {}
         c->first[j] = i;
     }
+    c->diagonal = 1;
     for (i = 0; i < n; i++) {
         for (j = n - 1; j > i && R[i * n + j] == 0; j--) {}
         c->last[i] = j;
+        if (j != i) c->diagonal = 0;
     }
     return BRAUN_OK;
 }
 
-void braun_chol_solve_rt(const braun_chol *c, braun_real *x)
+void braun_chol_solve_rt_to(const braun_chol *c, const braun_real *b, braun_real *x)
 {
     /* R^T is lower triangular: (R^T)_ik = R_ki, nonzero for k >= first[i]. */
     const int n = BRAUN_N(c->n);
     const braun_real *R = c->R;
+    if (c->diagonal) {
+        for (int i = 0; i < n; i++) x[i] = b[i] * c->dinv[i];
+        return;
+    }
     for (int i = 0; i < n; i++) {
-        braun_real s = x[i];
+        braun_real s = b[i];
         for (int k = c->first[i]; k < i; k++) s -= R[k * n + i] * x[k];
         x[i] = s * c->dinv[i];
     }
 }
 
-void braun_chol_solve_r(const braun_chol *c, braun_real *x)
+void braun_chol_solve_r_to(const braun_chol *c, const braun_real *b, braun_real *x)
 {
     const int n = BRAUN_N(c->n);
+    if (c->diagonal) {
+        for (int i = 0; i < n; i++) x[i] = b[i] * c->dinv[i];
+        return;
+    }
     for (int i = n - 1; i >= 0; i--) {
         const braun_real *row = c->R + (size_t)i * (size_t)n;
-        braun_real s = x[i];
+        braun_real s = b[i];
         for (int k = i + 1; k <= c->last[i]; k++) s -= row[k] * x[k];
         x[i] = s * c->dinv[i];
     }
 }
+
+void braun_chol_solve_rt(const braun_chol *c, braun_real *x) { braun_chol_solve_rt_to(c, x, x); }
+
+void braun_chol_solve_r(const braun_chol *c, braun_real *x) { braun_chol_solve_r_to(c, x, x); }
 
 void braun_chol_mul_r(const braun_chol *c, const braun_real *x, braun_real *y)
 {

@@ -40,10 +40,8 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
     /* a = M^-1 Q is kept in weighted form atil = R^-T Q (a = R^-1 atil). */
     st = braun__callback(d, s->forces(t, q, v, pv->Q, s->user), "forces", t);
     if (st) return st;
-    for (int i = 0; i < n; i++) pv->atil[i] = pv->Q[i];
-    braun_chol_solve_rt(&pv->chol, pv->atil);
+    braun_chol_solve_rt_to(&pv->chol, pv->Q, pv->atil);
 
-    for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i];
     if (rows > 0) {
         const int wphi = (want & BRAUN_WANT_PHI) != 0;
         if (m > 0) {
@@ -70,9 +68,7 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
         braun_real *C = pv->fv.a;
         for (int i = 0; i < rows; i++) {
             braun_real *ci = C + (size_t)i * (size_t)n;
-            const braun_real *ai = pv->A + (size_t)i * (size_t)n;
-            for (int j = 0; j < n; j++) ci[j] = ai[j];
-            braun_chol_solve_rt(&pv->chol, ci);
+            braun_chol_solve_rt_to(&pv->chol, pv->A + (size_t)i * (size_t)n, ci);
             /* Residual of Eq. 10 without corrections: b_v - C_v atil. */
             pv->bv[i] -= braun_dot(n, ci, pv->atil);
         }
@@ -87,7 +83,9 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
         if (rank < rows) d->stats.rank_deficient++;
         /* Ideal constraint force, weighted: u = C_v^+ (b_v - C_v atil) (Eq. 11). */
         braun_qrcp_pinv_apply(&pv->fv, pv->bv, pv->u);
-        for (int i = 0; i < n; i++) pv->z[i] += pv->u[i];
+        for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i] + pv->u[i];
+    } else {
+        for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i];
     }
     /* NaN and Inf propagate through every operation above, so one check of
      * the results covers all callback outputs; only on failure are they
@@ -96,10 +94,7 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
         ((want & BRAUN_WANT_PHI) && rows > 0 &&
          (!braun_all_finite(rows, pv->ev) || !braun_all_finite(m, pv->phi))))
         return nonfinite_culprit(d, t, want);
-    if (vdot) {
-        for (int i = 0; i < n; i++) vdot[i] = pv->z[i];
-        braun_chol_solve_r(&pv->chol, vdot);
-    }
+    if (vdot) braun_chol_solve_r_to(&pv->chol, pv->z, vdot);
     return BRAUN_OK;
 }
 

@@ -33,6 +33,7 @@ typedef struct braun_chol {
     braun_real *dinv; /* n: 1 / R_ii */
     int *first;       /* n: first nonzero row of column j (envelope) */
     int *last;        /* n: last nonzero column of row i */
+    int diagonal;     /* R is diagonal: the solves are one scaling */
 } braun_chol;
 
 /* Reals: n*n + n; ints: 2n. */
@@ -50,6 +51,9 @@ int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
 void braun_chol_solve_rt(const braun_chol *c, braun_real *x);
 /* x := R^-1 x (back substitution). */
 void braun_chol_solve_r(const braun_chol *c, braun_real *x);
+/* x := R^-T b and x := R^-1 b (x may be b): the solves without a copy. */
+void braun_chol_solve_rt_to(const braun_chol *c, const braun_real *b, braun_real *x);
+void braun_chol_solve_r_to(const braun_chol *c, const braun_real *b, braun_real *x);
 /* y := R x (y and x distinct). */
 void braun_chol_mul_r(const braun_chol *c, const braun_real *x, braun_real *y);
 

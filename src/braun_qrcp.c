@@ -101,8 +101,9 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
         }
         braun_real *col = a + (size_t)k * (size_t)n + k;
         /* The pivot's norm is recomputed exactly: the rank decision must not
-         * rest on a downdated value. */
-        const braun_real pivot = braun_sqrt(sumsq(n - k, col));
+         * rest on a downdated value (at k = 0 the initial norms are exact:
+         * the same sum in the same order). */
+        const braun_real pivot = braun_sqrt(k == 0 ? norm2[0] : sumsq(n - k, col));
         if (k == 0) r00 = pivot;
         /* Rank decision relative to the largest pivot (≈ ||C||_2). */
         if (pivot == 0 || pivot <= tol * r00) break;

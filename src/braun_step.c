@@ -20,12 +20,21 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         const braun_real *ys = y0;
         if (s > 0) {
             braun_real *w = pv->ys;
-            for (int i = 0; i < N; i++) w[i] = y0[i];
+            int started = 0;
             for (int j = 0; j < s; j++) {
                 const braun_real a = (braun_real)tb->a[s][j] * h;
                 if (a == 0) continue;
-                for (int i = 0; i < N; i++) w[i] += a * pv->k[j][i];
+                const braun_real *kj = pv->k[j];
+                if (!started) {
+                    /* the first term writes w = y0 + a·k_j: no copy pass */
+                    for (int i = 0; i < N; i++) w[i] = y0[i] + a * kj[i];
+                    started = 1;
+                } else {
+                    for (int i = 0; i < N; i++) w[i] += a * kj[i];
+                }
             }
+            if (!started)
+                for (int i = 0; i < N; i++) w[i] = y0[i];
             ys = w;
             /* A stage state that overflowed means the step diverged: say so,
              * rather than let a callback report the NaN it was handed. */
@@ -62,7 +71,8 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     for (int s = 0; s < tb->stages; s++) {
         const braun_real b = (braun_real)tb->b[s] * h;
         if (b == 0) continue;
-        for (int i = 0; i < N; i++) y1[i] += b * pv->k[s][i];
+        const braun_real *ks = pv->k[s];
+        for (int i = 0; i < N; i++) y1[i] += b * ks[i];
     }
     if (yerr) {
         for (int i = 0; i < N; i++) yerr[i] = 0;

@@ -1,0 +1,211 @@
+/* The measured work of one target: a workspace per configuration, blocks of
+ * steps or right-hand sides from fixed states. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench.h"
+
+struct bench_run {
+    const bench_target *tg;
+    long steps;
+    int has[BENCH_ITEMS];
+    braun_system free_sys;         /* same bodies, no constraint rows */
+    braun_model model[BENCH_ITEMS];
+    braun_data data[BENCH_ITEMS];
+    void *buf[BENCH_ITEMS];
+    /* States at which the right-hand sides are evaluated: the start of
+     * every step of the fully corrected run (t, q, v, ∫Ė), recorded on
+     * first use so that a count of the step items never runs it. */
+    braun_real *rec;
+    int rec_done;
+    braun_real *qdot, *vdot;
+    /* Floor: state, and recorded states for its right-hand side. */
+    double t, y[4];
+    double *yrec;
+    int yrec_done;
+    double dydt[4];
+};
+
+/* Which workspace an item uses (the right-hand sides have their own). */
+static int uses_data(bench_item it)
+{
+    return it != BENCH_STEP_FLOOR && it != BENCH_RHS_FLOOR;
+}
+
+bench_run *bench_run_new(const bench_target *tg, long steps, char *err, size_t errsize)
+{
+    const int n = tg->sys.n;
+    bench_run *r = calloc(1, sizeof *r);
+    if (!r) goto oom;
+    r->tg = tg;
+    r->steps = steps;
+    r->free_sys = tg->sys;
+    r->free_sys.m = r->free_sys.p = 0;
+    r->free_sys.holonomic = NULL;
+    r->free_sys.nonholonomic = NULL;
+    r->free_sys.flags &= ~(unsigned)BRAUN_CONSTRAINT_WORK;
+    for (int i = 0; i < BENCH_ITEMS; i++) {
+        bench_item it = (bench_item)i;
+        r->has[i] = uses_data(it) || tg->minimal != NULL;
+        if (!uses_data(it)) continue;
+        const braun_system *sys = it == BENCH_STEP_FREE ? &r->free_sys : &tg->sys;
+        int st = braun_model_init(&r->model[i], sys);
+        if (st && it == BENCH_STEP_FREE) {
+            /* A build with compile-time sizes (BRAUN_FIXED_N/ROWS) refuses
+             * m = p = 0: no free baseline there. */
+            r->has[i] = 0;
+            continue;
+        }
+        if (st) {
+            snprintf(err, errsize, "%s: braun_model_init: %s", tg->name, braun_status_str(st));
+            bench_run_free(r);
+            return NULL;
+        }
+        r->model[i].opt.corrections = it == BENCH_STEP_FREE ? 0u : bench_item_corrections(tg, it);
+        size_t bytes = braun_data_size(&r->model[i]);
+        r->buf[i] = malloc(bytes);
+        if (!r->buf[i]) goto oom;
+        st = braun_data_init(&r->data[i], &r->model[i], r->buf[i], bytes);
+        if (!st) st = braun_set_state(&r->data[i], 0, tg->q0, tg->v0);
+        if (st) {
+            snprintf(err, errsize, "%s: %s: %s", tg->name, bench_item_name(it),
+                     braun_status_str(st));
+            bench_run_free(r);
+            return NULL;
+        }
+    }
+    r->rec = malloc((size_t)steps * (size_t)(2 * n + 2) * sizeof *r->rec);
+    r->qdot = malloc(2 * (size_t)n * sizeof *r->qdot);
+    r->yrec = malloc((size_t)steps * 3 * sizeof *r->yrec);
+    if (!r->rec || !r->qdot || !r->yrec) goto oom;
+    r->vdot = r->qdot + n;
+    return r;
+oom:
+    snprintf(err, errsize, "out of memory");
+    bench_run_free(r);
+    return NULL;
+}
+
+void bench_run_free(bench_run *r)
+{
+    if (!r) return;
+    for (int i = 0; i < BENCH_ITEMS; i++) free(r->buf[i]);
+    free(r->rec);
+    free(r->qdot);
+    free(r->yrec);
+    free(r);
+}
+
+int bench_run_has(const bench_run *r, bench_item it)
+{
+    return (unsigned)it < BENCH_ITEMS && r->has[it];
+}
+
+/* The corrected run's states, one per step start. */
+static void record_states(bench_run *r)
+{
+    const int n = r->tg->sys.n, w = 2 * n + 2;
+    braun_data *d = &r->data[BENCH_STEP_ALL];
+    braun_set_state(d, 0, r->tg->q0, r->tg->v0);
+    for (long s = 0; s < r->steps; s++) {
+        braun_real *x = r->rec + (size_t)s * (size_t)w;
+        x[0] = d->t;
+        memcpy(x + 1, d->q, (size_t)n * sizeof *x);
+        memcpy(x + 1 + n, d->v, (size_t)n * sizeof *x);
+        x[1 + 2 * n] = d->work_in;
+        /* A failed step leaves the state: later records repeat it. */
+        (void)braun_step(d, BRAUN_RK4, (braun_real)r->tg->h);
+    }
+    r->rec_done = 1;
+}
+
+static void floor_start(bench_run *r)
+{
+    const braun_builtin *b = r->tg->minimal;
+    r->t = 0;
+    for (int i = 0; i < b->minimal_dim; i++) r->y[i] = b->minimal_y0[i];
+}
+
+static void record_floor(bench_run *r)
+{
+    floor_start(r);
+    for (long s = 0; s < r->steps; s++) {
+        double *x = r->yrec + (size_t)s * 3;
+        x[0] = r->t;
+        x[1] = r->y[0];
+        x[2] = r->y[1];
+        bench_floor_step(r->tg->minimal, r->t, r->tg->h, r->y);
+        r->t = (double)(s + 1) * r->tg->h;
+    }
+    r->yrec_done = 1;
+}
+
+void bench_run_reset(bench_run *r, bench_item it)
+{
+    if (!bench_run_has(r, it)) return;
+    switch (it) {
+    case BENCH_STEP_FLOOR: floor_start(r); break;
+    case BENCH_RHS_FLOOR:
+        if (!r->yrec_done) record_floor(r);
+        break;
+    case BENCH_RHS_IDEAL:
+    case BENCH_RHS_CORR:
+        if (!r->rec_done) record_states(r);
+        break;
+    default: braun_set_state(&r->data[it], 0, r->tg->q0, r->tg->v0); break;
+    }
+}
+
+/* callgrind counts the instructions of this function and its callees
+ * (--toggle-collect=bench_run_block): it must stay a function even when the
+ * library is built with -flto. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+long bench_run_block(bench_run *r, bench_item it, int *status)
+{
+    const bench_target *tg = r->tg;
+    const braun_real h = (braun_real)tg->h;
+    const int n = tg->sys.n, w = 2 * n + 2;
+    *status = 0;
+    if (!bench_run_has(r, it)) return 0;
+    switch (it) {
+    case BENCH_STEP_FLOOR:
+        for (long s = 0; s < r->steps; s++) {
+            bench_floor_step(tg->minimal, r->t, tg->h, r->y);
+            r->t = (double)(s + 1) * tg->h;
+        }
+        return r->steps;
+    case BENCH_RHS_FLOOR:
+        for (long s = 0; s < r->steps; s++) {
+            const double *x = r->yrec + (size_t)s * 3;
+            bench_floor_rhs(tg->minimal, x[0], x + 1, r->dydt);
+        }
+        return r->steps;
+    case BENCH_RHS_IDEAL:
+    case BENCH_RHS_CORR: {
+        braun_data *d = &r->data[it];
+        for (long s = 0; s < r->steps; s++) {
+            const braun_real *x = r->rec + (size_t)s * (size_t)w;
+            d->work_in = x[1 + 2 * n];
+            int st = braun_eval(d, x[0], x + 1, x + 1 + n, h, r->qdot, r->vdot);
+            if (st) {
+                *status = st;
+                return s;
+            }
+        }
+        return r->steps;
+    }
+    default: {
+        braun_data *d = &r->data[it];
+        for (long s = 0; s < r->steps; s++) {
+            int st = braun_step(d, BRAUN_RK4, h);
+            if (st) {
+                *status = st;
+                return s;
+            }
+        }
+        return r->steps;
+    }
+    }
+}

@@ -1,0 +1,56 @@
+# make bench (issue 7): what a step costs — ns (median of rounds, one
+# process) and instructions (callgrind) per step and per right-hand side,
+# with each correction off and on, against an unconstrained minimal-
+# coordinate RK4 step; flops per step; cost at matched error from make
+# compare's CSV. Writes results/bench/*.csv and the tables of
+# docs/performance.md. A benchmark, not a test: nothing here is added to
+# TEST_SUITES.
+#
+#   make bench                         everything (< 10 min on 2 busy cores)
+#   make bench BENCH_TARGETS="slider-crank"  BENCH_ROUNDS=11  BENCH_VARIANTS=0
+#   make bench BENCH_DOCS=             leave docs/performance.md alone
+# Options: BENCH_OUT (results/bench), BENCH_ROUNDS (timing rounds, 31),
+# BENCH_STEPS (steps per block, 2000), BENCH_JOBS (parallel callgrind runs, 2),
+# BENCH_VARIANTS (1: also the slider-crank with other compiler flags).
+
+BENCH_DEPS := valgrind binutils libjansson-dev
+BENCH_SRC := $(sort $(wildcard bench/*.c))
+BENCH_OBJ := $(BENCH_SRC:%.c=$(BUILD)/obj/%.o)
+BENCH_BIN := $(BUILD)/bin/braun-bench
+BENCH_STATIC := $(BUILD)/bin/braun-bench-static
+BENCH_OUT ?= results/bench
+BENCH_ROUNDS ?= 31
+BENCH_STEPS ?= 2000
+BENCH_JOBS ?= 2
+BENCH_VARIANTS ?= 1
+BENCH_DOCS ?= docs/performance.md
+BENCH_TARGETS ?= slider-crank four-bar pendulum andrews $(sort $(wildcard data/*.json))
+
+.PHONY: bench bench-bin deps-bench
+
+deps-bench:
+	@tools/ensure-deps $(BENCH_DEPS)
+
+bench-bin: $(BENCH_BIN) $(BENCH_STATIC)
+
+$(BUILD)/obj/bench/%.o: bench/%.c bench/bench.h $(HEADERS) | deps-scene
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -c $< -o $@
+
+# Not position independent: callgrind's instruction addresses are then the
+# ones objdump prints (bench/flops.awk). The static twin puts libm's sin/cos
+# in the same file, so their floating-point instructions are classified too.
+$(BENCH_BIN): $(BENCH_OBJ) $(BUILD)/libbraun_scene.a $(BUILD)/libbraun.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -no-pie $(BENCH_OBJ) $(SCENE_LDLIBS) -o $@
+
+$(BENCH_STATIC): $(BENCH_OBJ) $(BUILD)/libbraun_scene.a $(BUILD)/libbraun.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -static $(BENCH_OBJ) $(SCENE_LDLIBS) -o $@
+
+bench: deps-bench
+	@$(MAKE) --no-print-directory bench-bin
+	@sh bench/bench.sh --bin $(BENCH_BIN) --static $(BENCH_STATIC) --out $(BENCH_OUT) \
+	    --rounds $(BENCH_ROUNDS) --steps $(BENCH_STEPS) --jobs $(BENCH_JOBS) \
+	    --variants $(BENCH_VARIANTS) --docs "$(BENCH_DOCS)" --build $(BUILD) \
+	    --targets "$(BENCH_TARGETS)"
