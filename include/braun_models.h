@@ -23,6 +23,9 @@ typedef struct braun_link_params {
     double l;  /* link length [m] */
     double m;  /* link mass [kg] */
     double g;  /* gravity [m/s^2] */
+    /* The same in braun_real, for the callbacks: a float build then does
+     * no double arithmetic per call (soft-float on a Cortex-M4F). */
+    braun_real rl, rm, rmg;  /* l, m, m·g */
 } braun_link_params;
 
 typedef struct braun_builtin {

@@ -27,14 +27,15 @@
 
 #include "braun_models_internal.h"
 
-static const braun_link_params params = {1.0, 1.0, 9.81};
+static const braun_link_params params = {1.0, 1.0, 9.81, BRAUN_R(1.0), BRAUN_R(1.0),
+                                          BRAUN_R(1.0) * BRAUN_R(9.81)};
 
 static int mass(braun_real t, const braun_real *q, braun_real *M, void *user)
 {
     const braun_link_params *p = user;
-    braun_real d = BRAUN_R(2.0) / BRAUN_R(3.0) * (braun_real)p->m;
-    braun_real o = (braun_real)p->m / BRAUN_R(6.0);
-    braun_real mid = (braun_real)p->m;
+    braun_real d = BRAUN_R(2.0) / BRAUN_R(3.0) * p->rm;
+    braun_real o = p->rm / BRAUN_R(6.0);
+    braun_real mid = p->rm;
     (void)t;
     (void)q;
     for (int i = 0; i < 36; ++i) M[i] = BRAUN_R(0.0);
@@ -54,7 +55,7 @@ static int forces(braun_real t, const braun_real *q, const braun_real *v,
                   braun_real *Q, void *user)
 {
     const braun_link_params *p = user;
-    braun_real mg = (braun_real)(p->m * p->g);
+    braun_real mg = p->rmg;
     (void)t;
     (void)q;
     (void)v;
@@ -74,7 +75,7 @@ static int holonomic(braun_real t, const braun_real *q, const braun_real *v,
                      braun_real *bv, void *user)
 {
     const braun_link_params *p = user;
-    braun_real l = (braun_real)p->l;
+    braun_real l = p->rl;
     /* Rows: cranks to joints 1, 2, 3, couplers 1–2, 2–3. */
     static const int from[5] = {-1, -1, -1, 0, 1};
     static const int to[5] = {0, 1, 2, 1, 2};
@@ -115,7 +116,7 @@ static int energy(braun_real t, const braun_real *q, const braun_real *v,
                   braun_real *dE_dt, void *user)
 {
     const braun_link_params *p = user;
-    braun_real mg = (braun_real)(p->m * p->g);
+    braun_real mg = p->rmg;
     braun_real M[36], Mv[6];
     mass(t, q, M, user);
     for (int i = 0; i < 6; ++i) {

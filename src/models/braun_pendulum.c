@@ -11,14 +11,15 @@
 
 #include "braun_models_internal.h"
 
-static const braun_link_params params = {1.0, 1.0, 9.81};
+static const braun_link_params params = {1.0, 1.0, 9.81, BRAUN_R(1.0), BRAUN_R(1.0),
+                                          BRAUN_R(1.0) * BRAUN_R(9.81)};
 
 static int mass(braun_real t, const braun_real *q, braun_real *M, void *user)
 {
     const braun_link_params *p = user;
     (void)t;
     (void)q;
-    M[0] = M[3] = (braun_real)p->m;
+    M[0] = M[3] = p->rm;
     M[1] = M[2] = BRAUN_R(0.0);
     return 0;
 }
@@ -31,7 +32,7 @@ static int forces(braun_real t, const braun_real *q, const braun_real *v,
     (void)q;
     (void)v;
     Q[0] = BRAUN_R(0.0);
-    Q[1] = -(braun_real)(p->m * p->g);
+    Q[1] = -p->rmg;
     return 0;
 }
 
@@ -41,7 +42,7 @@ static int holonomic(braun_real t, const braun_real *q, const braun_real *v,
                      braun_real *bv, void *user)
 {
     const braun_link_params *p = user;
-    braun_real l = (braun_real)p->l;
+    braun_real l = p->rl;
     (void)t;
     if (phi) phi[0] = q[0] * q[0] + q[1] * q[1] - l * l;
     if (A) {
@@ -59,8 +60,8 @@ static int energy(braun_real t, const braun_real *q, const braun_real *v,
                   braun_real *dE_dt, void *user)
 {
     const braun_link_params *p = user;
-    braun_real m = (braun_real)p->m;
-    braun_real mg = (braun_real)(p->m * p->g);
+    braun_real m = p->rm;
+    braun_real mg = p->rmg;
     (void)t;
     if (E) *E = BRAUN_R(0.5) * m * (v[0] * v[0] + v[1] * v[1]) + mg * q[1];
     if (dE_dq) {

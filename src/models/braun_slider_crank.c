@@ -19,13 +19,14 @@
 
 #include "braun_models_internal.h"
 
-static const braun_link_params params = {1.0, 1.0, 9.81};
+static const braun_link_params params = {1.0, 1.0, 9.81, BRAUN_R(1.0), BRAUN_R(1.0),
+                                          BRAUN_R(1.0) * BRAUN_R(9.81)};
 
 /* Eq. 21: M = diag(m, m, ml²/12, m, m, ml²/12). */
 static int mass(braun_real t, const braun_real *q, braun_real *M, void *user)
 {
     const braun_link_params *p = user;
-    braun_real m = (braun_real)p->m, l = (braun_real)p->l;
+    braun_real m = p->rm, l = p->rl;
     braun_real J = m * l * l / BRAUN_R(12.0);
     (void)t;
     (void)q;
@@ -44,7 +45,7 @@ static int forces(braun_real t, const braun_real *q, const braun_real *v,
                   braun_real *Q, void *user)
 {
     const braun_link_params *p = user;
-    braun_real mg = (braun_real)(p->m * p->g);
+    braun_real mg = p->rmg;
     (void)t;
     (void)q;
     (void)v;
@@ -64,7 +65,7 @@ static int holonomic(braun_real t, const braun_real *q, const braun_real *v,
                      braun_real *bv, void *user)
 {
     const braun_link_params *p = user;
-    braun_real h = BRAUN_R(0.5) * (braun_real)p->l;
+    braun_real h = BRAUN_R(0.5) * p->rl;
     braun_real c1 = braun_cos(q[2]), s1 = braun_sin(q[2]);
     braun_real c2 = braun_cos(q[5]), s2 = braun_sin(q[5]);
     (void)t;
@@ -111,8 +112,8 @@ static int energy(braun_real t, const braun_real *q, const braun_real *v,
                   braun_real *dE_dt, void *user)
 {
     const braun_link_params *p = user;
-    braun_real m = (braun_real)p->m, l = (braun_real)p->l;
-    braun_real mg = (braun_real)(p->m * p->g);
+    braun_real m = p->rm, l = p->rl;
+    braun_real mg = p->rmg;
     braun_real J = m * l * l / BRAUN_R(12.0);
     const braun_real diag[6] = {m, m, J, m, m, J};
     (void)t;
