@@ -397,44 +397,6 @@ const char *const cmp_singular_header =
 const char *const cmp_references_header =
     "scene,T,reference,tol,compared_with,tol2,max_q_diff,final_q_diff,max_point_diff,note";
 
-/* Compare two references on the grid: the estimate of the reference's own
- * error printed in the report. */
-static void reference_check(FILE *f, const cmp_target *tg, double T, double dt,
-                            cmp_ref_kind ka, double ta, cmp_ref_kind kb, double tb)
-{
-    cmp_ref *a = cmp_ref_new(tg, ka, ta), *b = cmp_ref_new(tg, kb, tb);
-    const int n = tg->sys.n;
-    double *w = malloc(4 * (size_t)n * sizeof(double));
-    if (a && b && w) {
-        double mx = 0, last = 0, pmx = 0;
-        const long count = (long)floor(T / dt + 0.5);
-        int ok = 1;
-        for (long j = 0; j <= count && ok; j++) {
-            const double t = (double)j * dt;
-            ok = cmp_ref_eval(a, t, w, w + n) == 0 && cmp_ref_eval(b, t, w + 2 * n, w + 3 * n) == 0;
-            double s = 0;
-            for (int i = 0; i < n; i++) s += (w[i] - w[2 * n + i]) * (w[i] - w[2 * n + i]);
-            last = sqrt(s);
-            if (last > mx) mx = last;
-            if (tg->has_point) {
-                double pa[2], pb[2];
-                tg->point(tg, w, pa);
-                tg->point(tg, w + 2 * n, pb);
-                double d = hypot(pa[0] - pb[0], pa[1] - pb[1]);
-                if (d > pmx) pmx = d;
-            }
-        }
-        if (!ok) mx = last = pmx = NAN;
-        fprintf(f, "%s,%g,%s,%g,%s,%g,%.6e,%.6e,%.6e,-\n", tg->name, T, cmp_ref_kind_name(ka),
-                ka == CMP_REF_RK8PD ? ta : NAN, cmp_ref_kind_name(kb),
-                kb == CMP_REF_RK8PD ? tb : NAN, mx, last, tg->has_point ? pmx : NAN);
-        fflush(f);
-    }
-    cmp_ref_free(a);
-    cmp_ref_free(b);
-    free(w);
-}
-
 /* The trajectory reference's step for a target (scaled like its grid). */
 static double traj_ref_h(const cmp_target *tg)
 {
@@ -477,6 +439,19 @@ static void reference_pair(FILE *f, const cmp_target *tg, double T, double dt,
     fflush(f);
     free(w);
 }
+
+/* Compare two references on the grid: the estimate of the reference's own
+ * error printed in the report. */
+static void reference_check(FILE *f, const cmp_target *tg, double T, double dt,
+                            cmp_ref_kind ka, double ta, cmp_ref_kind kb, double tb)
+{
+    cmp_ref *a = cmp_ref_new(tg, ka, ta), *b = cmp_ref_new(tg, kb, tb);
+    reference_pair(f, tg, T, dt, cmp_ref_kind_name(ka), ka == CMP_REF_RK8PD ? ta : NAN, a,
+                   cmp_ref_kind_name(kb), kb == CMP_REF_RK8PD ? tb : NAN, b);
+    cmp_ref_free(a);
+    cmp_ref_free(b);
+}
+
 
 /* The reference of a target and horizon, and the estimates of its own error
  * (docs/compare.md, "References"). */

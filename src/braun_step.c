@@ -7,6 +7,17 @@
  * order. For Euler this is the paper's equation itself. */
 #include "braun_tableau.h"
 
+/* A NaN/Inf from a callback at a state the integrator produced (a later
+ * stage, or the start of any step after the first): the solution left the
+ * region where the model is defined — it diverged. d->error keeps the
+ * callback and entry that overflowed. */
+static int diverged_if_integrated(braun_data *d, int stage, int st)
+{
+    if (st == BRAUN_ERR_NONFINITE && (stage > 0 || braun__priv(d)->state_integrated))
+        d->error.status = st = BRAUN_ERR_DIVERGED;
+    return st;
+}
+
 int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
                       int per_stage, braun_real *y1, braun_real *yerr)
 {
@@ -44,21 +55,15 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         const braun_real ts = d->t + (braun_real)tb->c[s] * h;
         braun_real *k = pv->k[s];
         const int wants_corr = corr && (per_stage || s == 0);
-        st = braun__eval_ideal(d, ts, ys, ys + n, wants_corr ? BRAUN_WANT_PHI : 0u, k + n);
-        /* A NaN/Inf from a callback at a state the integrator produced (a
-         * later stage, or the start of any step after the first): the
-         * solution left the region where the model is defined — it
-         * diverged. d->error keeps the callback and entry that overflowed. */
-        if (st == BRAUN_ERR_NONFINITE && (s > 0 || pv->state_integrated))
-            d->error.status = st = BRAUN_ERR_DIVERGED;
+        st = diverged_if_integrated(d, s, braun__eval_ideal(d, ts, ys, ys + n,
+                                                           wants_corr ? BRAUN_WANT_PHI : 0u, k + n));
         if (st) return st;
         for (int i = 0; i < n; i++) k[i] = ys[n + i];
         st = braun__power(d, ts, ys, ys + n, &k[2 * n]);
         if (st) return st;
         if (wants_corr) {
-            st = braun__eval_corrections(d, ts, ys, ys + n, ys[2 * n], h, k + n, pv->dq, pv->dv);
-            if (st == BRAUN_ERR_NONFINITE && (s > 0 || pv->state_integrated))
-                d->error.status = st = BRAUN_ERR_DIVERGED;
+            st = diverged_if_integrated(d, s, braun__eval_corrections(d, ts, ys, ys + n, ys[2 * n], h,
+                                                                      k + n, pv->dq, pv->dv));
             if (st) return st;
             if (per_stage) /* the literal Eqs. 16-17 with Δ = Φ/h */
                 for (int i = 0; i < n; i++) {
