@@ -127,6 +127,24 @@ enum braun_system_flags {
     BRAUN_CONSTRAINT_WORK = 1u << 2
 };
 
+/* Sparse structure of a large mechanism (optional; NULL: dense callbacks).
+ * With a sparsity the callbacks write compressed values instead of dense
+ * matrices:
+ *   holonomic/nonholonomic: A as the values of the pattern below, in order
+ *     (holonomic writes row_ptr[m] values, nonholonomic row_ptr[m+p] -
+ *     row_ptr[m], starting at its own first row);
+ *   mass: the diagonal blocks, one after another, each row-major
+ *     (sum of block[k]^2 values).
+ * Every linear solver accepts it: libbraun's dense kernels scatter the
+ * values, the SuiteSparse backend (braun_linsolver.h) works on them
+ * directly. The arrays must outlive the model. */
+typedef struct braun_sparsity {
+    const int *row_ptr; /* m + p + 1 entries, row_ptr[0] = 0, nondecreasing */
+    const int *col;     /* row_ptr[m + p] column indices, increasing within a row */
+    int nblocks;        /* block-diagonal M: nblocks blocks ... */
+    const int *block;   /* ... of these sizes (sum = n) */
+} braun_sparsity;
+
 typedef struct braun_system {
     int n;                /* coordinates */
     int m;                /* holonomic constraint rows (may be redundant) */
@@ -139,6 +157,7 @@ typedef struct braun_system {
     braun_energy_fn energy;           /* optional conservation law */
     braun_power_fn power;             /* required iff BRAUN_ENERGY_INPUT */
     void *user;                       /* passed to every callback */
+    const braun_sparsity *sparsity;   /* NULL: dense A and M (the default) */
 } braun_system;
 
 /* ------------------------------------------------------------------ */
@@ -165,6 +184,9 @@ typedef enum braun_discretization {
     BRAUN_PER_STAGE = 1
 } braun_discretization;
 
+/* A linear-algebra backend (braun_linsolver.h). */
+typedef struct braun_linsolver braun_linsolver;
+
 typedef struct braun_options {
     unsigned corrections;   /* braun_corrections bits; default ALL (ENERGY only if a law exists) */
     braun_discretization discretization; /* default BRAUN_PER_STEP */
@@ -190,12 +212,20 @@ typedef struct braun_options {
      * cannot be removed by any motion: above this (absolute, constraint
      * units) the step fails with BRAUN_ERR_INCONSISTENT. <= 0: sqrt(ε). */
     braun_real inconsistency_tol;
+    /* Linear algebra (braun_linsolver.h): NULL is libbraun's own dense
+     * kernels (allocation-free); LAPACK and SuiteSparse come from
+     * braun_backends.h. Set before braun_data_init. */
+    const braun_linsolver *linsolver;
 } braun_options;
 
 typedef struct braun_model {
     braun_system sys;
     braun_options opt;
 } braun_model;
+
+/* Largest n, m, p: dense systems 4096; with a sparsity 2^20. */
+#define BRAUN_MAX_DENSE 4096
+#define BRAUN_MAX_SPARSE (1 << 20)
 
 /* Copy the system, validate sizes and callbacks, set default options.
  * Returns BRAUN_OK, BRAUN_ERR_ARGUMENT, BRAUN_ERR_SIZE or BRAUN_ERR_MISSING_CALLBACK. */
@@ -243,9 +273,15 @@ typedef struct braun_data {
 size_t braun_data_size(const braun_model *model);
 
 /* Carve the data out of buffer; no allocation. If M is constant it is
- * evaluated and factored here, once. State is zero until braun_set_state(). */
+ * evaluated and factored here, once. State is zero until braun_set_state().
+ * With a backend (opt.linsolver) its state is created here (it may
+ * allocate): release it with braun_data_release. */
 int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
                     size_t bytes);
+
+/* Free what a backend allocated (nothing for the built-in kernels). The
+ * buffer stays the caller's. Safe to call twice. */
+void braun_data_release(braun_data *d);
 
 /* Set time and state, check it is finite, reset ∫Ė and take E0 = E(t,q,v). */
 int braun_set_state(braun_data *d, braun_real t, const braun_real *q,

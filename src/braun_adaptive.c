@@ -36,10 +36,10 @@ static void project_error_tangent(braun_data *d)
     for (int part = 0; part < 2; part++) {
         braun_real *e = pv->yerr + (part ? n : 0);
         if (part == 0 && pv->p > 0) continue;
-        braun_chol_mul_r(&pv->chol, e, pv->tmp);
-        braun_qrcp_null_project(&pv->fv, pv->tmp);
+        braun__mul_r(pv, e, pv->tmp);
+        braun__null_project(pv, 0, pv->tmp);
         for (int i = 0; i < n; i++) e[i] = pv->tmp[i];
-        braun_chol_solve_r(&pv->chol, e);
+        braun__solve_r(pv, e, e);
     }
 }
 

@@ -15,7 +15,13 @@ static int nonfinite_culprit(braun_data *d, braun_real t, unsigned want)
     braun_priv *pv = braun__priv(d);
     const int n = pv->n, m = pv->m, rows = pv->rows;
     int st = braun__check_finite(d, n, pv->Q, "forces", 0, t);
-    if (!st && rows > 0) st = braun__check_finite(d, rows * n, pv->A, "constraint Jacobian", n, t);
+    if (!st && rows > 0) {
+        if (pv->sp)
+            st = braun__check_finite(d, pv->sp->row_ptr[rows], pv->Avals,
+                                     "constraint Jacobian (compressed)", 0, t);
+        else
+            st = braun__check_finite(d, rows * n, pv->A, "constraint Jacobian", n, t);
+    }
     if (!st && rows > 0) st = braun__check_finite(d, rows, pv->bv, "constraint b_v", 0, t);
     if (!st && rows > 0 && (want & BRAUN_WANT_PHI)) {
         st = braun__check_finite(d, rows, pv->phi, "constraint Φ", 0, t);
@@ -24,6 +30,34 @@ static int nonfinite_culprit(braun_data *d, braun_real t, unsigned want)
     if (!st) st = braun__fail(d, BRAUN_ERR_NONFINITE, "acceleration (overflow)", -1, -1, 0, (double)t);
     return st;
 }
+
+#ifndef BRAUN_NO_LINSOLVER
+/* Backend path of the constraint factorizations: C_q (when separate, and
+ * only when the corrections need it) and C_v, with b_v -= C_v atil. */
+static int factor_backend(braun_data *d, int wphi)
+{
+    braun_priv *pv = braun__priv(d);
+    const int m = pv->m, rows = pv->rows;
+    const braun_real *A = pv->dense_A ? pv->A : pv->Avals;
+    if (pv->dense_A && pv->sp) braun__scatter_A(pv);
+    if (pv->need_fq && wphi) {
+        int rq = pv->ls->factor_c(pv->ls_state, 1, m, A, rank_tol(d, m), NULL, NULL);
+        if (rq < 0) return braun__fail(d, rq, "linear solver (C_q)", -1, -1, 0, (double)d->t);
+        pv->rank[1] = rq;
+        d->stats.constraint_factorizations++;
+        if (rq < m) d->stats.rank_deficient++;
+    }
+    int rank = pv->ls->factor_c(pv->ls_state, 0, rows, A, rank_tol(d, rows), pv->atil, pv->bv);
+    if (rank < 0) return braun__fail(d, rank, "linear solver (C_v)", -1, -1, 0, (double)d->t);
+    return rank;
+}
+#else
+static int factor_backend(braun_data *d, int wphi)
+{
+    (void)wphi;
+    return braun__fail(d, BRAUN_ERR_ARGUMENT, "linear solver", -1, -1, 0, (double)d->t);
+}
+#endif
 
 int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
                       const braun_real *v, unsigned want, braun_real *vdot)
@@ -40,49 +74,56 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
     /* a = M^-1 Q is kept in weighted form atil = R^-T Q (a = R^-1 atil). */
     st = braun__callback(d, s->forces(t, q, v, pv->Q, s->user), "forces", t);
     if (st) return st;
-    braun_chol_solve_rt_to(&pv->chol, pv->Q, pv->atil);
+    braun__solve_rt(pv, pv->Q, pv->atil);
 
     if (rows > 0) {
         const int wphi = (want & BRAUN_WANT_PHI) != 0;
         if (m > 0) {
-            st = braun__callback(d, s->holonomic(t, q, v, wphi ? pv->phi : NULL, pv->A,
-                                                 wphi ? pv->b : NULL, pv->bv, s->user),
+            st = braun__callback(d, s->holonomic(t, q, v, wphi ? pv->phi : NULL,
+                                                 braun__A_out(pv, 0), wphi ? pv->b : NULL,
+                                                 pv->bv, s->user),
                                  "holonomic", t);
             if (st) return st;
         }
         if (p > 0) {
             st = braun__callback(d, s->nonholonomic(t, q, v, wphi ? pv->phi + m : NULL,
-                                                    pv->A + (size_t)m * (size_t)n, pv->bv + m,
-                                                    s->user),
+                                                    braun__A_out(pv, m), pv->bv + m, s->user),
                                  "nonholonomic", t);
             if (st) return st;
         }
         if (wphi) {
             /* Velocity-level error [Φ̇_q; Φ_v] (Sec. 2.2). */
-            for (int i = 0; i < m; i++)
-                pv->ev[i] = braun_dot(n, pv->A + (size_t)i * (size_t)n, v) - pv->b[i];
+            for (int i = 0; i < m; i++) pv->ev[i] = braun__row_dot(pv, i, v) - pv->b[i];
             for (int i = m; i < rows; i++) pv->ev[i] = pv->phi[i];
         }
-
-        /* C_v = A_v R^-1, row by row: row_i(C) = R^-T A_i^T. */
-        braun_real *C = pv->fv.a;
-        for (int i = 0; i < rows; i++) {
-            braun_real *ci = C + (size_t)i * (size_t)n;
-            braun_chol_solve_rt_to(&pv->chol, pv->A + (size_t)i * (size_t)n, ci);
-            /* Residual of Eq. 10 without corrections: b_v - C_v atil. */
-            pv->bv[i] -= braun_dot(n, ci, pv->atil);
+        int rank;
+        if (BRAUN_LS(pv)) {
+            rank = factor_backend(d, wphi);
+            if (rank < 0) return rank;
+        } else {
+            if (pv->sp) braun__scatter_A(pv);
+            /* C_v = A_v R^-1, row by row: row_i(C) = R^-T A_i^T. */
+            braun_real *C = pv->fv.a;
+            for (int i = 0; i < rows; i++) {
+                braun_real *ci = C + (size_t)i * (size_t)n;
+                braun_chol_solve_rt_to(&pv->chol, pv->A + (size_t)i * (size_t)n, ci);
+                /* Residual of Eq. 10 without corrections: b_v - C_v atil. */
+                pv->bv[i] -= braun_dot(n, ci, pv->atil);
+            }
+            if (pv->need_fq && wphi) {
+                for (size_t i = 0; i < (size_t)m * (size_t)n; i++) pv->fq.a[i] = C[i];
+                int rq = braun_qrcp_factor(&pv->fq, rank_tol(d, m));
+                pv->rank[1] = rq;
+                d->stats.constraint_factorizations++;
+                if (rq < m) d->stats.rank_deficient++;
+            }
+            rank = braun_qrcp_factor(&pv->fv, rank_tol(d, rows));
         }
-        if (pv->need_fq && (want & BRAUN_WANT_PHI)) {
-            for (size_t i = 0; i < (size_t)m * (size_t)n; i++) pv->fq.a[i] = C[i];
-            int rq = braun_qrcp_factor(&pv->fq, rank_tol(d, m));
-            d->stats.constraint_factorizations++;
-            if (rq < m) d->stats.rank_deficient++;
-        }
-        int rank = braun_qrcp_factor(&pv->fv, rank_tol(d, rows));
+        pv->rank[0] = rank;
         d->stats.constraint_factorizations++;
         if (rank < rows) d->stats.rank_deficient++;
         /* Ideal constraint force, weighted: u = C_v^+ (b_v - C_v atil) (Eq. 11). */
-        braun_qrcp_pinv_apply(&pv->fv, pv->bv, pv->u);
+        braun__pinv(pv, 0, pv->bv, pv->u);
         for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i] + pv->u[i];
     } else {
         for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i];
@@ -94,7 +135,7 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
         ((want & BRAUN_WANT_PHI) && rows > 0 &&
          (!braun_all_finite(rows, pv->ev) || !braun_all_finite(m, pv->phi))))
         return nonfinite_culprit(d, t, want);
-    if (vdot) braun_chol_solve_r_to(&pv->chol, pv->z, vdot);
+    if (vdot) braun__solve_r(pv, pv->z, vdot);
     return BRAUN_OK;
 }
 
@@ -112,7 +153,7 @@ int braun__power(braun_data *d, braun_real t, const braun_real *q,
     if ((s->flags & BRAUN_CONSTRAINT_WORK) && pv->rows > 0) {
         /* Power of the ideal constraint force Q_c = R^T u at this state
          * (u from the braun__eval_ideal just done): Q_c·v = u·(R v). */
-        braun_chol_mul_r(&pv->chol, v, pv->tmp);
+        braun__mul_r(pv, v, pv->tmp);
         *Edot += braun_dot(pv->n, pv->u, pv->tmp);
     }
     return BRAUN_OK;
@@ -148,9 +189,8 @@ static int energy_correction(braun_data *d, braun_real t, const braun_real *q,
     const braun_real r = -(phi_e + h * (braun_dot(n, pv->dEdv, vdot) - b_e) +
                            braun_dot(n, pv->dEdv, dv));
     /* x = N_v C_e^T, C_e = A_e R^-1. */
-    for (int i = 0; i < n; i++) pv->ce[i] = pv->dEdv[i];
-    braun_chol_solve_rt(&pv->chol, pv->ce);
-    if (pv->rows > 0) braun_qrcp_null_project(&pv->fv, pv->ce);
+    braun__solve_rt(pv, pv->dEdv, pv->ce);
+    if (pv->rows > 0) braun__null_project(pv, 0, pv->ce);
     const braun_real xx = braun_dot(n, pv->ce, pv->ce);
     /* [C_e N_v]^+ = x / ||x||^2 divides by ≈ 2·kinetic energy: at rest or at a
      * turning point it would explode. sigma is the relative change of the
@@ -166,9 +206,15 @@ static int energy_correction(braun_data *d, braun_real t, const braun_real *q,
     }
     if (sigma == 0) return BRAUN_OK;
     for (int i = 0; i < n; i++) pv->tmp[i] = sigma * pv->ce[i];
-    braun_chol_solve_r(&pv->chol, pv->tmp);
+    braun__solve_r(pv, pv->tmp, pv->tmp);
     for (int i = 0; i < n; i++) dv[i] += pv->tmp[i];
     return BRAUN_OK;
+}
+
+/* The factorization the position correction uses dropped rows. */
+static int position_rank_deficient(const braun_priv *pv)
+{
+    return pv->need_fq ? pv->rank[1] < pv->m : pv->rank[0] < pv->rows;
 }
 
 int braun__eval_corrections(braun_data *d, braun_real t, const braun_real *q,
@@ -183,31 +229,31 @@ int braun__eval_corrections(braun_data *d, braun_real t, const braun_real *q,
     for (int i = 0; i < n; i++) dq[i] = dv[i] = 0;
     if (rows > 0 && (corr & BRAUN_CORRECT_POSITION) && m > 0) {
         /* Eq. 16 × h: dq = R^-1 C_q^+ (h (b_q - A_q v) - Φ_q). */
-        const braun_qrcp *fq = pv->need_fq ? &pv->fq : &pv->fv;
+        const int slot = pv->need_fq ? 1 : 0;
         for (int i = 0; i < m; i++) pv->ep[i] = -(pv->phi[i] + h * pv->ev[i]);
-        if (fq->rank < fq->rows) {
+        if (position_rank_deficient(pv)) {
             /* Dependent rows must agree: a position error outside range(C_q)
              * is one no motion can remove — the constraints have no
              * solution here (e.g. x = 0 and x = 1). Only rank-deficient
              * factorizations pay for this check. */
             braun_real resid;
-            braun_qrcp_lsq(fq, pv->ep, dq, &resid);
+            braun__lsq(pv, slot, pv->ep, dq, &resid);
             braun_real tol = d->model->opt.inconsistency_tol > 0 ? d->model->opt.inconsistency_tol
                                                                  : braun_sqrt(BRAUN_EPS);
             if (resid > tol)
                 return braun__fail(d, BRAUN_ERR_INCONSISTENT, "holonomic constraints", -1, -1,
                                    (double)resid, (double)t);
         } else {
-            braun_qrcp_pinv_apply(fq, pv->ep, dq);
+            braun__pinv(pv, slot, pv->ep, dq);
         }
-        braun_chol_solve_r(&pv->chol, dq);
+        braun__solve_r(pv, dq, dq);
     }
     if (rows > 0 && (corr & BRAUN_CORRECT_VELOCITY)) {
         /* Δ_v term of Eq. 17 × h: dv = -R^-1 C_v^+ [Φ̇_q; Φ_v]. */
         for (int i = 0; i < rows; i++) pv->ev[i] = -pv->ev[i];
-        braun_qrcp_pinv_apply(&pv->fv, pv->ev, dv);
+        braun__pinv(pv, 0, pv->ev, dv);
         for (int i = 0; i < rows; i++) pv->ev[i] = -pv->ev[i];
-        braun_chol_solve_r(&pv->chol, dv);
+        braun__solve_r(pv, dv, dv);
     }
     if ((corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0)
         return energy_correction(d, t, q, v, W, h, vdot, dv);
@@ -270,18 +316,18 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
     if (!d || !d->priv || !q || !v) return BRAUN_ERR_ARGUMENT;
     braun_priv *pv = braun__priv(d);
     const braun_system *s = &d->model->sys;
-    const int n = pv->n, m = pv->m, p = pv->p;
+    const int m = pv->m, p = pv->p;
     int st = check_state(d, t, q, v);
     if (st) return st;
     if (m > 0) {
-        st = braun__callback(d, s->holonomic(t, q, v, pv->phi, pv->A, pv->b, pv->bv, s->user),
+        st = braun__callback(d, s->holonomic(t, q, v, pv->phi, braun__A_out(pv, 0), pv->b,
+                                             pv->bv, s->user),
                              "holonomic", t);
         if (st) return st;
-        for (int i = 0; i < m; i++)
-            pv->ev[i] = braun_dot(n, pv->A + (size_t)i * (size_t)n, v) - pv->b[i];
+        for (int i = 0; i < m; i++) pv->ev[i] = braun__row_dot(pv, i, v) - pv->b[i];
     }
     if (p > 0) {
-        st = braun__callback(d, s->nonholonomic(t, q, v, pv->phi + m, pv->A + (size_t)m * (size_t)n,
+        st = braun__callback(d, s->nonholonomic(t, q, v, pv->phi + m, braun__A_out(pv, m),
                                                 pv->bv + m, s->user),
                              "nonholonomic", t);
         if (st) return st;

@@ -4,6 +4,13 @@
 
 #include "braun.h"
 #include "braun_linalg.h"
+#include "braun_linsolver.h"
+
+/* Firmware builds with compile-time sizes run the built-in kernels only:
+ * no backend dispatch, not even a branch. */
+#if defined(BRAUN_FIXED_N) && !defined(BRAUN_NO_LINSOLVER)
+#define BRAUN_NO_LINSOLVER
+#endif
 
 #define BRAUN_MAX_STAGES 7
 
@@ -12,6 +19,19 @@ typedef struct braun_priv {
     int need_fq;          /* separate C_q factorization (p > 0 and m > 0) */
     int R_is_constant;    /* R computed once in braun_data_init */
     int state_integrated; /* the state came from a step, not braun_set_state */
+    /* Linear algebra: the built-in kernels (ls == NULL: chol, fv, fq below)
+     * or a backend's table and state (braun_linsolver.h). */
+    const braun_linsolver *ls;
+    void *ls_state;
+    /* Sparse system (sys.sparsity): the callbacks write compressed values
+     * into Avals and Mvals; dense solvers get them scattered into A / M. */
+    const braun_sparsity *sp;
+    braun_real *Avals;    /* nnz = sp->row_ptr[rows] */
+    braun_real *Mvals;    /* mass callback output: mass_count values */
+    size_t mass_count;    /* n*n dense, sum of block^2 sparse */
+    braun_real *Mdense;   /* n*n: M for a dense backend (NULL otherwise) */
+    int dense_A;          /* A holds the dense rows x n Jacobian */
+    int rank[2];          /* numerical rank of C_v (slot 0) and C_q (slot 1) */
     braun_chol chol;      /* M = R^T R (R, reciprocal pivots, envelope) */
     braun_real *Q;        /* n forces */
     braun_real *atil;     /* n: R^-T Q, the weighted unconstrained acceleration */
@@ -70,6 +90,73 @@ int braun__check_finite(braun_data *d, int n, const braun_real *x,
 static inline braun_priv *braun__priv(const braun_data *d)
 {
     return (braun_priv *)d->priv;
+}
+
+/* ---- Linear algebra dispatch: built-in kernels or the backend table ---- */
+#ifdef BRAUN_NO_LINSOLVER
+#define BRAUN_LS(pv) 0
+#else
+#define BRAUN_LS(pv) ((pv)->ls != NULL)
+#endif
+
+/* x := R^-T b (x may be b). */
+static inline void braun__solve_rt(const braun_priv *pv, const braun_real *b, braun_real *x)
+{
+    if (BRAUN_LS(pv)) pv->ls->solve_rt(pv->ls_state, b, x);
+    else braun_chol_solve_rt_to(&pv->chol, b, x);
+}
+/* x := R^-1 b (x may be b). */
+static inline void braun__solve_r(const braun_priv *pv, const braun_real *b, braun_real *x)
+{
+    if (BRAUN_LS(pv)) pv->ls->solve_r(pv->ls_state, b, x);
+    else braun_chol_solve_r_to(&pv->chol, b, x);
+}
+/* y := R x. */
+static inline void braun__mul_r(const braun_priv *pv, const braun_real *x, braun_real *y)
+{
+    if (BRAUN_LS(pv)) pv->ls->mul_r(pv->ls_state, x, y);
+    else braun_chol_mul_r(&pv->chol, x, y);
+}
+/* slot 0: C_v (pv->fv), slot 1: C_q (pv->fq). */
+static inline void braun__pinv(const braun_priv *pv, int slot, const braun_real *r,
+                               braun_real *x)
+{
+    if (BRAUN_LS(pv)) pv->ls->pinv(pv->ls_state, slot, r, x);
+    else braun_qrcp_pinv_apply(slot ? &pv->fq : &pv->fv, r, x);
+}
+static inline void braun__lsq(const braun_priv *pv, int slot, const braun_real *r,
+                              braun_real *x, braun_real *resid)
+{
+    if (BRAUN_LS(pv)) pv->ls->lsq(pv->ls_state, slot, r, x, resid);
+    else braun_qrcp_lsq(slot ? &pv->fq : &pv->fv, r, x, resid);
+}
+static inline void braun__null_project(const braun_priv *pv, int slot, braun_real *z)
+{
+    if (BRAUN_LS(pv)) pv->ls->null_project(pv->ls_state, slot, z);
+    else braun_qrcp_null_project(slot ? &pv->fq : &pv->fv, z);
+}
+
+/* Row i of the constraint Jacobian times x (compressed or dense). */
+static inline braun_real braun__row_dot(const braun_priv *pv, int i, const braun_real *x)
+{
+    if (pv->sp) {
+        braun_real s = 0;
+        for (int k = pv->sp->row_ptr[i]; k < pv->sp->row_ptr[i + 1]; k++)
+            s += pv->Avals[k] * x[pv->sp->col[k]];
+        return s;
+    }
+    return braun_dot(BRAUN_N(pv->n), pv->A + (size_t)i * (size_t)BRAUN_N(pv->n), x);
+}
+
+/* Scatter the compressed A values into the dense A (entries off the
+ * pattern stay the zeros braun_data_init wrote). */
+void braun__scatter_A(braun_priv *pv);
+
+/* Where the constraint callbacks write A: row `row`'s first value. */
+static inline braun_real *braun__A_out(const braun_priv *pv, int row)
+{
+    if (pv->sp) return pv->Avals + pv->sp->row_ptr[row];
+    return pv->A + (size_t)row * (size_t)pv->n;
 }
 
 #endif

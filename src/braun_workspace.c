@@ -13,6 +13,20 @@ static size_t layout(const braun_model *model, unsigned char *base,
     const int n = s->n, m = s->m, p = s->p, rows = m + p;
     const int N = 2 * n + 1;
     const int need_fq = p > 0 && m > 0;
+    const braun_sparsity *sp = s->sparsity;
+    const braun_linsolver *ls = NULL;
+#ifndef BRAUN_NO_LINSOLVER
+    ls = model->opt.linsolver;
+#endif
+    /* The built-in kernels and dense backends work on dense A and M. */
+    const int dense = !ls || (ls->flags & BRAUN_LS_DENSE);
+    const size_t nn = (size_t)n * (size_t)n;
+    size_t mass_count = nn, nnz = 0;
+    if (sp) {
+        mass_count = 0;
+        for (int k = 0; k < sp->nblocks; k++) mass_count += (size_t)sp->block[k] * (size_t)sp->block[k];
+        nnz = (size_t)sp->row_ptr[rows];
+    }
     size_t off = (sizeof(braun_priv) + BRAUN_ALIGN - 1) / BRAUN_ALIGN * BRAUN_ALIGN;
     braun_real *r = base ? (braun_real *)(void *)(base + off) : NULL;
     size_t nr = 0;
@@ -31,7 +45,12 @@ static size_t layout(const braun_model *model, unsigned char *base,
     TAKE(P(atil), n);
     TAKE(P(z), n);
     TAKE(P(u), n);
-    TAKE(P(A), (size_t)rows * (size_t)n);
+    TAKE(P(A), dense ? (size_t)rows * (size_t)n : 0);
+    TAKE(P(Avals), nnz);
+    /* Mass callback output: the built-in Cholesky factors in place (in R);
+     * a backend, or a sparse system, needs its own buffer. */
+    TAKE(P(Mvals), (ls || sp) ? mass_count : 0);
+    TAKE(P(Mdense), (ls && dense) ? nn : 0);
     TAKE(P(phi), rows);
     TAKE(P(b), m);
     TAKE(P(bv), rows);
@@ -48,20 +67,36 @@ static size_t layout(const braun_model *model, unsigned char *base,
     for (int i = 0; i < BRAUN_MAX_STAGES; i++) TAKE(P(k[i]), N);
     TAKE(P(dq), n);
     TAKE(P(dv), n);
-    TAKE(cholr, BRAUN_CHOL_REALS(n));
-    TAKE(fvr, braun_qrcp_reals(n, rows));
-    if (need_fq) TAKE(fqr, braun_qrcp_reals(n, m));
+    if (!ls) {
+        TAKE(cholr, BRAUN_CHOL_REALS(n));
+        TAKE(fvr, braun_qrcp_reals(n, rows));
+        if (need_fq) TAKE(fqr, braun_qrcp_reals(n, m));
+    }
 #undef P
 #undef TAKE
     off += nr * sizeof(braun_real);
     off = (off + BRAUN_ALIGN - 1) / BRAUN_ALIGN * BRAUN_ALIGN;
-    size_t ni = BRAUN_CHOL_INTS(n) + braun_qrcp_ints(rows) + (need_fq ? braun_qrcp_ints(m) : 0);
+    size_t ni = ls ? 0
+                   : BRAUN_CHOL_INTS(n) + braun_qrcp_ints(rows) + (need_fq ? braun_qrcp_ints(m) : 0);
     if (base) {
         int *ints = (int *)(void *)(base + off);
-        braun_chol_bind(&pv->chol, n, cholr, ints);
-        ints += BRAUN_CHOL_INTS(n);
-        braun_qrcp_bind(&pv->fv, n, rows, fvr, ints);
-        if (need_fq) braun_qrcp_bind(&pv->fq, n, m, fqr, ints + rows);
+        if (!ls) {
+            braun_chol_bind(&pv->chol, n, cholr, ints);
+            ints += BRAUN_CHOL_INTS(n);
+            braun_qrcp_bind(&pv->fv, n, rows, fvr, ints);
+            if (need_fq) braun_qrcp_bind(&pv->fq, n, m, fqr, ints + rows);
+        }
+        pv->ls = ls;
+        pv->ls_state = NULL;
+        pv->sp = sp;
+        pv->mass_count = mass_count;
+        pv->dense_A = dense;
+        if (!((ls || sp))) pv->Mvals = NULL;
+        if (!(ls && dense)) pv->Mdense = NULL;
+        if (!dense) pv->A = NULL;
+        if (!sp) pv->Avals = NULL;
+        pv->rank[0] = rows;
+        pv->rank[1] = m;
         pv->n = n;
         pv->m = m;
         pv->p = p;
@@ -74,9 +109,20 @@ static size_t layout(const braun_model *model, unsigned char *base,
     return off;
 }
 
+/* Dense kernels index n x n and rows x n arrays: bounded sizes. */
+static int dense_size_ok(const braun_model *model)
+{
+    const braun_system *s = &model->sys;
+#ifndef BRAUN_NO_LINSOLVER
+    const braun_linsolver *ls = model->opt.linsolver;
+    if (ls && !(ls->flags & BRAUN_LS_DENSE)) return 1;
+#endif
+    return s->n <= BRAUN_MAX_DENSE && s->m + s->p <= 2 * BRAUN_MAX_DENSE;
+}
+
 size_t braun_data_size(const braun_model *model)
 {
-    if (!model || model->sys.n <= 0) return 0;
+    if (!model || model->sys.n <= 0 || !dense_size_ok(model)) return 0;
     /* + alignment slack: the caller's buffer may start anywhere. */
     return layout(model, NULL, NULL, NULL, NULL) + BRAUN_ALIGN;
 }
@@ -112,6 +158,30 @@ int braun__check_finite(braun_data *d, int n, const braun_real *x,
     return BRAUN_OK;
 }
 
+/* A sparse system's mass blocks into the dense n x n matrix M. */
+static void scatter_mass_blocks(const braun_sparsity *sp, int n, const braun_real *blocks,
+                                braun_real *M)
+{
+    for (size_t i = 0; i < (size_t)n * (size_t)n; i++) M[i] = 0;
+    int off = 0;
+    for (int k = 0; k < sp->nblocks; k++) {
+        const int b = sp->block[k];
+        for (int i = 0; i < b; i++)
+            for (int j = 0; j < b; j++)
+                M[(size_t)(off + i) * (size_t)n + (size_t)(off + j)] = *blocks++;
+        off += b;
+    }
+}
+
+void braun__scatter_A(braun_priv *pv)
+{
+    const braun_sparsity *sp = pv->sp;
+    const size_t n = (size_t)pv->n;
+    for (int i = 0; i < pv->rows; i++)
+        for (int k = sp->row_ptr[i]; k < sp->row_ptr[i + 1]; k++)
+            pv->A[(size_t)i * n + (size_t)sp->col[k]] = pv->Avals[k];
+}
+
 static int factor_mass(braun_data *d, braun_real t, const braun_real *q)
 {
     braun_priv *pv = braun__priv(d);
@@ -121,11 +191,23 @@ static int factor_mass(braun_data *d, braun_real t, const braun_real *q)
                                                    : (braun_real)1e3 * BRAUN_EPS;
     int bi = -1, bj = -1, st;
     braun_real bad = 0;
-    st = braun__callback(d, s->mass(t, q, pv->chol.R, s->user), "mass", t);
+    /* The callback's output: in place in R (built-in, dense), else Mvals. */
+    braun_real *out = pv->Mvals ? pv->Mvals : pv->chol.R;
+    st = braun__callback(d, s->mass(t, q, out, s->user), "mass", t);
     if (st) return st;
-    st = braun__check_finite(d, n * n, pv->chol.R, "mass", n, t);
+    st = braun__check_finite(d, (int)pv->mass_count, out, "mass", pv->sp ? 0 : n, t);
     if (st) return st;
-    st = braun_chol_factor(&pv->chol, pv->chol.R, tol, &bi, &bj, &bad);
+    const braun_real *M = out;
+    if (pv->sp && pv->dense_A) {
+        /* Dense solver, sparse system: scatter the blocks. */
+        braun_real *dst = BRAUN_LS(pv) ? pv->Mdense : pv->chol.R;
+        scatter_mass_blocks(pv->sp, n, out, dst);
+        M = dst;
+    } else if (!pv->sp && BRAUN_LS(pv)) {
+        M = pv->Mvals;
+    }
+    if (BRAUN_LS(pv)) st = pv->ls->factor_mass(pv->ls_state, M, tol, &bi, &bj, &bad);
+    else st = braun_chol_factor(&pv->chol, M, tol, &bi, &bj, &bad);
     d->stats.mass_factorizations++;
     if (st) return braun__fail(d, st, "mass", bi, bj, (double)bad, (double)t);
     return BRAUN_OK;
@@ -160,6 +242,20 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     d->error = (braun_error_info){BRAUN_OK, NULL, -1, -1, 0, 0};
     layout(model, base, pv, &d->q, &d->v);
     for (int i = 0; i < model->sys.n; i++) d->q[i] = d->v[i] = 0;
+    /* Off-pattern entries of a scattered A stay zero from here on. */
+    if (pv->sp && pv->dense_A)
+        for (size_t i = 0; i < (size_t)pv->rows * (size_t)pv->n; i++) pv->A[i] = 0;
+#ifndef BRAUN_NO_LINSOLVER
+    if (pv->ls) {
+        if ((pv->ls->flags & BRAUN_LS_NEEDS_SPARSITY) && !pv->sp)
+            return braun__fail(d, BRAUN_ERR_ARGUMENT, "linear solver needs a sparsity", -1, -1, 0, 0);
+        int st = pv->ls->create(&pv->ls_state, model);
+        if (st) return braun__fail(d, st, "linear solver create", -1, -1, 0, 0);
+    }
+#else
+    if (model->opt.linsolver)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "linear solver (not in this build)", -1, -1, 0, 0);
+#endif
     if ((model->opt.corrections & BRAUN_CORRECT_ENERGY) && !model->sys.energy)
         return braun__fail(d, BRAUN_ERR_NO_ENERGY_LAW, "options", -1, -1, 0, 0);
     if (model->sys.flags & BRAUN_MASS_CONSTANT) {
@@ -168,6 +264,16 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
         pv->R_is_constant = 1;
     }
     return BRAUN_OK;
+}
+
+void braun_data_release(braun_data *d)
+{
+    if (!d || !d->priv) return;
+    braun_priv *pv = braun__priv(d);
+#ifndef BRAUN_NO_LINSOLVER
+    if (pv->ls && pv->ls_state) pv->ls->destroy(pv->ls_state);
+#endif
+    pv->ls_state = NULL;
 }
 
 int braun_set_state(braun_data *d, braun_real t, const braun_real *q,

@@ -189,7 +189,7 @@ static void test_divergence_is_reported(void **state)
 {
     (void)state;
     braun_system s = {1, 0, 0, BRAUN_MASS_CONSTANT, osc_mass, osc_forces, NULL, NULL, NULL,
-                      NULL, NULL};
+                      NULL, NULL, NULL};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
                      BRAUN_OK);
@@ -240,7 +240,7 @@ static void test_inconsistent_constraints(void **state)
     (void)state;
     double gap = 1.0;
     braun_system s = {2, 2, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, contradict, NULL,
-                      NULL, NULL, &gap};
+                      NULL, NULL, &gap, NULL};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
                      BRAUN_OK);

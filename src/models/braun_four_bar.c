@@ -188,7 +188,7 @@ const braun_builtin braun_builtin_four_bar = {
     "double four-bar linkage of Sec. 4.2: 6 joint coordinates, 5 constraints",
     {6, 5, 0, BRAUN_MASS_CONSTANT, mass, forces, holonomic, NULL, energy, NULL,
      /* Callbacks only read the parameters; void * has no const. */
-     (void *)&params},
+     (void *)&params, NULL},
     q0,
     v0,
     2,

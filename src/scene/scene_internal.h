@@ -126,6 +126,15 @@ static inline int braun_scene__theta_col(const braun_scene *s, int body)
     return body >= 0 && s->bodies[body].kind == BRAUN_BODY_RIGID ? s->bodies[body].iq + 2 : -1;
 }
 
+/* Rows of joint j into phi, A, b, bv (offset to its first row, any may be
+ * NULL; A with row stride s->n). 0, or -1 for an unknown joint type. */
+int braun_scene__joint_eval(const braun_scene *s, const braun_scene_joint *j, braun_real t,
+                            const braun_real *q, const braun_real *v, braun_real *phi,
+                            braun_real *A, braun_real *b, braun_real *bv);
+
+/* The system of a built scene with its dense callbacks (scene_build.c). */
+void braun_scene__system(braun_scene *s, braun_system *sys);
+
 /* Callbacks of a built scene (scene_system.c). */
 int braun_scene__mass(braun_real t, const braun_real *q, braun_real *M, void *user);
 int braun_scene__forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,

@@ -1,0 +1,78 @@
+/*
+ * libbraun — the linear-algebra backend table.
+ *
+ * Every evaluation of Eqs. 16, 17 and 20 needs the same few operations:
+ * factor M = R^T R, solve with R and R^T, factor the weighted constraint
+ * matrix C = A R^-1 with a rank-revealing method, and apply C^+ (minimum-norm
+ * least squares) and the null-space projector N = I - C^+ C. libbraun's own
+ * dense kernels do this for small systems (model.opt.linsolver == NULL, the
+ * default: allocation-free, libm only). A backend is a table of those
+ * operations, so LAPACK or SuiteSparse can take over for large mechanisms
+ * without the core depending on either: they live in separate archives
+ * (libbraun_backends.a, built with BRAUN_LAPACK=1 / BRAUN_SUITESPARSE=1) and
+ * are selected through braun_backends.h.
+ *
+ * Conventions (all vectors braun_real, lengths as stated):
+ *  - A backend owns its state; create() may allocate (host backends do),
+ *    destroy() frees it. braun_data_init calls create, braun_data_release
+ *    calls destroy.
+ *  - "dense" backends (BRAUN_LS_DENSE) always see dense row-major A
+ *    (rows x n) and M (n x n): the core scatters a sparse system's
+ *    compressed values for them. Other backends see the system's own format:
+ *    compressed A (sys.sparsity->row_ptr / col order) and, with a sparsity,
+ *    block-diagonal M values (block after block, each row-major).
+ *  - slot 0 is C_v = [A_q; A_vv] R^-1 (all m + p rows), slot 1 is
+ *    C_q = A_q R^-1 (first m rows; only used when m > 0 and p > 0).
+ */
+#ifndef BRAUN_LINSOLVER_H
+#define BRAUN_LINSOLVER_H
+
+#include "braun.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum braun_linsolver_flags {
+    BRAUN_LS_DENSE = 1u << 0,        /* wants dense A and M */
+    BRAUN_LS_NEEDS_SPARSITY = 1u << 1 /* refuses systems without sys.sparsity */
+};
+
+struct braun_linsolver {
+    const char *name; /* "lapack", "suitesparse", ... */
+    unsigned flags;   /* braun_linsolver_flags */
+    /* Allocate the state for this model (sizes, sparsity, options).
+     * BRAUN_OK or an error status (BRAUN_ERR_ARGUMENT, BRAUN_ERR_BUFFER for
+     * out of memory, BRAUN_ERR_SIZE). */
+    int (*create)(void **state, const braun_model *model);
+    void (*destroy)(void *state);
+    /* Factor M (format above) = R^T R. Status as braun_chol_factor:
+     * BRAUN_ERR_MASS_NOT_SYMMETRIC (|M_ij - M_ji| > sym_tol·max_i M_ii) or
+     * BRAUN_ERR_MASS_NOT_SPD, with the entry in *bad_i, *bad_j, *bad_value
+     * (coordinates of the full matrix). */
+    int (*factor_mass)(void *state, const braun_real *M, braun_real sym_tol,
+                       int *bad_i, int *bad_j, braun_real *bad_value);
+    /* x := R^-T b, x := R^-1 b, y := R x (n entries; x may alias b, y not x). */
+    void (*solve_rt)(void *state, const braun_real *b, braun_real *x);
+    void (*solve_r)(void *state, const braun_real *b, braun_real *x);
+    void (*mul_r)(void *state, const braun_real *x, braun_real *y);
+    /* Form C = A R^-1 from the first `rows` rows of A (format above) and
+     * factor it with relative rank tolerance tol (a direction whose pivot or
+     * singular-value estimate is <= tol times the largest counts as
+     * dependent). If atil and resid are not NULL: resid[i] -= (C atil)_i.
+     * Returns the numerical rank (>= 0) or an error status (< 0). */
+    int (*factor_c)(void *state, int slot, int rows, const braun_real *A,
+                    braun_real tol, const braun_real *atil, braun_real *resid);
+    /* x[n] := C^+ r (r: rows entries, not modified). */
+    void (*pinv)(void *state, int slot, const braun_real *r, braun_real *x);
+    /* The same and *resid_norm := ||r - C C^+ r||_2. */
+    void (*lsq)(void *state, int slot, const braun_real *r, braun_real *x,
+                braun_real *resid_norm);
+    /* z[n] := z - C^+ C z. */
+    void (*null_project)(void *state, int slot, braun_real *z);
+};
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* BRAUN_LINSOLVER_H */

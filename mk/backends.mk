@@ -1,0 +1,60 @@
+# Optional linear-algebra backends (issue 7): build/libbraun_backends.a.
+#
+#   src/backends/braun_lapack.c       BRAUN_LAPACK=1       (liblapack-dev)
+#   src/backends/braun_suitesparse.c  BRAUN_SUITESPARSE=1  (libsuitesparse-dev)
+#   src/backends/braun_backend_select.c  always: names, auto selection
+#
+# libbraun.a never contains them (tests/backends/check-core.sh proves it).
+# Both default to on for host builds; `make BRAUN_LAPACK=0 BRAUN_SUITESPARSE=0`
+# builds the backend archive with the selection code alone.
+
+BRAUN_LAPACK ?= 1
+BRAUN_SUITESPARSE ?= 1
+
+BACKEND_SRC := src/backends/braun_backend_select.c
+BACKEND_CPPFLAGS :=
+BACKEND_LDLIBS :=
+BACKEND_DEPS :=
+ifeq ($(BRAUN_LAPACK),1)
+BACKEND_SRC += src/backends/braun_lapack.c
+BACKEND_CPPFLAGS += -DBRAUN_WITH_LAPACK
+BACKEND_LDLIBS += -llapack -lblas
+BACKEND_DEPS += liblapack-dev
+endif
+ifeq ($(BRAUN_SUITESPARSE),1)
+BACKEND_SRC += src/backends/braun_suitesparse.c
+BACKEND_CPPFLAGS += -DBRAUN_WITH_SUITESPARSE -I/usr/include/suitesparse
+BACKEND_LDLIBS := -lspqr -lcholmod -lsuitesparseconfig $(BACKEND_LDLIBS)
+BACKEND_DEPS += libsuitesparse-dev
+endif
+BACKEND_SRC := $(filter $(wildcard src/backends/*.c),$(BACKEND_SRC))
+BACKEND_OBJ := $(BACKEND_SRC:%.c=$(BUILD)/obj/%.o)
+
+$(BACKEND_OBJ): CPPFLAGS_ALL += $(BACKEND_CPPFLAGS)
+$(BACKEND_OBJ): | deps-backends
+# The flags decide what the archive holds: rebuild when they change.
+$(BUILD)/obj/src/backends/braun_backend_select.o: $(BUILD)/backends.flags
+$(BUILD)/backends.flags: FORCE_BACKEND_FLAGS
+	@mkdir -p $(dir $@)
+	@echo "$(BACKEND_CPPFLAGS)" | cmp -s - $@ || echo "$(BACKEND_CPPFLAGS)" > $@
+.PHONY: FORCE_BACKEND_FLAGS deps-backends
+
+deps-backends:
+	@$(if $(strip $(BACKEND_DEPS)),tools/ensure-deps $(BACKEND_DEPS),true)
+
+$(BUILD)/libbraun_backends.a: $(BACKEND_OBJ)
+	@mkdir -p $(dir $@)
+	rm -f $@
+	$(AR) rcs $@ $^
+
+# Link order for programs that use backends: backends before libbraun.a.
+BACKENDS_LDLIBS := $(BUILD)/libbraun_backends.a $(BUILD)/libbraun.a $(BACKEND_LDLIBS) -lm
+
+# Tests of the backends (tests/test_backend_*.c) link them.
+BACKEND_TEST_BIN := $(filter $(BUILD)/tests/test_backend_%,$(TEST_BIN))
+$(BACKEND_TEST_BIN): $(BUILD)/libbraun_backends.a
+$(BACKEND_TEST_BIN): LDLIBS_ALL := $(BACKENDS_LDLIBS) $(LDLIBS_ALL)
+
+# The CLI selects backends (--backend).
+$(BUILD)/bin/braun: $(BUILD)/libbraun_backends.a
+$(BUILD)/bin/braun: LDLIBS_ALL += $(BACKENDS_LDLIBS)

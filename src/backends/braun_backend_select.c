@@ -1,0 +1,60 @@
+/* Backend names and the automatic choice by size and sparsity. */
+#include <string.h>
+
+#include "braun_backends.h"
+
+/* Below this many coordinates libbraun's own kernels win whatever the
+ * structure (docs/performance.md, "Backends": measured crossovers). */
+#define AUTO_DENSE_MAX_N 60
+/* Above it a dense system goes to LAPACK's blocked kernels. */
+#define AUTO_LAPACK_MIN_N 200
+
+#ifndef BRAUN_WITH_LAPACK
+const braun_linsolver *braun_linsolver_lapack(void) { return NULL; }
+#endif
+#ifndef BRAUN_WITH_SUITESPARSE
+const braun_linsolver *braun_linsolver_suitesparse(void) { return NULL; }
+#endif
+
+const char *braun_linsolver_name(const braun_linsolver *ls)
+{
+    return ls ? ls->name : "dense";
+}
+
+static int fail(const char **why, const char *msg)
+{
+    if (why) *why = msg;
+    return BRAUN_ERR_ARGUMENT;
+}
+
+int braun_linsolver_select(const char *name, const braun_system *sys,
+                           const braun_linsolver **out, const char **why)
+{
+    if (why) *why = NULL;
+    if (!name || !sys || !out) return fail(why, "NULL argument");
+    *out = NULL;
+    if (strcmp(name, "dense") == 0) return BRAUN_OK;
+    if (strcmp(name, "lapack") == 0) {
+        if (!(*out = braun_linsolver_lapack()))
+            return fail(why, "backend 'lapack' not built (make BRAUN_LAPACK=1)");
+        return BRAUN_OK;
+    }
+    if (strcmp(name, "suitesparse") == 0) {
+        if (!(*out = braun_linsolver_suitesparse()))
+            return fail(why, "backend 'suitesparse' not built (make BRAUN_SUITESPARSE=1)");
+        if (!sys->sparsity) {
+            *out = NULL;
+            return fail(why, "backend 'suitesparse' needs a system with a sparsity pattern");
+        }
+        return BRAUN_OK;
+    }
+    if (strcmp(name, "auto") != 0)
+        return fail(why, "unknown backend (dense, lapack, suitesparse, auto)");
+    if (sys->n <= AUTO_DENSE_MAX_N) return BRAUN_OK;
+    if (sys->sparsity && braun_linsolver_suitesparse()) {
+        *out = braun_linsolver_suitesparse();
+        return BRAUN_OK;
+    }
+    if (sys->n >= AUTO_LAPACK_MIN_N && braun_linsolver_lapack()) *out = braun_linsolver_lapack();
+    return BRAUN_OK;
+}
