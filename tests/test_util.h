@@ -57,6 +57,7 @@ static inline int test_sim_open(test_sim *s, const braun_system *sys,
 
 static inline void test_sim_close(test_sim *s)
 {
+    if (s->buffer) braun_data_release(&s->data);
     free(s->buffer);
     s->buffer = NULL;
 }
