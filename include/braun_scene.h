@@ -212,9 +212,49 @@ typedef struct braun_scene_error {
  * non-positive masses, inertias and lengths, a coordinate without mass,
  * rods ending on rigid bodies, joints of a body with itself, zero axes,
  * step drives and more than one gravity. err may be NULL.
+ * Sizes: a scene with rods has at most BRAUN_MAX_DENSE (4096) coordinates
+ * and rows; one without rods up to BRAUN_MAX_SPARSE (2^20), since it can be
+ * handed out sparse (below) — braun_model_init refuses the dense system of
+ * a scene above 4096 with BRAUN_ERR_SIZE.
  * Returns BRAUN_OK, BRAUN_ERR_ARGUMENT (bad description) or BRAUN_ERR_SIZE
- * (no coordinates, or more than braun_model_init accepts). */
+ * (no coordinates, or more than those bounds). */
 int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err);
+
+/* ------------------------------------------------------------------ */
+/* Sparse systems (large mechanisms)                                   */
+/* ------------------------------------------------------------------ */
+/* A scene without rods has a block-diagonal M — one block per body, in
+ * coordinate order: diag(m, m, I) for a rigid body, diag(m, m) for a
+ * particle — and every row of A_q and A_vv belongs to one joint or knife
+ * edge that touches at most two bodies. braun_scene_build_sparse hands out
+ * that structure as the system's braun_sparsity (braun.h): the pattern of a
+ * row is every coordinate of the bodies its element touches, sorted
+ * (structural: entries that are 0 at some state are in it), and the
+ * callbacks write compressed values. Their cost is O(nonzeros) per call,
+ * independent of n·m, and they allocate nothing. A scene with rods has no
+ * sparsity (a rod's mass couples the blocks of its ends).
+ *
+ * The pattern, the block sizes and a scratch of (most rows of one element)
+ * x n reals live in one caller buffer, which must outlive the system, as
+ * the scene must. The callbacks use the scratch: the callbacks of one
+ * sparse system must not run concurrently (two braun_data of the same
+ * model, stepped from two threads, need two sparse systems). */
+typedef struct braun_scene_sparse braun_scene_sparse; /* private: lives in the buffer */
+
+/* Bytes of buffer braun_scene_build_sparse needs for a built scene
+ * (alignment slack included); 0 if the scene has rods or is not built. */
+size_t braun_scene_sparse_size(const braun_scene *s);
+
+/* braun_scene_build, then the sparse system: sys gets the same sizes,
+ * flags, forces, energy law and power as from braun_scene_build, sparse
+ * mass and constraint callbacks, sys->sparsity set, and sys->user = the
+ * store in buffer (not s). The dense system of braun_scene_build stays
+ * valid alongside. sys is written only on success.
+ * Returns BRAUN_OK, braun_scene_build's errors, BRAUN_ERR_ARGUMENT for a
+ * scene with rods (err names rod 0) or BRAUN_ERR_BUFFER when buffer is NULL
+ * or smaller than braun_scene_sparse_size(s) bytes (any alignment). */
+int braun_scene_build_sparse(braun_scene *s, braun_system *sys, void *buffer, size_t bytes,
+                             braun_scene_error *err);
 
 /* Initial q and v (n entries each) from the bodies' q0 and v0. */
 void braun_scene_initial_state(const braun_scene *s, braun_real *q, braun_real *v);

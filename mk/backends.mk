@@ -15,19 +15,18 @@ BACKEND_SRC := src/backends/braun_backend_select.c
 BACKEND_CPPFLAGS :=
 BACKEND_LDLIBS :=
 BACKEND_DEPS :=
-ifeq ($(BRAUN_LAPACK),1)
+ifeq ($(BRAUN_LAPACK)$(wildcard src/backends/braun_lapack.c),1src/backends/braun_lapack.c)
 BACKEND_SRC += src/backends/braun_lapack.c
 BACKEND_CPPFLAGS += -DBRAUN_WITH_LAPACK
 BACKEND_LDLIBS += -llapack -lblas
-BACKEND_DEPS += liblapack-dev
+BACKEND_DEPS += liblapack-dev libopenblas0-serial
 endif
-ifeq ($(BRAUN_SUITESPARSE),1)
+ifeq ($(BRAUN_SUITESPARSE)$(wildcard src/backends/braun_suitesparse.c),1src/backends/braun_suitesparse.c)
 BACKEND_SRC += src/backends/braun_suitesparse.c
 BACKEND_CPPFLAGS += -DBRAUN_WITH_SUITESPARSE -I/usr/include/suitesparse
 BACKEND_LDLIBS := -lspqr -lcholmod -lsuitesparseconfig $(BACKEND_LDLIBS)
 BACKEND_DEPS += libsuitesparse-dev
 endif
-BACKEND_SRC := $(filter $(wildcard src/backends/*.c),$(BACKEND_SRC))
 BACKEND_OBJ := $(BACKEND_SRC:%.c=$(BUILD)/obj/%.o)
 
 $(BACKEND_OBJ): CPPFLAGS_ALL += $(BACKEND_CPPFLAGS)

@@ -37,6 +37,8 @@ typedef struct braun_cli_run_args {
     const char *out_path;       /* CSV trajectory, NULL for none; "-" stdout */
     long every;                 /* CSV row every K steps */
     const char *summary_path;   /* "-" for stdout */
+    const char *backend;        /* --backend: dense | lapack | suitesparse | auto */
+    int sparse;                 /* --sparse: the scene's sparsity (braun_scene_build_sparse) */
 } braun_cli_run_args;
 
 /* Where the corrections of a run come from. */
@@ -84,7 +86,8 @@ int braun_cli_list(void);
 /* `braun check SCENE` (cli_check.c): sizes, rank and residuals at t = 0. */
 int braun_cli_check(int argc, char **argv);
 
-/* `braun gen chain N [--rods] [-o FILE]` (cli_gen.c). */
+/* `braun gen chain N [--rods] [--angle DEG] [-o FILE]`,
+ * `braun gen ladder N [--angle DEG] [-o FILE]` (cli_gen.c). */
 int braun_cli_gen(int argc, char **argv);
 
 /* braun gen-c SCENE [--symbol NAME] [-o FILE] (cli_gen_c.c). */
@@ -132,6 +135,8 @@ typedef struct braun_cli_result {
     braun_stats stats;
     double cpu_s;
     const braun_cli_monitor *mon;
+    const char *backend;       /* linear solver used (braun_linsolver_name) */
+    int sparse;                /* the system had a sparsity */
     double final_t;
     const double *final_q, *final_v;
     int status;

@@ -137,6 +137,17 @@ static int apply(const char *opt, const char *val, braun_cli_run_args *a)
         a->summary_path = val;
         return 0;
     }
+    if (strcmp(opt, "--backend") == 0) {
+        /* The names only: whether one is built in and takes the system is
+         * decided when the run selects it (braun_linsolver_select). */
+        static const char *const names[] = {"dense", "lapack", "suitesparse", "auto"};
+        for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+            if (strcmp(val, names[i]) == 0) {
+                a->backend = names[i];
+                return 0;
+            }
+        return braun_cli_error("unknown backend '%s' (dense, lapack, suitesparse, auto)", val);
+    }
     return braun_cli_error("unknown option '%s' (see braun --help)", opt);
 }
 
@@ -145,7 +156,7 @@ static int takes_value(const char *opt)
     static const char *const names[] = {
         "--dt", "--t-end", "--integrator", "--corrections", "--discretization",
         "--rank-tol", "--energy-max-rel", "--rtol", "--atol", "--ref-h",
-        "--every", "--out", "--summary"};
+        "--every", "--out", "--summary", "--backend"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         if (strcmp(opt, names[i]) == 0) return 1;
     return 0;
@@ -162,6 +173,7 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
     a->atol = 1e-10;
     a->every = 1;
     a->summary_path = "-";
+    a->backend = "dense";
 
     for (int i = 0; i < argc; i++) {
         const char *arg = argv[i];
@@ -185,6 +197,11 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
         if (len >= sizeof name) return braun_cli_error("unknown option '%s' (see braun --help)", arg);
         memcpy(name, arg, len);
         name[len] = '\0';
+        if (strcmp(name, "--sparse") == 0) { /* the one flag */
+            if (eq) return braun_cli_error("option --sparse takes no value");
+            a->sparse = 1;
+            continue;
+        }
         if (!takes_value(name)) return braun_cli_error("unknown option '%s' (see braun --help)", name);
         if (eq) {
             val = eq + 1;

@@ -1,28 +1,58 @@
-/* braun gen chain N [--rods] [-o FILE]: an N-link pendulum chain scene for
- * scaling studies. Links of 1 m and 1 kg hang from the origin, start
- * horizontal at rest, under gravity. By default each link is a rigid body
+/* braun gen chain N [--rods] [--angle DEG] [-o FILE]: an N-link pendulum
+ * chain scene for scaling studies. Links of 1 m and 1 kg hang from the
+ * origin as one straight line DEG degrees below the horizontal (default 0:
+ * horizontal), at rest, under gravity. By default each link is a rigid body
  * (3 coordinates, 2 revolute rows per joint: n = 3N, m = 2N); with --rods
  * the links are uniform rods between particles in natural coordinates
- * (n = 2N, m = N). */
+ * (n = 2N, m = N).
+ *
+ * braun gen ladder N [--angle DEG] [-o FILE]: a closed-loop ladder with
+ * redundant rungs. Three rails — chains of N rigid links (1 m, 1 kg) —
+ * hang from the ground pivots (0, 0), (d, 0), (2d, 0), d = 0.5; rung k
+ * (rigid, 2d long, 1 kg) is pinned at its left end, middle and right end to
+ * the lower ends of the k-th links of the three rails and to the upper ends
+ * of their (k+1)-th links. Every cell is a parallelogram with a third crank
+ * (a double parallelogram): of its 12 rows one is redundant, so
+ * n = m = 12N, rank 11N, N degrees of freedom. The rails start tilted DEG
+ * degrees from the vertical (default 30), at rest, on the constraints.
+ *
+ * Rigid chains and ladders have no rods: above n = 4096 they run only as
+ * sparse systems (braun run --sparse). */
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "braun_cli.h"
 
-#define GEN_MAX_LINKS 1000 /* n = 3000 rigid: within the library's 4096 */
+#define GEN_MAX_LINKS 2000 /* chain: n = 6000 rigid (sparse), 4000 with rods (dense) */
+#define GEN_MAX_ANGLE 180.0
+#define LADDER_D 0.5       /* rail spacing; rung length 2d */
+#define PI 3.14159265358979323846
 
-static void write_rigid(FILE *f, long N)
+static void write_rigid(FILE *f, long N, double deg)
 {
+    /* Link direction (cos φ, -sin φ): θ = -φ, centre (i - 1/2)·direction. */
+    const double phi = deg * PI / 180, c = cos(phi), s = sin(phi);
     fprintf(f, "{\n  \"name\": \"chain-%ld\",\n", N);
-    fprintf(f, "  \"description\": \"%ld-link pendulum chain of rigid links (1 m, 1 kg), "
-               "horizontal at rest; written by braun gen chain %ld\",\n", N, N);
+    if (deg == 0)
+        fprintf(f, "  \"description\": \"%ld-link pendulum chain of rigid links (1 m, 1 kg), "
+                   "horizontal at rest; written by braun gen chain %ld\",\n", N, N);
+    else
+        fprintf(f, "  \"description\": \"%ld-link pendulum chain of rigid links (1 m, 1 kg), "
+                   "straight, %.17g degrees below the horizontal at rest; written by braun gen "
+                   "chain %ld --angle %.17g\",\n", N, deg, N, deg);
     fputs("  \"bodies\": [\n", f);
-    for (long i = 1; i <= N; i++)
+    for (long i = 1; i <= N; i++) {
         fprintf(f, "    {\"name\": \"link%ld\", \"type\": \"rigid\", \"mass\": 1, "
-                   "\"inertia\": 0.083333333333333329, \"position\": [%ld.5, 0], "
-                   "\"points\": {\"a\": [-0.5, 0], \"b\": [0.5, 0]}}%s\n",
-                i, i - 1, i < N ? "," : "");
+                   "\"inertia\": 0.083333333333333329, ", i);
+        if (deg == 0)
+            fprintf(f, "\"position\": [%ld.5, 0], ", i - 1);
+        else
+            fprintf(f, "\"position\": [%.17g, %.17g], \"angle\": %.17g, ",
+                    ((double)i - 0.5) * c, -((double)i - 0.5) * s, -phi);
+        fprintf(f, "\"points\": {\"a\": [-0.5, 0], \"b\": [0.5, 0]}}%s\n", i < N ? "," : "");
+    }
     fputs("  ],\n  \"joints\": [\n", f);
     fprintf(f, "    {\"name\": \"pivot\", \"type\": \"revolute\", \"a\": \"link1.a\", "
                "\"b\": [0, 0]}%s\n", N > 1 ? "," : "");
@@ -32,16 +62,25 @@ static void write_rigid(FILE *f, long N)
     fputs("  ],\n", f);
 }
 
-static void write_rods(FILE *f, long N)
+static void write_rods(FILE *f, long N, double deg)
 {
+    const double phi = deg * PI / 180, c = cos(phi), s = sin(phi);
     fprintf(f, "{\n  \"name\": \"chain-%ld\",\n", N);
-    fprintf(f, "  \"description\": \"%ld-link pendulum chain of uniform rods (1 m, 1 kg) in "
-               "natural coordinates, horizontal at rest; written by braun gen chain %ld "
-               "--rods\",\n", N, N);
+    if (deg == 0)
+        fprintf(f, "  \"description\": \"%ld-link pendulum chain of uniform rods (1 m, 1 kg) in "
+                   "natural coordinates, horizontal at rest; written by braun gen chain %ld "
+                   "--rods\",\n", N, N);
+    else
+        fprintf(f, "  \"description\": \"%ld-link pendulum chain of uniform rods (1 m, 1 kg) in "
+                   "natural coordinates, straight, %.17g degrees below the horizontal at rest; "
+                   "written by braun gen chain %ld --rods --angle %.17g\",\n", N, deg, N, deg);
     fputs("  \"bodies\": [\n", f);
-    for (long i = 1; i <= N; i++)
-        fprintf(f, "    {\"name\": \"P%ld\", \"type\": \"particle\", \"mass\": 0, "
-                   "\"position\": [%ld, 0]}%s\n", i, i, i < N ? "," : "");
+    for (long i = 1; i <= N; i++) {
+        fprintf(f, "    {\"name\": \"P%ld\", \"type\": \"particle\", \"mass\": 0, ", i);
+        if (deg == 0) fprintf(f, "\"position\": [%ld, 0]}", i);
+        else fprintf(f, "\"position\": [%.17g, %.17g]}", (double)i * c, -(double)i * s);
+        fputs(i < N ? ",\n" : "\n", f);
+    }
     fputs("  ],\n  \"rods\": [\n", f);
     fprintf(f, "    {\"name\": \"link1\", \"a\": [0, 0], \"b\": \"P1\", \"mass\": 1, "
                "\"length\": 1}%s\n", N > 1 ? "," : "");
@@ -51,20 +90,91 @@ static void write_rods(FILE *f, long N)
     fputs("  ],\n", f);
 }
 
+static void write_ladder(FILE *f, long N, double deg)
+{
+    /* Rails along (sin α, -cos α), α from the vertical: θ = α - 90°. */
+    const double alpha = deg * PI / 180, s = sin(alpha), c = cos(alpha);
+    const double theta = alpha - PI / 2, d = LADDER_D;
+    static const char *const side[3] = {"left", "mid", "right"};
+    fprintf(f, "{\n  \"name\": \"ladder-%ld\",\n", N);
+    fprintf(f, "  \"description\": \"closed-loop ladder: three rails of %ld rigid links (1 m, "
+               "1 kg) %g m apart and %ld rungs (1 m, 1 kg) pinned at both ends and the middle; "
+               "every cell a double parallelogram with one redundant row (n = m = %ld, rank "
+               "%ld); rails %.17g degrees from the vertical at rest; written by braun gen "
+               "ladder %ld --angle %.17g\",\n", N, d, N, 12 * N, 11 * N, deg, N, deg);
+    fprintf(f, "  \"ground\": {\"points\": {\"left\": [0, 0], \"mid\": [%g, 0], "
+               "\"right\": [%g, 0]}},\n", d, 2 * d);
+    fputs("  \"bodies\": [\n", f);
+    /* Body order: cell by cell (its three links, then its rung), so the
+     * coordinates of neighbours stay close. */
+    for (long k = 1; k <= N; k++) {
+        for (int r = 0; r < 3; r++)
+            fprintf(f, "    {\"name\": \"%s%ld\", \"type\": \"rigid\", \"mass\": 1, "
+                       "\"inertia\": 0.083333333333333329, \"position\": [%.17g, %.17g], "
+                       "\"angle\": %.17g, \"points\": {\"a\": [-0.5, 0], \"b\": [0.5, 0]}},\n",
+                    side[r], k, r * d + ((double)k - 0.5) * s, -((double)k - 0.5) * c, theta);
+        fprintf(f, "    {\"name\": \"rung%ld\", \"type\": \"rigid\", \"mass\": 1, "
+                   "\"inertia\": 0.083333333333333329, \"position\": [%.17g, %.17g], "
+                   "\"points\": {\"left\": [%g, 0], \"mid\": [0, 0], \"right\": [%g, 0]}}%s\n",
+                k, d + (double)k * s, -(double)k * c, -d, d, k < N ? "," : "");
+    }
+    fputs("  ],\n  \"joints\": [\n", f);
+    for (int r = 0; r < 3; r++)
+        fprintf(f, "    {\"name\": \"pivot-%s\", \"type\": \"revolute\", \"a\": \"%s1.a\", "
+                   "\"b\": \"ground.%s\"},\n", side[r], side[r], side[r]);
+    for (long k = 1; k <= N; k++)
+        for (int r = 0; r < 3; r++) {
+            fprintf(f, "    {\"name\": \"%s%ld-rung%ld\", \"type\": \"revolute\", "
+                       "\"a\": \"%s%ld.b\", \"b\": \"rung%ld.%s\"}", side[r], k, k, side[r], k,
+                    k, side[r]);
+            if (k < N)
+                fprintf(f, ",\n    {\"name\": \"rung%ld-%s%ld\", \"type\": \"revolute\", "
+                           "\"a\": \"%s%ld.a\", \"b\": \"rung%ld.%s\"}", k, side[r], k + 1,
+                        side[r], k + 1, k, side[r]);
+            fputs(k < N || r < 2 ? ",\n" : "\n", f);
+        }
+    fputs("  ],\n", f);
+}
+
+static int parse_angle(const char *s, double *deg)
+{
+    char *end;
+    errno = 0;
+    double x = strtod(s, &end);
+    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(x) ||
+        fabs(x) > GEN_MAX_ANGLE)
+        return braun_cli_error("--angle must be a number of degrees in [-%g, %g] (got '%s')",
+                               GEN_MAX_ANGLE, GEN_MAX_ANGLE, s);
+    *deg = x + 0.0; /* -0 prints as 0 */
+    return 0;
+}
+
+#define GEN_USAGE "braun gen chain N [--rods] [--angle DEG] [-o FILE] | ladder N [--angle DEG] [-o FILE]"
+
 int braun_cli_gen(int argc, char **argv)
 {
     const char *out = NULL, *count = NULL;
-    int rods = 0;
-    if (argc < 1) return braun_cli_error("gen needs a kind: braun gen chain N [--rods] [-o FILE]");
+    int rods = 0, ladder, rc;
+    double deg;
+    if (argc < 1) return braun_cli_error("gen needs a kind: " GEN_USAGE);
     if (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0) {
         braun_cli_usage(stdout);
         return 0;
     }
-    if (strcmp(argv[0], "chain") != 0)
-        return braun_cli_error("unknown scene kind '%s' (chain)", argv[0]);
+    if (strcmp(argv[0], "chain") == 0) ladder = 0;
+    else if (strcmp(argv[0], "ladder") == 0) ladder = 1;
+    else return braun_cli_error("unknown scene kind '%s' (chain, ladder)", argv[0]);
+    deg = ladder ? 30 : 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--rods") == 0) {
+            if (ladder)
+                return braun_cli_error("--rods applies to gen chain only (a ladder's rungs are "
+                                       "rigid)");
             rods = 1;
+        } else if (strcmp(argv[i], "--angle") == 0) {
+            if (i + 1 >= argc || argv[i + 1][0] == '\0')
+                return braun_cli_error("option %s needs a value", argv[i]);
+            if ((rc = parse_angle(argv[++i], &deg)) != 0) return rc;
         } else if (strcmp(argv[i], "-o") == 0 || strcmp(argv[i], "--out") == 0) {
             if (i + 1 >= argc || argv[i + 1][0] == '\0')
                 return braun_cli_error("option %s needs a value", argv[i]);
@@ -77,7 +187,9 @@ int braun_cli_gen(int argc, char **argv)
             count = argv[i];
         }
     }
-    if (!count) return braun_cli_error("gen chain needs the number of links N");
+    if (!count)
+        return braun_cli_error("gen %s needs the number of %s N", argv[0],
+                               ladder ? "cells" : "links");
     char *end;
     errno = 0;
     long N = strtol(count, &end, 10);
@@ -87,8 +199,9 @@ int braun_cli_gen(int argc, char **argv)
     FILE *f = stdout;
     if (out && strcmp(out, "-") != 0 && !(f = fopen(out, "w")))
         return braun_cli_error("cannot open '%s' for writing: %s", out, strerror(errno));
-    if (rods) write_rods(f, N);
-    else write_rigid(f, N);
+    if (ladder) write_ladder(f, N, deg);
+    else if (rods) write_rods(f, N, deg);
+    else write_rigid(f, N, deg);
     fputs("  \"effects\": [\n    {\"type\": \"gravity\", \"g\": [0, -9.81]}\n  ]\n}\n", f);
     int bad = fflush(f) != 0 || ferror(f);
     if (f != stdout && fclose(f) != 0) bad = 1;

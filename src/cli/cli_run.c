@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "braun_backends.h"
 #include "braun_cli.h"
 #include "braun_host.h"
 
@@ -105,26 +106,104 @@ static int close_output(FILE *f, const char *path)
     return bad;
 }
 
-static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg);
+/* The system a run integrates: the target's own (dense), or its scene's
+ * sparse system (braun_scene_build_sparse, store in *store) when --sparse
+ * asks for it or --backend suitesparse | auto implies it. *none says why
+ * the target has no sparsity (NULL if it has one or none was wanted).
+ * Returns 0, or an exit status after one message. */
+static int choose_system(const braun_cli_run_args *a, const braun_cli_target *tg,
+                         braun_system *sys, void **store, const char **none)
+{
+    const int implied = strcmp(a->backend, "suitesparse") == 0 || strcmp(a->backend, "auto") == 0;
+    braun_scene_error err;
+    *sys = tg->sys;
+    *store = NULL;
+    *none = NULL;
+    if (!a->sparse && !implied) return 0;
+    if (!tg->scene) {
+        *none = "a built-in model has no sparsity (scene files without rods have one)";
+    } else {
+        braun_scene *s = &tg->scene->scene;
+        const size_t bytes = braun_scene_sparse_size(s);
+        if (bytes == 0) {
+            *none = "a scene with rods has no sparsity (a rod couples the mass blocks of its ends)";
+        } else if (!(*store = malloc(bytes))) {
+            braun_cli_error("out of memory");
+            return BRAUN_CLI_FAILED;
+        } else {
+            const int st = braun_scene_build_sparse(s, sys, *store, bytes, &err);
+            if (st) {
+                *none = err.what ? err.what : braun_status_str(st);
+                free(*store);
+                *store = NULL;
+                *sys = tg->sys;
+            }
+        }
+    }
+    /* Only --sparse insists; the backends fall back to (auto) or refuse
+     * (suitesparse, when selected) the dense system. */
+    if (*none && a->sparse)
+        return braun_cli_error("--sparse: '%s': %s", tg->name, *none);
+    return 0;
+}
+
+/* The linear solver of --backend for the chosen system. */
+static int choose_backend(const braun_cli_run_args *a, const braun_cli_target *tg,
+                          braun_model *model, const char *none)
+{
+    const braun_linsolver *ls = NULL;
+    const char *why = NULL;
+    if (braun_linsolver_select(a->backend, &model->sys, &ls, &why) != BRAUN_OK) {
+        /* Built, but refused for want of a sparsity: say why there is none. */
+        if (none && !model->sys.sparsity && braun_linsolver_suitesparse())
+            return braun_cli_error("--backend %s: %s; '%s': %s", a->backend,
+                                   why ? why : "not available", tg->name, none);
+        return braun_cli_error("--backend %s: %s", a->backend, why ? why : "not available");
+    }
+    model->opt.linsolver = ls;
+    return 0;
+}
+
+static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
+                      const braun_model *model);
 
 int braun_cli_run(const braun_cli_run_args *a)
 {
     braun_cli_target tg;
     int rc = braun_cli_target_open(a->model, &tg);
     if (rc) return rc;
-    rc = run_target(a, &tg);
+    braun_system sys;
+    void *store; /* the sparse system's pattern and scratch: outlives the run */
+    const char *none;
+    rc = choose_system(a, &tg, &sys, &store, &none);
+    braun_model model;
+    if (!rc) {
+        /* A scene without rods may be larger than a dense system can be. */
+        const int big = sys.n > BRAUN_MAX_DENSE || sys.m > BRAUN_MAX_DENSE ||
+                        sys.p > BRAUN_MAX_DENSE;
+        int st = braun_model_init(&model, &sys);
+        if (st && !sys.sparsity && big) {
+            rc = braun_cli_error("'%s' has n = %d, m = %d, p = %d: more than a dense system "
+                                 "allows (%d); run it with --sparse", tg.name, sys.n, sys.m,
+                                 sys.p, BRAUN_MAX_DENSE);
+        } else if (st) {
+            braun_cli_error("model '%s' is invalid: %s", tg.name, braun_status_str(st));
+            rc = BRAUN_CLI_FAILED;
+        } else {
+            rc = choose_backend(a, &tg, &model, none);
+        }
+    }
+    if (!rc) rc = run_target(a, &tg, &model);
+    free(store);
     braun_cli_target_close(&tg);
     return rc;
 }
 
-static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg)
+static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
+                      const braun_model *model_in)
 {
-    braun_model model;
-    int st = braun_model_init(&model, &tg->sys);
-    if (st) {
-        braun_cli_error("model '%s' is invalid: %s", tg->name, braun_status_str(st));
-        return BRAUN_CLI_FAILED;
-    }
+    braun_model model = *model_in;
+    int st;
     /* braun_model_init enables every correction the system supports; the
      * target declares its default, the command line may override it. */
     const unsigned supported = model.opt.corrections;
@@ -169,6 +248,10 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg)
     int exit_status = 0, st_timed;
     double c0, cpu_s;
     braun_stats timed_stats;
+    /* Released on every path (a backend's state; nothing for the built-in
+     * kernels): zeroed so that releasing one never initialised is a no-op. */
+    memset(&d, 0, sizeof d);
+    memset(&mon, 0, sizeof mon);
 
     /* Run 1: timed, no callback. */
     st = start(&d, &model, tg, buf_run, bytes);
@@ -178,7 +261,8 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg)
     cpu_s = braun_cli_cpu_seconds() - c0;
     timed_stats = d.stats;
 
-    /* Run 2: the same steps, monitored. */
+    /* Run 2: the same steps, monitored (a fresh backend state, too). */
+    braun_data_release(&d);
     st = start(&d, &model, tg, buf_run, bytes);
     if (st) goto init_failed;
     failed = &mon.scratch;
@@ -230,6 +314,8 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg)
     r.stats = d.stats;
     r.cpu_s = cpu_s;
     r.mon = &mon;
+    r.backend = braun_linsolver_name(model.opt.linsolver);
+    r.sparse = model.sys.sparsity != NULL;
     r.final_t = ctx.t;
     r.final_q = ctx.q;
     r.final_v = ctx.v;
@@ -237,12 +323,16 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg)
     braun_cli_write_summary(summary, &r);
     if (close_output(summary, a->summary_path)) exit_status = BRAUN_CLI_FAILED;
     if (csv && close_output(csv, a->out_path)) exit_status = BRAUN_CLI_FAILED;
+    braun_data_release(&mon.scratch);
+    braun_data_release(&d);
     free(block);
     return exit_status;
 
 init_failed:
     /* Nothing was integrated: no summary to speak of. */
     report_failure(failed, st);
+    braun_data_release(&mon.scratch);
+    braun_data_release(&d);
     if (csv && csv != stdout) fclose(csv);
     if (summary != stdout) fclose(summary);
     free(block);

@@ -115,6 +115,9 @@ int braun_cli_write_summary(FILE *f, const braun_cli_result *r)
     integer(&j, "n", sys->n);
     integer(&j, "m", sys->m);
     integer(&j, "p", sys->p);
+    str(&j, "backend", r->backend ? r->backend : "dense");
+    key(&j, "sparse");
+    fputs(r->sparse ? "true" : "false", f);
     /* Options as set; 0 means the library's default. */
     num(&j, "rank_tol", (double)r->model->opt.rank_tol);
     num(&j, "energy_max_rel", (double)r->model->opt.energy_max_rel);

@@ -5,7 +5,11 @@
  * with driven joints, and always a constant mass matrix. */
 #include "scene_internal.h"
 
-#define MAX_ROWS 4096 /* braun_model_init's bound on n, m, p */
+/* braun_model_init's bound on n, m, p: a scene with rods is always dense;
+ * one without can also be handed out sparse (scene_sparse.c), so it may be
+ * as large as a sparse system. */
+#define MAX_ROWS_DENSE BRAUN_MAX_DENSE
+#define MAX_ROWS_SPARSE BRAUN_MAX_SPARSE
 
 static int fail(braun_scene_error *err, int status, int element, int index, const char *what)
 {
@@ -268,27 +272,36 @@ int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err)
     if (st) return st;
 
     /* Coordinates: bodies in order. Rows: rods, then joints; knife edges. */
+    const long max = s->nrods > 0 ? MAX_ROWS_DENSE : MAX_ROWS_SPARSE;
     long n = 0, m = 0;
     for (int k = 0; k < s->nbodies; k++) {
         s->bodies[k].iq = (int)n;
         n += s->bodies[k].kind == BRAUN_BODY_RIGID ? 3 : 2;
-        if (n > MAX_ROWS) break;
+        if (n > max) break;
     }
     if (n == 0) return fail(err, BRAUN_ERR_SIZE, S, -1, "the scene has no moving body");
-    for (int k = 0; k < s->nrods && m <= MAX_ROWS; k++) s->rods[k].row = (int)m++;
+    for (int k = 0; k < s->nrods && m <= max; k++) s->rods[k].row = (int)m++;
     s->driven = 0;
-    for (int k = 0; k < s->njoints && m <= MAX_ROWS; k++) {
+    for (int k = 0; k < s->njoints && m <= max; k++) {
         s->joints[k].row = (int)m;
         m += braun_scene__joint_rows(&s->joints[k]);
         s->driven += s->joints[k].driven != 0;
     }
     for (int k = 0; k < s->nknives; k++) s->knives[k].row = k;
-    if (n > MAX_ROWS || m > MAX_ROWS || s->nknives > MAX_ROWS)
-        return fail(err, BRAUN_ERR_SIZE, S, -1, "more than 4096 coordinates or rows");
+    if (n > max || m > max || s->nknives > max)
+        return fail(err, BRAUN_ERR_SIZE, S, -1,
+                    s->nrods > 0 ? "more than 4096 coordinates or rows (a scene with rods is "
+                                   "dense)"
+                                 : "more than 1048576 coordinates or rows");
     s->n = (int)n;
     s->m = (int)m;
     s->p = s->nknives;
+    braun_scene__system(s, sys);
+    return BRAUN_OK;
+}
 
+void braun_scene__system(braun_scene *s, braun_system *sys)
+{
     sys->n = s->n;
     sys->m = s->m;
     sys->p = s->p;
@@ -303,7 +316,7 @@ int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err)
     sys->energy = braun_scene__energy;
     sys->power = s->energy_input ? braun_scene__power : NULL;
     sys->user = s;
-    return BRAUN_OK;
+    sys->sparsity = NULL;
 }
 
 int braun_scene__joint_rows(const braun_scene_joint *j)

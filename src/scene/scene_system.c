@@ -46,6 +46,26 @@ int braun_scene__forces(braun_real t, const braun_real *q, const braun_real *v, 
 #define AT(x, r) ((x) ? (x) + (r) : NULL)
 #define ROW(A, r, n) ((A) ? (A) + braun_scene__at(r, 0, n) : NULL)
 
+int braun_scene__joint_eval(const braun_scene *s, const braun_scene_joint *j, braun_real t,
+                            const braun_real *q, const braun_real *v, braun_real *phi,
+                            braun_real *A, braun_real *b, braun_real *bv)
+{
+    switch (j->type) {
+    case BRAUN_JOINT_REVOLUTE: braun_scene__revolute_rows(s, j, q, v, phi, A, b, bv); break;
+    case BRAUN_JOINT_DISTANCE: braun_scene__distance_rows(s, j, t, q, v, phi, A, b, bv); break;
+    case BRAUN_JOINT_SLIDER:
+    case BRAUN_JOINT_PRISMATIC: braun_scene__slider_rows(s, j, t, q, v, phi, A, b, bv); break;
+    case BRAUN_JOINT_ANGLE: {
+        const braun_scene_fn fixed = {BRAUN_FN_CONSTANT, j->value, 0, 0, 0};
+        braun_scene__angle_rows(s, j->a, j->b, j->driven ? &j->drive : &fixed, t, q, v, phi, A,
+                                b, bv);
+        break;
+    }
+    default: return -1;
+    }
+    return 0;
+}
+
 int braun_scene__holonomic(braun_real t, const braun_real *q, const braun_real *v,
                            braun_real *phi, braun_real *A, braun_real *b, braun_real *bv,
                            void *user)
@@ -61,21 +81,9 @@ int braun_scene__holonomic(braun_real t, const braun_real *q, const braun_real *
     }
     for (int k = 0; k < s->njoints; k++) {
         const braun_scene_joint *j = &s->joints[k];
-        braun_real *ph = AT(phi, j->row), *a = ROW(A, j->row, n), *bq = AT(b, j->row),
-                   *bb = AT(bv, j->row);
-        switch (j->type) {
-        case BRAUN_JOINT_REVOLUTE: braun_scene__revolute_rows(s, j, q, v, ph, a, bq, bb); break;
-        case BRAUN_JOINT_DISTANCE: braun_scene__distance_rows(s, j, t, q, v, ph, a, bq, bb); break;
-        case BRAUN_JOINT_SLIDER:
-        case BRAUN_JOINT_PRISMATIC: braun_scene__slider_rows(s, j, t, q, v, ph, a, bq, bb); break;
-        case BRAUN_JOINT_ANGLE: {
-            const braun_scene_fn fixed = {BRAUN_FN_CONSTANT, j->value, 0, 0, 0};
-            braun_scene__angle_rows(s, j->a, j->b, j->driven ? &j->drive : &fixed, t, q, v, ph,
-                                    a, bq, bb);
-            break;
-        }
-        default: return -1;
-        }
+        if (braun_scene__joint_eval(s, j, t, q, v, AT(phi, j->row), ROW(A, j->row, n),
+                                    AT(b, j->row), AT(bv, j->row)))
+            return -1;
     }
     return 0;
 }

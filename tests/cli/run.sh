@@ -84,6 +84,12 @@ bad "both tolerances 0" $run --dt 1e-3 --integrator dopri5 --rtol 0 --atol 0
 bad "per-stage with dopri5" $run --dt 1e-3 --integrator dopri5 --discretization per-stage
 bad "csv and summary both on stdout" $run --dt 1e-3 --out -
 bad "unwritable summary" $run --dt 1e-3 --summary "$TMP/no/such/dir/s.json"
+bad "unknown backend" $run --dt 1e-3 --backend cuda
+bad "backend without a value" $run --dt 1e-3 --backend
+bad "empty backend" $run --dt 1e-3 --backend=
+bad "--sparse with a value" $run --dt 1e-3 --sparse=yes
+bad "--sparse on a built-in model" $run --dt 1e-3 --sparse
+bad "--backend suitesparse on a built-in model" $run --dt 1e-3 --backend suitesparse
 "$BRAUN" run scene.json --dt 1e-3 --t-end 1 > /dev/null 2> "$TMP/scene.err"; rc=$?
 check "missing scene file: exit 2 and 'cannot open'" \
     sh -c '[ "$1" -eq 2 ] && [ "$(cat "$2")" = "braun: scene.json: cannot open: No such file or directory" ]' \
@@ -104,7 +110,7 @@ for key in scene method corrections discretization integrator dt t_end steps rhs
     energy_guard_hits cpu_s max_position_constraint_error max_velocity_constraint_error \
     max_energy_error max_trajectory_error max_point_error final_position_constraint_error \
     final_velocity_constraint_error final_energy_error final_trajectory_error final_t \
-    final_q final_v status n m p rank_tol libbraun_version; do
+    final_q final_v status n m p backend sparse rank_tol libbraun_version; do
     grep -q "^  \"$key\": " "$TMP/short.json" || missing="$missing $key"
 done
 if [ -z "$missing" ]; then ok "summary has every key"; else not_ok "summary has every key" "missing:$missing"; fi
@@ -114,6 +120,14 @@ check "summary: scene, method, status, steps" sh -c '
     grep -q "^  \"corrections\": \"position,velocity,energy\",$" "$1" &&
     grep -q "^  \"status\": \"BRAUN_OK\",$" "$1" &&
     grep -q "^  \"steps\": 1000,$" "$1"' sh "$TMP/short.json"
+check "summary: default backend dense, no sparsity" sh -c '
+    grep -q "^  \"backend\": \"dense\",$" "$1" && grep -q "^  \"sparse\": false,$" "$1"' sh "$TMP/short.json"
+"$BRAUN" run slider-crank --dt 1e-3 --t-end 1 --backend auto > "$TMP/auto.json"; rc=$?
+check "run slider-crank --backend auto: a built-in model (n 6) stays on the dense kernels" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^  \"backend\": \"dense\",$" "$2"' sh "$rc" "$TMP/auto.json"
+"$BRAUN" run slider-crank --dt 1e-3 --t-end 1 --backend=dense > "$TMP/dense.json"; rc=$?
+check "run slider-crank --backend=dense: the default's final state" sh -c '
+    [ "$1" -eq 0 ] && [ "$(grep final_q "$2")" = "$(grep final_q "$3")" ]' sh "$rc" "$TMP/dense.json" "$TMP/short.json"
 check "summary: no point error for the slider-crank is null" \
     [ "$(json_value max_point_error "$TMP/short.json")" = null ]
 

@@ -131,12 +131,118 @@ v=$(json_value max_position_constraint_error "$TMP/c30.json")
 check "gen chain 30 runs: n 90, BRAUN_OK, |Phi_q| $v" sh -c '
     [ "$1" -eq 0 ] && grep -q "^  \"n\": 90,$" "$2" && grep -q "\"status\": \"BRAUN_OK\"" "$2"' \
     sh "$rc" "$TMP/c30.json"
-for bad in "chain 0" "chain 1001" "chain x" "chain" "ring 5" "chain 5 -o" "chain 5 6" "chain 5 --bogus"; do
+"$BRAUN" gen chain 5 --angle 0 > "$TMP/chain5a.json"
+check "gen chain 5 --angle 0 is the default (data/chain-5.json)" cmp -s "$TMP/chain5a.json" data/chain-5.json
+"$BRAUN" gen chain 4 --angle 60 -o "$TMP/chain4-60.json"; rc=$?
+check "gen chain 4 --angle 60: n 12 m 8, rank 8, 4 dof" sh -c '[ "$1" -eq 0 ]' sh "$rc"
+check "gen chain 4 --angle 60: sizes" sizes "$TMP/chain4-60.json" "12 8 0 8 0 4"
+"$BRAUN" check "$TMP/chain4-60.json" > "$TMP/c460.out"
+v=$(key_value position_residual "$TMP/c460.out")
+check "gen chain 4 --angle 60: on its constraints ($v), hangs at -60 degrees" sh -c '
+    awk -v a="$1" "BEGIN { exit !(a + 0 <= 1e-15) }" &&
+    grep -q "\"angle\": -1.0471975511965976," "$2"' sh "$v" "$TMP/chain4-60.json"
+"$BRAUN" gen chain 6 --rods --angle 30 -o "$TMP/rods6.json"
+check "gen chain 6 --rods --angle 30: sizes" sizes "$TMP/rods6.json" "12 6 0 6 0 6"
+"$BRAUN" gen chain 2000 -o "$TMP/chain2000.json"; rc=$?
+check "gen chain 2000 (the new limit) exits 0" [ "$rc" -eq 0 ]
+for bad in "chain 0" "chain 2001" "chain x" "chain" "ring 5" "chain 5 -o" "chain 5 6" "chain 5 --bogus" \
+    "chain 5 --angle" "chain 5 --angle x" "chain 5 --angle 181" "chain 5 --angle nan" \
+    "ladder" "ladder 0" "ladder 2001" "ladder 2.5" "ladder 3 --rods" "ladder 3 --angle -200" \
+    "ladder 3 4"; do
     # shellcheck disable=SC2086
     "$BRAUN" gen $bad > "$TMP/g.out" 2> "$TMP/g.err"; rc=$?
     check "gen $bad: exit 2, one line" sh -c '[ "$1" -eq 2 ] && [ ! -s "$2" ] && [ "$(wc -l < "$3")" -eq 1 ]' \
         sh "$rc" "$TMP/g.out" "$TMP/g.err"
 done
+
+# ------------------------------------------------------------- braun gen ladder
+# Three rails of N links and N rungs pinned at both ends and the middle: every
+# cell a double parallelogram, one redundant row each (rank 11N of 12N).
+"$BRAUN" gen ladder 4 -o "$TMP/ladder4.json"; rc=$?
+check "gen ladder 4: exit 0" [ "$rc" -eq 0 ]
+check "gen ladder 4: n 48 m 48, rank 44, 4 redundant, 4 dof" sizes "$TMP/ladder4.json" "48 48 0 44 4 4"
+"$BRAUN" gen ladder 3 --angle 60 -o "$TMP/ladder3.json"
+check "gen ladder 3 --angle 60: rank 33 of 36" sizes "$TMP/ladder3.json" "36 36 0 33 3 3"
+"$BRAUN" check "$TMP/ladder3.json" > "$TMP/l3.out"
+v=$(key_value position_residual "$TMP/l3.out")
+check "gen ladder 3 --angle 60: on its constraints at rest ($v)" sh -c '
+    awk -v a="$1" "BEGIN { exit !(a + 0 <= 1e-14) }" && grep -q "^velocity_residual: 0$" "$2"' \
+    sh "$v" "$TMP/l3.out"
+"$BRAUN" gen ladder 1 > "$TMP/ladder1.json"
+check "gen ladder 1 (the parallelogram with a third crank): rank 11 of 12" \
+    sizes "$TMP/ladder1.json" "12 12 0 11 1 1"
+"$BRAUN" run "$TMP/ladder4.json" --dt 1e-3 --t-end 0.5 > "$TMP/l4.json"; rc=$?
+v=$(json_value max_position_constraint_error "$TMP/l4.json")
+check "run ladder 4: BRAUN_OK, |Phi_q| $v, rank-deficient factorizations, backend dense" sh -c '
+    [ "$1" -eq 0 ] && grep -q "\"status\": \"BRAUN_OK\"" "$2" &&
+    awk -v a="$3" "BEGIN { exit !(a + 0 <= 1e-8) }" && ! grep -q "^  \"rank_deficient\": 0,$" "$2" &&
+    grep -q "^  \"backend\": \"dense\",$" "$2" && grep -q "^  \"sparse\": false,$" "$2"' \
+    sh "$rc" "$TMP/l4.json" "$v"
+
+# ------------------------------------------------------- --sparse, --backend
+same_final() { # same_final A.json B.json TOL: final_q of both runs within TOL
+    awk -v a="$(json_value final_q "$1")" -v b="$(json_value final_q "$2")" -v tol="$3" 'BEGIN {
+        gsub(/[][ ]/, "", a); gsub(/[][ ]/, "", b); n = split(a, x, ","); m = split(b, y, ",")
+        if (n != m || n == 0) exit 1
+        for (i = 1; i <= n; i++) { d = x[i] - y[i]; if (d < 0) d = -d; if (d > tol) exit 1 }
+        exit 0 }'
+}
+"$BRAUN" run "$TMP/ladder4.json" --dt 1e-3 --t-end 0.5 --sparse > "$TMP/l4s.json"; rc=$?
+check "run ladder 4 --sparse: exit 0, sparse true, backend dense" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^  \"sparse\": true,$" "$2" && grep -q "^  \"backend\": \"dense\",$" "$2"' \
+    sh "$rc" "$TMP/l4s.json"
+check "run ladder 4 --sparse: same final q as dense" same_final "$TMP/l4.json" "$TMP/l4s.json" 0
+"$BRAUN" run data/sleigh.json --dt 1e-2 --t-end 1 --sparse > "$TMP/sls.json"; rc=$?
+check "run sleigh --sparse (a knife edge, p 1): exit 0, sparse true" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^  \"sparse\": true,$" "$2"' sh "$rc" "$TMP/sls.json"
+check "run sleigh --sparse: same final q" same_final "$TMP/sl2.json" "$TMP/sls.json" 0
+"$BRAUN" run "$TMP/ladder4.json" --dt 1e-3 --t-end 0.5 --backend auto > "$TMP/l4a.json"; rc=$?
+check "run ladder 4 --backend auto: uses the sparsity, BRAUN_OK" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^  \"sparse\": true,$" "$2" && grep -q "\"status\": \"BRAUN_OK\"" "$2"' \
+    sh "$rc" "$TMP/l4a.json"
+"$BRAUN" run data/four-bar.json --dt 1e-3 --t-end 0.5 --backend auto > "$TMP/fba.json"; rc=$?
+check "run four-bar.json --backend auto: rods, dense system, BRAUN_OK" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^  \"sparse\": false,$" "$2"' sh "$rc" "$TMP/fba.json"
+for be in lapack suitesparse; do
+    "$BRAUN" run "$TMP/ladder4.json" --dt 1e-3 --t-end 0.5 --backend $be > "$TMP/l4b.json" 2> "$TMP/l4b.err"; rc=$?
+    if [ "$rc" -eq 2 ] && grep -q "^braun: --backend $be: backend '$be' not built" "$TMP/l4b.err"; then
+        ok "run ladder 4 --backend $be # SKIP not built: $(cat "$TMP/l4b.err")"
+    else
+        check "run ladder 4 --backend $be: BRAUN_OK, named in the summary" sh -c '
+            [ "$1" -eq 0 ] && grep -q "^  \"backend\": \"$3\",$" "$2" &&
+            grep -q "\"status\": \"BRAUN_OK\"" "$2"' sh "$rc" "$TMP/l4b.json" "$be"
+        check "run ladder 4 --backend $be: final q within 1e-9 of dense" same_final "$TMP/l4.json" "$TMP/l4b.json" 1e-9
+    fi
+done
+if "$BRAUN" run "$TMP/ladder1.json" --dt 1e-3 --t-end 0.01 --backend suitesparse > /dev/null 2>&1; then
+    "$BRAUN" run "$TMP/chain2000.json" --dt 1e-3 --t-end 0.005 --backend suitesparse > "$TMP/c2000.json"; rc=$?
+    check "run chain 2000 (n 6000) --backend suitesparse: BRAUN_OK, sparse" sh -c '
+        [ "$1" -eq 0 ] && grep -q "^  \"n\": 6000,$" "$2" && grep -q "^  \"sparse\": true,$" "$2" &&
+        grep -q "\"status\": \"BRAUN_OK\"" "$2"' sh "$rc" "$TMP/c2000.json"
+else
+    ok "run chain 2000 --backend suitesparse # SKIP suitesparse not built"
+fi
+# Each must exit 2 with exactly this one line (and nothing on stdout).
+refused() { # refused NAME EXPECTED ARGS...
+    name=$1; expect=$2; shift 2
+    "$BRAUN" "$@" > "$TMP/r.out" 2> "$TMP/r.err"; rc=$?
+    if [ "$rc" -eq 2 ] && [ ! -s "$TMP/r.out" ] && [ "$(cat "$TMP/r.err")" = "$expect" ]; then ok "$name"
+    else not_ok "$name" "exit $rc, stderr: $(head -c 300 "$TMP/r.err")"; fi
+}
+refused "chain 2000 without --sparse: too large for a dense system, says --sparse" \
+    "braun: 'chain-2000' has n = 6000, m = 4000, p = 0: more than a dense system allows (4096); run it with --sparse" \
+    run "$TMP/chain2000.json" --dt 1e-3 --t-end 0.01
+refused "--sparse on four-bar.json: rods have no sparsity" \
+    "braun: --sparse: 'four-bar': a scene with rods has no sparsity (a rod couples the mass blocks of its ends)" \
+    run data/four-bar.json --dt 1e-3 --t-end 0.01 --sparse
+refused "--sparse on a built-in model" \
+    "braun: --sparse: 'slider-crank': a built-in model has no sparsity (scene files without rods have one)" \
+    run slider-crank --dt 1e-3 --t-end 0.01 --sparse
+"$BRAUN" run data/four-bar.json --dt 1e-3 --t-end 0.01 --backend suitesparse > "$TMP/r.out" 2> "$TMP/r.err"; rc=$?
+check "--backend suitesparse on four-bar.json (rods): exit 2, one line naming why" sh -c '
+    [ "$1" -eq 2 ] && [ ! -s "$2" ] && [ "$(wc -l < "$3")" -eq 1 ] &&
+    { grep -q "not built" "$3" || grep -q "needs a system with a sparsity pattern.*rods" "$3"; }' \
+    sh "$rc" "$TMP/r.out" "$TMP/r.err"
 
 # ---------------------------------------------------------------- Andrews
 "$BRAUN" run andrews --dt 1e-4 --t-end 0.03 > "$TMP/andrews.json"; rc=$?
