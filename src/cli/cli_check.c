@@ -103,6 +103,14 @@ static int report(const braun_cli_target *tg)
     const int n = s->n, m = s->m, p = s->p, rows = m + p;
     braun_model model;
     int st = braun_model_init(&model, s);
+    if (st == BRAUN_ERR_SIZE && !s->sparsity && n > 0 && n <= BRAUN_MAX_SPARSE &&
+        rows <= BRAUN_MAX_SPARSE) {
+        /* check ranks dense matrices: say so instead of a bare size error. */
+        braun_cli_error("'%s' has n = %d, m + p = %d: beyond the dense check's limit (%d); "
+                        "run it with braun run --backend suitesparse", tg->name, n, rows,
+                        BRAUN_MAX_DENSE);
+        return BRAUN_CLI_FAILED;
+    }
     if (st) {
         braun_cli_error("model '%s' is invalid: %s", tg->name, braun_status_str(st));
         return BRAUN_CLI_FAILED;
