@@ -131,7 +131,9 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
     /* NaN and Inf propagate through every operation above, so one check of
      * the results covers all callback outputs; only on failure are they
      * scanned, to name the culprit. */
-    if (!braun_all_finite(n, pv->z) ||
+    /* b_v - C_v atil carries the Jacobian: an infinite entry of A makes every
+     * QR pivot "small" (rank 0, u = 0, z finite) but not this residual. */
+    if (!braun_all_finite(n, pv->z) || (rows > 0 && !braun_all_finite(rows, pv->bv)) ||
         ((want & BRAUN_WANT_PHI) && rows > 0 &&
          (!braun_all_finite(rows, pv->ev) || !braun_all_finite(m, pv->phi))))
         return nonfinite_culprit(d, t, want);

@@ -235,6 +235,38 @@ static int contradict(braun_real t, const braun_real *q, const braun_real *v, br
     return 0;
 }
 
+/* A Jacobian entry of +Inf: every QR pivot then compares "small" against
+ * the infinite first one (rank 0, no constraint force, finite z), so only
+ * the residual b_v - C_v atil shows it. The step must still fail, naming A,
+ * and not silently drop the constraint. */
+static int infinite_row(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                        braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    (void)t; (void)q; (void)v; (void)u;
+    if (phi) phi[0] = 0;
+    if (A) { A[0] = INFINITY; A[1] = 0; }
+    if (b) b[0] = 0;
+    if (bv) bv[0] = 0;
+    return 0;
+}
+
+static void test_infinite_jacobian_is_named(void **state)
+{
+    (void)state;
+    braun_system s = {2, 1, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, infinite_row, NULL,
+                      NULL, NULL, NULL, NULL};
+    const double q0[2] = {0, 0}, v0[2] = {0, 0};
+    for (unsigned corr = 0; corr <= BRAUN_CORRECT_VELOCITY; corr += BRAUN_CORRECT_VELOCITY) {
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &s, corr), BRAUN_OK);
+        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+        assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_NONFINITE);
+        assert_string_equal(sim.data.error.where, "constraint Jacobian");
+        assert_true(sim.data.t == 0);
+        test_sim_close(&sim);
+    }
+}
+
 static void test_inconsistent_constraints(void **state)
 {
     (void)state;
@@ -326,6 +358,7 @@ int main(void)
         cmocka_unit_test(test_callback_failures),
         cmocka_unit_test(test_divergence_is_reported),
         cmocka_unit_test(test_inconsistent_constraints),
+        cmocka_unit_test(test_infinite_jacobian_is_named),
         cmocka_unit_test(test_nonfinite_callback_outputs_are_named),
         cmocka_unit_test(test_status_names),
     };
