@@ -108,13 +108,17 @@ convergence: $(BUILD)/bin/braun
 	@sh tools/convergence.sh $(BUILD)/bin/braun
 
 # ---------------------------------------------------------------- install
-install: all
+install: all $(BUILD)/libbraun_backends.a
 	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
-	install -m 644 include/braun.h include/braun_models.h include/braun_host.h $(DESTDIR)$(PREFIX)/include/
-	install -m 644 $(BUILD)/libbraun.a $(DESTDIR)$(PREFIX)/lib/
+	install -m 644 include/braun.h include/braun_models.h include/braun_host.h \
+	    include/braun_linsolver.h include/braun_backends.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(BUILD)/libbraun.a $(BUILD)/libbraun_backends.a $(DESTDIR)$(PREFIX)/lib/
 	install -m 755 $(BUILD)/bin/braun $(DESTDIR)$(PREFIX)/bin/
 	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/^#define BRAUN_VERSION "\(.*\)"/\1/p' include/braun.h)|g' \
 	    braun.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/braun.pc
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\n\nName: braun-backends\nDescription: LAPACK and SuiteSparse backends of libbraun (braun_backends.h)\nVersion: %s\nRequires: braun\nLibs: -L$${libdir} -lbraun_backends\nLibs.private: %s\n' \
+	    '$(PREFIX)' '$(shell sed -n 's/^#define BRAUN_VERSION "\(.*\)"/\1/p' include/braun.h)' '$(BACKEND_LDLIBS)' \
+	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/braun-backends.pc
 
 clean:
 	rm -rf $(BUILD)

@@ -57,3 +57,6 @@ $(BACKEND_TEST_BIN): LDLIBS_ALL := $(BACKENDS_LDLIBS) $(LDLIBS_ALL)
 # The CLI selects backends (--backend).
 $(BUILD)/bin/braun: $(BUILD)/libbraun_backends.a
 $(BUILD)/bin/braun: LDLIBS_ALL += $(BACKENDS_LDLIBS)
+
+# The core stays free of the backends' libraries.
+TEST_SUITES += "sh tests/backends/check-core.sh $(BUILD)/libbraun.a"

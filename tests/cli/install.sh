@@ -22,5 +22,30 @@ if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror "$top/examples/pendulum.c
 else
     no "README example compiles"; cat "$tmp/cc.log"
 fi
+# The backends: their headers, archive and pkg-config file.
+for f in include/braun_linsolver.h include/braun_backends.h lib/libbraun_backends.a lib/pkgconfig/braun-backends.pc; do
+    [ -f "$tmp/opt/braun/$f" ] && ok "installed $f" || no "installed $f"
+done
+cat > "$tmp/sel.c" <<'C'
+#include <stdio.h>
+#include <braun_backends.h>
+int main(void)
+{
+    braun_system s = {0};
+    const braun_linsolver *ls = NULL;
+    s.n = 100;
+    int st = braun_linsolver_select("auto", &s, &ls, NULL);
+    printf("%d %s\n", st, braun_linsolver_name(ls));
+    return st;
+}
+C
+bflags=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs --static braun-backends 2>&1)
+if ${CC:-cc} -std=c99 -Wall -Wextra -Werror "$tmp/sel.c" $bflags -o "$tmp/sel" 2>"$tmp/cc2.log"; then
+    out=$("$tmp/sel")
+    case "$out" in "0 "*) ok "a program links the installed backends (auto for a dense n = 100: $out)" ;;
+    *) no "backend selection output: $out" ;; esac
+else
+    no "a program links the installed backends"; cat "$tmp/cc2.log"
+fi
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
