@@ -24,7 +24,7 @@ endif
 ifeq ($(BRAUN_SUITESPARSE)$(wildcard src/backends/braun_suitesparse.c),1src/backends/braun_suitesparse.c)
 BACKEND_SRC += src/backends/braun_suitesparse.c
 BACKEND_CPPFLAGS += -DBRAUN_WITH_SUITESPARSE -I/usr/include/suitesparse
-BACKEND_LDLIBS := -lspqr -lcholmod -lsuitesparseconfig $(BACKEND_LDLIBS)
+BACKEND_LDLIBS := -lspqr -lcholmod -lsuitesparseconfig $(filter-out -llapack -lblas,$(BACKEND_LDLIBS)) -llapack -lblas
 BACKEND_DEPS += libsuitesparse-dev
 endif
 BACKEND_OBJ := $(BACKEND_SRC:%.c=$(BUILD)/obj/%.o)

@@ -1,0 +1,1220 @@
+/*
+ * SuiteSparse backend of the linear-solver table (braun_linsolver.h), for
+ * large mechanisms with a sparsity (braun.h: CSR pattern of A = [A_q; A_vv],
+ * block-diagonal M). Weighted formulation as in the core: M = R^T R,
+ * C = A R^-1.
+ *
+ *   M = R^T R     one dense upper Cholesky factor per diagonal block, O(n)
+ *                 for bounded block sizes. (CHOLMOD would find the same
+ *                 block-diagonal factor after an ordering, a symbolic
+ *                 analysis and a supernodal/simplicial dispatch that cost
+ *                 more than the 3x3 factorizations themselves, and its R^-1
+ *                 solves would need permutations and a dense wrapper per
+ *                 call; block-diagonal M needs none of that.)
+ *   C = A R^-1    row i of C is row i of A times R_b^-1 on every block b the
+ *                 row touches, so C has A's pattern expanded to whole blocks;
+ *                 that pattern (and where each A value lands in it) is built
+ *                 once in create(). C in CSR (rows x n) is C^T in CSC
+ *                 (n x rows): the SPQR input below is a view, not a copy.
+ *
+ * Two ways to factor C (both per slot: slot 0 all m + p rows, slot 1 the
+ * first m rows, each with its own state):
+ *
+ *  Full rank (the usual case): G = C C^T = A M^-1 A^T, sparse SPD, rows x rows.
+ *   Its pattern (two rows are coupled when they touch a common mass block)
+ *   and a product map (G_ij = sum over shared blocks b of C_ib . C_jb, as
+ *   offsets into C's values) are built in create(), with the CHOLMOD symbolic
+ *   analysis. G is stored already permuted to CHOLMOD's fill-reducing order
+ *   (upper triangle, analysed again in natural order), because
+ *   cholmod_l_factorize would otherwise build a permuted transpose of G at
+ *   every call. Every factor_c fills G's values from the map and calls
+ *   cholmod_l_factorize. Then
+ *       C^+ r = C^T G^-1 r,     N z = z - C^T G^-1 C z.
+ *   The solves with a simplicial factor (CHOLMOD's choice for chain- and
+ *   tree-like mechanisms; LDL^T or LL^T) are done here, in place:
+ *   cholmod_l_solve2 reshapes its workspace for a single right-hand side
+ *   and so reallocates it at every call. A supernodal factor (dense
+ *   couplings, e.g. many rows on one body) goes through cholmod_l_solve2.
+ *   With a simplicial factor nothing is allocated per call (after the first
+ *   factorization; tested). G squares the condition number of C, so each
+ *   solve is checked (componentwise residual of C x = r, resp. C N z = 0,
+ *   with the sparse C) and refined by up to two further solves when the
+ *   check fails.
+ *   Rank decision: C is declared rank deficient when CHOLMOD reports G not
+ *   positive definite or when the ratio min/max of the diagonal of L (of
+ *   L L^T; sqrt(cholmod_l_rcond) for LL^T and LDL^T factors alike) is below
+ *   max(tol, 1e-6). The floor 1e-6 is needed because G squares the
+ *   condition number: the Cholesky pivot of a row that depends on earlier
+ *   ones comes out at round-off level of G, ~eps·||C||^2, i.e. its L
+ *   diagonal at ~sqrt(eps)·||C|| = 1.5e-8·||C||, far above a relative
+ *   tolerance such as the default 10·max(rows,n)·eps. The ratio is always
+ *   >= 1/cond(C) (min L_jj >= sigma_min(C), max L_jj <= sigma_max(C)), so
+ *   well-conditioned C never takes the slower path. A rejected G hands over
+ *   to the QR path, which then decides the rank with the caller's tol.
+ *   After a rejection the next CHOL_SKIP_CALLS factorizations of the slot go
+ *   to the QR path directly (a redundant mechanism would otherwise pay for
+ *   a useless Cholesky at every call); then the Cholesky is tried again.
+ *
+ *  Rank deficient (redundant rows, singular configurations): SPQR,
+ *   rank-revealing sparse QR (Heath's method) of C^T with the absolute
+ *   tolerance tol·max_i ||row i of C|| (the largest column norm of C^T: the
+ *   first pivot of the core's column-pivoted QR), through SuiteSparseQR_C,
+ *   which returns R in upper trapezoidal form with its column permutation E
+ *   and Q as Householder vectors (H, HTau, HPinv):
+ *       C^T E = Q [R11 R12; 0 0],  R11 k x k upper triangular, k = rank,
+ *   so C = E S Q1^T with S = [R11 R12]^T (rows x k, full column rank) and
+ *       C^+ r = Q1 S^+ E^T r,      N z = z - Q1 Q1^T z.
+ *   With k < rows S^+ is the least-squares solve through a second SPQR
+ *   factorization of S (no rank detection; S E2 = Q2 [R2; 0]):
+ *       S^+ b = E2 R2^-1 (Q2^T b)[0..k).
+ *   Together this is a complete orthogonal decomposition (as LAPACK's
+ *   xGELSY and the core's src/braun_qrcp.c): C^+ r is the minimum-norm
+ *   least-squares solution also for r outside range(C), not only the basic
+ *   solution of the k rows SPQR kept. Q, Q2 are applied by the loops below
+ *   from the Householder form (H(h) = I - tau_h v_h v_h^T, Q^T = H(nh-1) ...
+ *   H(0) P with (P x)[HPinv[i]] = x[i], the convention of SPQR's
+ *   spqr_happly / SuiteSparseQR_qmult). SPQR allocates its factors at every
+ *   call of this path; Heath's method is reliable for exactly dependent rows
+ *   (their remaining column norm is at round-off level) but, unlike column
+ *   pivoting, not a guaranteed rank-revealing method for nearly dependent
+ *   ones: close to a singular configuration the rank it reports may differ
+ *   from the one the core's QRCP (or an SVD) finds with the same tol. With a
+ *   clear gap between the kept and the dropped directions they agree
+ *   (tested against LAPACK's SVD: exact and scaled copies of rows, a double
+ *   parallelogram, a row 1e-9 from another with tol 1e-6 and with the
+ *   default tol).
+ *
+ * lsq's residual ||r - C C^+ r|| is computed with the sparse C from the
+ * returned x (both paths). Cost per call: O(nnz(C)·block size) to form C,
+ * O(products of the map) for G, then CHOLMOD's or SPQR's factorization and
+ * O(nnz(L)) resp. O(nnz(H) + nnz(R) + nnz(R2)) per solve.
+ *
+ * tol <= 0 in factor_c selects the core's default, 10·max(rows, n)·eps.
+ *
+ * Status codes: factor_c returns BRAUN_ERR_ARGUMENT for a bad slot or row
+ * count, BRAUN_ERR_NONFINITE for NaN/Inf in C, BRAUN_ERR_BUFFER when CHOLMOD
+ * or SPQR runs out of memory (CHOLMOD_OUT_OF_MEMORY, CHOLMOD_TOO_LARGE),
+ * BRAUN_ERR_ARGUMENT when they refuse their input (CHOLMOD_INVALID: a bug
+ * here), and BRAUN_ERR_NONFINITE for any other failure (e.g. a factor not of
+ * the expected triangular form), the closest braun_status to "numerical
+ * failure". The void operations (pinv, lsq, null_project) cannot return a
+ * status: if their solve fails, or the slot has no valid factorization, they
+ * write NaN, which the core's finite checks turn into an error.
+ *
+ * All arithmetic is in double (SuiteSparse's type); a BRAUN_SINGLE build
+ * converts at the interface.
+ */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <SuiteSparseQR_C.h>
+#include <cholmod.h>
+
+#include "braun_backends.h"
+#include "braun_math.h"
+
+typedef SuiteSparse_long sslong;
+
+/* L-diagonal ratio below which G = C C^T counts as singular (see above). */
+#define CHOL_RATIO_MIN 1e-6
+/* After a rejected Cholesky, factorizations that go straight to SPQR. */
+#define CHOL_SKIP_CALLS 8
+/* A solve through G is accepted when |r - C x|_i <= REFINE_TOL·eps·max_i
+ * (|r| + |C||x|)_i; else up to REFINE_MAX refinement steps. */
+#define REFINE_TOL 64.0
+#define REFINE_MAX 2
+
+enum { PATH_NONE = 0, PATH_ZERO, PATH_CHOL, PATH_QR };
+
+/* A Householder QR from SuiteSparseQR_C: A E = Q [R; 0]. */
+typedef struct ss_qr {
+    cholmod_sparse *R, *H;
+    cholmod_dense *HTau;
+    sslong *E, *HPinv; /* NULL: identity */
+    sslong ncol, nrow; /* of the factored matrix (sizes of E, HPinv) */
+} ss_qr;
+
+typedef struct ss_slot {
+    int rows;        /* rows of C in this slot (0: slot unused) */
+    double *Cx;      /* values of C, pattern cp/ci of the state */
+    double cmax;     /* largest row 2-norm of C */
+    int path, rank, skip_chol;
+    /* full-rank path */
+    cholmod_sparse *G; /* upper triangle of P C C^T P^T, fixed pattern */
+    sslong *gptr;    /* G entry e: products gmap[3·gptr[e] .. 3·gptr[e+1]) */
+    sslong *gmap;    /* (offset of row i's block in Cx, of row j's, length) */
+    sslong *perm, *iperm; /* G is stored as P G P^T: new index c is row perm[c] */
+    sslong *lperm;   /* the order of L's rows (perm composed with L->Perm) */
+    double *bp;      /* rows: a right-hand side in that order */
+    int own_solve;   /* L is simplicial with its diagonal first: solved here */
+    cholmod_factor *L;
+    cholmod_dense *X, *Y, *E; /* cholmod_l_solve2 workspaces */
+    /* rank-deficient path */
+    ss_qr qr;        /* C^T E = Q [R11 R12; 0] */
+    ss_qr qr2;       /* S E2 = Q2 [R2; 0], S = [R11 R12]^T, when rank < rows */
+} ss_slot;
+
+typedef struct ss_state {
+    int n, m, p, rows;
+    int nblocks;
+    int *bsize, *bstart; /* block sizes, first coordinate of each block */
+    size_t *boff;        /* offset of block b in Rb (and in M's values) */
+    double *Rb;          /* upper Cholesky factors, block after block, row-major */
+    const int *arow;     /* A pattern (the model's arrays) */
+    sslong *cp, *ci;     /* C pattern: CSR rows x n = CSC of C^T */
+    sslong *a2c;         /* A value k lands at Cx[a2c[k]] */
+    sslong *sptr;        /* row i's block segments: sptr[i] .. sptr[i+1] */
+    int *sblk;           /* block of a segment */
+    sslong *spos;        /* first position of a segment in Cx */
+    double *wr, *wr2, *wr3; /* rows each */
+    double *wn, *wn2, *wn3; /* n each */
+    cholmod_common cc;
+    int cc_started;
+    ss_slot s[2];
+} ss_state;
+
+/* ------------------------------------------------------------------ */
+/* Small helpers                                                       */
+/* ------------------------------------------------------------------ */
+static int cc_fail(const cholmod_common *cc)
+{
+    if (cc->status == CHOLMOD_OUT_OF_MEMORY || cc->status == CHOLMOD_TOO_LARGE)
+        return BRAUN_ERR_BUFFER;
+    if (cc->status == CHOLMOD_INVALID) return BRAUN_ERR_ARGUMENT;
+    return BRAUN_ERR_NONFINITE;
+}
+
+static void fill_nan(int len, braun_real *x)
+{
+    for (int i = 0; i < len; i++) x[i] = (braun_real)NAN;
+}
+
+static double nrm2(int len, const double *x)
+{
+    double scale = 0, ssq = 1;
+    for (int i = 0; i < len; i++) {
+        double a = fabs(x[i]);
+        if (a == 0) continue;
+        if (scale < a) {
+            ssq = 1 + ssq * (scale / a) * (scale / a);
+            scale = a;
+        } else {
+            ssq += (a / scale) * (a / scale);
+        }
+    }
+    return scale * sqrt(ssq);
+}
+
+static void qr_free(ss_qr *q, cholmod_common *cc)
+{
+    if (q->R) cholmod_l_free_sparse(&q->R, cc);
+    if (q->H) cholmod_l_free_sparse(&q->H, cc);
+    if (q->HTau) cholmod_l_free_dense(&q->HTau, cc);
+    if (q->E) cholmod_l_free((size_t)q->ncol, sizeof(sslong), q->E, cc);
+    if (q->HPinv) cholmod_l_free((size_t)q->nrow, sizeof(sslong), q->HPinv, cc);
+    memset(q, 0, sizeof *q);
+}
+
+/* Factor A (nrow x ncol) by SuiteSparseQR_C with absolute tolerance tol
+ * (< 0: no rank detection) into q; econ as SuiteSparseQR_C. Returns the rank
+ * or a braun status (< 0). */
+static sslong qr_factor(ss_qr *q, cholmod_sparse *A, double tol, sslong econ,
+                        cholmod_common *cc)
+{
+    qr_free(q, cc);
+    q->nrow = (sslong)A->nrow;
+    q->ncol = (sslong)A->ncol;
+    sslong rank = SuiteSparseQR_C(SPQR_ORDERING_DEFAULT, tol, econ, 0, A, NULL, NULL,
+                                  NULL, NULL, &q->R, &q->E, &q->H, &q->HPinv, &q->HTau, cc);
+    if (rank < 0 || !q->R || !q->H || !q->HTau) {
+        int st = cc->status < CHOLMOD_OK ? cc_fail(cc) : BRAUN_ERR_NONFINITE;
+        qr_free(q, cc);
+        return st;
+    }
+    /* R must be upper trapezoidal: rank rows, column j < rank ending on its
+     * nonzero diagonal (SPQR moves the dead columns of a "squeezed" R to the
+     * end and adjusts E accordingly). */
+    const sslong *Rp = q->R->p, *Ri = q->R->i;
+    const double *Rx = q->R->x;
+    if ((sslong)q->R->nrow < rank || (sslong)q->R->ncol != q->ncol) {
+        qr_free(q, cc);
+        return BRAUN_ERR_NONFINITE;
+    }
+    for (sslong j = 0; j < rank; j++) {
+        sslong last = Rp[j + 1] - 1;
+        if (last < Rp[j] || Ri[last] != j || Rx[last] == 0) {
+            qr_free(q, cc);
+            return BRAUN_ERR_NONFINITE;
+        }
+    }
+    return rank;
+}
+
+/* x := H(nh-1) ... H(0) x (forward) or H(0) ... H(nh-1) x (backward). */
+static void happly(const ss_qr *q, int forward, double *x)
+{
+    const cholmod_sparse *H = q->H;
+    const sslong *Hp = H->p, *Hi = H->i;
+    const double *Hx = H->x, *tau = q->HTau->x;
+    const sslong nh = (sslong)H->ncol;
+    for (sslong k = 0; k < nh; k++) {
+        sslong h = forward ? k : nh - 1 - k;
+        if (tau[h] == 0) continue;
+        double s = 0;
+        for (sslong p = Hp[h]; p < Hp[h + 1]; p++) s += Hx[p] * x[Hi[p]];
+        s *= tau[h];
+        for (sslong p = Hp[h]; p < Hp[h + 1]; p++) x[Hi[p]] -= s * Hx[p];
+    }
+}
+
+/* t := Q^T b (nrow entries; t and b distinct). */
+static void q_t(const ss_qr *q, const double *b, double *t)
+{
+    for (sslong i = 0; i < q->nrow; i++) t[q->HPinv ? q->HPinv[i] : i] = b[i];
+    happly(q, 1, t);
+}
+
+/* y := Q t (t is overwritten; y and t distinct). */
+static void q_apply(const ss_qr *q, double *t, double *y)
+{
+    happly(q, 0, t);
+    for (sslong i = 0; i < q->nrow; i++) y[i] = t[q->HPinv ? q->HPinv[i] : i];
+}
+
+/* w := R(0:k,0:k)^-T b (forward substitution by columns of the CSC R). */
+static void r_solve_t(const cholmod_sparse *R, sslong k, const double *b, double *w)
+{
+    const sslong *Rp = R->p, *Ri = R->i;
+    const double *Rx = R->x;
+    for (sslong j = 0; j < k; j++) {
+        double s = b[j];
+        sslong last = Rp[j + 1] - 1; /* the diagonal */
+        for (sslong p = Rp[j]; p < last; p++) s -= Rx[p] * w[Ri[p]];
+        w[j] = s / Rx[last];
+    }
+}
+
+/* y[0..k) := R(0:k,0:k)^-1 y[0..k) (back substitution, in place). */
+static void r_solve(const cholmod_sparse *R, sslong k, double *y)
+{
+    const sslong *Rp = R->p, *Ri = R->i;
+    const double *Rx = R->x;
+    for (sslong j = k - 1; j >= 0; j--) {
+        sslong last = Rp[j + 1] - 1;
+        double u = y[j] / Rx[last];
+        y[j] = u;
+        for (sslong p = Rp[j]; p < last; p++) y[Ri[p]] -= Rx[p] * u;
+    }
+}
+
+/* ------------------------------------------------------------------ */
+/* C = A R^-1 and products with it                                     */
+/* ------------------------------------------------------------------ */
+/* y := C x (rows); if bound: bound := max_i (|r_i| + (|C||x|)_i) with r = y0
+ * when y0 is given (y := y0 - C x then). */
+static void c_mul(const ss_state *s, const ss_slot *f, const double *x, const double *y0,
+                  double *y, double *bound)
+{
+    double bmax = 0;
+    for (int i = 0; i < f->rows; i++) {
+        double acc = 0, abs_acc = 0;
+        for (sslong p = s->cp[i]; p < s->cp[i + 1]; p++) {
+            double t = f->Cx[p] * x[s->ci[p]];
+            acc += t;
+            abs_acc += fabs(t);
+        }
+        if (y0) {
+            abs_acc += fabs(y0[i]);
+            acc = y0[i] - acc;
+        }
+        y[i] = acc;
+        if (abs_acc > bmax) bmax = abs_acc;
+    }
+    if (bound) *bound = bmax;
+}
+
+/* x += C^T y (n). */
+static void ct_mul_add(const ss_state *s, const ss_slot *f, const double *y, double *x)
+{
+    for (int i = 0; i < f->rows; i++) {
+        double yi = y[i];
+        if (yi == 0) continue;
+        for (sslong p = s->cp[i]; p < s->cp[i + 1]; p++) x[s->ci[p]] += f->Cx[p] * yi;
+    }
+}
+
+static double inf_norm(int len, const double *x)
+{
+    double a = 0;
+    for (int i = 0; i < len; i++)
+        if (!(fabs(x[i]) <= a)) a = fabs(x[i]); /* NaN wins */
+    return a;
+}
+
+/* Cx := A R^-1 for the slot's rows; f->cmax. Returns 0, or -1 on NaN/Inf. */
+static int form_c(ss_state *s, ss_slot *f, const braun_real *A)
+{
+    double *Cx = f->Cx;
+    const sslong nnz = s->cp[f->rows];
+    const int nA = s->arow[f->rows];
+    double allfin = 0, cmax = 0;
+    memset(Cx, 0, (size_t)nnz * sizeof *Cx);
+    for (int k = 0; k < nA; k++) Cx[s->a2c[k]] = (double)A[k];
+    for (int i = 0; i < f->rows; i++) {
+        for (sslong g = s->sptr[i]; g < s->sptr[i + 1]; g++) {
+            /* c R_b = a on this block: forward substitution over columns. */
+            const int b = s->sblk[g], bs = s->bsize[b];
+            const double *Rb = s->Rb + s->boff[b];
+            double *c = Cx + s->spos[g];
+            for (int j = 0; j < bs; j++) {
+                double t = c[j];
+                for (int k = 0; k < j; k++) t -= c[k] * Rb[k * bs + j];
+                c[j] = t / Rb[j * bs + j];
+            }
+        }
+        double sq = 0;
+        for (sslong p = s->cp[i]; p < s->cp[i + 1]; p++) {
+            allfin += Cx[p] * 0;
+            sq += Cx[p] * Cx[p];
+        }
+        if (sq > cmax) cmax = sq;
+    }
+    f->cmax = sqrt(cmax);
+    if (allfin != 0 || !(f->cmax <= DBL_MAX)) {
+        /* NaN/Inf in C (or overflow of its norm): refuse. */
+        return -1;
+    }
+    return 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* create / destroy                                                    */
+/* ------------------------------------------------------------------ */
+static void slot_free(ss_slot *f, cholmod_common *cc)
+{
+    qr_free(&f->qr, cc);
+    qr_free(&f->qr2, cc);
+    if (f->L) cholmod_l_free_factor(&f->L, cc);
+    if (f->G) cholmod_l_free_sparse(&f->G, cc);
+    if (f->X) cholmod_l_free_dense(&f->X, cc);
+    if (f->Y) cholmod_l_free_dense(&f->Y, cc);
+    if (f->E) cholmod_l_free_dense(&f->E, cc);
+    free(f->Cx);
+    free(f->gptr);
+    free(f->gmap);
+    free(f->perm);
+    free(f->iperm);
+    free(f->lperm);
+    free(f->bp);
+    memset(f, 0, sizeof *f);
+}
+
+static void ss_destroy(void *state)
+{
+    ss_state *s = state;
+    if (!s) return;
+    if (s->cc_started) {
+        slot_free(&s->s[0], &s->cc);
+        slot_free(&s->s[1], &s->cc);
+        cholmod_l_finish(&s->cc);
+    }
+    free(s->bsize);
+    free(s->bstart);
+    free(s->boff);
+    free(s->Rb);
+    free(s->cp);
+    free(s->ci);
+    free(s->a2c);
+    free(s->sptr);
+    free(s->sblk);
+    free(s->spos);
+    free(s->wr);
+    free(s->wr2);
+    free(s->wr3);
+    free(s->wn);
+    free(s->wn2);
+    free(s->wn3);
+    free(s);
+}
+
+static void *xcalloc(size_t count, size_t size)
+{
+    return calloc(count ? count : 1, size);
+}
+
+static int cmp_long(const void *a, const void *b)
+{
+    sslong x = *(const sslong *)a, y = *(const sslong *)b;
+    return (x > y) - (x < y);
+}
+
+/* Block -> (row, position of its segment in Cx) lists for the first `rows`
+ * rows, rows increasing. */
+typedef struct blist {
+    sslong *ptr, *row, *pos;
+} blist;
+
+static void blist_free(blist *b)
+{
+    free(b->ptr);
+    free(b->row);
+    free(b->pos);
+}
+
+static int blist_build(const ss_state *s, int rows, blist *b)
+{
+    const int nb = s->nblocks;
+    const sslong nseg = s->sptr[rows];
+    b->ptr = xcalloc((size_t)nb + 1, sizeof *b->ptr);
+    b->row = xcalloc((size_t)nseg, sizeof *b->row);
+    b->pos = xcalloc((size_t)nseg, sizeof *b->pos);
+    if (!b->ptr || !b->row || !b->pos) return BRAUN_ERR_BUFFER;
+    for (sslong g = 0; g < nseg; g++) b->ptr[s->sblk[g] + 1]++;
+    for (int k = 0; k < nb; k++) b->ptr[k + 1] += b->ptr[k];
+    for (int i = 0; i < rows; i++)
+        for (sslong g = s->sptr[i]; g < s->sptr[i + 1]; g++) {
+            sslong k = b->ptr[s->sblk[g]]++;
+            b->row[k] = i;
+            b->pos[k] = s->spos[g];
+        }
+    for (int k = nb; k > 0; k--) b->ptr[k] = b->ptr[k - 1];
+    b->ptr[0] = 0;
+    return BRAUN_OK;
+}
+
+/* One triangle of G = C C^T (rows x rows) as a CHOLMOD matrix, in the row
+ * order perm (new index c is row perm[c]; iperm its inverse; NULL: the
+ * identity): upper (stype 1: new indices a <= c in column c) or lower.
+ * Two rows are coupled when they touch a common block. With map: the
+ * product lists of every entry, G_ij = sum over shared blocks b of
+ * C_ib . C_jb, as (offset of row i's segment, of row j's, length). */
+static cholmod_sparse *g_pattern(ss_state *s, int rows, const blist *bl, const sslong *perm,
+                                 const sslong *iperm, int upper, sslong **gptr, sslong **gmap,
+                                 int *status)
+{
+    cholmod_common *cc = &s->cc;
+    cholmod_sparse *G = NULL;
+    sslong *mark = xcalloc((size_t)rows, sizeof *mark), *loc = xcalloc((size_t)rows, sizeof *loc),
+           *cnt = xcalloc((size_t)rows, sizeof *cnt), *list = xcalloc((size_t)rows, sizeof *list);
+    *status = BRAUN_ERR_BUFFER;
+    if (!mark || !loc || !cnt || !list) goto out;
+#define NEW(i) (iperm ? iperm[i] : (i))
+#define KEEP(ni, c) (upper ? (ni) <= (c) : (ni) >= (c))
+
+    /* Pass 1: entries and products. */
+    sslong nnzG = 0, nprod = 0;
+    for (int i = 0; i < rows; i++) mark[i] = -1;
+    for (sslong c = 0; c < rows; c++) {
+        const sslong j = perm ? perm[c] : c;
+        for (sslong g = s->sptr[j]; g < s->sptr[j + 1]; g++) {
+            const int b = s->sblk[g];
+            for (sslong k = bl->ptr[b]; k < bl->ptr[b + 1]; k++) {
+                sslong i = bl->row[k];
+                if (!KEEP(NEW(i), c)) continue;
+                nprod++;
+                if (mark[i] != c) {
+                    mark[i] = c;
+                    nnzG++;
+                }
+            }
+        }
+    }
+    G = cholmod_l_allocate_sparse((size_t)rows, (size_t)rows, (size_t)nnzG, 1, 1, upper ? 1 : -1,
+                                  CHOLMOD_REAL, cc);
+    if (!G) {
+        *status = cc_fail(cc);
+        goto out;
+    }
+    if (gmap) {
+        *gptr = xcalloc((size_t)nnzG + 1, sizeof **gptr);
+        *gmap = xcalloc(3 * (size_t)nprod, sizeof **gmap);
+        if (!*gptr || !*gmap) {
+            cholmod_l_free_sparse(&G, cc);
+            goto out;
+        }
+    }
+    sslong *Gp = G->p, *Gi = G->i;
+
+    /* Pass 2: sorted (new) row indices of each column, then the products. */
+    sslong e0 = 0, q = 0;
+    for (int i = 0; i < rows; i++) mark[i] = -1;
+    for (sslong c = 0; c < rows; c++) {
+        const sslong j = perm ? perm[c] : c;
+        sslong len = 0;
+        Gp[c] = e0;
+        for (sslong g = s->sptr[j]; g < s->sptr[j + 1]; g++) {
+            const int b = s->sblk[g];
+            for (sslong k = bl->ptr[b]; k < bl->ptr[b + 1]; k++) {
+                sslong ni = NEW(bl->row[k]);
+                if (!KEEP(ni, c) || mark[ni] == c) continue;
+                mark[ni] = c;
+                list[len++] = ni;
+            }
+        }
+        qsort(list, (size_t)len, sizeof *list, cmp_long);
+        for (sslong t = 0; t < len; t++) {
+            Gi[e0 + t] = list[t];
+            loc[list[t]] = t;
+            cnt[t] = 0;
+        }
+        if (gmap) {
+            for (sslong g = s->sptr[j]; g < s->sptr[j + 1]; g++) {
+                const int b = s->sblk[g];
+                for (sslong k = bl->ptr[b]; k < bl->ptr[b + 1]; k++) {
+                    sslong ni = NEW(bl->row[k]);
+                    if (KEEP(ni, c)) cnt[loc[ni]]++;
+                }
+            }
+            for (sslong t = 0; t < len; t++) {
+                (*gptr)[e0 + t] = q;
+                q += cnt[t];
+                cnt[t] = (*gptr)[e0 + t]; /* fill cursor */
+            }
+            for (sslong g = s->sptr[j]; g < s->sptr[j + 1]; g++) {
+                const int b = s->sblk[g];
+                for (sslong k = bl->ptr[b]; k < bl->ptr[b + 1]; k++) {
+                    sslong ni = NEW(bl->row[k]);
+                    if (!KEEP(ni, c)) continue;
+                    sslong at = cnt[loc[ni]]++;
+                    (*gmap)[3 * at] = bl->pos[k];      /* the other row's block b */
+                    (*gmap)[3 * at + 1] = s->spos[g];  /* row j's block b */
+                    (*gmap)[3 * at + 2] = s->bsize[b];
+                }
+            }
+        }
+        e0 += len;
+    }
+#undef NEW
+#undef KEEP
+    Gp[rows] = e0;
+    if (gmap) (*gptr)[nnzG] = q;
+    memset(G->x, 0, (size_t)nnzG * sizeof(double));
+    *status = BRAUN_OK;
+out:
+    free(mark);
+    free(loc);
+    free(cnt);
+    free(list);
+    return G;
+}
+
+/* The full-rank path's structures for the first `rows` rows. CHOLMOD picks
+ * the fill-reducing order P on G's pattern; G is then stored permuted
+ * (P G P^T, upper triangle) and analysed again in its natural order, so that
+ * cholmod_l_factorize factors it in place: with any other ordering or a
+ * lower triangle it builds a permuted transpose of G at every call. */
+static int slot_build(ss_state *s, ss_slot *f, int rows)
+{
+    cholmod_common *cc = &s->cc;
+    blist bl = {NULL, NULL, NULL};
+    cholmod_sparse *G0 = NULL;
+    cholmod_factor *L0 = NULL;
+    int st;
+
+    f->rows = rows;
+    f->Cx = xcalloc((size_t)s->cp[rows], sizeof *f->Cx);
+    f->perm = xcalloc((size_t)rows, sizeof *f->perm);
+    f->iperm = xcalloc((size_t)rows, sizeof *f->iperm);
+    f->lperm = xcalloc((size_t)rows, sizeof *f->lperm);
+    f->bp = xcalloc((size_t)rows, sizeof *f->bp);
+    if (!f->Cx || !f->perm || !f->iperm || !f->lperm || !f->bp) return BRAUN_ERR_BUFFER;
+    if ((st = blist_build(s, rows, &bl)) != BRAUN_OK) goto out;
+
+    /* The ordering, from the pattern alone. */
+    G0 = g_pattern(s, rows, &bl, NULL, NULL, 0, NULL, NULL, &st);
+    if (!G0) goto out;
+    L0 = cholmod_l_analyze(G0, cc);
+    if (!L0) {
+        st = cc_fail(cc);
+        goto out;
+    }
+    const sslong *P = L0->Perm;
+    for (sslong c = 0; c < rows; c++) {
+        f->perm[c] = P ? P[c] : c;
+        f->iperm[f->perm[c]] = c;
+    }
+
+    /* P G P^T, upper triangle, with the product map; natural order. */
+    f->G = g_pattern(s, rows, &bl, f->perm, f->iperm, 1, &f->gptr, &f->gmap, &st);
+    if (!f->G) goto out;
+    {
+        const int nmethods = cc->nmethods, ordering = cc->method[0].ordering,
+                  postorder = cc->postorder;
+        cc->nmethods = 1;
+        cc->method[0].ordering = CHOLMOD_NATURAL;
+        cc->postorder = 0;
+        f->L = cholmod_l_analyze(f->G, cc);
+        cc->nmethods = nmethods;
+        cc->method[0].ordering = ordering;
+        cc->postorder = postorder;
+    }
+    if (!f->L) {
+        st = cc_fail(cc);
+        goto out;
+    }
+    /* Natural order: L->Perm is the identity, but compose it anyway. */
+    for (sslong a = 0; a < rows; a++) {
+        const sslong *LP = f->L->Perm;
+        f->lperm[a] = f->perm[LP ? LP[a] : a];
+    }
+    st = BRAUN_OK;
+out:
+    if (L0) cholmod_l_free_factor(&L0, cc);
+    if (G0) cholmod_l_free_sparse(&G0, cc);
+    blist_free(&bl);
+    return st;
+}
+
+static int ss_create(void **state, const braun_model *model)
+{
+    if (!state) return BRAUN_ERR_ARGUMENT;
+    *state = NULL;
+    if (!model) return BRAUN_ERR_ARGUMENT;
+    const braun_system *sys = &model->sys;
+    const braun_sparsity *sp = sys->sparsity;
+    if (!sp) return BRAUN_ERR_ARGUMENT;
+    const int n = sys->n, m = sys->m, p = sys->p;
+    if (n <= 0 || m < 0 || p < 0 || n > BRAUN_MAX_SPARSE || m > BRAUN_MAX_SPARSE ||
+        p > BRAUN_MAX_SPARSE)
+        return BRAUN_ERR_SIZE;
+    const int rows = m + p;
+    if (!sp->row_ptr || (rows > 0 && !sp->col) || !sp->block || sp->nblocks <= 0)
+        return BRAUN_ERR_ARGUMENT;
+    /* Blocks must tile the diagonal. */
+    long sum = 0;
+    for (int b = 0; b < sp->nblocks; b++) {
+        if (sp->block[b] <= 0) return BRAUN_ERR_SIZE;
+        sum += sp->block[b];
+        if (sum > n) return BRAUN_ERR_SIZE;
+    }
+    if (sum != n) return BRAUN_ERR_SIZE;
+    /* Pattern: row pointers from 0, nondecreasing; columns in range and
+     * increasing within a row. */
+    if (sp->row_ptr[0] != 0) return BRAUN_ERR_ARGUMENT;
+    for (int i = 0; i < rows; i++) {
+        if (sp->row_ptr[i + 1] < sp->row_ptr[i]) return BRAUN_ERR_ARGUMENT;
+        for (int k = sp->row_ptr[i]; k < sp->row_ptr[i + 1]; k++)
+            if (sp->col[k] < 0 || sp->col[k] >= n ||
+                (k > sp->row_ptr[i] && sp->col[k] <= sp->col[k - 1]))
+                return BRAUN_ERR_ARGUMENT;
+    }
+
+    ss_state *s = calloc(1, sizeof *s);
+    if (!s) return BRAUN_ERR_BUFFER;
+    int st = BRAUN_ERR_BUFFER;
+    int *blk_of = NULL;
+    s->n = n;
+    s->m = m;
+    s->p = p;
+    s->rows = rows;
+    s->nblocks = sp->nblocks;
+    s->arow = sp->row_ptr;
+
+    const int nb = sp->nblocks;
+    s->bsize = xcalloc((size_t)nb, sizeof *s->bsize);
+    s->bstart = xcalloc((size_t)nb, sizeof *s->bstart);
+    s->boff = xcalloc((size_t)nb + 1, sizeof *s->boff);
+    blk_of = xcalloc((size_t)n, sizeof *blk_of);
+    if (!s->bsize || !s->bstart || !s->boff || !blk_of) goto fail;
+    for (int b = 0, c0 = 0; b < nb; b++) {
+        s->bsize[b] = sp->block[b];
+        s->bstart[b] = c0;
+        s->boff[b + 1] = s->boff[b] + (size_t)sp->block[b] * (size_t)sp->block[b];
+        for (int j = 0; j < sp->block[b]; j++) blk_of[c0 + j] = b;
+        c0 += sp->block[b];
+    }
+    s->Rb = xcalloc(s->boff[nb], sizeof *s->Rb);
+    if (!s->Rb) goto fail;
+
+    /* C pattern: each row's blocks (increasing, as its columns are) expanded
+     * to whole blocks. */
+    sslong nseg = 0, nnzC = 0;
+    for (int i = 0; i < rows; i++) {
+        int last = -1;
+        for (int k = sp->row_ptr[i]; k < sp->row_ptr[i + 1]; k++) {
+            int b = blk_of[sp->col[k]];
+            if (b != last) {
+                nseg++;
+                nnzC += s->bsize[b];
+                last = b;
+            }
+        }
+    }
+    s->cp = xcalloc((size_t)rows + 1, sizeof *s->cp);
+    s->ci = xcalloc((size_t)nnzC, sizeof *s->ci);
+    s->a2c = xcalloc((size_t)sp->row_ptr[rows], sizeof *s->a2c);
+    s->sptr = xcalloc((size_t)rows + 1, sizeof *s->sptr);
+    s->sblk = xcalloc((size_t)nseg, sizeof *s->sblk);
+    s->spos = xcalloc((size_t)nseg, sizeof *s->spos);
+    if (!s->cp || !s->ci || !s->a2c || !s->sptr || !s->sblk || !s->spos) goto fail;
+    {
+        sslong g = 0, pos = 0;
+        for (int i = 0; i < rows; i++) {
+            s->cp[i] = pos;
+            s->sptr[i] = g;
+            int last = -1;
+            for (int k = sp->row_ptr[i]; k < sp->row_ptr[i + 1]; k++) {
+                int b = blk_of[sp->col[k]];
+                if (b != last) {
+                    s->sblk[g] = b;
+                    s->spos[g] = pos;
+                    for (int j = 0; j < s->bsize[b]; j++) s->ci[pos + j] = s->bstart[b] + j;
+                    pos += s->bsize[b];
+                    g++;
+                    last = b;
+                }
+                s->a2c[k] = s->spos[g - 1] + (sp->col[k] - s->bstart[b]);
+            }
+        }
+        s->cp[rows] = pos;
+        s->sptr[rows] = g;
+    }
+
+    s->wr = xcalloc((size_t)rows, sizeof *s->wr);
+    s->wr2 = xcalloc((size_t)rows, sizeof *s->wr2);
+    s->wr3 = xcalloc((size_t)rows, sizeof *s->wr3);
+    s->wn = xcalloc((size_t)n, sizeof *s->wn);
+    s->wn2 = xcalloc((size_t)n, sizeof *s->wn2);
+    s->wn3 = xcalloc((size_t)n, sizeof *s->wn3);
+    if (!s->wr || !s->wr2 || !s->wr3 || !s->wn || !s->wn2 || !s->wn3) goto fail;
+
+    if (!cholmod_l_start(&s->cc)) goto fail;
+    s->cc_started = 1;
+    s->cc.print = 0; /* no messages on stdout: statuses are returned */
+
+    if (rows > 0 && (st = slot_build(s, &s->s[0], rows)) != BRAUN_OK) goto fail;
+    if (m > 0 && p > 0 && (st = slot_build(s, &s->s[1], m)) != BRAUN_OK) goto fail;
+    free(blk_of);
+    *state = s;
+    return BRAUN_OK;
+fail:
+    free(blk_of);
+    ss_destroy(s);
+    return st;
+}
+
+/* ------------------------------------------------------------------ */
+/* M = R^T R, blockwise                                                */
+/* ------------------------------------------------------------------ */
+static int ss_factor_mass(void *state, const braun_real *M, braun_real sym_tol, int *bad_i,
+                          int *bad_j, braun_real *bad_value)
+{
+    ss_state *s = state;
+    double dmax = 0;
+    for (int b = 0; b < s->nblocks; b++) {
+        const int bs = s->bsize[b];
+        const braun_real *Mb = M + s->boff[b];
+        for (int i = 0; i < bs; i++) {
+            double d = fabs((double)Mb[i * bs + i]);
+            if (d > dmax) dmax = d;
+        }
+    }
+    /* Symmetry first, for all blocks (as braun_chol_factor: a non-symmetric
+     * M is a modelling bug, reported before any pivot). */
+    for (int b = 0; b < s->nblocks; b++) {
+        const int bs = s->bsize[b];
+        const braun_real *Mb = M + s->boff[b];
+        for (int i = 0; i < bs; i++)
+            for (int j = i + 1; j < bs; j++) {
+                double asym = fabs((double)Mb[i * bs + j] - (double)Mb[j * bs + i]);
+                if (asym > (double)sym_tol * dmax) {
+                    if (bad_i) *bad_i = s->bstart[b] + i;
+                    if (bad_j) *bad_j = s->bstart[b] + j;
+                    if (bad_value) *bad_value = (braun_real)asym;
+                    return BRAUN_ERR_MASS_NOT_SYMMETRIC;
+                }
+            }
+    }
+    const double thr = (double)s->n * (double)BRAUN_EPS * dmax;
+    for (int b = 0; b < s->nblocks; b++) {
+        const int bs = s->bsize[b];
+        const braun_real *Mb = M + s->boff[b];
+        double *R = s->Rb + s->boff[b];
+        for (int i = 0; i < bs; i++) {
+            double d = (double)Mb[i * bs + i];
+            for (int k = 0; k < i; k++) d -= R[k * bs + i] * R[k * bs + i];
+            /* Pivot at round-off level of the largest diagonal: singular to
+             * working precision (also catches NaN). */
+            if (!(d > thr)) {
+                if (bad_i) *bad_i = s->bstart[b] + i;
+                if (bad_j) *bad_j = s->bstart[b] + i;
+                if (bad_value) *bad_value = (braun_real)d;
+                return BRAUN_ERR_MASS_NOT_SPD;
+            }
+            double rii = sqrt(d);
+            R[i * bs + i] = rii;
+            for (int j = i + 1; j < bs; j++) {
+                double t = (double)Mb[i * bs + j];
+                for (int k = 0; k < i; k++) t -= R[k * bs + i] * R[k * bs + j];
+                R[i * bs + j] = t / rii;
+            }
+            for (int j = 0; j < i; j++) R[i * bs + j] = 0;
+        }
+    }
+    return BRAUN_OK;
+}
+
+static void ss_solve_rt(void *state, const braun_real *b, braun_real *x)
+{
+    const ss_state *s = state;
+    for (int blk = 0; blk < s->nblocks; blk++) {
+        const int bs = s->bsize[blk], c0 = s->bstart[blk];
+        const double *R = s->Rb + s->boff[blk];
+        for (int i = 0; i < bs; i++) {
+            double t = (double)b[c0 + i];
+            for (int k = 0; k < i; k++) t -= R[k * bs + i] * (double)x[c0 + k];
+            x[c0 + i] = (braun_real)(t / R[i * bs + i]);
+        }
+    }
+}
+
+static void ss_solve_r(void *state, const braun_real *b, braun_real *x)
+{
+    const ss_state *s = state;
+    for (int blk = 0; blk < s->nblocks; blk++) {
+        const int bs = s->bsize[blk], c0 = s->bstart[blk];
+        const double *R = s->Rb + s->boff[blk];
+        for (int i = bs - 1; i >= 0; i--) {
+            double t = (double)b[c0 + i];
+            for (int k = i + 1; k < bs; k++) t -= R[i * bs + k] * (double)x[c0 + k];
+            x[c0 + i] = (braun_real)(t / R[i * bs + i]);
+        }
+    }
+}
+
+static void ss_mul_r(void *state, const braun_real *x, braun_real *y)
+{
+    const ss_state *s = state;
+    for (int blk = 0; blk < s->nblocks; blk++) {
+        const int bs = s->bsize[blk], c0 = s->bstart[blk];
+        const double *R = s->Rb + s->boff[blk];
+        for (int i = 0; i < bs; i++) {
+            double t = 0;
+            for (int k = i; k < bs; k++) t += R[i * bs + k] * (double)x[c0 + k];
+            y[c0 + i] = (braun_real)t;
+        }
+    }
+}
+
+/* ------------------------------------------------------------------ */
+/* factor_c                                                            */
+/* ------------------------------------------------------------------ */
+/* G = C C^T from the product map, then CHOLMOD. 1: accepted (full rank),
+ * 0: rank deficient or ill-conditioned, < 0: error. */
+static int chol_try(ss_state *s, ss_slot *f, double tol)
+{
+    cholmod_common *cc = &s->cc;
+    double *Gx = f->G->x;
+    const sslong nnzG = (sslong)f->G->nzmax;
+    const double *Cx = f->Cx;
+    for (sslong e = 0; e < nnzG; e++) {
+        double g = 0;
+        for (sslong t = f->gptr[e]; t < f->gptr[e + 1]; t++) {
+            const double *ci = Cx + f->gmap[3 * t], *cj = Cx + f->gmap[3 * t + 1];
+            const sslong len = f->gmap[3 * t + 2];
+            for (sslong k = 0; k < len; k++) g += ci[k] * cj[k];
+        }
+        Gx[e] = g;
+    }
+    int ok = cholmod_l_factorize(f->G, f->L, cc);
+    if (cc->status == CHOLMOD_NOT_POSDEF) return 0;
+    if (!ok || cc->status < CHOLMOD_OK) return cc_fail(cc);
+    double rc = cholmod_l_rcond(f->L, cc);
+    if (rc < 0) return cc_fail(cc);
+    /* Solve with a simplicial L here (cholmod_l_solve2 reallocates its
+     * workspace at every call for one right-hand side); CHOLMOD keeps the
+     * diagonal first in each column: checked, O(rows). */
+    const cholmod_factor *L = f->L;
+    f->own_solve = !L->is_super && L->xtype == CHOLMOD_REAL && L->dtype == CHOLMOD_DOUBLE &&
+                   L->p && L->i && L->nz && L->x;
+    if (f->own_solve) {
+        const sslong *Lp = L->p, *Li = L->i, *Lnz = L->nz;
+        for (sslong j = 0; j < (sslong)L->n && f->own_solve; j++)
+            f->own_solve = Lnz[j] > 0 && Li[Lp[j]] == j;
+    }
+    double lim = tol > CHOL_RATIO_MIN ? tol : CHOL_RATIO_MIN;
+    return sqrt(rc) >= lim ? 1 : 0;
+}
+
+/* SPQR of C^T and, when rank < rows, of S = [R11 R12]^T. Rank or < 0. */
+static int qr_try(ss_state *s, ss_slot *f, double tol)
+{
+    cholmod_common *cc = &s->cc;
+    cholmod_sparse Ct;
+    memset(&Ct, 0, sizeof Ct);
+    Ct.nrow = (size_t)s->n;
+    Ct.ncol = (size_t)f->rows;
+    Ct.nzmax = (size_t)s->cp[f->rows];
+    Ct.p = s->cp;
+    Ct.i = s->ci;
+    Ct.x = f->Cx;
+    Ct.stype = 0;
+    Ct.itype = CHOLMOD_LONG;
+    Ct.xtype = CHOLMOD_REAL;
+    Ct.dtype = CHOLMOD_DOUBLE;
+    Ct.sorted = 1;
+    Ct.packed = 1;
+    qr_free(&f->qr2, cc);
+    sslong k = qr_factor(&f->qr, &Ct, tol * f->cmax, 0, cc);
+    if (k < 0) return (int)k;
+    if (k > 0 && k < f->rows) {
+        cholmod_sparse *S = cholmod_l_transpose(f->qr.R, 1, cc); /* rows x k (R has k rows) */
+        if (!S) return cc_fail(cc);
+        if ((sslong)S->ncol != k) {
+            cholmod_l_free_sparse(&S, cc);
+            return BRAUN_ERR_NONFINITE;
+        }
+        sslong k2 = qr_factor(&f->qr2, S, SPQR_NO_TOL, k, cc);
+        cholmod_l_free_sparse(&S, cc);
+        if (k2 < 0) return (int)k2;
+        if (k2 != k) return BRAUN_ERR_NONFINITE; /* S has full column rank */
+    }
+    return (int)k;
+}
+
+static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, braun_real tol,
+                       const braun_real *atil, braun_real *resid)
+{
+    ss_state *s = state;
+    if (!s || slot < 0 || slot > 1) return BRAUN_ERR_ARGUMENT;
+    ss_slot *f = &s->s[slot];
+    const int expect = slot == 0 ? s->rows : (s->m > 0 && s->p > 0 ? s->m : -1);
+    if (rows != expect || (rows > 0 && !A)) return BRAUN_ERR_ARGUMENT;
+    f->path = PATH_NONE;
+    f->rank = 0;
+    if (rows == 0) {
+        f->path = PATH_ZERO;
+        return 0;
+    }
+    if (form_c(s, f, A) != 0) return BRAUN_ERR_NONFINITE;
+    if (atil && resid) {
+        double *x = s->wn, *y = s->wr;
+        for (int j = 0; j < s->n; j++) x[j] = (double)atil[j];
+        c_mul(s, f, x, NULL, y, NULL);
+        for (int i = 0; i < rows; i++) resid[i] = (braun_real)((double)resid[i] - y[i]);
+    }
+    if (f->cmax == 0) {
+        f->path = PATH_ZERO;
+        return 0;
+    }
+    double t = (double)tol;
+    if (!(t > 0)) t = 10.0 * (double)(rows > s->n ? rows : s->n) * DBL_EPSILON;
+
+    if (f->skip_chol > 0) {
+        f->skip_chol--;
+    } else {
+        int st = chol_try(s, f, t);
+        if (st < 0) return st;
+        if (st == 1) {
+            f->path = PATH_CHOL;
+            f->rank = rows;
+            return rows;
+        }
+        f->skip_chol = CHOL_SKIP_CALLS;
+    }
+    int k = qr_try(s, f, t);
+    if (k < 0) return k;
+    f->path = k == 0 ? PATH_ZERO : PATH_QR;
+    f->rank = k;
+    return k;
+}
+
+/* ------------------------------------------------------------------ */
+/* Solves                                                              */
+/* ------------------------------------------------------------------ */
+/* x := (L L^T)^-1 x or (L D L^T)^-1 x with a simplicial CHOLMOD factor
+ * (columns Lp[j] .. Lp[j] + Lnz[j], the diagonal first). */
+static void l_solve(const cholmod_factor *L, double *x)
+{
+    const sslong n = (sslong)L->n, *Lp = L->p, *Li = L->i, *Lnz = L->nz;
+    const double *Lx = L->x;
+    if (L->is_ll) {
+        for (sslong j = 0; j < n; j++) {
+            const sslong p = Lp[j], pend = p + Lnz[j];
+            const double xj = x[j] /= Lx[p];
+            for (sslong q = p + 1; q < pend; q++) x[Li[q]] -= Lx[q] * xj;
+        }
+        for (sslong j = n - 1; j >= 0; j--) {
+            const sslong p = Lp[j], pend = p + Lnz[j];
+            double t = x[j];
+            for (sslong q = p + 1; q < pend; q++) t -= Lx[q] * x[Li[q]];
+            x[j] = t / Lx[p];
+        }
+    } else {
+        for (sslong j = 0; j < n; j++) {
+            const sslong p = Lp[j], pend = p + Lnz[j];
+            const double xj = x[j];
+            for (sslong q = p + 1; q < pend; q++) x[Li[q]] -= Lx[q] * xj;
+            x[j] = xj / Lx[p]; /* D */
+        }
+        for (sslong j = n - 1; j >= 0; j--) {
+            const sslong p = Lp[j], pend = p + Lnz[j];
+            double t = x[j];
+            for (sslong q = p + 1; q < pend; q++) t -= Lx[q] * x[Li[q]];
+            x[j] = t;
+        }
+    }
+}
+
+/* out := G^-1 b (rows; out may be b). 0 or -1. */
+static int g_solve(ss_state *s, ss_slot *f, const double *b, double *out)
+{
+    const int rows = f->rows;
+    double *bp = f->bp;
+    if (f->own_solve) {
+        for (int a = 0; a < rows; a++) bp[a] = b[f->lperm[a]];
+        l_solve(f->L, bp);
+        for (int a = 0; a < rows; a++) out[f->lperm[a]] = bp[a];
+        return 0;
+    }
+    for (int c = 0; c < rows; c++) bp[c] = b[f->perm[c]];
+    cholmod_dense B;
+    memset(&B, 0, sizeof B);
+    B.nrow = (size_t)rows;
+    B.ncol = 1;
+    B.nzmax = (size_t)rows;
+    B.d = (size_t)rows;
+    B.x = bp;
+    B.xtype = CHOLMOD_REAL;
+    B.dtype = CHOLMOD_DOUBLE;
+    if (!cholmod_l_solve2(CHOLMOD_A, f->L, &B, NULL, &f->X, NULL, &f->Y, &f->E, &s->cc))
+        return -1;
+    const double *X = f->X->x;
+    for (int c = 0; c < rows; c++) out[f->perm[c]] = X[c];
+    return 0;
+}
+
+/* x := C^+ r (doubles; x has n entries, r rows). 0 or -1. */
+static int pinv_d(ss_state *s, ss_slot *f, const double *r, double *x)
+{
+    const int n = s->n, rows = f->rows;
+    memset(x, 0, (size_t)n * sizeof *x);
+    if (f->path == PATH_ZERO) return 0;
+    if (f->path == PATH_CHOL) {
+        double *y = s->wr, *res = s->wr2;
+        if (g_solve(s, f, r, y)) return -1;
+        ct_mul_add(s, f, y, x);
+        for (int it = 0; it < REFINE_MAX; it++) {
+            double bound;
+            c_mul(s, f, x, r, res, &bound); /* res = r - C x */
+            if (inf_norm(rows, res) <= REFINE_TOL * DBL_EPSILON * bound) break;
+            if (g_solve(s, f, res, y)) return -1;
+            ct_mul_add(s, f, y, x);
+        }
+        return 0;
+    }
+    if (f->path != PATH_QR) return -1;
+    const ss_qr *q = &f->qr;
+    const sslong k = f->rank;
+    double *b = s->wr, *w = s->wr2, *t = s->wn3;
+    for (int j = 0; j < rows; j++) b[j] = r[q->E ? q->E[j] : j]; /* E^T r */
+    if (k == rows) {
+        r_solve_t(q->R, k, b, w); /* S = R11^T */
+    } else {
+        /* S^+ b = E2 R2^-1 (Q2^T b)[0..k) */
+        const ss_qr *q2 = &f->qr2;
+        double *u = w; /* rows entries */
+        q_t(q2, b, u);
+        r_solve(q2->R, k, u);
+        for (sslong j = 0; j < k; j++) b[q2->E ? q2->E[j] : j] = u[j];
+        memcpy(w, b, (size_t)k * sizeof *w);
+    }
+    for (sslong j = 0; j < k; j++) t[j] = w[j];
+    for (int j = (int)k; j < n; j++) t[j] = 0;
+    q_apply(q, t, x); /* x = Q1 w */
+    return 0;
+}
+
+static void ss_lsq(void *state, int slot, const braun_real *r, braun_real *x,
+                   braun_real *resid_norm)
+{
+    ss_state *s = state;
+    const int n = s->n;
+    ss_slot *f = slot == 0 || slot == 1 ? &s->s[slot] : NULL;
+    if (!f || f->path == PATH_NONE) {
+        fill_nan(n, x);
+        if (resid_norm) *resid_norm = (braun_real)NAN;
+        return;
+    }
+    const int rows = f->rows;
+    double *rd = s->wr3, *xd = s->wn2;
+    for (int i = 0; i < rows; i++) rd[i] = (double)r[i];
+    if (pinv_d(s, f, rd, xd)) {
+        fill_nan(n, x);
+        if (resid_norm) *resid_norm = (braun_real)NAN;
+        return;
+    }
+    for (int j = 0; j < n; j++) x[j] = (braun_real)xd[j];
+    if (resid_norm) {
+        double *res = s->wr2;
+        c_mul(s, f, xd, rd, res, NULL); /* r - C x */
+        *resid_norm = (braun_real)nrm2(rows, res);
+    }
+}
+
+static void ss_pinv(void *state, int slot, const braun_real *r, braun_real *x)
+{
+    ss_lsq(state, slot, r, x, NULL);
+}
+
+static void ss_null_project(void *state, int slot, braun_real *z)
+{
+    ss_state *s = state;
+    if (slot < 0 || slot > 1) {
+        fill_nan(s->n, z);
+        return;
+    }
+    ss_slot *f = &s->s[slot];
+    const int n = s->n, rows = f->rows;
+    if (f->path == PATH_ZERO) return;
+    double *zd = s->wn, *t = s->wn3;
+    for (int j = 0; j < n; j++) zd[j] = (double)z[j];
+    if (f->path == PATH_CHOL) {
+        double *u = s->wr, *y = s->wr2;
+        /* z := z - C^T G^-1 C z, repeated while C z is above round-off of
+         * |C||z| for the z given (N is a projector: a repeat only removes
+         * solve error). */
+        double bound0 = 0;
+        for (int it = 0; it <= REFINE_MAX; it++) {
+            double bound;
+            c_mul(s, f, zd, NULL, u, &bound);
+            if (it == 0) bound0 = bound;
+            else if (inf_norm(rows, u) <= REFINE_TOL * DBL_EPSILON * bound0) break;
+            if (g_solve(s, f, u, y)) {
+                fill_nan(n, z);
+                return;
+            }
+            for (int i = 0; i < rows; i++) y[i] = -y[i];
+            ct_mul_add(s, f, y, zd);
+        }
+    } else if (f->path == PATH_QR) {
+        /* z := Q [0; (Q^T z)(k..n)] */
+        q_t(&f->qr, zd, t);
+        for (int j = 0; j < f->rank; j++) t[j] = 0;
+        q_apply(&f->qr, t, zd);
+    } else {
+        fill_nan(n, z);
+        return;
+    }
+    for (int j = 0; j < n; j++) z[j] = (braun_real)zd[j];
+}
+
+/* ------------------------------------------------------------------ */
+static const braun_linsolver ss_table = {
+    "suitesparse",
+    BRAUN_LS_NEEDS_SPARSITY,
+    ss_create,
+    ss_destroy,
+    ss_factor_mass,
+    ss_solve_rt,
+    ss_solve_r,
+    ss_mul_r,
+    ss_factor_c,
+    ss_pinv,
+    ss_lsq,
+    ss_null_project,
+};
+
+const braun_linsolver *braun_linsolver_suitesparse(void) { return &ss_table; }

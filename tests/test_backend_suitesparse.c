@@ -1,0 +1,1493 @@
+/* The SuiteSparse backend (src/backends/braun_suitesparse.c) on planar
+ * multibody systems with block-diagonal M and sparse A, against dense
+ * references computed here (plain Cholesky, C = A R^-1 by substitution,
+ * C^+ by LAPACK's SVD-based dgelsd), and against definitions: C x = r for
+ * consistent r, x in range(C^T) (N x = 0), N N = N, C N z = 0. Also the
+ * redundant systems (duplicated rows, a double parallelogram), the switch
+ * between its Cholesky and QR paths, error statuses, and whole simulations
+ * against libbraun's built-in dense kernels.
+ *
+ *   BRAUN_BENCH_SUITESPARSE=1 build/tests/test_backend_suitesparse
+ * also times factor_c + pinv + null_project on chains of N = 100 ... 2000
+ * links (full rank and with redundant rows). */
+#define _POSIX_C_SOURCE 200809L
+#include <float.h>
+#include <time.h>
+
+#include "test_util.h"
+#include "braun_backends.h"
+
+/* Heap calls of the per-call operations: the executable's malloc family
+ * replaces glibc's (its documented interposition; CHOLMOD allocates through
+ * the same symbols) and counts. Not under AddressSanitizer, which brings its
+ * own; valgrind replaces these too (heap_counting() sees it). */
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+void *__libc_malloc(size_t size);
+void *__libc_calloc(size_t n, size_t size);
+void *__libc_realloc(void *p, size_t size);
+void __libc_free(void *p);
+static volatile long heap_calls;
+void *malloc(size_t size)
+{
+    heap_calls++;
+    return __libc_malloc(size);
+}
+void *calloc(size_t n, size_t size)
+{
+    heap_calls++;
+    return __libc_calloc(n, size);
+}
+void *realloc(void *p, size_t size)
+{
+    heap_calls++;
+    return __libc_realloc(p, size);
+}
+void free(void *p)
+{
+    heap_calls++;
+    __libc_free(p);
+}
+#else
+static volatile long heap_calls;
+#endif
+
+static int heap_counting(void)
+{
+    /* Through pointers: a direct call could be inlined and miss what
+     * replaces the symbol (valgrind). */
+    void *(*volatile alloc)(size_t) = malloc;
+    void (*volatile release)(void *) = free;
+    const long before = heap_calls;
+    release(alloc(16));
+    return heap_calls > before;
+}
+
+/* LAPACK (linked for the backend tests): minimum-norm least squares by SVD. */
+void dgelsd_(const int *m, const int *n, const int *nrhs, double *a, const int *lda, double *b,
+             const int *ldb, double *s, const double *rcond, int *rank, double *work,
+             const int *lwork, int *iwork, int *info);
+
+static double frand(unsigned long long *s)
+{
+    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(*s >> 11) / 4503599627370496.0 - 1.0; /* [-1, 1) */
+}
+
+static void *xcalloc(size_t count, size_t size)
+{
+    void *p = calloc(count ? count : 1, size);
+    assert_non_null(p);
+    return p;
+}
+
+static double *dvec(size_t len) { return xcalloc(len, sizeof(double)); }
+static braun_real *rvec(size_t len) { return xcalloc(len, sizeof(braun_real)); }
+
+/* ------------------------------------------------------------------ */
+/* Planar bodies (x, y, θ), revolute joints                            */
+/* ------------------------------------------------------------------ */
+/* Pin between the point at distance sa along body a's axis and the point at
+ * sb along body b's (a < b; a = -1: the ground point (gx, gy)):
+ *   Φ = P_b - P_a,  P = (x + s cos θ, y + s sin θ).
+ * Two rows, their columns increasing, values, Φ and b_v = -(∂(A v)/∂q) v. */
+typedef struct pin {
+    int a, b;
+    double sa, sb, gx, gy;
+} pin;
+
+static int pin_rows(const pin *j, const double *q, const double *v, int cols[2][4],
+                    double vals[2][4], double phi[2], double bv[2])
+{
+    const double *qb = q + 3 * j->b;
+    double cb = cos(qb[2]), sb = sin(qb[2]);
+    double wb2 = v ? v[3 * j->b + 2] * v[3 * j->b + 2] : 0;
+    int nc = 0;
+    double px = qb[0] + j->sb * cb, py = qb[1] + j->sb * sb;
+    double bx = j->sb * cb * wb2, by = j->sb * sb * wb2;
+    if (j->a >= 0) {
+        const double *qa = q + 3 * j->a;
+        double ca = cos(qa[2]), sa = sin(qa[2]);
+        double wa2 = v ? v[3 * j->a + 2] * v[3 * j->a + 2] : 0;
+        px -= qa[0] + j->sa * ca;
+        py -= qa[1] + j->sa * sa;
+        bx -= j->sa * ca * wa2;
+        by -= j->sa * sa * wa2;
+        cols[0][0] = 3 * j->a, vals[0][0] = -1;
+        cols[0][1] = 3 * j->a + 2, vals[0][1] = j->sa * sa;
+        cols[1][0] = 3 * j->a + 1, vals[1][0] = -1;
+        cols[1][1] = 3 * j->a + 2, vals[1][1] = -j->sa * ca;
+        nc = 2;
+    } else {
+        px -= j->gx;
+        py -= j->gy;
+    }
+    cols[0][nc] = 3 * j->b, vals[0][nc] = 1;
+    cols[0][nc + 1] = 3 * j->b + 2, vals[0][nc + 1] = -j->sb * sb;
+    cols[1][nc] = 3 * j->b + 1, vals[1][nc] = 1;
+    cols[1][nc + 1] = 3 * j->b + 2, vals[1][nc + 1] = j->sb * cb;
+    if (phi) phi[0] = px, phi[1] = py;
+    if (bv) bv[0] = bx, bv[1] = by;
+    return nc + 2;
+}
+
+/* A sparse test system: pattern, compressed A and block M values, and a
+ * model whose callbacks are never called (the linear-algebra tests drive
+ * the backend directly). */
+typedef struct tsys {
+    int nb, n, rows, m, cap_rows, cap_nnz;
+    int *row_ptr, *col, *block;
+    double *A, *M;
+    braun_sparsity sp;
+    braun_model model;
+} tsys;
+
+static int dummy_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t, (void)q, (void)M, (void)u;
+    return 0;
+}
+static int dummy_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,
+                        void *u)
+{
+    (void)t, (void)q, (void)v, (void)Q, (void)u;
+    return 0;
+}
+static int dummy_hol(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                     braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    (void)t, (void)q, (void)v, (void)phi, (void)A, (void)b, (void)bv, (void)u;
+    return 0;
+}
+static int dummy_nonhol(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                        braun_real *A, braun_real *bv, void *u)
+{
+    (void)t, (void)q, (void)v, (void)phi, (void)A, (void)bv, (void)u;
+    return 0;
+}
+
+static void ts_open(tsys *t, int nbodies, int cap_rows)
+{
+    memset(t, 0, sizeof *t);
+    t->nb = nbodies;
+    t->n = 3 * nbodies;
+    t->cap_rows = cap_rows;
+    t->cap_nnz = 6 * cap_rows;
+    t->row_ptr = xcalloc((size_t)cap_rows + 1, sizeof(int));
+    t->col = xcalloc((size_t)t->cap_nnz, sizeof(int));
+    t->block = xcalloc((size_t)nbodies, sizeof(int));
+    t->A = dvec((size_t)t->cap_nnz);
+    t->M = dvec(9 * (size_t)nbodies);
+    for (int k = 0; k < nbodies; k++) t->block[k] = 3;
+}
+
+static void ts_close(tsys *t)
+{
+    free(t->row_ptr);
+    free(t->col);
+    free(t->block);
+    free(t->A);
+    free(t->M);
+}
+
+/* Append a row (columns increasing). */
+static void ts_row(tsys *t, int nc, const int *cols, const double *vals)
+{
+    assert_true(t->rows < t->cap_rows);
+    int o = t->row_ptr[t->rows];
+    assert_true(o + nc <= t->cap_nnz);
+    for (int j = 0; j < nc; j++) {
+        if (j > 0) assert_true(cols[j] > cols[j - 1]);
+        t->col[o + j] = cols[j];
+        t->A[o + j] = vals[j];
+    }
+    t->rows++;
+    t->row_ptr[t->rows] = o + nc;
+}
+
+/* Append row r again, scaled. */
+static void ts_dup(tsys *t, int r, double scale)
+{
+    int o = t->row_ptr[r], nc = t->row_ptr[r + 1] - o;
+    int cols[8];
+    double vals[8];
+    for (int j = 0; j < nc; j++) cols[j] = t->col[o + j], vals[j] = scale * t->A[o + j];
+    ts_row(t, nc, cols, vals);
+}
+
+static void ts_pin(tsys *t, const pin *j, const double *q)
+{
+    int cols[2][4];
+    double vals[2][4];
+    int nc = pin_rows(j, q, NULL, cols, vals, NULL, NULL);
+    ts_row(t, nc, cols[0], vals[0]);
+    ts_row(t, nc, cols[1], vals[1]);
+}
+
+/* Knife edge on body k: -sin θ vx + cos θ vy = 0. */
+static void ts_knife(tsys *t, int k, const double *q)
+{
+    int cols[2] = {3 * k, 3 * k + 1};
+    double vals[2] = {-sin(q[3 * k + 2]), cos(q[3 * k + 2])};
+    ts_row(t, 2, cols, vals);
+}
+
+/* Mass blocks: kind 0 diag(m, m, I); kind 1 SPD and not diagonal (a body
+ * whose reference point is off its centre of mass, plus a random SPD part). */
+static void ts_mass(tsys *t, int kind, unsigned long long *seed)
+{
+    for (int k = 0; k < t->nb; k++) {
+        double *Mb = t->M + 9 * k;
+        double mass = 1.5 + frand(seed), inertia = 0.2 + 0.1 * frand(seed);
+        memset(Mb, 0, 9 * sizeof *Mb);
+        Mb[0] = Mb[4] = mass;
+        Mb[8] = inertia;
+        if (kind == 1) {
+            double cx = 0.3 * frand(seed), cy = 0.3 * frand(seed), B[9];
+            Mb[2] = Mb[6] = -mass * cy;
+            Mb[5] = Mb[7] = mass * cx;
+            Mb[8] += mass * (cx * cx + cy * cy);
+            for (int i = 0; i < 9; i++) B[i] = 0.3 * frand(seed);
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    for (int l = 0; l < 3; l++) Mb[3 * i + j] += B[3 * l + i] * B[3 * l + j];
+        }
+    }
+}
+
+/* The model (m holonomic rows, the rest nonholonomic). */
+static void ts_model(tsys *t, int m)
+{
+    t->m = m;
+    t->sp = (braun_sparsity){t->row_ptr, t->col, t->nb, t->block};
+    braun_system s = {t->n,      m,       t->rows - m, BRAUN_MASS_CONSTANT,
+                      dummy_mass, dummy_forces, m > 0 ? dummy_hol : NULL,
+                      t->rows > m ? dummy_nonhol : NULL, NULL, NULL, NULL, &t->sp};
+    assert_int_equal(braun_model_init(&t->model, &s), BRAUN_OK);
+}
+
+/* Chain of N links hanging from the origin at random angles: link k has
+ * length l_k, joint k pins its start to the end of link k-1. */
+static void chain_config(int N, unsigned long long *seed, double *q, double *len)
+{
+    double x = 0, y = 0;
+    for (int k = 0; k < N; k++) {
+        double th = 3.14159 * frand(seed), l = 1 + 0.25 * frand(seed);
+        len[k] = l;
+        q[3 * k] = x + 0.5 * l * cos(th);
+        q[3 * k + 1] = y + 0.5 * l * sin(th);
+        q[3 * k + 2] = th;
+        x += l * cos(th);
+        y += l * sin(th);
+    }
+}
+
+static pin chain_joint(int k, const double *len)
+{
+    pin j = {k - 1, k, k > 0 ? 0.5 * len[k - 1] : 0, -0.5 * len[k], 0, 0};
+    return j;
+}
+
+/* extra: 0 none, 1 duplicated rows (exact and scaled copies), 2 knife edges
+ * on every third link (nonholonomic rows). */
+static void build_chain(tsys *t, int N, int mass_kind, int extra, unsigned long long seed)
+{
+    double *q = dvec(3 * (size_t)N), *len = dvec((size_t)N);
+    ts_open(t, N, 2 * N + N / 2 + 8);
+    chain_config(N, &seed, q, len);
+    for (int k = 0; k < N; k++) {
+        pin j = chain_joint(k, len);
+        ts_pin(t, &j, q);
+    }
+    int m = t->rows;
+    if (extra == 1) {
+        ts_dup(t, 0, 1.0);
+        for (int r = 3; r < 2 * N; r += 7) ts_dup(t, r, -2.5);
+        m = t->rows;
+    } else if (extra == 2) {
+        for (int k = 1; k < N; k += 3) ts_knife(t, k, q);
+    }
+    ts_mass(t, mass_kind, &seed);
+    ts_model(t, m);
+    free(q);
+    free(len);
+}
+
+/* Double parallelogram: three equal cranks (bodies 0..2) pinned to the
+ * ground at x = 0, d, 2d, their tips pinned to one coupler (body 3). One
+ * degree of freedom, 12 rows, rank 11: one row is redundant, and no row is
+ * a copy of another. */
+static void build_parallelogram(tsys *t, double alpha, int mass_kind, unsigned long long seed)
+{
+    const double L = 1.3, d = 0.8;
+    double q[12];
+    ts_open(t, 4, 12);
+    for (int i = 0; i < 3; i++) {
+        q[3 * i] = i * d + 0.5 * L * cos(alpha);
+        q[3 * i + 1] = 0.5 * L * sin(alpha);
+        q[3 * i + 2] = alpha;
+    }
+    q[9] = d + L * cos(alpha), q[10] = L * sin(alpha), q[11] = 0;
+    for (int i = 0; i < 3; i++) {
+        pin g = {-1, i, 0, -0.5 * L, i * d, 0};
+        ts_pin(t, &g, q);
+        pin c = {i, 3, 0.5 * L, (i - 1) * d, 0, 0};
+        ts_pin(t, &c, q);
+    }
+    ts_mass(t, mass_kind, &seed);
+    ts_model(t, t->rows);
+}
+
+/* ------------------------------------------------------------------ */
+/* Dense reference                                                     */
+/* ------------------------------------------------------------------ */
+typedef struct dref {
+    int n, rows;
+    double *M, *R, *A, *C; /* n x n, n x n, rows x n, rows x n (row-major) */
+} dref;
+
+static void dref_open(dref *d, const tsys *t, int rows)
+{
+    const int n = t->n;
+    d->n = n;
+    d->rows = rows;
+    d->M = dvec((size_t)n * (size_t)n);
+    d->R = dvec((size_t)n * (size_t)n);
+    d->A = dvec((size_t)rows * (size_t)n + 1);
+    d->C = dvec((size_t)rows * (size_t)n + 1);
+    for (int k = 0; k < t->nb; k++)
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                d->M[(size_t)(3 * k + i) * (size_t)n + (size_t)(3 * k + j)] = t->M[9 * k + 3 * i + j];
+    for (int i = 0; i < rows; i++)
+        for (int p = t->row_ptr[i]; p < t->row_ptr[i + 1]; p++)
+            d->A[(size_t)i * (size_t)n + (size_t)t->col[p]] = t->A[p];
+    /* Upper Cholesky of the whole M (band-limited loops: M is block diagonal,
+     * so R is too; the loops still run over the full rows). */
+    for (int i = 0; i < n; i++) {
+        double s = d->M[(size_t)i * n + i];
+        int lo = i - i % 3;
+        for (int k = lo; k < i; k++) s -= d->R[(size_t)k * n + i] * d->R[(size_t)k * n + i];
+        assert_true(s > 0);
+        double rii = sqrt(s);
+        d->R[(size_t)i * n + i] = rii;
+        for (int j = i + 1; j < n && j < lo + 3; j++) {
+            double u = d->M[(size_t)i * n + j];
+            for (int k = lo; k < i; k++) u -= d->R[(size_t)k * n + i] * d->R[(size_t)k * n + j];
+            d->R[(size_t)i * n + j] = u / rii;
+        }
+    }
+    /* C = A R^-1: c R = a by forward substitution over columns. */
+    for (int i = 0; i < rows; i++) {
+        const double *a = d->A + (size_t)i * n;
+        double *c = d->C + (size_t)i * n;
+        for (int j = 0; j < n; j++) {
+            double s = a[j];
+            for (int k = j - j % 3; k < j; k++) s -= c[k] * d->R[(size_t)k * n + j];
+            c[j] = s / d->R[(size_t)j * n + j];
+        }
+    }
+}
+
+static void dref_close(dref *d)
+{
+    free(d->M);
+    free(d->R);
+    free(d->A);
+    free(d->C);
+}
+
+/* y := C x. */
+static void c_mul(const dref *d, const double *x, double *y)
+{
+    for (int i = 0; i < d->rows; i++) {
+        double s = 0;
+        for (int j = 0; j < d->n; j++) s += d->C[(size_t)i * d->n + j] * x[j];
+        y[i] = s;
+    }
+}
+
+/* x := C^+ r by dgelsd (singular values <= rcond·sigma_max dropped); the rank. */
+static int ref_pinv(const dref *d, const double *r, double *x, double rcond)
+{
+    const int rows = d->rows, n = d->n, one = 1, ldb = rows > n ? rows : n;
+    double *a = dvec((size_t)rows * (size_t)n + 1), *b = dvec((size_t)ldb),
+           *s = dvec((size_t)(rows < n ? rows : n) + 1);
+    for (int i = 0; i < rows; i++)
+        for (int j = 0; j < n; j++) a[(size_t)j * rows + i] = d->C[(size_t)i * n + j];
+    for (int i = 0; i < rows; i++) b[i] = r[i];
+    int rank = 0, info = 0, lwork = -1, iwq = 0;
+    double wq = 0;
+    dgelsd_(&rows, &n, &one, a, &rows, b, &ldb, s, &rcond, &rank, &wq, &lwork, &iwq, &info);
+    assert_int_equal(info, 0);
+    lwork = (int)wq + 1;
+    double *work = dvec((size_t)lwork);
+    int *iwork = xcalloc((size_t)iwq + 1, sizeof(int));
+    dgelsd_(&rows, &n, &one, a, &rows, b, &ldb, s, &rcond, &rank, work, &lwork, iwork, &info);
+    assert_int_equal(info, 0);
+    for (int j = 0; j < n; j++) x[j] = b[j];
+    free(a);
+    free(b);
+    free(s);
+    free(work);
+    free(iwork);
+    return rank;
+}
+
+static double nrm2(int len, const double *x)
+{
+    double s = 0;
+    for (int i = 0; i < len; i++) s += x[i] * x[i];
+    return sqrt(s);
+}
+
+static double amax(int len, const double *x)
+{
+    double s = 0;
+    for (int i = 0; i < len; i++) s = fmax(s, fabs(x[i]));
+    return s;
+}
+
+static double rdiff(int len, const braun_real *a, const double *b)
+{
+    double s = 0;
+    for (int i = 0; i < len; i++) {
+        double e = fabs((double)a[i] - b[i]);
+        if (!(e <= s)) s = e; /* NaN counts */
+    }
+    return s;
+}
+
+static double default_tol(int rows, int n) { return 10.0 * (rows > n ? rows : n) * DBL_EPSILON; }
+
+/* ------------------------------------------------------------------ */
+/* The backend                                                         */
+/* ------------------------------------------------------------------ */
+static const braun_linsolver *LS(void)
+{
+    const braun_linsolver *ls = braun_linsolver_suitesparse();
+    assert_non_null(ls);
+    return ls;
+}
+
+static void *be_create(const tsys *t)
+{
+    void *st = NULL;
+    assert_int_equal(LS()->create(&st, &t->model), BRAUN_OK);
+    assert_non_null(st);
+    return st;
+}
+
+static void be_factor_mass(void *st, const tsys *t)
+{
+    braun_real *M = rvec(9 * (size_t)t->nb);
+    for (int i = 0; i < 9 * t->nb; i++) M[i] = (braun_real)t->M[i];
+    int bi = -1, bj = -1;
+    braun_real bv = 0;
+    assert_int_equal(LS()->factor_mass(st, M, 1e3 * DBL_EPSILON, &bi, &bj, &bv), BRAUN_OK);
+    free(M);
+}
+
+static int be_factor_c(void *st, const tsys *t, int slot, int rows, double tol)
+{
+    braun_real *A = rvec((size_t)t->row_ptr[rows] + 1);
+    for (int k = 0; k < t->row_ptr[rows]; k++) A[k] = (braun_real)t->A[k];
+    int rank = LS()->factor_c(st, slot, rows, A, (braun_real)tol, NULL, NULL);
+    free(A);
+    return rank;
+}
+
+/* Everything a factorization of `rows` rows of t must satisfy, checked
+ * against the dense reference d (its C) and against definitions. `rel` is
+ * the accepted relative error; expect_rank < 0: whatever dgelsd finds. */
+static void check_slot(void *st, const tsys *t, const dref *d, int slot, double tol,
+                       double rcond, int expect_rank, double rel, unsigned long long seed)
+{
+    const int n = t->n, rows = d->rows;
+    int rank = be_factor_c(st, t, slot, rows, tol);
+    double *y = dvec((size_t)n), *r = dvec((size_t)rows), *xref = dvec((size_t)n),
+           *tmp = dvec((size_t)rows), *zref = dvec((size_t)n), *z0 = dvec((size_t)n),
+           *xd = dvec((size_t)n);
+    braun_real *rr = rvec((size_t)rows), *x = rvec((size_t)n), *z = rvec((size_t)n);
+    braun_real resid = -1;
+
+    int ref_rank = ref_pinv(d, tmp, xref, rcond); /* tmp = 0: just the rank */
+    if (expect_rank >= 0) assert_int_equal(ref_rank, expect_rank);
+    assert_int_equal(rank, ref_rank);
+
+    double cnorm = 0; /* max row norm of C: scale of the products */
+    for (int i = 0; i < rows; i++) cnorm = fmax(cnorm, nrm2(n, d->C + (size_t)i * n));
+
+    for (int kind = 0; kind < 2; kind++) {
+        /* kind 0: consistent r = C y; kind 1: random r (inconsistent when
+         * rank < rows). */
+        for (int j = 0; j < n; j++) y[j] = frand(&seed);
+        if (kind == 0)
+            c_mul(d, y, r);
+        else
+            for (int i = 0; i < rows; i++) r[i] = frand(&seed);
+        for (int i = 0; i < rows; i++) rr[i] = (braun_real)r[i];
+        ref_pinv(d, r, xref, rcond);
+        double scale = amax(n, xref) + 1;
+
+        LS()->pinv(st, slot, rr, x);
+        assert_le(rdiff(n, x, xref), rel * scale);
+        for (int i = 0; i < rows; i++) assert_true(rr[i] == (braun_real)r[i]); /* r untouched */
+
+        LS()->lsq(st, slot, rr, x, &resid);
+        assert_le(rdiff(n, x, xref), rel * scale);
+        c_mul(d, xref, tmp);
+        for (int i = 0; i < rows; i++) tmp[i] = r[i] - tmp[i];
+        double ref_resid = nrm2(rows, tmp);
+        assert_near(resid, ref_resid, rel * (cnorm * scale + amax(rows, r)));
+        if (kind == 0 || rank == rows) {
+            /* Consistent: C x = r. */
+            for (int j = 0; j < n; j++) xd[j] = (double)x[j];
+            c_mul(d, xd, tmp);
+            for (int i = 0; i < rows; i++) assert_near(tmp[i], r[i], rel * (cnorm * scale + 1));
+            assert_le(resid, rel * (cnorm * scale + 1));
+        }
+        /* x in range(C^T): N x = 0. */
+        LS()->null_project(st, slot, x);
+        for (int j = 0; j < n; j++) xd[j] = 0;
+        assert_le(rdiff(n, x, xd), rel * scale);
+    }
+
+    /* null_project against z - C^+ C z; then C N z = 0 and N N z = N z. */
+    for (int j = 0; j < n; j++) z0[j] = frand(&seed), z[j] = (braun_real)z0[j];
+    c_mul(d, z0, tmp);
+    ref_pinv(d, tmp, xref, rcond);
+    for (int j = 0; j < n; j++) zref[j] = z0[j] - xref[j];
+    LS()->null_project(st, slot, z);
+    assert_le(rdiff(n, z, zref), rel * (amax(n, z0) + 1));
+    for (int j = 0; j < n; j++) xd[j] = (double)z[j];
+    c_mul(d, xd, tmp);
+    assert_le(amax(rows, tmp), rel * cnorm * (amax(n, z0) + 1));
+    LS()->null_project(st, slot, z);
+    assert_le(rdiff(n, z, xd), rel * (amax(n, z0) + 1));
+
+    /* resid -= C atil during the factorization. */
+    {
+        braun_real *A = rvec((size_t)t->row_ptr[rows] + 1), *atil = rvec((size_t)n),
+                   *res = rvec((size_t)rows);
+        for (int k = 0; k < t->row_ptr[rows]; k++) A[k] = (braun_real)t->A[k];
+        for (int j = 0; j < n; j++) y[j] = frand(&seed), atil[j] = (braun_real)y[j];
+        for (int i = 0; i < rows; i++) r[i] = frand(&seed), res[i] = (braun_real)r[i];
+        assert_int_equal(LS()->factor_c(st, slot, rows, A, (braun_real)tol, atil, res), rank);
+        c_mul(d, y, tmp);
+        for (int i = 0; i < rows; i++) assert_near(res[i], r[i] - tmp[i], 1e-13 * (cnorm + 1) * 4);
+        free(A);
+        free(atil);
+        free(res);
+    }
+    free(y);
+    free(r);
+    free(xref);
+    free(tmp);
+    free(zref);
+    free(z0);
+    free(xd);
+    free(rr);
+    free(x);
+    free(z);
+}
+
+/* ------------------------------------------------------------------ */
+/* Tests                                                               */
+/* ------------------------------------------------------------------ */
+static void test_table(void **state)
+{
+    (void)state;
+    const braun_linsolver *ls = LS();
+    assert_string_equal(ls->name, "suitesparse");
+    assert_string_equal(braun_linsolver_name(ls), "suitesparse");
+    assert_int_equal(ls->flags, BRAUN_LS_NEEDS_SPARSITY);
+    assert_non_null(ls->create);
+    assert_non_null(ls->destroy);
+    assert_non_null(ls->factor_mass);
+    assert_non_null(ls->solve_rt);
+    assert_non_null(ls->solve_r);
+    assert_non_null(ls->mul_r);
+    assert_non_null(ls->factor_c);
+    assert_non_null(ls->pinv);
+    assert_non_null(ls->lsq);
+    assert_non_null(ls->null_project);
+    /* Selection by name needs a sparsity. */
+    tsys t;
+    build_chain(&t, 3, 0, 0, 1);
+    const braun_linsolver *out = NULL;
+    const char *why = NULL;
+    assert_int_equal(braun_linsolver_select("suitesparse", &t.model.sys, &out, &why), BRAUN_OK);
+    assert_ptr_equal(out, ls);
+    braun_system dense = t.model.sys;
+    dense.sparsity = NULL;
+    assert_int_equal(braun_linsolver_select("suitesparse", &dense, &out, &why),
+                     BRAUN_ERR_ARGUMENT);
+    assert_null(out);
+    assert_non_null(why);
+    ls->destroy(NULL);
+    ts_close(&t);
+}
+
+/* solve_rt, solve_r, mul_r against the dense factor, in and out of place. */
+static void test_mass(void **state)
+{
+    (void)state;
+    for (int kind = 0; kind < 2; kind++) {
+        tsys t;
+        build_chain(&t, 7, kind, 0, 11 + kind);
+        dref d;
+        dref_open(&d, &t, t.rows);
+        void *st = be_create(&t);
+        be_factor_mass(st, &t);
+        const int n = t.n;
+        unsigned long long seed = 5;
+        double *b = dvec((size_t)n), *ref = dvec((size_t)n);
+        braun_real *x = rvec((size_t)n), *y = rvec((size_t)n), *bb = rvec((size_t)n);
+        for (int j = 0; j < n; j++) b[j] = frand(&seed), bb[j] = (braun_real)b[j];
+
+        /* R^-T b: forward substitution with the dense R^T. */
+        for (int i = 0; i < n; i++) {
+            double s = b[i];
+            for (int k = 0; k < i; k++) s -= d.R[(size_t)k * n + i] * ref[k];
+            ref[i] = s / d.R[(size_t)i * n + i];
+        }
+        LS()->solve_rt(st, bb, x);
+        assert_le(rdiff(n, x, ref), 1e-14 * (amax(n, ref) + 1));
+        for (int j = 0; j < n; j++) y[j] = bb[j];
+        LS()->solve_rt(st, y, y); /* x may alias b */
+        assert_le(rdiff(n, y, ref), 1e-14 * (amax(n, ref) + 1));
+
+        /* R^-1 b: back substitution. */
+        for (int i = n - 1; i >= 0; i--) {
+            double s = b[i];
+            for (int k = i + 1; k < n; k++) s -= d.R[(size_t)i * n + k] * ref[k];
+            ref[i] = s / d.R[(size_t)i * n + i];
+        }
+        LS()->solve_r(st, bb, x);
+        assert_le(rdiff(n, x, ref), 1e-14 * (amax(n, ref) + 1));
+        for (int j = 0; j < n; j++) y[j] = bb[j];
+        LS()->solve_r(st, y, y);
+        assert_le(rdiff(n, y, ref), 1e-14 * (amax(n, ref) + 1));
+
+        /* R b, and R^T R = M: R^-1 R^-T (M b) = b. */
+        for (int i = 0; i < n; i++) {
+            double s = 0;
+            for (int k = 0; k < n; k++) s += d.R[(size_t)i * n + k] * b[k];
+            ref[i] = s;
+        }
+        LS()->mul_r(st, bb, x);
+        assert_le(rdiff(n, x, ref), 1e-14 * (amax(n, ref) + 1));
+        for (int i = 0; i < n; i++) {
+            double s = 0;
+            for (int k = 0; k < n; k++) s += d.M[(size_t)i * n + k] * b[k];
+            y[i] = (braun_real)s;
+        }
+        LS()->solve_rt(st, y, y);
+        LS()->solve_r(st, y, y);
+        assert_le(rdiff(n, y, b), 1e-13);
+
+        free(b);
+        free(ref);
+        free(x);
+        free(y);
+        free(bb);
+        LS()->destroy(st);
+        dref_close(&d);
+        ts_close(&t);
+    }
+}
+
+static void run_chain(int N, int kind, double rel, unsigned long long seed)
+{
+    tsys t;
+    build_chain(&t, N, kind, 0, seed);
+    dref d;
+    dref_open(&d, &t, t.rows);
+    void *st = be_create(&t);
+    be_factor_mass(st, &t);
+    check_slot(st, &t, &d, 0, default_tol(t.rows, t.n), 1e-12, t.rows, rel, seed + 1);
+    /* A second configuration through the same state (pattern reused). */
+    LS()->destroy(st);
+    dref_close(&d);
+    ts_close(&t);
+}
+
+static void test_chain_full_rank(void **state)
+{
+    (void)state;
+    run_chain(1, 1, 1e-12, 3);
+    run_chain(8, 1, 1e-11, 4);
+    run_chain(8, 0, 1e-11, 5);
+    run_chain(40, 1, 1e-10, 6);
+    run_chain(150, 0, 1e-10, 7);
+}
+
+/* Two stars: satellites pinned alternately to hub 0 and hub 1 (hubs pinned
+ * to each other). The rows of a hub's satellites all touch its block, so G
+ * = C C^T has two dense, interleaved diagonal blocks: CHOLMOD reorders them
+ * and factors supernodally (the path through cholmod_l_solve2). */
+static void test_stars(void **state)
+{
+    (void)state;
+    const int K = 120;
+    unsigned long long seed = 131;
+    tsys t;
+    ts_open(&t, K + 2, 2 * K + 2);
+    double *q = dvec(3 * ((size_t)K + 2));
+    q[2] = 0.4, q[3] = 1.0, q[4] = 0.2, q[5] = -0.3;
+    for (int k = 2; k < K + 2; k++) {
+        const int h = k % 2;
+        double th = 3.14159 * frand(&seed), l = 1 + 0.3 * frand(&seed), s0 = 0.5 * frand(&seed);
+        double ax = q[3 * h] + s0 * cos(q[3 * h + 2]), ay = q[3 * h + 1] + s0 * sin(q[3 * h + 2]);
+        q[3 * k] = ax + 0.5 * l * cos(th);
+        q[3 * k + 1] = ay + 0.5 * l * sin(th);
+        q[3 * k + 2] = th;
+        pin j = {h, k, s0, -0.5 * l, 0, 0};
+        ts_pin(&t, &j, q);
+    }
+    {
+        /* hub 1's point at -0.3 along its axis on hub 0's point at 0.6 */
+        pin j = {0, 1, 0.6, -0.3, 0, 0};
+        ts_pin(&t, &j, q);
+    }
+    ts_mass(&t, 1, &seed);
+    ts_model(&t, t.rows);
+    dref d;
+    dref_open(&d, &t, t.rows);
+    void *st = be_create(&t);
+    be_factor_mass(st, &t);
+    for (int round = 0; round < 2; round++)
+        check_slot(st, &t, &d, 0, default_tol(t.rows, t.n), 1e-12, t.rows, 1e-10,
+                   500 + (unsigned long long)round);
+    LS()->destroy(st);
+    dref_close(&d);
+    free(q);
+    ts_close(&t);
+}
+
+/* Refactoring the same state at other values (same pattern). */
+static void test_refactor(void **state)
+{
+    (void)state;
+    tsys t;
+    build_chain(&t, 12, 1, 0, 21);
+    void *st = be_create(&t);
+    for (int round = 0; round < 4; round++) {
+        /* New configuration and masses, same pattern. */
+        tsys u;
+        build_chain(&u, 12, 1, 0, 100 + (unsigned long long)round);
+        memcpy(t.A, u.A, (size_t)t.row_ptr[t.rows] * sizeof *t.A);
+        memcpy(t.M, u.M, 9 * (size_t)t.nb * sizeof *t.M);
+        ts_close(&u);
+        dref d;
+        dref_open(&d, &t, t.rows);
+        be_factor_mass(st, &t);
+        check_slot(st, &t, &d, 0, default_tol(t.rows, t.n), 1e-12, t.rows, 1e-11,
+                   200 + (unsigned long long)round);
+        dref_close(&d);
+    }
+    LS()->destroy(st);
+    ts_close(&t);
+}
+
+/* Slot 1 (first m rows) and slot 0 (all rows) keep separate factorizations. */
+static void test_two_slots(void **state)
+{
+    (void)state;
+    tsys t;
+    build_chain(&t, 9, 1, 2, 31);
+    assert_true(t.rows > t.m && t.m > 0);
+    dref d0, d1;
+    dref_open(&d0, &t, t.rows);
+    dref_open(&d1, &t, t.m);
+    void *st = be_create(&t);
+    be_factor_mass(st, &t);
+    const double tol = default_tol(t.rows, t.n);
+    check_slot(st, &t, &d0, 0, tol, 1e-12, t.rows, 1e-11, 1);
+    check_slot(st, &t, &d1, 1, tol, 1e-12, t.m, 1e-11, 2);
+    /* Slot 0 still answers for all rows after slot 1 was factored. */
+    unsigned long long seed = 3;
+    double *r = dvec((size_t)t.rows), *xref = dvec((size_t)t.n);
+    braun_real *rr = rvec((size_t)t.rows), *x = rvec((size_t)t.n);
+    for (int i = 0; i < t.rows; i++) r[i] = frand(&seed), rr[i] = (braun_real)r[i];
+    ref_pinv(&d0, r, xref, 1e-12);
+    LS()->pinv(st, 0, rr, x);
+    assert_le(rdiff(t.n, x, xref), 1e-11 * (amax(t.n, xref) + 1));
+    /* A system with only holonomic rows has no slot 1. */
+    tsys u;
+    build_chain(&u, 3, 0, 0, 4);
+    void *su = be_create(&u);
+    be_factor_mass(su, &u);
+    assert_int_equal(be_factor_c(su, &u, 1, u.m, tol), BRAUN_ERR_ARGUMENT);
+    LS()->destroy(su);
+    ts_close(&u);
+    free(r);
+    free(xref);
+    free(rr);
+    free(x);
+    LS()->destroy(st);
+    dref_close(&d0);
+    dref_close(&d1);
+    ts_close(&t);
+}
+
+/* Exact and scaled copies of rows: rank = independent rows; the true
+ * minimum-norm least-squares solution also for inconsistent r. */
+static void test_duplicated_rows(void **state)
+{
+    (void)state;
+    for (int kind = 0; kind < 2; kind++) {
+        tsys t;
+        build_chain(&t, 10, kind, 1, 41 + (unsigned long long)kind);
+        assert_int_equal(t.rows, 24);
+        dref d;
+        dref_open(&d, &t, t.rows);
+        void *st = be_create(&t);
+        be_factor_mass(st, &t);
+        check_slot(st, &t, &d, 0, default_tol(t.rows, t.n), 1e-10, 20, 1e-10, 5);
+        LS()->destroy(st);
+        dref_close(&d);
+        ts_close(&t);
+    }
+    /* Larger: redundant rows spread along a long chain. */
+    tsys t;
+    build_chain(&t, 120, 1, 1, 43);
+    dref d;
+    dref_open(&d, &t, t.rows);
+    void *st = be_create(&t);
+    be_factor_mass(st, &t);
+    check_slot(st, &t, &d, 0, default_tol(t.rows, t.n), 1e-10, 240, 1e-9, 6);
+    LS()->destroy(st);
+    dref_close(&d);
+    ts_close(&t);
+}
+
+/* A redundancy that is not a copy: the double parallelogram (rank 11 of 12),
+ * at several crank angles. */
+static void test_parallelogram(void **state)
+{
+    (void)state;
+    const double alphas[4] = {1.1, 0.3, -2.0, 3.0};
+    for (int i = 0; i < 4; i++) {
+        tsys t;
+        build_parallelogram(&t, alphas[i], i % 2, 50 + (unsigned long long)i);
+        dref d;
+        dref_open(&d, &t, t.rows);
+        void *st = be_create(&t);
+        be_factor_mass(st, &t);
+        check_slot(st, &t, &d, 0, default_tol(t.rows, t.n), 1e-10, 11, 1e-11, 7);
+        LS()->destroy(st);
+        dref_close(&d);
+        ts_close(&t);
+    }
+}
+
+/* A row that nearly repeats another, by delta: cond(C) ~ 1/delta.
+ *  delta 1e-3: G is accepted (L-diagonal ratio above 1e-6) and the solves
+ *    through G (cond^2 ~ 1e6) must still be accurate (refinement);
+ *  delta 1e-9: G is rejected, SPQR at the default tolerance keeps all rows
+ *    (rank = rows), the results are those of an ill-conditioned C;
+ *  delta 1e-9 with tol 1e-6: SPQR drops the row (rank = rows - 1). */
+static void near_dependent(double delta, double tol, double rcond, int drop, double rel)
+{
+    tsys t;
+    build_chain(&t, 6, 1, 0, 61);
+    ts_dup(&t, 4, 1.0);
+    t.A[t.row_ptr[t.rows - 1]] += delta;
+    ts_model(&t, t.rows);
+    dref d;
+    dref_open(&d, &t, t.rows);
+    void *st = be_create(&t);
+    be_factor_mass(st, &t);
+    check_slot(st, &t, &d, 0, tol, rcond, t.rows - drop, rel, 8);
+    LS()->destroy(st);
+    dref_close(&d);
+    ts_close(&t);
+}
+
+static void test_near_dependent(void **state)
+{
+    (void)state;
+    near_dependent(1e-3, default_tol(13, 18), 1e-14, 0, 1e-12);
+    near_dependent(1e-9, default_tol(13, 18), 1e-15, 0, 1e-6);
+    near_dependent(1e-9, 1e-6, 1e-6, 1, 1e-10);
+}
+
+/* The rank decision is relative: scaling A (and so C) by any factor, or M,
+ * changes neither the rank nor, up to the scale, the answers. */
+static void test_scale_invariance(void **state)
+{
+    (void)state;
+    const double scales[3] = {1e8, 1e-8, 1e4};
+    for (int i = 0; i < 3; i++) {
+        tsys t;
+        if (i < 2)
+            build_chain(&t, 10, 1, 1, 45);
+        else
+            build_parallelogram(&t, 0.7, 1, 46);
+        const int expect = i < 2 ? 20 : 11;
+        for (int k = 0; k < t.row_ptr[t.rows]; k++) t.A[k] *= scales[i];
+        if (i == 2)
+            for (int k = 0; k < 9 * t.nb; k++) t.M[k] *= 1e-6;
+        dref d;
+        dref_open(&d, &t, t.rows);
+        void *st = be_create(&t);
+        be_factor_mass(st, &t);
+        check_slot(st, &t, &d, 0, default_tol(t.rows, t.n), 1e-10, expect, 1e-10,
+                   400 + (unsigned long long)i);
+        LS()->destroy(st);
+        dref_close(&d);
+        ts_close(&t);
+    }
+}
+
+/* All-zero C: rank 0, C^+ = 0, N = I, the residual is r. */
+static void test_rank_zero(void **state)
+{
+    (void)state;
+    tsys t;
+    build_chain(&t, 3, 1, 0, 71);
+    for (int k = 0; k < t.row_ptr[t.rows]; k++) t.A[k] = 0;
+    void *st = be_create(&t);
+    be_factor_mass(st, &t);
+    assert_int_equal(be_factor_c(st, &t, 0, t.rows, 1e-12), 0);
+    braun_real r[6] = {1, -2, 3, 0.5, 0, 2}, x[9], z[9], resid = 0;
+    for (int j = 0; j < 9; j++) x[j] = 7, z[j] = (braun_real)(j - 4);
+    LS()->lsq(st, 0, r, x, &resid);
+    for (int j = 0; j < 9; j++) assert_true(x[j] == 0);
+    assert_near(resid, sqrt(1 + 4 + 9 + 0.25 + 4), 1e-14);
+    LS()->null_project(st, 0, z);
+    for (int j = 0; j < 9; j++) assert_true(z[j] == (braun_real)(j - 4));
+    LS()->destroy(st);
+    ts_close(&t);
+}
+
+/* One state through full-rank, deficient and full-rank values again (the
+ * Cholesky is skipped for a few calls after a rejection, then retried):
+ * every answer matches the reference of its own values. */
+static void test_path_switching(void **state)
+{
+    (void)state;
+    tsys t;
+    build_chain(&t, 6, 1, 0, 81);
+    ts_dup(&t, 2, 1.0);
+    ts_model(&t, t.rows);
+    const int last = t.row_ptr[t.rows - 1], nc = t.row_ptr[t.rows] - last;
+    double dep[8], ind[8];
+    unsigned long long seed = 9;
+    for (int j = 0; j < nc; j++) dep[j] = t.A[last + j], ind[j] = dep[j] + 0.5 * frand(&seed);
+    void *st = be_create(&t);
+    be_factor_mass(st, &t);
+    const int seq[16] = {0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0};
+    for (int call = 0; call < 16; call++) {
+        for (int j = 0; j < nc; j++) t.A[last + j] = seq[call] ? dep[j] : ind[j];
+        dref d;
+        dref_open(&d, &t, t.rows);
+        check_slot(st, &t, &d, 0, default_tol(t.rows, t.n), 1e-10,
+                   seq[call] ? t.rows - 1 : t.rows, 1e-11, 300 + (unsigned long long)call);
+        dref_close(&d);
+    }
+    LS()->destroy(st);
+    ts_close(&t);
+}
+
+static void test_mass_errors(void **state)
+{
+    (void)state;
+    tsys t;
+    build_chain(&t, 4, 1, 0, 91);
+    void *st = be_create(&t);
+    braun_real *M = rvec(36);
+    int bi = -1, bj = -1;
+    braun_real bv = 0;
+    const braun_real sym = 1e3 * DBL_EPSILON;
+#define RESET_M()                                                                  \
+    do {                                                                           \
+        for (int i_ = 0; i_ < 36; i_++) M[i_] = (braun_real)t.M[i_];              \
+        bi = bj = -1;                                                              \
+        bv = 0;                                                                    \
+    } while (0)
+
+    /* Non-symmetric block 2, entries (0,2) / (2,0): coordinates 6 and 8. */
+    RESET_M();
+    M[18 + 2] += 1e-3;
+    assert_int_equal(LS()->factor_mass(st, M, sym, &bi, &bj, &bv), BRAUN_ERR_MASS_NOT_SYMMETRIC);
+    assert_int_equal(bi, 6);
+    assert_int_equal(bj, 8);
+    assert_near(bv, 1e-3, 1e-12);
+    /* ... below the tolerance it is accepted. */
+    RESET_M();
+    M[18 + 2] += 1e-3;
+    assert_int_equal(LS()->factor_mass(st, M, 1e-2, &bi, &bj, &bv), BRAUN_OK);
+
+    /* Negative pivot: block 1, row 1 -> coordinate 4. */
+    RESET_M();
+    M[9 + 4] = -1;
+    assert_int_equal(LS()->factor_mass(st, M, sym, &bi, &bj, &bv), BRAUN_ERR_MASS_NOT_SPD);
+    assert_int_equal(bi, 4);
+    assert_int_equal(bj, 4);
+    assert_true(bv < 0);
+    /* Singular block 3 (rank one): the second pivot is at round-off. */
+    RESET_M();
+    for (int i = 0; i < 9; i++) M[27 + i] = 2;
+    assert_int_equal(LS()->factor_mass(st, M, sym, &bi, &bj, &bv), BRAUN_ERR_MASS_NOT_SPD);
+    assert_int_equal(bi, 10);
+    /* NaN on a diagonal. */
+    RESET_M();
+    M[0] = (braun_real)NAN;
+    assert_int_equal(LS()->factor_mass(st, M, sym, &bi, &bj, &bv), BRAUN_ERR_MASS_NOT_SPD);
+    assert_int_equal(bi, 0);
+    /* NULL outputs are allowed; a good M afterwards factors again. */
+    RESET_M();
+    M[9 + 4] = -1;
+    assert_int_equal(LS()->factor_mass(st, M, sym, NULL, NULL, NULL), BRAUN_ERR_MASS_NOT_SPD);
+    RESET_M();
+    assert_int_equal(LS()->factor_mass(st, M, sym, &bi, &bj, &bv), BRAUN_OK);
+#undef RESET_M
+    free(M);
+    LS()->destroy(st);
+    ts_close(&t);
+}
+
+static int try_create(const braun_model *model)
+{
+    void *st = (void *)&st;
+    int r = LS()->create(&st, model);
+    if (r == BRAUN_OK) {
+        assert_non_null(st);
+        LS()->destroy(st);
+    } else {
+        assert_null(st);
+    }
+    return r;
+}
+
+static void test_create_errors(void **state)
+{
+    (void)state;
+    tsys t;
+    build_chain(&t, 4, 0, 2, 101);
+    /* A model as braun_model_init would refuse it: built by hand. */
+    braun_model model = t.model;
+    assert_int_equal(try_create(&model), BRAUN_OK);
+    assert_int_equal(LS()->create(NULL, &model), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(try_create(NULL), BRAUN_ERR_ARGUMENT);
+    model.sys.sparsity = NULL;
+    assert_int_equal(try_create(&model), BRAUN_ERR_ARGUMENT);
+    model = t.model;
+    model.sys.n = 0;
+    assert_int_equal(try_create(&model), BRAUN_ERR_SIZE);
+    /* Blocks that do not tile the diagonal. */
+    braun_sparsity sp = t.sp;
+    model = t.model;
+    model.sys.sparsity = &sp;
+    int blk[4] = {3, 3, 3, 2};
+    sp.block = blk;
+    assert_int_equal(try_create(&model), BRAUN_ERR_SIZE);
+    blk[3] = 4;
+    assert_int_equal(try_create(&model), BRAUN_ERR_SIZE);
+    blk[3] = 0;
+    assert_int_equal(try_create(&model), BRAUN_ERR_SIZE);
+    blk[3] = 3;
+    assert_int_equal(try_create(&model), BRAUN_OK);
+    sp.nblocks = 0;
+    assert_int_equal(try_create(&model), BRAUN_ERR_ARGUMENT);
+    sp = t.sp;
+    /* Pattern errors. */
+    int nnz = t.row_ptr[t.rows];
+    int *col = xcalloc((size_t)nnz, sizeof(int)), *rp = xcalloc((size_t)t.rows + 1, sizeof(int));
+    memcpy(col, t.col, (size_t)nnz * sizeof(int));
+    memcpy(rp, t.row_ptr, ((size_t)t.rows + 1) * sizeof(int));
+    sp.col = col;
+    sp.row_ptr = rp;
+    col[nnz - 1] = t.n;
+    assert_int_equal(try_create(&model), BRAUN_ERR_ARGUMENT);
+    col[nnz - 1] = -1;
+    assert_int_equal(try_create(&model), BRAUN_ERR_ARGUMENT);
+    memcpy(col, t.col, (size_t)nnz * sizeof(int));
+    col[2] = col[3]; /* not increasing in row 1 */
+    assert_int_equal(try_create(&model), BRAUN_ERR_ARGUMENT);
+    memcpy(col, t.col, (size_t)nnz * sizeof(int));
+    rp[3] = rp[2] - 1;
+    assert_int_equal(try_create(&model), BRAUN_ERR_ARGUMENT);
+    memcpy(rp, t.row_ptr, ((size_t)t.rows + 1) * sizeof(int));
+    rp[0] = 1;
+    assert_int_equal(try_create(&model), BRAUN_ERR_ARGUMENT);
+    memcpy(rp, t.row_ptr, ((size_t)t.rows + 1) * sizeof(int));
+    assert_int_equal(try_create(&model), BRAUN_OK);
+    free(col);
+    free(rp);
+    ts_close(&t);
+}
+
+static void test_factor_c_errors(void **state)
+{
+    (void)state;
+    tsys t;
+    build_chain(&t, 5, 1, 2, 111);
+    void *st = be_create(&t);
+    const int n = t.n, rows = t.rows;
+    braun_real *x = rvec((size_t)n), *r = rvec((size_t)rows), *A = rvec((size_t)t.row_ptr[rows]);
+    braun_real resid = 0;
+    be_factor_mass(st, &t);
+    /* Nothing factored yet: NaN, which the core's finite checks catch. */
+    LS()->pinv(st, 0, r, x);
+    assert_true(isnan((double)x[0]));
+    LS()->lsq(st, 1, r, x, &resid);
+    assert_true(isnan((double)x[n - 1]) && isnan((double)resid));
+    for (int j = 0; j < n; j++) x[j] = 1;
+    LS()->null_project(st, 0, x);
+    assert_true(isnan((double)x[0]));
+    /* Bad slots and row counts. */
+    for (int k = 0; k < t.row_ptr[rows]; k++) A[k] = (braun_real)t.A[k];
+    assert_int_equal(LS()->factor_c(st, 2, rows, A, 1e-12, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(LS()->factor_c(st, -1, rows, A, 1e-12, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(LS()->factor_c(st, 0, rows - 1, A, 1e-12, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(LS()->factor_c(st, 1, rows, A, 1e-12, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(LS()->factor_c(st, 0, rows, NULL, 1e-12, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    /* NaN / Inf in A. */
+    A[3] = (braun_real)NAN;
+    assert_int_equal(LS()->factor_c(st, 0, rows, A, 1e-12, NULL, NULL), BRAUN_ERR_NONFINITE);
+    LS()->pinv(st, 0, r, x);
+    assert_true(isnan((double)x[0]));
+    A[3] = (braun_real)INFINITY;
+    assert_int_equal(LS()->factor_c(st, 1, t.m, A, 1e-12, NULL, NULL), BRAUN_ERR_NONFINITE);
+    /* ... and it recovers with good values; tol <= 0 selects the default. */
+    A[3] = (braun_real)t.A[3];
+    assert_int_equal(LS()->factor_c(st, 0, rows, A, 0, NULL, NULL), rows);
+    assert_int_equal(LS()->factor_c(st, 1, t.m, A, -1, NULL, NULL), t.m);
+    free(x);
+    free(r);
+    free(A);
+    LS()->destroy(st);
+    ts_close(&t);
+}
+
+/* The full-rank path allocates nothing per call once the first solve has
+ * sized CHOLMOD's workspaces (the rank-deficient path does: SPQR returns
+ * new factors at every factorization). */
+static void test_no_allocation(void **state)
+{
+    (void)state;
+    if (!heap_counting()) {
+        print_message("heap calls cannot be counted here (sanitizer, valgrind): skipped\n");
+        return;
+    }
+    tsys t;
+    build_chain(&t, 30, 1, 2, 121);
+    const int n = t.n, rows = t.rows, m = t.m;
+    braun_real *M = rvec(9 * (size_t)t.nb), *A = rvec((size_t)t.row_ptr[rows]),
+               *atil = rvec((size_t)n), *res = rvec((size_t)rows), *x = rvec((size_t)n),
+               *y = rvec((size_t)n);
+    for (int i = 0; i < 9 * t.nb; i++) M[i] = (braun_real)t.M[i];
+    for (int k = 0; k < t.row_ptr[rows]; k++) A[k] = (braun_real)t.A[k];
+    unsigned long long seed = 3;
+    for (int j = 0; j < n; j++) atil[j] = (braun_real)frand(&seed);
+    void *st = be_create(&t);
+    long calls = 0;
+    braun_real rn;
+    for (int rep = 0; rep < 4; rep++) {
+        long before = heap_calls;
+        assert_true(LS()->factor_mass(st, M, 1e-12, NULL, NULL, NULL) == BRAUN_OK);
+        LS()->solve_rt(st, atil, x);
+        LS()->solve_r(st, x, x);
+        LS()->mul_r(st, x, y);
+        assert_true(LS()->factor_c(st, 1, m, A, 1e-13, NULL, NULL) == m);
+        for (int i = 0; i < rows; i++) res[i] = (braun_real)frand(&seed);
+        assert_true(LS()->factor_c(st, 0, rows, A, 1e-13, atil, res) == rows);
+        LS()->pinv(st, 0, res, x);
+        LS()->lsq(st, 1, res, x, &rn);
+        LS()->null_project(st, 0, x);
+        LS()->null_project(st, 1, x);
+        if (rep > 0) calls += heap_calls - before; /* rep 0 sizes the workspaces */
+    }
+    LS()->destroy(st);
+    free(M);
+    free(A);
+    free(atil);
+    free(res);
+    free(x);
+    free(y);
+    ts_close(&t);
+    assert_int_equal(calls, 0);
+}
+
+/* ------------------------------------------------------------------ */
+/* Whole simulations: the backend against the built-in dense kernels   */
+/* ------------------------------------------------------------------ */
+/* A chain of NS links under gravity with real callbacks writing compressed
+ * values; dup: joint 0's rows once more (redundant); knife: a knife edge on
+ * the last link (nonholonomic row, so slot 1 is used). */
+#define NS 12
+typedef struct sim_chain {
+    int dup, knife;
+    double len[NS];
+    tsys t; /* pattern and mass blocks */
+} sim_chain;
+
+static pin sim_joint(const sim_chain *c, int pair)
+{
+    return chain_joint(pair < NS ? pair : 0, c->len);
+}
+
+static int sim_mass(braun_real t, const braun_real *q, braun_real *M, void *user)
+{
+    const sim_chain *c = user;
+    (void)t, (void)q;
+    for (int i = 0; i < 9 * NS; i++) M[i] = (braun_real)c->t.M[i];
+    return 0;
+}
+
+static int sim_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,
+                      void *user)
+{
+    (void)t, (void)q, (void)v, (void)user;
+    for (int i = 0; i < 3 * NS; i++) Q[i] = i % 3 == 1 ? -9.81 : 0;
+    return 0;
+}
+
+static int sim_hol(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                   braun_real *A, braun_real *b, braun_real *bv, void *user)
+{
+    const sim_chain *c = user;
+    (void)t;
+    for (int pair = 0; 2 * pair < c->t.m; pair++) {
+        pin j = sim_joint(c, pair);
+        int cols[2][4];
+        double vals[2][4], ph[2], bb[2];
+        int nc = pin_rows(&j, q, v, cols, vals, ph, bb);
+        for (int i = 0; i < 2; i++) {
+            int r = 2 * pair + i;
+            if (phi) phi[r] = ph[i];
+            if (b) b[r] = 0;
+            if (bv) bv[r] = bb[i];
+            if (A)
+                for (int k = 0; k < nc; k++) A[c->t.row_ptr[r] + k] = vals[i][k];
+        }
+    }
+    return 0;
+}
+
+static int sim_knife(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                     braun_real *A, braun_real *bv, void *user)
+{
+    const int o = 3 * (NS - 1);
+    double s = sin(q[o + 2]), co = cos(q[o + 2]);
+    (void)t, (void)user;
+    if (phi) phi[0] = -s * v[o] + co * v[o + 1];
+    if (bv) bv[0] = (co * v[o] + s * v[o + 1]) * v[o + 2];
+    if (A) A[0] = -s, A[1] = co;
+    return 0;
+}
+
+static int sim_energy(braun_real t, const braun_real *q, const braun_real *v, braun_real *E,
+                      braun_real *dEdq, braun_real *dEdv, braun_real *dEdt, void *user)
+{
+    const sim_chain *c = user;
+    double T = 0, V = 0;
+    (void)t;
+    for (int k = 0; k < NS; k++)
+        for (int i = 0; i < 3; i++) {
+            double Mv = 0;
+            for (int j = 0; j < 3; j++) Mv += c->t.M[9 * k + 3 * i + j] * v[3 * k + j];
+            T += 0.5 * v[3 * k + i] * Mv;
+            if (dEdv) dEdv[3 * k + i] = Mv;
+            if (dEdq) dEdq[3 * k + i] = i == 1 ? 9.81 : 0;
+            if (i == 1) V += 9.81 * q[3 * k + 1];
+        }
+    if (E) *E = T + V;
+    if (dEdt) *dEdt = 0;
+    return 0;
+}
+
+static braun_system sim_system(sim_chain *c, int dup, int knife, double *q, double *v)
+{
+    unsigned long long seed = 77;
+    c->dup = dup;
+    c->knife = knife;
+    ts_open(&c->t, NS, 2 * NS + 4);
+    chain_config(NS, &seed, q, c->len);
+    for (int k = 0; k < NS + (dup ? 1 : 0); k++) {
+        pin j = sim_joint(c, k);
+        ts_pin(&c->t, &j, q);
+    }
+    c->t.m = c->t.rows;
+    if (knife) ts_knife(&c->t, NS - 1, q);
+    ts_mass(&c->t, 1, &seed);
+    c->t.sp = (braun_sparsity){c->t.row_ptr, c->t.col, NS, c->t.block};
+    /* Velocities consistent with the joints (none with a knife edge). */
+    double vx = 0, vy = 0;
+    for (int k = 0; k < NS; k++) {
+        double w = knife ? 0 : 0.8 * frand(&seed), th = q[3 * k + 2];
+        double ex = -sin(th), ey = cos(th);
+        v[3 * k] = vx + 0.5 * c->len[k] * w * ex;
+        v[3 * k + 1] = vy + 0.5 * c->len[k] * w * ey;
+        v[3 * k + 2] = w;
+        vx += c->len[k] * w * ex;
+        vy += c->len[k] * w * ey;
+    }
+    braun_system s = {3 * NS,     c->t.m,   c->t.rows - c->t.m, BRAUN_MASS_CONSTANT,
+                      sim_mass,   sim_forces, sim_hol,
+                      knife ? sim_knife : NULL, sim_energy, NULL, c, &c->t.sp};
+    return s;
+}
+
+static void sim_open(test_sim *s, const braun_system *sys, const braun_linsolver *ls)
+{
+    assert_int_equal(braun_model_init(&s->model, sys), BRAUN_OK);
+    s->model.opt.corrections = BRAUN_CORRECT_ALL;
+    s->model.opt.linsolver = ls;
+    size_t bytes = braun_data_size(&s->model);
+    s->buffer = malloc(bytes);
+    assert_non_null(s->buffer);
+    assert_int_equal(braun_data_init(&s->data, &s->model, s->buffer, bytes), BRAUN_OK);
+}
+
+static void run_sim(int dup, int knife, braun_method method, int steps, double tol)
+{
+    sim_chain c;
+    double q[3 * NS], v[3 * NS];
+    braun_system sys = sim_system(&c, dup, knife, q, v);
+    test_sim a, b;
+    sim_open(&a, &sys, LS());
+    sim_open(&b, &sys, NULL);
+    /* An inconsistent start, so that the corrections act. */
+    q[0] += 1e-4;
+    v[5] += 0.3;
+    assert_int_equal(braun_set_state(&a.data, 0, q, v), BRAUN_OK);
+    assert_int_equal(braun_set_state(&b.data, 0, q, v), BRAUN_OK);
+    double worst = 0;
+    for (int i = 0; i < steps; i++) {
+        assert_int_equal(braun_step(&a.data, method, 1e-3), BRAUN_OK);
+        assert_int_equal(braun_step(&b.data, method, 1e-3), BRAUN_OK);
+        for (int j = 0; j < 3 * NS; j++) {
+            worst = fmax(worst, fabs(a.data.q[j] - b.data.q[j]));
+            worst = fmax(worst, fabs(a.data.v[j] - b.data.v[j]));
+        }
+    }
+    if (getenv("BRAUN_TEST_VERBOSE")) printf("  worst |difference| %.3g\n", worst);
+    assert_le(worst, tol);
+    assert_int_equal(a.data.stats.rank_deficient, b.data.stats.rank_deficient);
+    if (dup) assert_true(a.data.stats.rank_deficient > 0);
+    double pa, va, ea;
+    assert_int_equal(braun_residuals(&a.data, a.data.t, a.data.q, a.data.v, &pa, &va, &ea), 0);
+    assert_le(pa, method == BRAUN_RK4 ? 1e-9 : 1e-8);
+    assert_le(va, 1e-7);
+    assert_le(fabs(ea), 1e-7);
+    braun_data_release(&a.data); /* frees the backend state; twice is safe */
+    braun_data_release(&a.data);
+    test_sim_close(&a);
+    test_sim_close(&b);
+    ts_close(&c.t);
+}
+
+static void test_simulation(void **state)
+{
+    (void)state;
+    run_sim(0, 0, BRAUN_RK4, 300, 1e-10);
+}
+
+static void test_simulation_redundant(void **state)
+{
+    (void)state;
+    run_sim(1, 0, BRAUN_RK4, 300, 1e-10);
+}
+
+static void test_simulation_nonholonomic(void **state)
+{
+    (void)state;
+    run_sim(0, 1, BRAUN_RK4, 300, 1e-10);
+    run_sim(1, 1, BRAUN_HEUN, 100, 1e-10);
+}
+
+/* ------------------------------------------------------------------ */
+/* Cost against N (BRAUN_BENCH_SUITESPARSE=1)                          */
+/* ------------------------------------------------------------------ */
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void test_bench(void **state)
+{
+    (void)state;
+    const char *env = getenv("BRAUN_BENCH_SUITESPARSE");
+    if (!env || !*env || strcmp(env, "0") == 0) skip();
+    const int Ns[6] = {100, 200, 500, 1000, 2000, 5000};
+    printf("# chain of N links, time per call in microseconds (and per link)\n");
+    printf("# %5s %6s %6s %5s | %9s %9s %9s %9s | %12s\n", "N", "n", "rows", "path", "create",
+           "factor_c", "pinv", "null_prj", "f+p+n per N");
+    for (int extra = 0; extra < 2; extra++)
+        for (int ii = 0; ii < 6; ii++) {
+            const int N = Ns[ii];
+            tsys t;
+            build_chain(&t, N, 1, extra, 1000 + (unsigned long long)N);
+            double t0 = now();
+            void *st = be_create(&t);
+            double tcreate = now() - t0;
+            be_factor_mass(st, &t);
+            braun_real *A = rvec((size_t)t.row_ptr[t.rows]), *r = rvec((size_t)t.rows),
+                       *x = rvec((size_t)t.n);
+            for (int k = 0; k < t.row_ptr[t.rows]; k++) A[k] = (braun_real)t.A[k];
+            unsigned long long seed = 1;
+            for (int i = 0; i < t.rows; i++) r[i] = (braun_real)frand(&seed);
+            const double tol = default_tol(t.rows, t.n);
+            int reps = 0, rank = 0;
+            double tf = 0, tp = 0, tn = 0;
+            while (reps < 3 || tf + tp + tn < 0.3) {
+                t0 = now();
+                rank = LS()->factor_c(st, 0, t.rows, A, (braun_real)tol, NULL, NULL);
+                double t1 = now();
+                LS()->pinv(st, 0, r, x);
+                double t2 = now();
+                LS()->null_project(st, 0, x);
+                double t3 = now();
+                tf += t1 - t0, tp += t2 - t1, tn += t3 - t2;
+                reps++;
+            }
+            assert_int_equal(rank, extra ? 2 * N : t.rows);
+            double us = 1e6 / reps;
+            printf("  %5d %6d %6d %5s | %9.1f %9.1f %9.1f %9.1f | %12.3f\n", N, t.n, t.rows,
+                   extra ? "qr" : "chol", 1e6 * tcreate, tf * us, tp * us, tn * us,
+                   (tf + tp + tn) * us / N);
+            free(A);
+            free(r);
+            free(x);
+            LS()->destroy(st);
+            ts_close(&t);
+        }
+}
+
+int main(void)
+{
+    if (!braun_linsolver_suitesparse()) {
+        /* libbraun_backends.a built with BRAUN_SUITESPARSE=0. */
+        printf("[  SKIPPED ] suitesparse backend not built\n");
+        return 0;
+    }
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_table),
+        cmocka_unit_test(test_mass),
+        cmocka_unit_test(test_chain_full_rank),
+        cmocka_unit_test(test_stars),
+        cmocka_unit_test(test_refactor),
+        cmocka_unit_test(test_two_slots),
+        cmocka_unit_test(test_duplicated_rows),
+        cmocka_unit_test(test_parallelogram),
+        cmocka_unit_test(test_near_dependent),
+        cmocka_unit_test(test_scale_invariance),
+        cmocka_unit_test(test_rank_zero),
+        cmocka_unit_test(test_path_switching),
+        cmocka_unit_test(test_mass_errors),
+        cmocka_unit_test(test_create_errors),
+        cmocka_unit_test(test_factor_c_errors),
+        cmocka_unit_test(test_no_allocation),
+        cmocka_unit_test(test_simulation),
+        cmocka_unit_test(test_simulation_redundant),
+        cmocka_unit_test(test_simulation_nonholonomic),
+        cmocka_unit_test(test_bench),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
