@@ -9,6 +9,7 @@
 #   make bench                         everything (< 10 min on 2 busy cores)
 #   make bench BENCH_TARGETS="slider-crank"  BENCH_ROUNDS=11  BENCH_VARIANTS=0
 #   make bench BENCH_DOCS=             leave docs/performance.md alone
+#   make bench BENCH_SCALING=0         without the large-system study
 # Options: BENCH_OUT (results/bench), BENCH_ROUNDS (timing rounds, 31),
 # BENCH_STEPS (steps per block, 2000), BENCH_JOBS (parallel callgrind runs, 2),
 # BENCH_VARIANTS (1: also the slider-crank with other compiler flags).
@@ -24,6 +25,8 @@ BENCH_STEPS ?= 2000
 BENCH_JOBS ?= 2
 BENCH_VARIANTS ?= 1
 BENCH_DOCS ?= docs/performance.md
+# 1: also make scaling (mk/scaling.mk): cost per step against N, backends, IDA+KLU.
+BENCH_SCALING ?= 1
 BENCH_TARGETS ?= slider-crank four-bar pendulum andrews $(sort $(wildcard data/*.json))
 
 .PHONY: bench bench-bin deps-bench
@@ -54,3 +57,4 @@ bench: deps-bench
 	    --rounds $(BENCH_ROUNDS) --steps $(BENCH_STEPS) --jobs $(BENCH_JOBS) \
 	    --variants $(BENCH_VARIANTS) --docs "$(BENCH_DOCS)" --build $(BUILD) \
 	    --targets "$(BENCH_TARGETS)"
+	@if [ "$(BENCH_SCALING)" = 1 ]; then $(MAKE) --no-print-directory scaling SCALING_DOCS="$(BENCH_DOCS)"; fi
