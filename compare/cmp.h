@@ -91,6 +91,15 @@ void cmp_ref_free(cmp_ref *r);
  * and tolerance). 0, or -1 if the reference failed. */
 int cmp_ref_tabulate(cmp_ref *r, double dt, double T);
 const char *cmp_ref_kind_name(cmp_ref_kind kind);
+/* A tabulated reference to a binary file (r NULL: "no reference") and back,
+ * for the same target in another process of the same binary: the same
+ * table bit for bit; other times go to a fresh private evaluator. 0 or -1
+ * (load: *out NULL for "no reference"). */
+int cmp_ref_save(const cmp_ref *r, const char *path);
+int cmp_ref_load(const cmp_target *tg, const char *path, cmp_ref **out);
+/* Drop the private off-grid evaluator, so that a run sees the reference as
+ * freshly loaded whatever ran before it (compare/run.sh's processes). */
+void cmp_ref_restart(cmp_ref *r);
 
 /* ------------------------------------------------------------ trajectories */
 /* States sampled by a run: on the common grid t_j = j·dt_out for the fixed-
@@ -125,7 +134,7 @@ int cmp_method_from_name(const char *name); /* -1 if unknown */
 typedef enum cmp_linsol {
     CMP_LS_AUTO = 0,   /* dense below CMP_KLU_MIN_N unknowns, KLU from there */
     CMP_LS_DENSE,      /* SUNLinSol_Dense: LU with partial pivoting */
-    CMP_LS_KLU,        /* SUNLinSol_KLU, sparse finite-difference Jacobian */
+    CMP_LS_KLU,        /* SUNLinSol_KLU, sparse Jacobian (cmp_ida_opts.jac) */
     CMP_LS_COD         /* the harness's rank-revealing solver (cmp_ida_cod.c) */
 } cmp_linsol;
 
@@ -145,7 +154,29 @@ typedef struct cmp_ida_opts {
     int no_suppress;     /* 1: keep λ, μ in the error test */
     int max_order;       /* IDASetMaxOrd, 0: default 5 */
     double nl_conv_coef; /* IDASetNonlinConvCoef, 0: default 0.33 */
+    /* KLU only (cmp_ida_jac.c): the Newton matrix J = ∂F/∂y + c_j ∂F/∂y'
+     * and the residual it belongs to. 0 (AUTO) for both: a target whose
+     * scene the harness can differentiate (cmp_ggl_new) gets the scene's
+     * sparse GGL residual and its analytic Jacobian, any other the
+     * callbacks' residual and colored finite differences. */
+    int jac;             /* cmp_jac_kind */
+    int residual;        /* cmp_res_kind */
 } cmp_ida_opts;
+
+/* How the KLU path forms J (cmp_ida_opts.jac). */
+typedef enum cmp_jac_kind {
+    CMP_JAC_AUTO = 0,    /* analytic when the scene provider exists, else colored */
+    CMP_JAC_ANALYTIC,    /* scene provider only (setup fails without one) */
+    CMP_JAC_COLORED,     /* Curtis-Powell-Reid: one residual per column color */
+    CMP_JAC_COLUMN       /* one residual per column (the harness before issue 7) */
+} cmp_jac_kind;
+
+/* Which residual the KLU path integrates (cmp_ida_opts.residual). */
+typedef enum cmp_res_kind {
+    CMP_RES_AUTO = 0,    /* the scene's when the provider exists, else callbacks */
+    CMP_RES_CALLBACKS,   /* cmp_dae_residual: the braun_system callbacks (dense) */
+    CMP_RES_SCENE        /* cmp_ggl_residual: O(n) from the scene structure */
+} cmp_res_kind;
 
 /* One run: a method, its integrator and its step size or tolerance. */
 typedef struct cmp_spec {
@@ -219,6 +250,138 @@ int cmp_dae_residual(cmp_dae *dae, double t, const double *y, const double *yp,
  * constraints, v' and λ from the constrained equations, μ = 0. */
 int cmp_dae_consistent(cmp_dae *dae, double t, const double *q0, const double *v0,
                        double *y, double *yp);
+
+/* Sparsity pattern of J = ∂F/∂y + c_j ∂F/∂y' (every c_j), compressed
+ * sparse columns with the diagonal included; *colptr (N + 1) and *rowind
+ * (the returned nnz) are malloc'd, rows increasing within a column.
+ * Returns nnz, or -1.
+ *   _probe: the union of nonzeros of forward-difference columns at y0, y0'
+ *     and three random perturbations of them (4N residuals: exact for what
+ *     the callbacks compute, O(N) residuals and O(N²) work);
+ *   _struct: from the structure of the callbacks: A and M at those four
+ *     states, the Hessian of each holonomic row within its own support,
+ *     and forces, non-constant mass and nonholonomic rows probed
+ *     coordinate by coordinate (O(n) callback calls, no residual);
+ *   cmp_dae_pattern: _probe up to CMP_PATTERN_PROBE_MAX unknowns, _struct
+ *     above. */
+#define CMP_PATTERN_PROBE_MAX 2000
+int cmp_dae_pattern_probe(cmp_dae *dae, const double *y0, const double *yp0, int **colptr,
+                          int **rowind);
+int cmp_dae_pattern_struct(cmp_dae *dae, const double *y0, const double *yp0, int **colptr,
+                           int **rowind);
+int cmp_dae_pattern(cmp_dae *dae, const double *y0, const double *yp0, int **colptr,
+                    int **rowind);
+
+/* ------------------------------------------------------------ sparse Jacobians
+ * (cmp_ida_jac.c) */
+/* Compressed sparse columns of an N x N pattern from nt (row, col) pairs
+ * (duplicates merged, rows sorted); map (nt entries, may be NULL) receives
+ * the position of each pair in rowind. Returns nnz, or -1. */
+int cmp_csc_from_pairs(int N, long nt, const int *row, const int *col, int **colptr,
+                       int **rowind, int *map);
+
+/* Finite-difference Jacobian on a known pattern. Columns that share no row
+ * get one color (greedy Curtis-Powell-Reid in column order) and one
+ * residual evaluation per color perturbs them together; colored = 0 gives
+ * every column its own color (N residuals). The increment of column j is
+ * sqrt(ε)·max(|y_j|, 1) in y_j and c_j times that in y'_j, as IDA's dense
+ * difference quotient; the values equal those of one-column differences
+ * wherever the pattern holds every nonzero. */
+typedef int (*cmp_res_fn)(void *user, double t, const double *y, const double *yp,
+                          double *r);
+typedef struct cmp_fdjac cmp_fdjac;
+/* colptr, rowind are copied. NULL on failure. */
+cmp_fdjac *cmp_fdjac_new(int N, const int *colptr, const int *rowind, int colored);
+void cmp_fdjac_free(cmp_fdjac *fd);
+int cmp_fdjac_colors(const cmp_fdjac *fd);
+/* val (nnz, in pattern order) at (t, y, y') with r0 = F(t, y, y'); 0, or
+ * the residual's nonzero status. Residual calls are added to *nres. */
+int cmp_fdjac_eval(cmp_fdjac *fd, cmp_res_fn res, void *user, double t, double cj,
+                   const double *y, const double *yp, const double *r0, double *val,
+                   long *nres);
+
+/* The analytic Jacobian provider: the GGL form of a built scene (cmp_dae.c's
+ * rows, reg included) evaluated from the scene's structure in O(n) — sparse
+ * M, A(q), and the second-derivative terms ∂(A_qᵀμ)/∂q, ∂(A_qᵀλ)/∂q,
+ * ∂(A_q v)/∂q — with its pattern built once. Scenes of rigid bodies,
+ * particles, rods, revolute joints and gravity (what `braun gen chain`
+ * writes); anything else (other joints, knife edges, other effects) is
+ * refused and the harness falls back to colored finite differences of the
+ * callbacks. Without the scene library cmp_ggl_new always refuses. */
+struct braun_scene;
+typedef struct cmp_ggl cmp_ggl;
+/* scene: built by braun_scene_build (coordinates and rows numbered), and
+ * must outlive the provider. NULL if refused; *why (may be NULL) then says
+ * why (static text). */
+cmp_ggl *cmp_ggl_new(const struct braun_scene *scene, const char **why);
+void cmp_ggl_free(cmp_ggl *g);
+int cmp_ggl_size(const cmp_ggl *g);              /* N = 2n + 2m */
+int cmp_ggl_n(const cmp_ggl *g);
+void cmp_ggl_set_reg(cmp_ggl *g, double eps);    /* as cmp_dae_set_reg */
+int cmp_ggl_residual(cmp_ggl *g, double t, const double *y, const double *yp, double *r);
+/* The pattern (CSC, diagonal included; owned by g). Returns nnz. */
+int cmp_ggl_pattern(const cmp_ggl *g, const int **colptr, const int **rowind);
+/* J = ∂F/∂y + c_j ∂F/∂y' at (t, y, y') into val (nnz, pattern order). */
+int cmp_ggl_jacobian(cmp_ggl *g, double t, double cj, const double *y, const double *yp,
+                     double *val);
+/* As cmp_dae_consistent, with sparse KKT solves (KLU) instead of GSL's SVD:
+ * full-rank rows only (returns -1 on redundant rows). */
+int cmp_ggl_consistent(cmp_ggl *g, double t, const double *q0, const double *v0, double *y,
+                       double *yp);
+/* The scene of a target, or NULL (built-in models, Andrews). */
+const struct braun_scene *cmp_target_scene(const cmp_target *tg);
+
+/* ------------------------------------------------------------ IDA + KLU for
+ * scaling studies (cmp_ida.c) */
+/* The mechanism: a braun_system with q0, v0 and, for the analytic
+ * Jacobian and the O(n) residual, the scene it was built from. sys may be
+ * NULL when the scene is given and cmp_ggl_new accepts it. */
+typedef struct cmp_ida_problem {
+    const braun_system *sys;
+    const double *q0, *v0;              /* n each */
+    const struct braun_scene *scene;    /* or NULL: callbacks, colored FD */
+} cmp_ida_problem;
+
+typedef struct cmp_ida_run_opts {
+    double t_end, rtol, atol;
+    double alg_atol;     /* λ, μ absolute tolerance (Newton test only); 0: atol */
+    int jac;             /* cmp_jac_kind (AUTO: analytic if the scene allows) */
+    int residual;        /* cmp_res_kind */
+    int max_order;       /* 0: IDA's 5 */
+    long max_steps;      /* per output interval; 0: 100000 */
+    double reg;          /* ε of regularised constraint rows Φ - ελ (cmp_dae_set_reg);
+                          * 0: none. Redundant rows make J singular without it. */
+    /* Optional samples: n_out increasing times in (0, t_end]; q_out, v_out
+     * (n_out·n each, caller-owned) receive IDA's interpolant there. */
+    int n_out;
+    const double *t_out;
+    double *q_out, *v_out;
+    /* Optional final state (n each, caller-owned; the state at t_reached). */
+    double *q_end, *v_end;
+} cmp_ida_run_opts;
+
+typedef struct cmp_ida_run_result {
+    int success;         /* 1: reached t_end */
+    char status[48];     /* IDA_SUCCESS or IDA's flag name (SETUP_FAILED, ...) */
+    char detail[160];
+    double t_reached;
+    int N, nnz, colors;  /* unknowns, nonzeros of J, FD colors (0: analytic) */
+    int jac, residual;   /* what was used (cmp_jac_kind, cmp_res_kind) */
+    long steps, res_evals;   /* res_evals: IDA's residual calls (no Jacobian) */
+    long jac_evals, jac_res_evals; /* Jacobians; residual calls made by them */
+    long lin_setups, nl_iters, err_fails, conv_fails;
+    double cpu_setup_s;  /* pattern, coloring, consistent values, IDA setup */
+    double cpu_solve_s;  /* IDASolve calls (KLU factorizations included) */
+} cmp_ida_run_result;
+
+/* IDA (GGL form, IDASetStopTime(t_end), λ, μ algebraic and out of the error
+ * test) with SUNLinSol_KLU, from consistent values of (q0, v0). Returns 0 if
+ * t_end was reached, else -1 with status and detail set. */
+int cmp_ida_klu_run(const cmp_ida_problem *pb, const cmp_ida_run_opts *o,
+                    cmp_ida_run_result *res);
+/* `braun-ida-run SCENE.json T RTOL [options]` (compare/tools/ida_run.c):
+ * prints the result as key = value lines. Returns a process exit status. */
+int cmp_ida_run_cli(int argc, char **argv);
 
 /* A SUNDIALS linear solver (direct, dense SUNMatrix) that solves each Newton
  * system in the least-squares minimum-norm sense through GSL's complete

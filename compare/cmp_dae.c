@@ -24,7 +24,51 @@ struct cmp_dae {
     int mass_ready;
     double reg;
     double *M, *Q, *phi, *A, *b, *bv; /* holonomic rows first, then nonholonomic */
+    double *Avals, *Mvals;            /* compressed outputs of a sparse system */
 };
+
+#ifdef BRAUN_MAX_SPARSE
+/* A system with a sparsity (braun.h) writes compressed A and block M; the
+ * DAE keeps dense copies (scattered), so every row below reads the same. */
+static size_t sparse_A_count(const braun_system *s)
+{
+    return s->sparsity ? (size_t)s->sparsity->row_ptr[s->m + s->p] : 0;
+}
+
+static size_t sparse_M_count(const braun_system *s)
+{
+    size_t c = 0;
+    if (s->sparsity)
+        for (int k = 0; k < s->sparsity->nblocks; k++)
+            c += (size_t)s->sparsity->block[k] * (size_t)s->sparsity->block[k];
+    return c;
+}
+
+/* Rows r0..r1-1 of the compressed values (vals starts at row r0) into A,
+ * whose first row is row r0. */
+static void scatter_A(const braun_sparsity *sp, int n, int r0, int r1, const double *vals,
+                      double *A)
+{
+    const int base = sp->row_ptr[r0];
+    for (int k = r0; k < r1; k++) {
+        double *row = A + (size_t)(k - r0) * n;
+        for (int j = 0; j < n; j++) row[j] = 0;
+        for (int e = sp->row_ptr[k]; e < sp->row_ptr[k + 1]; e++) row[sp->col[e]] += vals[e - base];
+    }
+}
+
+static void scatter_M(const braun_sparsity *sp, int n, const double *vals, double *M)
+{
+    for (size_t i = 0; i < (size_t)n * n; i++) M[i] = 0;
+    int off = 0;
+    for (int k = 0; k < sp->nblocks; k++) {
+        const int b = sp->block[k];
+        for (int i = 0; i < b; i++)
+            for (int j = 0; j < b; j++) M[(size_t)(off + i) * n + off + j] = *vals++;
+        off += b;
+    }
+}
+#endif
 
 cmp_dae *cmp_dae_new(const cmp_target *tg, int index1)
 {
@@ -49,6 +93,18 @@ cmp_dae *cmp_dae_new(const cmp_target *tg, int index1)
     d->b = d->phi + mv;
     d->bv = d->b + mv;
     d->A = d->bv + mv;
+#ifdef BRAUN_MAX_SPARSE
+    if (tg->sys.sparsity) {
+        d->Avals = malloc((sparse_A_count(&tg->sys) + sparse_M_count(&tg->sys) + 1) *
+                          sizeof(double));
+        if (!d->Avals) {
+            free(d->M);
+            free(d);
+            return NULL;
+        }
+        d->Mvals = d->Avals + sparse_A_count(&tg->sys);
+    }
+#endif
     return d;
 }
 
@@ -61,6 +117,7 @@ void cmp_dae_free(cmp_dae *d)
 {
     if (!d) return;
     free(d->M);
+    free(d->Avals);
     free(d);
 }
 
@@ -81,21 +138,40 @@ static int evaluate(cmp_dae *d, double t, const double *q, const double *v, int 
     const braun_system *s = d->sys;
     const int n = d->n, m = d->m, p = d->p;
     int st = 0;
+    /* Dense callbacks write straight into M and A; a sparse system into
+     * the compressed buffers, scattered afterwards. */
+    double *Mout = d->Mvals ? d->Mvals : d->M, *Aq = d->A, *Avv = d->A + (size_t)m * n;
+#ifdef BRAUN_MAX_SPARSE
+    const braun_sparsity *sp = s->sparsity;
+    if (sp) {
+        Aq = d->Avals;
+        Avv = d->Avals + sp->row_ptr[m];
+    }
+#endif
     if (!d->mass_ready || !(s->flags & BRAUN_MASS_CONSTANT)) {
-        st = cb(s->mass(t, q, d->M, s->user));
+        st = cb(s->mass(t, q, Mout, s->user));
         if (st) return st;
+#ifdef BRAUN_MAX_SPARSE
+        if (sp) scatter_M(sp, n, d->Mvals, d->M);
+#endif
         d->mass_ready = 1;
     }
     st = cb(s->forces(t, q, v, d->Q, s->user));
     if (st) return st;
     if (m > 0) {
-        st = cb(s->holonomic(t, q, v, d->phi, d->A, d->b, want_bv ? d->bv : NULL, s->user));
+        st = cb(s->holonomic(t, q, v, d->phi, Aq, d->b, want_bv ? d->bv : NULL, s->user));
         if (st) return st;
+#ifdef BRAUN_MAX_SPARSE
+        if (sp) scatter_A(sp, n, 0, m, Aq, d->A);
+#endif
     }
     if (p > 0) {
-        st = cb(s->nonholonomic(t, q, v, d->phi + m, d->A + (size_t)m * n,
-                                want_bv ? d->bv + m : NULL, s->user));
+        st = cb(s->nonholonomic(t, q, v, d->phi + m, Avv, want_bv ? d->bv + m : NULL,
+                                s->user));
         if (st) return st;
+#ifdef BRAUN_MAX_SPARSE
+        if (sp) scatter_A(sp, n, m, m + p, Avv, d->A + (size_t)m * n);
+#endif
         for (int k = m; k < m + p; k++) d->b[k] = 0;
     }
     for (int i = 0; i < n; i++)
@@ -190,4 +266,281 @@ int cmp_dae_consistent(cmp_dae *d, double t, const double *q0, const double *v0,
 done:
     free(r);
     return st;
+}
+
+/* ------------------------------------------------------------ patterns */
+/* The probe's four states: trial 0 is (y0, y0'), trials 1-3 random
+ * perturbations of ±10 % (of max(|y0_i|, 1) in y, absolute in y'). The
+ * generator runs through every trial so that each is reproducible. */
+static void probe_states(int N, const double *y0, const double *yp0, double *Y)
+{
+    unsigned long seed = 12345;
+    for (int trial = 0; trial < 4; trial++) {
+        double *y = Y + (size_t)trial * 2 * N, *yp = y + N;
+        for (int i = 0; i < N; i++) {
+            seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+            double u = trial ? (double)(seed >> 11) / 9007199254740992.0 - 0.5 : 0.0;
+            y[i] = y0[i] + 0.2 * u * fmax(fabs(y0[i]), 1.0);
+            yp[i] = yp0[i] + 0.2 * u;
+        }
+    }
+}
+
+/* A growing list of (row, col) pairs. */
+typedef struct pairs {
+    long n, cap;
+    int *r, *c;
+    int failed;
+} pairs;
+
+static void push(pairs *P, int r, int c)
+{
+    if (P->failed) return;
+    if (P->n == P->cap) {
+        long cap = P->cap ? 2 * P->cap : 1024;
+        int *nr = realloc(P->r, (size_t)cap * sizeof(int));
+        if (!nr) {
+            P->failed = 1;
+            return;
+        }
+        P->r = nr;
+        int *nc = realloc(P->c, (size_t)cap * sizeof(int));
+        if (!nc) {
+            P->failed = 1;
+            return;
+        }
+        P->c = nc;
+        P->cap = cap;
+    }
+    P->r[P->n] = r;
+    P->c[P->n] = c;
+    P->n++;
+}
+
+static int cmp_int(const void *a, const void *b)
+{
+    const int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+int cmp_dae_pattern_probe(cmp_dae *d, const double *y0, const double *yp0, int **colptr,
+                          int **rowind)
+{
+    const int N = d->N;
+    double *Y = malloc((size_t)N * 13 * sizeof(double));
+    int *stamp = malloc((size_t)N * sizeof(int));
+    int *cp = malloc(((size_t)N + 1) * sizeof(int));
+    pairs P = {0, 0, NULL, NULL, 0};
+    int nnz = -1;
+    *colptr = *rowind = NULL;
+    if (!Y || !stamp || !cp) goto done;
+    double *R0 = Y + (size_t)N * 8, *r1 = R0 + (size_t)N * 4;
+    probe_states(N, y0, yp0, Y);
+    for (int trial = 0; trial < 4; trial++)
+        if (cmp_dae_residual(d, 0.0, Y + (size_t)trial * 2 * N, Y + (size_t)trial * 2 * N + N,
+                             R0 + (size_t)trial * N))
+            goto done;
+    for (int i = 0; i < N; i++) stamp[i] = -1;
+    for (int j = 0; j < N; j++) {
+        cp[j] = (int)P.n;
+        for (int trial = 0; trial < 4; trial++) {
+            double *y = Y + (size_t)trial * 2 * N, *yp = y + N;
+            const double *r0 = R0 + (size_t)trial * N;
+            const double yj = y[j], ypj = yp[j];
+            /* One forward-difference column (c_j = 1), as IDA's own. */
+            const double dj = 1.4901161193847656e-08 * fmax(fabs(yj), 1.0);
+            y[j] += dj;
+            yp[j] += dj;
+            int st = cmp_dae_residual(d, 0.0, y, yp, r1);
+            y[j] = yj;
+            yp[j] = ypj;
+            if (st) goto done;
+            for (int i = 0; i < N; i++)
+                if ((r1[i] - r0[i]) / dj != 0.0 && stamp[i] != j) {
+                    stamp[i] = j;
+                    push(&P, i, j);
+                }
+        }
+        if (stamp[j] != j) push(&P, j, j); /* c_j on the diagonal */
+        if (P.failed) goto done;
+        qsort(P.r + cp[j], (size_t)(P.n - cp[j]), sizeof(int), cmp_int);
+    }
+    cp[N] = (int)P.n;
+    nnz = (int)P.n;
+    *colptr = cp;
+    *rowind = P.r;
+    cp = NULL;
+    P.r = NULL;
+done:
+    free(Y);
+    free(stamp);
+    free(cp);
+    free(P.r);
+    free(P.c);
+    return nnz;
+}
+
+/* Non-constant M at q into Md (dense n x n), scattered for sparse systems. */
+static int mass_dense(cmp_dae *d, double t, const double *q, double *Md)
+{
+    const braun_system *s = d->sys;
+#ifdef BRAUN_MAX_SPARSE
+    if (s->sparsity) {
+        int st = cb(s->mass(t, q, d->Mvals, s->user));
+        if (!st) scatter_M(s->sparsity, d->n, d->Mvals, Md);
+        return st;
+    }
+#endif
+    return cb(s->mass(t, q, Md, s->user));
+}
+
+/* Nonholonomic rows at (q, v): Φ_v, A_vv (dense p x n) and b_vv. */
+static int nonholonomic_dense(cmp_dae *d, double t, const double *q, const double *v,
+                              double *phi, double *A, double *bv)
+{
+    const braun_system *s = d->sys;
+#ifdef BRAUN_MAX_SPARSE
+    if (s->sparsity) {
+        double *vals = d->Avals + s->sparsity->row_ptr[d->m];
+        int st = cb(s->nonholonomic(t, q, v, phi, vals, bv, s->user));
+        if (!st) scatter_A(s->sparsity, d->n, d->m, d->m + d->p, vals, A);
+        return st;
+    }
+#endif
+    return cb(s->nonholonomic(t, q, v, phi, A, bv, s->user));
+}
+
+static int differs(int k, const double *a, const double *b)
+{
+    for (int i = 0; i < k; i++)
+        if (a[i] != b[i]) return 1;
+    return 0;
+}
+
+int cmp_dae_pattern_struct(cmp_dae *d, const double *y0, const double *yp0, int **colptr,
+                           int **rowind)
+{
+    const int n = d->n, m = d->m, p = d->p, mv = d->mv, N = d->N;
+    const size_t nn = (size_t)n * n;
+    const int varM = !(d->sys->flags & BRAUN_MASS_CONSTANT);
+    const braun_system *s = d->sys;
+    double *Y = malloc((size_t)N * 8 * sizeof(double));
+    unsigned char *Amark = calloc((size_t)mv * n + nn + 1, 1);
+    /* Scratch: Q twice, and for p > 0 or a varying M the callbacks' outputs
+     * at the base and at a perturbed state. */
+    const size_t nh = p > 0 ? 2 * ((size_t)p * n + 2 * (size_t)p) : 0;
+    double *W = malloc((2 * (size_t)n + nh + (varM ? 2 * nn : 0) + 1) * sizeof(double));
+    int *S = malloc(((size_t)n + 1) * sizeof(int));
+    pairs P = {0, 0, NULL, NULL, 0};
+    int nnz = -1;
+    *colptr = *rowind = NULL;
+    if (!Y || !Amark || !W || !S) goto done;
+    unsigned char *Mmark = Amark + (size_t)mv * n;
+    double *Q0 = W, *Q1 = W + n, *nb = Q1 + n, *np = nb + nh / 2, *M0 = W + 2 * n + nh,
+           *M1 = M0 + nn;
+    probe_states(N, y0, yp0, Y);
+    for (int trial = 0; trial < 4; trial++) {
+        double *q = Y + (size_t)trial * 2 * N, *v = q + n;
+        d->mass_ready = 0;
+        if (evaluate(d, 0.0, q, v, 1)) goto done;
+        for (size_t e = 0; e < (size_t)mv * n; e++)
+            if (d->A[e] != 0.0) Amark[e] = 1;
+        for (size_t e = 0; e < nn; e++)
+            if (d->M[e] != 0.0) Mmark[e] = 1;
+        /* ∂Q/∂q, ∂Q/∂v: one coordinate at a time. */
+        memcpy(Q0, d->Q, (size_t)n * sizeof(double));
+        for (int j = 0; j < 2 * n; j++) {
+            double *x = j < n ? q + j : v + (j - n);
+            const double x0 = *x;
+            *x += 1e-6 * fmax(fabs(x0), 1.0);
+            int st = cb(s->forces(0.0, q, v, Q1, s->user));
+            *x = x0;
+            if (st) goto done;
+            for (int i = 0; i < n; i++)
+                if (Q1[i] != Q0[i]) push(&P, n + i, j);
+        }
+        /* ∂(M v')/∂q of a varying mass matrix. */
+        if (varM) {
+            if (mass_dense(d, 0.0, q, M0)) goto done;
+            for (int j = 0; j < n; j++) {
+                const double x0 = q[j];
+                q[j] += 1e-6 * fmax(fabs(x0), 1.0);
+                int st = mass_dense(d, 0.0, q, M1);
+                q[j] = x0;
+                if (st) goto done;
+                for (int i = 0; i < n; i++)
+                    if (differs(n, M0 + (size_t)i * n, M1 + (size_t)i * n)) push(&P, n + i, j);
+            }
+        }
+        /* Nonholonomic rows: Φ_v (GGL), A_vv v' - b_vv (index-1) and
+         * A_vvᵀλ (both) against each q_j and v_j. */
+        if (p > 0) {
+            double *phi0 = nb, *A0 = nb + p, *bv0 = A0 + (size_t)p * n;
+            double *phi1 = np, *A1 = np + p, *bv1 = A1 + (size_t)p * n;
+            if (nonholonomic_dense(d, 0.0, q, v, phi0, A0, bv0)) goto done;
+            for (int j = 0; j < 2 * n; j++) {
+                double *x = j < n ? q + j : v + (j - n);
+                const double x0 = *x;
+                *x += 1e-6 * fmax(fabs(x0), 1.0);
+                int st = nonholonomic_dense(d, 0.0, q, v, phi1, A1, bv1);
+                *x = x0;
+                if (st) goto done;
+                for (int k = 0; k < p; k++) {
+                    const double *a0 = A0 + (size_t)k * n, *a1 = A1 + (size_t)k * n;
+                    const int row = 2 * n + m + k;
+                    if (d->index1 ? differs(n, a0, a1) || bv0[k] != bv1[k] : phi0[k] != phi1[k])
+                        push(&P, row, j);
+                    for (int i = 0; i < n; i++)
+                        if (a0[i] != a1[i]) push(&P, n + i, j);
+                }
+            }
+        }
+        if (P.failed) goto done;
+    }
+    /* What follows from A's support S_k: a holonomic row's Hessian lives in
+     * S_k x S_k (∂A_ki/∂q_j = ∂A_kj/∂q_i), and so do ∂b_q/∂q and b_qv's
+     * derivatives. */
+    for (int i = 0; i < n; i++) {
+        push(&P, i, n + i);
+        for (int j = 0; j < n; j++)
+            if (Mmark[(size_t)i * n + j]) push(&P, n + i, n + j);
+    }
+    for (int k = 0; k < mv; k++) {
+        int ns = 0;
+        for (int j = 0; j < n; j++)
+            if (Amark[(size_t)k * n + j]) S[ns++] = j;
+        const int hol = k < m;
+        for (int a = 0; a < ns; a++) {
+            const int i = S[a];
+            push(&P, n + i, 2 * n + k);                 /* -A_vᵀλ */
+            push(&P, 2 * n + k, n + i);                 /* A v (GGL), A v' (index-1) */
+            if (!hol) continue;
+            push(&P, 2 * n + k, i);                     /* ∂(A_q v - b_q)/∂q */
+            for (int b = 0; b < ns; b++) push(&P, n + i, S[b]); /* ∂(A_qᵀλ)/∂q */
+            if (d->index1) continue;
+            push(&P, i, 2 * n + mv + k);                /* A_qᵀμ */
+            push(&P, 2 * n + mv + k, i);                /* Φ_q */
+            for (int b = 0; b < ns; b++) push(&P, i, S[b]); /* ∂(A_qᵀμ)/∂q */
+        }
+        if (P.failed) goto done;
+    }
+    for (int i = 0; i < N; i++) push(&P, i, i);
+    if (P.failed) goto done;
+    nnz = cmp_csc_from_pairs(N, P.n, P.r, P.c, colptr, rowind, NULL);
+done:
+    d->mass_ready = 0;
+    free(Y);
+    free(Amark);
+    free(W);
+    free(S);
+    free(P.r);
+    free(P.c);
+    return nnz;
+}
+
+int cmp_dae_pattern(cmp_dae *d, const double *y0, const double *yp0, int **colptr,
+                    int **rowind)
+{
+    if (d->N <= CMP_PATTERN_PROBE_MAX) return cmp_dae_pattern_probe(d, y0, yp0, colptr, rowind);
+    return cmp_dae_pattern_struct(d, y0, yp0, colptr, rowind);
 }

@@ -4,7 +4,10 @@
  * Prince–Dormand 8(9) pair at rtol = atol = tol, lifted to q, v by
  * minimal_to_state. GSL is GPL-3 and is linked into the harness only. */
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -237,6 +240,98 @@ int cmp_ref_work(cmp_ref *r, double t, double *W)
     const double s = x - (double)j;
     const double *a = r->table + (size_t)j * (size_t)r->width, *b = a + r->width;
     *W = (1 - s) * a[2 * n] + s * b[2 * n];
+    return 0;
+}
+
+void cmp_ref_restart(cmp_ref *r)
+{
+    if (!r) return;
+    cmp_ref_free(r->offgrid);
+    r->offgrid = NULL;
+}
+
+/* The file of a tabulated reference: this header, then count x width
+ * doubles as they are in memory (the file is read back by the same binary
+ * on the same machine, compare/run.sh's parts directory). */
+#define REF_FILE_MAGIC "braunref"
+#define REF_FILE_VERSION 1
+
+typedef struct ref_file_header {
+    char magic[8];
+    int32_t version, kind, n, width;
+    double tol, dt;
+    int64_t count;
+} ref_file_header;
+
+int cmp_ref_save(const cmp_ref *r, const char *path)
+{
+    ref_file_header h;
+    memset(&h, 0, sizeof h);
+    memcpy(h.magic, REF_FILE_MAGIC, sizeof h.magic);
+    h.version = REF_FILE_VERSION;
+    h.kind = r ? (int32_t)r->kind : (int32_t)CMP_REF_NONE;
+    if (r) {
+        h.n = r->tg->sys.n;
+        h.tol = r->tol;
+        /* A reference not tabulated (published point) is saved as its kind. */
+        if (r->table) {
+            h.width = r->width;
+            h.dt = r->dt;
+            h.count = r->count;
+        }
+    }
+    FILE *f = fopen(path, "wb");
+    if (!f) return -1;
+    const size_t cells = (size_t)h.count * (size_t)h.width;
+    int bad = fwrite(&h, sizeof h, 1, f) != 1;
+    if (!bad && cells) bad = fwrite(r->table, sizeof(double), cells, f) != cells;
+    if (fclose(f)) bad = 1;
+    return bad ? -1 : 0;
+}
+
+int cmp_ref_load(const cmp_target *tg, const char *path, cmp_ref **out)
+{
+    *out = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f) return -1;
+    ref_file_header h;
+    cmp_ref *r = NULL;
+    int bad = fread(&h, sizeof h, 1, f) != 1 ||
+              memcmp(h.magic, REF_FILE_MAGIC, sizeof h.magic) != 0 ||
+              h.version != REF_FILE_VERSION || h.count < 0 || h.width < 0;
+    if (!bad && h.kind != CMP_REF_NONE) {
+        bad = h.n != tg->sys.n;
+        if (!bad && h.kind == CMP_REF_POINT) {
+            r = cmp_ref_new(tg, CMP_REF_POINT, 0);
+            bad = r == NULL;
+        } else if (!bad && (h.kind == CMP_REF_CLOSED || h.kind == CMP_REF_RK8PD ||
+                            h.kind == CMP_REF_TRAJ)) {
+            const int want = h.kind == CMP_REF_TRAJ ? 2 * h.n + 1 : 2 * h.n;
+            const size_t cells = (size_t)h.count * (size_t)h.width;
+            r = calloc(1, sizeof *r);
+            bad = !r || h.width != want || h.count < 2 || !(h.dt > 0);
+            if (!bad) {
+                r->tg = tg;
+                r->kind = (cmp_ref_kind)h.kind;
+                r->tol = h.tol;
+                r->dt = h.dt;
+                r->count = (long)h.count;
+                r->width = h.width;
+                r->table = malloc(cells * sizeof(double));
+                bad = !r->table || fread(r->table, sizeof(double), cells, f) != cells;
+            }
+        } else {
+            bad = 1;
+        }
+    }
+    /* Nothing may follow the table. */
+    if (!bad && fgetc(f) != EOF) bad = 1;
+    fclose(f);
+    if (bad) {
+        cmp_ref_free(r);
+        return -1;
+    }
+    *out = r;
     return 0;
 }
 

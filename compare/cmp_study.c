@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "cmp.h"
 #include "cmp_study.h"
@@ -527,55 +528,207 @@ static void fmt_elapsed(double s, char *buf, size_t size)
     snprintf(buf, size, "%dm%02ds", m, (int)(s - 60 * m));
 }
 
+/* The five CSV files of a study, or of one step of it. */
+typedef struct outs {
+    FILE *runs, *hist, *refs, *probe, *sing;
+} outs;
 
-int cmp_study_run(const cmp_study_opts *o)
+static int outs_close(outs *f)
 {
-    joblist l = {NULL, 0, 0};
+    FILE **all[] = {&f->runs, &f->hist, &f->refs, &f->probe, &f->sing};
+    int rc = 0;
+    for (int k = 0; k < N_OF(all); k++) {
+        if (*all[k] && fclose(*all[k])) rc = -1;
+        *all[k] = NULL;
+    }
+    return rc;
+}
+
+static int outs_open(outs *f, const char *dir)
+{
+    memset(f, 0, sizeof *f);
+    if (cmp_mkdir_p(dir)) {
+        fprintf(stderr, "braun-compare: cannot create %s\n", dir);
+        return -1;
+    }
+    f->runs = open_csv(dir, "runs.csv", cmp_runs_header);
+    f->hist = open_csv(dir, "history.csv", cmp_history_header);
+    f->refs = open_csv(dir, "references.csv", cmp_references_header);
+    f->probe = open_csv(dir, "ida_probe.csv", cmp_runs_header);
+    f->sing = open_csv(dir, "singular.csv", cmp_singular_header);
+    if (f->runs && f->hist && f->refs && f->probe && f->sing) return 0;
+    outs_close(f);
+    return -1;
+}
+
+/* The runs of a study in the order of the serial run, in groups of one
+ * scene and horizon (one reference each). */
+typedef struct study {
+    joblist l;
+    int *group;  /* l.n: the group of each run */
+    int *first;  /* ng + 1: the first run of each group, then l.n */
+    int ng;
+} study;
+
+static void study_free(study *st)
+{
+    free(st->l.v);
+    free(st->group);
+    free(st->first);
+}
+
+static int study_plan(const cmp_study_opts *o, study *st)
+{
+    memset(st, 0, sizeof *st);
     for (int s = 0; s < o->nscenes; s++) {
         cmp_target t;
         char err[512];
         if (cmp_target_find(o->scenes[s], &t, err, sizeof err)) {
             fprintf(stderr, "braun-compare: %s\n", err);
+            study_free(st);
             return 1;
         }
         hist_scale = t.h_scale;
-        int st = plan_jobs(&l, o->study, &t, o->methods, o->probe);
+        int bad = plan_jobs(&st->l, o->study, &t, o->methods, o->probe);
         cmp_target_free(&t);
-        if (st) {
+        if (bad) {
             fprintf(stderr, "braun-compare: out of memory\n");
+            study_free(st);
             return 1;
         }
     }
-    if (cmp_mkdir_p(o->out_dir)) {
-        fprintf(stderr, "braun-compare: cannot create %s\n", o->out_dir);
+    const joblist *l = &st->l;
+    st->group = malloc(((size_t)l->n + 1) * sizeof(int));
+    st->first = malloc(((size_t)l->n + 1) * sizeof(int));
+    if (!st->group || !st->first) {
+        fprintf(stderr, "braun-compare: out of memory\n");
+        study_free(st);
         return 1;
     }
-    FILE *runs = open_csv(o->out_dir, "runs.csv", cmp_runs_header);
-    FILE *hf = open_csv(o->out_dir, "history.csv", cmp_history_header);
-    FILE *rf = open_csv(o->out_dir, "references.csv", cmp_references_header);
-    FILE *pf = open_csv(o->out_dir, "ida_probe.csv", cmp_runs_header);
-    FILE *sf = open_csv(o->out_dir, "singular.csv", cmp_singular_header);
-    if (!runs || !hf || !rf || !pf || !sf) return 1;
+    /* A new group where the scene or the horizon changes. */
+    for (int i = 0; i < l->n; i++) {
+        if (i == 0 || strcmp(l->v[i].scene, l->v[i - 1].scene) != 0 ||
+            l->v[i].spec.T != l->v[i - 1].spec.T)
+            st->first[st->ng++] = i;
+        st->group[i] = st->ng - 1;
+    }
+    st->first[st->ng] = l->n;
+    return 0;
+}
 
+/* The first group of its scene (the one that writes singular.csv). */
+static int new_scene(const study *st, int g)
+{
+    const int i = st->first[g];
+    return i == 0 || strcmp(st->l.v[i].scene, st->l.v[i - 1].scene) != 0;
+}
+
+static double elapsed(const cmp_study_opts *o, double wall0)
+{
+    if (o->t0 > 0) return difftime(time(NULL), (time_t)o->t0);
+    return cmp_wall_seconds() - wall0;
+}
+
+/* Singular configurations (first horizon of a scene) and the reference of
+ * group g with the estimates of its own error. NULL: no reference. */
+static cmp_ref *prepare_group(const study *st, int g, const cmp_target *tg, const outs *f)
+{
+    if (new_scene(st, g)) {
+        cmp_singularity_scan(tg, f->sing);
+        fflush(f->sing);
+    }
+    const job *j = &st->l.v[st->first[g]];
+    cmp_ref *ref = make_reference(tg, cmp_target_ref_kind(tg), j->spec.T, j->spec.dt_out, f->refs);
+    fflush(f->refs);
+    return ref;
+}
+
+/* Run i of the study: timed reps times, measured against ref, its row (and
+ * history) written to f, a progress line on stderr. The reference's
+ * off-grid evaluator restarts first, so that the run's numbers do not
+ * depend on the runs before it in the same process. */
+static void run_one(const cmp_study_opts *o, const study *st, int i, const cmp_target *tg,
+                    cmp_ref *ref, cmp_traj *tr, const outs *f, double wall0)
+{
+    const job *j = &st->l.v[i];
+    const cmp_ref_kind kind = cmp_target_ref_kind(tg);
+    cmp_ref_restart(ref);
+
+    /* Best of k: every repetition samples the same grid (a copy of the
+     * state per output time, no metric work), so each is a full run. */
+    const int reps = j->probe ? 1 : (o->reps < 1 ? 1 : o->reps);
+    cmp_outcome out, first;
+    memset(&first, 0, sizeof first);
+    double cmin = INFINITY, cmax = 0;
+    for (int r = 0; r < reps; r++) {
+        const double c0 = cmp_cpu_seconds();
+        cmp_run(tg, &j->spec, tr, &out);
+        const double c = cmp_cpu_seconds() - c0;
+        if (c < cmin) cmin = c;
+        if (c > cmax) cmax = c;
+        if (r == 0) first = out;
+        else if (out.counts.steps != first.counts.steps || out.status != first.status)
+            fprintf(stderr, "braun-compare: warning: repetition %d of %s %s differs\n",
+                    r + 1, tg->name, cmp_method_name(j->spec.method));
+    }
+    cmp_metrics mt;
+    hist h;
+    int want_hist = j->history && hist_init(&h, j->spec.T, j->spec.dt_out) == 0;
+    cmp_metrics_compute(tg, tr, ref, &mt, want_hist ? hist_sample : NULL,
+                        want_hist ? &h : NULL);
+    /* How close to a singular configuration the run ended: at the
+     * reference's state at t_reached, else at the run's last sample. */
+    double sigma = NAN;
+    {
+        double *qs = malloc(2 * (size_t)tg->sys.n * sizeof(double));
+        if (qs) {
+            if (ref && cmp_ref_eval(ref, out.t_reached, qs, qs + tg->sys.n) == 0)
+                sigma = cmp_target_sigma(tg, out.t_reached, qs);
+            else if (tr->count > 0)
+                sigma = cmp_target_sigma(tg, tr->t[tr->count - 1],
+                                         tr->q + (size_t)(tr->count - 1) * tg->sys.n);
+            free(qs);
+        }
+    }
+    write_row(j->probe ? f->probe : f->runs, j, &out, cmin, cmax, reps, &mt, sigma,
+              ref ? cmp_ref_kind_name(kind) : "none");
+    if (want_hist) {
+        hist_write(f->hist, &h, j);
+        hist_free(&h);
+    }
+    fflush(j->probe ? f->probe : f->runs);
+    fflush(f->hist);
+
+    /* One write per line: lines of parallel processes do not mix. */
+    char el[32], what[64], line[512];
+    fmt_elapsed(elapsed(o, wall0), el, sizeof el);
+    if (j->spec.h > 0) snprintf(what, sizeof what, "h=%g", j->spec.h);
+    else snprintf(what, sizeof what, "rtol=%g", j->spec.rtol);
+    snprintf(line, sizeof line, "[%4d/%d %s] %s T=%g %s %s%s%s %s: %s%s traj=%.2e cpu=%.3gs\n",
+             i + 1, st->l.n, el, tg->name, j->spec.T, cmp_method_name(j->spec.method),
+             integrator_name(j->spec.integrator), j->spec.variant[0] ? " " : "",
+             j->spec.variant, what, out.status ? out.status_name : "ok",
+             j->probe ? " (probe)" : "", mt.traj_max, cmin);
+    fputs(line, stderr);
+}
+
+/* The whole study in this process. */
+static int run_all(const cmp_study_opts *o, const study *st)
+{
+    outs f;
+    if (outs_open(&f, o->out_dir)) return 1;
     const double wall0 = cmp_wall_seconds();
     cmp_target tg;
-    int have_tg = 0;
-    cmp_ref *ref = NULL;
-    double ref_T = -1;
+    int have_tg = 0, rc = 0;
     cmp_traj tr;
-    int rc = 0;
     memset(&tg, 0, sizeof tg);
     memset(&tr, 0, sizeof tr);
-
-    for (int i = 0; i < l.n; i++) {
-        const job *j = &l.v[i];
-        /* Targets and references change only between scenes and horizons. */
-        if (!have_tg || strcmp(tg.name, j->scene) != 0) {
+    for (int g = 0; g < st->ng && !rc; g++) {
+        const job *j = &st->l.v[st->first[g]];
+        /* Targets change only between scenes. */
+        if (!have_tg || new_scene(st, g)) {
             char err[256];
             if (have_tg) cmp_target_free(&tg);
-            cmp_ref_free(ref);
-            ref = NULL;
-            ref_T = -1;
             have_tg = cmp_target_find(j->scene, &tg, err, sizeof err) == 0;
             if (!have_tg) {
                 fprintf(stderr, "braun-compare: %s\n", err);
@@ -587,74 +740,127 @@ int cmp_study_run(const cmp_study_opts *o)
                 rc = 1;
                 break;
             }
-            cmp_singularity_scan(&tg, sf);
-            fflush(sf);
         }
-        const cmp_ref_kind kind = cmp_target_ref_kind(&tg);
-        if (ref_T != j->spec.T) {
-            cmp_ref_free(ref);
-            ref = make_reference(&tg, kind, j->spec.T, j->spec.dt_out, rf);
-            ref_T = j->spec.T;
-        }
-
-        /* Best of k: every repetition samples the same grid (a copy of the
-         * state per output time, no metric work), so each is a full run. */
-        const int reps = j->probe ? 1 : (o->reps < 1 ? 1 : o->reps);
-        cmp_outcome out, first;
-        memset(&first, 0, sizeof first);
-        double cmin = INFINITY, cmax = 0;
-        for (int r = 0; r < reps; r++) {
-            const double c0 = cmp_cpu_seconds();
-            cmp_run(&tg, &j->spec, &tr, &out);
-            const double c = cmp_cpu_seconds() - c0;
-            if (c < cmin) cmin = c;
-            if (c > cmax) cmax = c;
-            if (r == 0) first = out;
-            else if (out.counts.steps != first.counts.steps || out.status != first.status)
-                fprintf(stderr, "braun-compare: warning: repetition %d of %s %s differs\n",
-                        r + 1, tg.name, cmp_method_name(j->spec.method));
-        }
-        cmp_metrics mt;
-        hist h;
-        int want_hist = j->history && hist_init(&h, j->spec.T, j->spec.dt_out) == 0;
-        cmp_metrics_compute(&tg, &tr, ref, &mt, want_hist ? hist_sample : NULL,
-                            want_hist ? &h : NULL);
-        /* How close to a singular configuration the run ended: at the
-         * reference's state at t_reached, else at the run's last sample. */
-        double sigma = NAN;
-        {
-            double *qs = malloc(2 * (size_t)tg.sys.n * sizeof(double));
-            if (qs) {
-                if (ref && cmp_ref_eval(ref, out.t_reached, qs, qs + tg.sys.n) == 0)
-                    sigma = cmp_target_sigma(&tg, out.t_reached, qs);
-                else if (tr.count > 0)
-                    sigma = cmp_target_sigma(&tg, tr.t[tr.count - 1],
-                                             tr.q + (size_t)(tr.count - 1) * tg.sys.n);
-                free(qs);
-            }
-        }
-        write_row(j->probe ? pf : runs, j, &out, cmin, cmax, reps, &mt, sigma,
-                  ref ? cmp_ref_kind_name(kind) : "none");
-        if (want_hist) {
-            hist_write(hf, &h, j);
-            hist_free(&h);
-        }
-        fflush(j->probe ? pf : runs);
-
-        char el[32], what[64];
-        fmt_elapsed(cmp_wall_seconds() - wall0, el, sizeof el);
-        if (j->spec.h > 0) snprintf(what, sizeof what, "h=%g", j->spec.h);
-        else snprintf(what, sizeof what, "rtol=%g", j->spec.rtol);
-        fprintf(stderr, "[%4d/%d %s] %s T=%g %s %s%s%s %s: %s%s traj=%.2e cpu=%.3gs\n", i + 1,
-                l.n, el, tg.name, j->spec.T, cmp_method_name(j->spec.method),
-                integrator_name(j->spec.integrator), j->spec.variant[0] ? " " : "",
-                j->spec.variant, what, out.status ? out.status_name : "ok",
-                j->probe ? " (probe)" : "", mt.traj_max, cmin);
+        cmp_ref *ref = prepare_group(st, g, &tg, &f);
+        for (int i = st->first[g]; i < st->first[g + 1]; i++)
+            run_one(o, st, i, &tg, ref, &tr, &f, wall0);
+        cmp_ref_free(ref);
     }
     if (have_tg) cmp_target_free(&tg);
-    cmp_ref_free(ref);
     cmp_traj_free(&tr);
-    free(l.v);
-    if (fclose(runs) || fclose(hf) || fclose(rf) || fclose(pf) || fclose(sf)) rc = 1;
+    if (outs_close(&f)) rc = 1;
     return rc;
+}
+
+static void ref_path(char *buf, size_t size, const char *refdir, int g)
+{
+    snprintf(buf, size, "%s/ref-%d.bin", refdir, g);
+}
+
+static int load_target(const char *scene, cmp_target *tg)
+{
+    char err[256];
+    if (cmp_target_find(scene, tg, err, sizeof err) == 0) return 0;
+    fprintf(stderr, "braun-compare: %s\n", err);
+    return -1;
+}
+
+/* Step "prepare G": group G's singular.csv and references.csv rows, and its
+ * reference saved for the runs of the group. */
+static int run_prepare(const cmp_study_opts *o, const study *st)
+{
+    const int g = o->prepare;
+    if (g < 0 || g >= st->ng) {
+        fprintf(stderr, "braun-compare: --prepare %d: the plan has %d groups\n", g, st->ng);
+        return 1;
+    }
+    const double wall0 = cmp_wall_seconds();
+    const job *j = &st->l.v[st->first[g]];
+    cmp_target tg;
+    if (load_target(j->scene, &tg)) return 1;
+    outs f;
+    if (outs_open(&f, o->out_dir)) {
+        cmp_target_free(&tg);
+        return 1;
+    }
+    cmp_ref *ref = prepare_group(st, g, &tg, &f);
+    char path[1024];
+    ref_path(path, sizeof path, o->refdir, g);
+    int rc = 0;
+    if (cmp_mkdir_p(o->refdir) || cmp_ref_save(ref, path)) {
+        fprintf(stderr, "braun-compare: cannot write %s\n", path);
+        rc = 1;
+    }
+    if (outs_close(&f)) rc = 1;
+    char el[32], line[512];
+    fmt_elapsed(elapsed(o, wall0), el, sizeof el);
+    snprintf(line, sizeof line, "[ref %d/%d %s] %s T=%g: %s%s\n", g + 1, st->ng, el, tg.name,
+             j->spec.T, ref ? cmp_ref_kind_name(cmp_target_ref_kind(&tg)) : "no reference",
+             new_scene(st, g) ? ", singular configurations" : "");
+    fputs(line, stderr);
+    cmp_ref_free(ref);
+    cmp_target_free(&tg);
+    return rc;
+}
+
+/* Step "job K": run K against its group's saved reference. */
+static int run_job(const cmp_study_opts *o, const study *st)
+{
+    const int i = o->job;
+    if (i < 0 || i >= st->l.n) {
+        fprintf(stderr, "braun-compare: --job %d: the plan has %d runs\n", i, st->l.n);
+        return 1;
+    }
+    const double wall0 = cmp_wall_seconds();
+    cmp_target tg;
+    if (load_target(st->l.v[i].scene, &tg)) return 1;
+    char path[1024];
+    ref_path(path, sizeof path, o->refdir, st->group[i]);
+    cmp_ref *ref = NULL;
+    cmp_traj tr;
+    outs f;
+    int rc = 1;
+    if (cmp_ref_load(&tg, path, &ref)) {
+        fprintf(stderr, "braun-compare: cannot read the reference %s\n", path);
+    } else if (cmp_traj_init(&tr, tg.sys.n, 4096) == 0) {
+        if (outs_open(&f, o->out_dir) == 0) {
+            run_one(o, st, i, &tg, ref, &tr, &f, wall0);
+            rc = outs_close(&f) ? 1 : 0;
+        }
+        cmp_traj_free(&tr);
+    }
+    cmp_ref_free(ref);
+    cmp_target_free(&tg);
+    return rc;
+}
+
+int cmp_study_run(const cmp_study_opts *o)
+{
+    study st;
+    if (study_plan(o, &st)) return 1;
+    int rc;
+    if ((o->prepare >= 0 || o->job >= 0) && !o->refdir) {
+        fprintf(stderr, "braun-compare: --prepare and --job need --refdir\n");
+        rc = 1;
+    } else if (o->prepare >= 0) {
+        rc = run_prepare(o, &st);
+    } else if (o->job >= 0) {
+        rc = run_job(o, &st);
+    } else {
+        rc = run_all(o, &st);
+    }
+    study_free(&st);
+    return rc;
+}
+
+int cmp_study_plan(const cmp_study_opts *o, FILE *f)
+{
+    study st;
+    if (study_plan(o, &st)) return 1;
+    for (int g = 0; g < st.ng; g++) {
+        fprintf(f, "prepare %d %g\n", g, st.l.v[st.first[g]].spec.T);
+        for (int i = st.first[g]; i < st.first[g + 1]; i++) fprintf(f, "job %d %d\n", i, g);
+    }
+    study_free(&st);
+    return fflush(f) || ferror(f) ? 1 : 0;
 }

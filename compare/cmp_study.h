@@ -14,14 +14,26 @@ typedef struct cmp_study_opts {
     int reps;                              /* k of best-of-k CPU time */
     int probe;                             /* 1: the IDA settings probe too */
     const char *out_dir;
+    /* One step of a parallel study (compare/run.sh): -1, or the index of a
+     * (scene, horizon) group to prepare (singular.csv, references.csv, the
+     * reference saved in refdir) or of one run (its rows, the reference
+     * loaded from refdir). Indices are those of cmp_study_plan. */
+    int prepare, job;
+    const char *refdir;
+    double t0;                             /* study start (time(NULL)), 0: now */
 } cmp_study_opts;
 
 /* The scenes a study runs when none are named (space separated). */
 const char *cmp_default_scenes(const char *study);
 
-/* Run the study into out_dir/{runs,history,references,ida_probe}.csv with a
- * progress line per run on stderr. 0 or 1. */
+/* Run the study into out_dir/{runs,history,references,ida_probe,singular}.csv
+ * with a progress line per run on stderr; with o->prepare or o->job set, one
+ * step of it (the files hold that step's rows). 0 or 1. */
 int cmp_study_run(const cmp_study_opts *o);
+
+/* The steps of the study on f, in the order of the serial run: a line
+ * "prepare G T" per (scene, horizon) group, then "job K G" per run of it. */
+int cmp_study_plan(const cmp_study_opts *o, FILE *f);
 
 /* Column lists (docs/compare.md documents each column). */
 extern const char *const cmp_runs_header;

@@ -5,8 +5,12 @@
 #   make compare                  the default study -> results/compare/
 #   make compare SCENES="four-bar" METHODS="braun ida-ggl"
 #   make compare-quick            a short version -> results/compare-quick/
-# Options: COMPARE_JOBS (parallel processes, default 2), COMPARE_REPS (best of
-# K CPU times, default 3), COMPARE_OUT.
+#   make -j4 compare              4 runs at a time (one process per run)
+# Options: COMPARE_JOBS (runs at a time without -j, default 2; 1: serial),
+# COMPARE_REPS (best of K CPU times, default 3), COMPARE_OUT.
+# The recipes that call compare/run.sh are marked `+`: its sub-make takes
+# part in this make's jobserver (and runs under make -n too; run.sh then
+# only says so).
 
 COMPARE_DEPS := libsundials-dev libgsl-dev gnuplot-nox libsuitesparse-dev
 COMPARE_SRC := $(sort $(wildcard compare/*.c))
@@ -44,12 +48,12 @@ $(COMPARE_BIN): $(COMPARE_OBJ) $(BUILD)/libbraun.a
 
 compare: deps-compare
 	@$(MAKE) --no-print-directory $(COMPARE_BIN)
-	@sh compare/run.sh --bin $(COMPARE_BIN) --out $(COMPARE_OUT) --study default \
+	+@MAKE="$(MAKE)" sh compare/run.sh --bin $(COMPARE_BIN) --out $(COMPARE_OUT) --study default \
 	    --jobs $(COMPARE_JOBS) --reps $(COMPARE_REPS) --scenes "$(SCENES)" --methods "$(METHODS)"
 
 compare-quick: deps-compare
 	@$(MAKE) --no-print-directory $(COMPARE_BIN)
-	@sh compare/run.sh --bin $(COMPARE_BIN) --out results/compare-quick --study quick \
+	+@MAKE="$(MAKE)" sh compare/run.sh --bin $(COMPARE_BIN) --out results/compare-quick --study quick \
 	    --jobs $(COMPARE_JOBS) --reps $(COMPARE_REPS) --scenes "$(SCENES)" --methods "$(METHODS)"
 
 # ---------------------------------------------------------------- tests
@@ -62,6 +66,7 @@ $(COMPARE_TEST): tests/compare/test_compare.c tests/test_util.h $(COMPARE_LIB_OB
 	    $(COMPARE_PRE_LIBS) $(BUILD)/libbraun.a -lcmocka $(COMPARE_LDLIBS) $(LDLIBS_ALL) -o $@
 
 TEST_SUITES += "tools/run-tests $(COMPARE_TEST)" "sh tests/compare/quick.sh $(COMPARE_BIN)"
+TEST_SUITES += "sh tests/compare/parallel.sh $(COMPARE_BIN)"
 TEST_PREREQS += $(COMPARE_TEST) $(COMPARE_BIN)
 
 # Scenes (mk/scenes.mk): scene files and Andrews' mechanism become targets.
@@ -71,4 +76,32 @@ COMPARE_PRE_LIBS := $(BUILD)/libbraun_scene.a
 COMPARE_LDLIBS += -ljansson
 $(COMPARE_BIN) $(COMPARE_TEST): $(BUILD)/libbraun_scene.a
 $(COMPARE_OBJ): | deps-scene
+endif
+
+# ---------------------------------------------------------------- IDA + KLU (issue 7)
+# braun-ida-run SCENE T RTOL: one IDA+KLU run with its counts and CPU time
+# (analytic, colored or column finite-difference Jacobian), and
+# test_ida_jac: the analytic Jacobian against finite differences.
+COMPARE_IDA_RUN := $(BUILD)/bin/braun-ida-run
+COMPARE_JAC_TEST := $(BUILD)/tests/compare/test_ida_jac
+
+.PHONY: compare-ida-run
+compare-ida-run: $(COMPARE_IDA_RUN)
+
+$(COMPARE_IDA_RUN): compare/tools/ida_run.c $(COMPARE_HDR) $(COMPARE_LIB_OBJ) \
+		$(BUILD)/libbraun.a | deps-compare
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(CFLAGS_ALL) $< $(COMPARE_LIB_OBJ) \
+	    $(COMPARE_PRE_LIBS) $(BUILD)/libbraun.a $(COMPARE_LDLIBS) $(LDLIBS_ALL) -o $@
+
+$(COMPARE_JAC_TEST): tests/compare/test_ida_jac.c tests/test_util.h $(COMPARE_HDR) \
+		$(COMPARE_LIB_OBJ) $(BUILD)/libbraun.a | deps-test deps-compare
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) -Itests $(CFLAGS_ALL) $< $(COMPARE_LIB_OBJ) \
+	    $(COMPARE_PRE_LIBS) $(BUILD)/libbraun.a -lcmocka $(COMPARE_LDLIBS) $(LDLIBS_ALL) -o $@
+
+TEST_SUITES += "tools/run-tests $(COMPARE_JAC_TEST)"
+TEST_PREREQS += $(COMPARE_JAC_TEST) $(COMPARE_IDA_RUN)
+ifneq ($(COMPARE_PRE_LIBS),)
+$(COMPARE_IDA_RUN) $(COMPARE_JAC_TEST): $(BUILD)/libbraun_scene.a
 endif
