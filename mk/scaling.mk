@@ -21,6 +21,12 @@ SCALING_DOCS ?= docs/performance.md
 
 .PHONY: scaling scaling-bin
 
+# IDA+KLU comes from the compare harness (its objects but main()).
+SCALING_CPPFLAGS = $(COMPARE_CPPFLAGS)
+SCALING_PRE_LIBS = $(COMPARE_LIB_OBJ) $(COMPARE_PRE_LIBS)
+SCALING_LDLIBS = $(COMPARE_LDLIBS)
+$(SCALING_BIN): $(COMPARE_LIB_OBJ)
+
 $(BUILD)/obj/bench/scaling/%.o: bench/scaling/%.c bench/scaling/scaling.h $(HEADERS) | deps-scene deps-backends
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) $(SCALING_CPPFLAGS) $(CFLAGS_ALL) -c $< -o $@

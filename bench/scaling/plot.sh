@@ -14,9 +14,10 @@ for k in chain ladder; do
             "$OUT/step.csv" > "$f"
         [ -s "$f" ] || continue
         slope=$(awk -F, -v k="$k" -v b="$b" '$1 == k && $2 == b { print $3 }' "$OUT/slopes.csv")
+        failN=$(awk -F, -v k="$k" -v b="$b" '$1 == k && $6 == b && $11 ~ /^failed/ { print $2; exit }' "$OUT/step.csv")
         dash=1; [ "$k" = ladder ] && dash=2
         case $b in dense) c=1 ;; lapack) c=2 ;; suitesparse) c=3 ;; *) c=4 ;; esac
-        series="$series${series:+, }'$f' using 1:2 with linespoints dt $dash lc $c pt $((c + 4)) title '$k, $b${slope:+ (slope $slope for N >= 100)}'"
+        series="$series${series:+, }'$f' using 1:2 with linespoints dt $dash lc $c pt $((c + 4)) title '$k, $b${slope:+ (slope $slope for N >= 100)}${failN:+ (fails at N = $failN)}'"
     done
 done
 # The N^1.3 line through the sparse backend's chain cost at N = 100.
@@ -29,7 +30,7 @@ $t
 set output '$OUT/scaling.$term'
 set logscale xy
 set grid
-set key top left
+set key bottom right box opaque
 set xlabel 'N (chain: links; ladder: cells of 4 bodies)'
 set xrange [8:3000]
 set ylabel 'CPU time per step (µs)'
@@ -40,6 +41,8 @@ done
 if [ -f "$OUT/matched.csv" ]; then
     awk -F, 'NR > 1 && $3 ~ /^braun/ && $7 != "nan" { print $8, $7 }' "$OUT/matched.csv" > "$OUT/.m-braun.dat"
     awk -F, 'NR > 1 && $3 == "ida-klu" && $7 != "nan" { print $8, $7 }' "$OUT/matched.csv" > "$OUT/.m-ida.dat"
+    refe=$(awk -F, '$3 ~ /^reference/ { print $7 }' "$OUT/matched.csv")
+    refe=${refe:-1e-12}
     for term in png svg; do
         eval "t=\$$term"
         gnuplot <<GP
@@ -48,10 +51,11 @@ set output '$OUT/matched.$term'
 set logscale xy
 set grid
 set xlabel 'CPU seconds per simulated second'
-set ylabel 'max trajectory error |q - q_ref| over the run'
+set ylabel 'max trajectory error |q - q_{ref}| over the run'
 set title 'Chain, N = 1000: error against cost (braun RK4 + suitesparse at several h; IDA+KLU at several rtol)'
 plot '$OUT/.m-braun.dat' using 1:2 with linespoints pt 7 title 'braun RK4, suitesparse', \
-     '$OUT/.m-ida.dat' using 1:2 with linespoints pt 5 title 'IDA+KLU (GGL, analytic Jacobian)'
+     '$OUT/.m-ida.dat' using 1:2 with linespoints pt 5 title 'IDA+KLU (GGL, analytic Jacobian)', \
+     $refe with lines dt 3 lc rgb 'gray' title 'reference: RK4 at h = 1.25e-4 against DOPRI5 at rtol 1e-11'
 GP
     done
 fi

@@ -47,14 +47,24 @@ run_kind() {
                 fi
             fi
             if [ "$b" = ida ]; then
-                row=$("$BIN" ida-step "$f" --T 0.05 --rtol 1e-6) || row="$f,,,ida-klu,nan,nan,0,0,failed"
+                # The ladder's redundant rows: regularised Φ - ελ for IDA.
+                reg=0; [ "$kind" = ladder ] && reg=1e-10
+                row=$("$BIN" ida-step "$f" --T 0.05 --rtol 1e-6 --reg $reg) || row="$f,,,ida-klu,nan,nan,0,0,failed"
             else
-                row=$("$BIN" step "$f" "$b" --budget 0.5 --reps 5) || true
+                row=$("$BIN" step "$f" "$b" --budget 1 --reps 5) || true
             fi
             echo "$kind,$N,$row" >> "$step"
             echo "scaling: $kind N=$N $b: $(echo "$row" | cut -d, -f5) ns/step" >&2
             ns=$(echo "$row" | cut -d, -f5)
             case $ns in nan|'') ;; *) last_ns=$ns last_N=$N ;; esac
+            # A method that failed at this N is not tried at larger ones.
+            case $row in *,failed*) failed_at=$N ;; *) failed_at='' ;; esac
+            if [ -n "$failed_at" ]; then
+                for M in "$@"; do
+                    [ "$M" -gt "$N" ] && echo "$kind,$M,$OUT/scenes/$kind-$M.json,,,$b,nan,nan,0,0,skipped: failed at N = $N" >> "$step"
+                done
+                break
+            fi
         done
     done
 }
@@ -77,7 +87,7 @@ rm -f "$OUT/slopes.tmp"
 if [ "$MATCHED" = 1 ] && [ -f "$OUT/scenes/chain-1000.json" ]; then
     "$BIN" matched --header > "$OUT/matched.csv"
     "$BIN" matched "$OUT/scenes/chain-1000.json" suitesparse --T "${SCALING_T:-0.5}" \
-        --h "${SCALING_H:-4e-3 2e-3 1e-3 5e-4}" --rtol "${SCALING_RTOL:-1e-4 1e-5 1e-6 1e-7 1e-8}" \
+        --h "${SCALING_H:-8e-3 4e-3 2e-3 1e-3 5e-4}" --rtol "${SCALING_RTOL:-1e-4 1e-5 1e-6 1e-7 1e-8}" \
         --href "${SCALING_HREF:-1.25e-4}" >> "$OUT/matched.csv"
 fi
 

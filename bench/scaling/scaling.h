@@ -40,9 +40,12 @@ typedef struct sc_ida_result {
 } sc_ida_result;
 
 /* Integrate the scene with IDA (GGL, KLU, analytic sparse Jacobian) to T at
- * rtol (atol = rtol); with samples > 0 also store q at t_k = k·T/samples,
- * k = 1..samples, into q_out (samples x n). */
-int sc_ida_run(const sc_scene *s, double T, double rtol, int samples, double *q_out,
-               sc_ida_result *res);
+ * rtol (atol = rtol; multipliers out of the error test), constraint rows
+ * regularised by reg (0: none; redundant rows need it); with samples > 0
+ * also store q at t_k = k·T/samples, k = 1..samples, into q_out
+ * (samples x n). max_steps: per output interval (0: 100000). CPU time
+ * includes IDA's setup. */
+int sc_ida_run(const sc_scene *s, double T, double rtol, double reg, long max_steps,
+               int samples, double *q_out, sc_ida_result *res);
 
 #endif

@@ -4,12 +4,19 @@ BEGIN { FS = "," }
 FNR == 1 { file++; next }
 file == 1 {
     key = $1 SUBSEP $2; kinds[$1] = 1; Ns[$1, $2] = 1; backends[$6] = 1
-    cell[$1, $2, $6] = ($7 == "nan" || $7 == "") ? ($11 ~ /skipped/ ? "–" : "fail") : sprintf("%.3g", $7 / 1000)
-    nn[$1, $2] = $4; rows[$1, $2] = $5
+    cell[$1, $2, $6] = ($7 == "nan" || $7 == "") ? ($11 ~ /skipped/ ? "–" : "fails") : sprintf("%.3g", $7 / 1000)
+    if ($11 ~ /^failed/) why[$1, $6] = $6 " " $11 " (N = " $2 ")"
+    if ($4 != "") { nn[$1, $2] = $4; rows[$1, $2] = $5 }
     if ($10 > 0) rd[$1, $2] = 1
 }
 file == 2 { slope[$1, $2] = $3; pts[$1, $2] = $4 " points, N " $5 "–" $6 }
-file == 3 { mrow[++nm] = $0 }
+file == 3 {
+    mrow[++nm] = $0
+    if ($7 != "nan" && $7 > 0 && $9 == "ok") {
+        g = ($3 ~ /^braun/) ? "braun" : ($3 == "ida-klu" ? "ida" : "")
+        if (g != "") { k = ++np[g]; perr[g, k] = $7; pcost[g, k] = $8 }
+    }
+}
 END {
     nb = split("dense lapack suitesparse ida-klu", order, " ")
     for (k in kinds) {
@@ -30,6 +37,7 @@ END {
             printf "\n"
         }
         delete list
+        for (j = 1; j <= nb; j++) if ((k, order[j]) in why) printf "\n%s; larger N not tried.\n", why[k, order[j]]
         printf "\nSlope of log(cost per step) on log(N), N ≥ 100:"
         for (j = 1; j <= nb; j++) if ((k, order[j]) in slope) printf " %s **%s** (%s);", order[j], slope[k, order[j]], pts[k, order[j]]
         printf "\n"
@@ -41,5 +49,30 @@ END {
             split(mrow[i], f, ",")
             printf "| %s | %s | %s | %s | %s | %s |\n", f[3], f[5], f[6], f[7], f[8], f[9]
         }
+        printf "\nCost at equal error (log-log interpolation between the measured runs; – outside a method's range):\n\n"
+        printf "| error | braun (suitesparse, RK4): CPU s per simulated s | IDA+KLU | IDA / braun |\n|---|---|---|---|\n"
+        ne = split("1e-4 3e-5 1e-5 3e-6 1e-6", lv, " ")
+        for (i = 1; i <= ne; i++) {
+            e = lv[i] + 0
+            cb = interp("braun", e); ci = interp("ida", e)
+            printf "| %s | %s | %s | %s |\n", lv[i], cb < 0 ? "–" : sprintf("%.3g", cb),
+                ci < 0 ? "–" : sprintf("%.3g", ci), (cb > 0 && ci > 0) ? sprintf("**%.2f**", ci / cb) : "–"
+        }
     }
+}
+
+# Cost of method g at error e: linear in log-log between the closest pair of
+# runs whose errors bracket e (the cheaper one less accurate); -1 if none.
+function interp(g, e,    i, j, a, b, t, best, bi, bj) {
+    best = -1
+    for (i = 1; i <= np[g]; i++)
+        for (j = 1; j <= np[g]; j++) {
+            a = perr[g, i]; b = perr[g, j]
+            if (a >= e && b <= e && a > b && pcost[g, j] >= pcost[g, i] &&
+                (best < 0 || log(a) - log(b) < best)) { best = log(a) - log(b); bi = i; bj = j }
+        }
+    if (best < 0) return -1
+    a = perr[g, bi]; b = perr[g, bj]
+    t = (log(e) - log(a)) / (log(b) - log(a))
+    return exp(log(pcost[g, bi]) + t * (log(pcost[g, bj]) - log(pcost[g, bi])))
 }
