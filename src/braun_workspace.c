@@ -5,6 +5,17 @@
 
 #define BRAUN_ALIGN 16u
 
+/* The model's backend; none in a build without dispatch (firmware). */
+static const braun_linsolver *model_linsolver(const braun_model *model)
+{
+#ifndef BRAUN_NO_LINSOLVER
+    return model->opt.linsolver;
+#else
+    (void)model;
+    return NULL;
+#endif
+}
+
 /* Walk the layout once: with base == NULL only count bytes. */
 static size_t layout(const braun_model *model, unsigned char *base,
                      braun_priv *pv, braun_real **q, braun_real **v)
@@ -14,10 +25,7 @@ static size_t layout(const braun_model *model, unsigned char *base,
     const int N = 2 * n + 1;
     const int need_fq = p > 0 && m > 0;
     const braun_sparsity *sp = s->sparsity;
-    const braun_linsolver *ls = NULL;
-#ifndef BRAUN_NO_LINSOLVER
-    ls = model->opt.linsolver;
-#endif
+    const braun_linsolver *ls = model_linsolver(model);
     /* The built-in kernels and dense backends work on dense A and M. */
     const int dense = !ls || (ls->flags & BRAUN_LS_DENSE);
     const size_t nn = (size_t)n * (size_t)n;
@@ -91,10 +99,11 @@ static size_t layout(const braun_model *model, unsigned char *base,
         pv->sp = sp;
         pv->mass_count = mass_count;
         pv->dense_A = dense;
-        if (!((ls || sp))) pv->Mvals = NULL;
-        if (!(ls && dense)) pv->Mdense = NULL;
-        if (!dense) pv->A = NULL;
-        if (!sp) pv->Avals = NULL;
+        /* Buffers this configuration does not use point nowhere. */
+        pv->Mvals = (ls || sp) ? pv->Mvals : NULL;
+        pv->Mdense = (ls && dense) ? pv->Mdense : NULL;
+        pv->A = dense ? pv->A : NULL;
+        pv->Avals = sp ? pv->Avals : NULL;
         pv->rank[0] = rows;
         pv->rank[1] = m;
         pv->n = n;
