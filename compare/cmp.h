@@ -274,6 +274,16 @@ int cmp_dae_pattern(cmp_dae *dae, const double *y0, const double *yp0, int **col
 
 /* ------------------------------------------------------------ sparse Jacobians
  * (cmp_ida_jac.c) */
+/* A growing list of (row, col) pairs (a pattern as it is found); failed is
+ * set when an allocation failed (pushes are then ignored). */
+typedef struct cmp_pairs {
+    long n, cap;
+    int *r, *c;
+    int failed;
+} cmp_pairs;
+void cmp_pairs_push(cmp_pairs *P, int r, int c);
+void cmp_pairs_free(cmp_pairs *P);
+
 /* Compressed sparse columns of an N x N pattern from nt (row, col) pairs
  * (duplicates merged, rows sorted); map (nt entries, may be NULL) receives
  * the position of each pair in rowind. Returns nnz, or -1. */

@@ -286,37 +286,6 @@ static void probe_states(int N, const double *y0, const double *yp0, double *Y)
     }
 }
 
-/* A growing list of (row, col) pairs. */
-typedef struct pairs {
-    long n, cap;
-    int *r, *c;
-    int failed;
-} pairs;
-
-static void push(pairs *P, int r, int c)
-{
-    if (P->failed) return;
-    if (P->n == P->cap) {
-        long cap = P->cap ? 2 * P->cap : 1024;
-        int *nr = realloc(P->r, (size_t)cap * sizeof(int));
-        if (!nr) {
-            P->failed = 1;
-            return;
-        }
-        P->r = nr;
-        int *nc = realloc(P->c, (size_t)cap * sizeof(int));
-        if (!nc) {
-            P->failed = 1;
-            return;
-        }
-        P->c = nc;
-        P->cap = cap;
-    }
-    P->r[P->n] = r;
-    P->c[P->n] = c;
-    P->n++;
-}
-
 static int cmp_int(const void *a, const void *b)
 {
     const int x = *(const int *)a, y = *(const int *)b;
@@ -330,7 +299,7 @@ int cmp_dae_pattern_probe(cmp_dae *d, const double *y0, const double *yp0, int *
     double *Y = malloc((size_t)N * 13 * sizeof(double));
     int *stamp = malloc((size_t)N * sizeof(int));
     int *cp = malloc(((size_t)N + 1) * sizeof(int));
-    pairs P = {0, 0, NULL, NULL, 0};
+    cmp_pairs P = {0, 0, NULL, NULL, 0};
     int nnz = -1;
     *colptr = *rowind = NULL;
     if (!Y || !stamp || !cp) goto done;
@@ -358,10 +327,10 @@ int cmp_dae_pattern_probe(cmp_dae *d, const double *y0, const double *yp0, int *
             for (int i = 0; i < N; i++)
                 if ((r1[i] - r0[i]) / dj != 0.0 && stamp[i] != j) {
                     stamp[i] = j;
-                    push(&P, i, j);
+                    cmp_pairs_push(&P, i, j);
                 }
         }
-        if (stamp[j] != j) push(&P, j, j); /* c_j on the diagonal */
+        if (stamp[j] != j) cmp_pairs_push(&P, j, j); /* c_j on the diagonal */
         if (P.failed) goto done;
         qsort(P.r + cp[j], (size_t)(P.n - cp[j]), sizeof(int), cmp_int);
     }
@@ -375,8 +344,7 @@ done:
     free(Y);
     free(stamp);
     free(cp);
-    free(P.r);
-    free(P.c);
+    cmp_pairs_free(&P);
     return nnz;
 }
 
@@ -431,7 +399,7 @@ int cmp_dae_pattern_struct(cmp_dae *d, const double *y0, const double *yp0, int 
     const size_t nh = p > 0 ? 2 * ((size_t)p * n + 2 * (size_t)p) : 0;
     double *W = malloc((2 * (size_t)n + nh + (varM ? 2 * nn : 0) + 1) * sizeof(double));
     int *S = malloc(((size_t)n + 1) * sizeof(int));
-    pairs P = {0, 0, NULL, NULL, 0};
+    cmp_pairs P = {0, 0, NULL, NULL, 0};
     int nnz = -1;
     *colptr = *rowind = NULL;
     if (!Y || !Amark || !W || !S) goto done;
@@ -457,7 +425,7 @@ int cmp_dae_pattern_struct(cmp_dae *d, const double *y0, const double *yp0, int 
             *x = x0;
             if (st) goto done;
             for (int i = 0; i < n; i++)
-                if (Q1[i] != Q0[i]) push(&P, n + i, j);
+                if (Q1[i] != Q0[i]) cmp_pairs_push(&P, n + i, j);
         }
         /* ∂(M v')/∂q of a varying mass matrix. */
         if (varM) {
@@ -469,7 +437,7 @@ int cmp_dae_pattern_struct(cmp_dae *d, const double *y0, const double *yp0, int 
                 q[j] = x0;
                 if (st) goto done;
                 for (int i = 0; i < n; i++)
-                    if (differs(n, M0 + (size_t)i * n, M1 + (size_t)i * n)) push(&P, n + i, j);
+                    if (differs(n, M0 + (size_t)i * n, M1 + (size_t)i * n)) cmp_pairs_push(&P, n + i, j);
             }
         }
         /* Nonholonomic rows: Φ_v (GGL), A_vv v' - b_vv (index-1) and
@@ -489,9 +457,9 @@ int cmp_dae_pattern_struct(cmp_dae *d, const double *y0, const double *yp0, int 
                     const double *a0 = A0 + (size_t)k * n, *a1 = A1 + (size_t)k * n;
                     const int row = 2 * n + m + k;
                     if (d->index1 ? differs(n, a0, a1) || bv0[k] != bv1[k] : phi0[k] != phi1[k])
-                        push(&P, row, j);
+                        cmp_pairs_push(&P, row, j);
                     for (int i = 0; i < n; i++)
-                        if (a0[i] != a1[i]) push(&P, n + i, j);
+                        if (a0[i] != a1[i]) cmp_pairs_push(&P, n + i, j);
                 }
             }
         }
@@ -501,9 +469,9 @@ int cmp_dae_pattern_struct(cmp_dae *d, const double *y0, const double *yp0, int 
      * S_k x S_k (∂A_ki/∂q_j = ∂A_kj/∂q_i), and so do ∂b_q/∂q and b_qv's
      * derivatives. */
     for (int i = 0; i < n; i++) {
-        push(&P, i, n + i);
+        cmp_pairs_push(&P, i, n + i);
         for (int j = 0; j < n; j++)
-            if (Mmark[(size_t)i * n + j]) push(&P, n + i, n + j);
+            if (Mmark[(size_t)i * n + j]) cmp_pairs_push(&P, n + i, n + j);
     }
     for (int k = 0; k < mv; k++) {
         int ns = 0;
@@ -512,19 +480,19 @@ int cmp_dae_pattern_struct(cmp_dae *d, const double *y0, const double *yp0, int 
         const int hol = k < m;
         for (int a = 0; a < ns; a++) {
             const int i = S[a];
-            push(&P, n + i, 2 * n + k);                 /* -A_vᵀλ */
-            push(&P, 2 * n + k, n + i);                 /* A v (GGL), A v' (index-1) */
+            cmp_pairs_push(&P, n + i, 2 * n + k);                 /* -A_vᵀλ */
+            cmp_pairs_push(&P, 2 * n + k, n + i);                 /* A v (GGL), A v' (index-1) */
             if (!hol) continue;
-            push(&P, 2 * n + k, i);                     /* ∂(A_q v - b_q)/∂q */
-            for (int b = 0; b < ns; b++) push(&P, n + i, S[b]); /* ∂(A_qᵀλ)/∂q */
+            cmp_pairs_push(&P, 2 * n + k, i);                     /* ∂(A_q v - b_q)/∂q */
+            for (int b = 0; b < ns; b++) cmp_pairs_push(&P, n + i, S[b]); /* ∂(A_qᵀλ)/∂q */
             if (d->index1) continue;
-            push(&P, i, 2 * n + mv + k);                /* A_qᵀμ */
-            push(&P, 2 * n + mv + k, i);                /* Φ_q */
-            for (int b = 0; b < ns; b++) push(&P, i, S[b]); /* ∂(A_qᵀμ)/∂q */
+            cmp_pairs_push(&P, i, 2 * n + mv + k);                /* A_qᵀμ */
+            cmp_pairs_push(&P, 2 * n + mv + k, i);                /* Φ_q */
+            for (int b = 0; b < ns; b++) cmp_pairs_push(&P, i, S[b]); /* ∂(A_qᵀμ)/∂q */
         }
         if (P.failed) goto done;
     }
-    for (int i = 0; i < N; i++) push(&P, i, i);
+    for (int i = 0; i < N; i++) cmp_pairs_push(&P, i, i);
     if (P.failed) goto done;
     nnz = cmp_csc_from_pairs(N, P.n, P.r, P.c, colptr, rowind, NULL);
 done:
@@ -533,8 +501,7 @@ done:
     free(Amark);
     free(W);
     free(S);
-    free(P.r);
-    free(P.c);
+    cmp_pairs_free(&P);
     return nnz;
 }
 

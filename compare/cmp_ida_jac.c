@@ -34,6 +34,40 @@
 #include "braun_scene.h"
 #endif
 
+
+/* A growing list of (row, col) pairs: the entries of a pattern as found. */
+void cmp_pairs_push(cmp_pairs *P, int r, int c)
+{
+    if (P->failed) return;
+    if (P->n == P->cap) {
+        long cap = P->cap ? 2 * P->cap : 1024;
+        int *nr = realloc(P->r, (size_t)cap * sizeof(int));
+        if (!nr) {
+            P->failed = 1;
+            return;
+        }
+        P->r = nr;
+        int *nc = realloc(P->c, (size_t)cap * sizeof(int));
+        if (!nc) {
+            P->failed = 1;
+            return;
+        }
+        P->c = nc;
+        P->cap = cap;
+    }
+    P->r[P->n] = r;
+    P->c[P->n] = c;
+    P->n++;
+}
+
+void cmp_pairs_free(cmp_pairs *P)
+{
+    free(P->r);
+    free(P->c);
+    P->r = P->c = NULL;
+    P->n = P->cap = 0;
+}
+
 /* ------------------------------------------------------------ patterns */
 int cmp_csc_from_pairs(int N, long nt, const int *row, const int *col, int **colptr,
                        int **rowind, int *map)
@@ -231,43 +265,6 @@ int cmp_fdjac_eval(cmp_fdjac *f, cmp_res_fn res, void *user, double t, double cj
 
 /* ------------------------------------------------------------ the scene provider */
 #ifdef CMP_HAVE_SCENES
-typedef struct pair_list {
-    long n, cap;
-    int *r, *c;
-    int failed;
-} pair_list;
-
-static void pl_push(pair_list *P, int r, int c)
-{
-    if (P->failed) return;
-    if (P->n == P->cap) {
-        long cap = P->cap ? 2 * P->cap : 1024;
-        int *nr = realloc(P->r, (size_t)cap * sizeof(int));
-        if (!nr) {
-            P->failed = 1;
-            return;
-        }
-        P->r = nr;
-        int *nc = realloc(P->c, (size_t)cap * sizeof(int));
-        if (!nc) {
-            P->failed = 1;
-            return;
-        }
-        P->c = nc;
-        P->cap = cap;
-    }
-    P->r[P->n] = r;
-    P->c[P->n] = c;
-    P->n++;
-}
-
-static void pl_free(pair_list *P)
-{
-    free(P->r);
-    free(P->c);
-    P->r = P->c = NULL;
-    P->n = P->cap = 0;
-}
 
 /* Entries per row at most: A 4 (revolute: x or y and θ of each end; rod:
  * x, y of each end), Hessian 8 (rod). */
@@ -391,7 +388,7 @@ static void rows_eval(cmp_ggl *g, const double *q)
 /* The entries of J in their fixed order: pattern mode pushes (row, col),
  * value mode adds into val through map. */
 typedef struct emitter {
-    pair_list *P;        /* pattern mode */
+    cmp_pairs *P;        /* pattern mode */
     const int *map;      /* value mode ... */
     double *val;
     long e;
@@ -399,7 +396,7 @@ typedef struct emitter {
 
 static void put(emitter *E, int r, int c, double v)
 {
-    if (E->P) pl_push(E->P, r, c);
+    if (E->P) cmp_pairs_push(E->P, r, c);
     else E->val[E->map[E->e]] += v;
     E->e++;
 }
@@ -497,7 +494,7 @@ cmp_ggl *cmp_ggl_new(const struct braun_scene *scene, const char **why)
     if (no) return NULL;
     const braun_scene *s = scene;
     cmp_ggl *g = calloc(1, sizeof *g);
-    pair_list P = {0, 0, NULL, NULL, 0};
+    cmp_pairs P = {0, 0, NULL, NULL, 0};
     if (!g) goto oom;
     g->s = s;
     g->n = s->n;
@@ -521,20 +518,20 @@ cmp_ggl *cmp_ggl_new(const struct braun_scene *scene, const char **why)
     /* M: bodies' diagonals and rods' blocks (scene_body.c, scene_rod.c). */
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *bd = &s->bodies[k];
-        pl_push(&P, bd->iq, bd->iq);
-        pl_push(&P, bd->iq + 1, bd->iq + 1);
-        if (bd->kind == BRAUN_BODY_RIGID) pl_push(&P, bd->iq + 2, bd->iq + 2);
+        cmp_pairs_push(&P, bd->iq, bd->iq);
+        cmp_pairs_push(&P, bd->iq + 1, bd->iq + 1);
+        if (bd->kind == BRAUN_BODY_RIGID) cmp_pairs_push(&P, bd->iq + 2, bd->iq + 2);
     }
     for (int k = 0; k < s->nrods; k++) {
         const braun_scene_rod *r = &s->rods[k];
         const int ba = s->points[r->a].body, bb = s->points[r->b].body;
         const int ia = ba < 0 ? -1 : s->bodies[ba].iq, ib = bb < 0 ? -1 : s->bodies[bb].iq;
         for (int c = 0; c < 2; c++) {
-            if (ia >= 0) pl_push(&P, ia + c, ia + c);
-            if (ib >= 0) pl_push(&P, ib + c, ib + c);
+            if (ia >= 0) cmp_pairs_push(&P, ia + c, ia + c);
+            if (ib >= 0) cmp_pairs_push(&P, ib + c, ib + c);
             if (ia >= 0 && ib >= 0) {
-                pl_push(&P, ia + c, ib + c);
-                pl_push(&P, ib + c, ia + c);
+                cmp_pairs_push(&P, ia + c, ib + c);
+                cmp_pairs_push(&P, ib + c, ia + c);
             }
         }
     }
@@ -568,7 +565,7 @@ cmp_ggl *cmp_ggl_new(const struct braun_scene *scene, const char **why)
         }
     }
     free(mmap);
-    pl_free(&P);
+    cmp_pairs_free(&P);
 
     /* Q: the generalized weight (scene_gravity.c), constant. */
     for (int k = 0; k < s->neffects; k++) {
@@ -606,7 +603,7 @@ cmp_ggl *cmp_ggl_new(const struct braun_scene *scene, const char **why)
     if (!g->map) goto oom;
     g->nnz = cmp_csc_from_pairs(g->N, P.n, P.r, P.c, &g->colptr, &g->rowind, g->map);
     if (g->nnz < 0) goto oom;
-    pl_free(&P);
+    cmp_pairs_free(&P);
 
     /* The KKT matrix's pattern. */
     E = (emitter){&P, NULL, NULL, 0};
@@ -618,12 +615,12 @@ cmp_ggl *cmp_ggl_new(const struct braun_scene *scene, const char **why)
     g->knnz = cmp_csc_from_pairs(n + m, P.n, P.r, P.c, &g->kp, &g->ki, g->kmap);
     g->kx = malloc(((size_t)g->knnz + 1) * sizeof(double));
     if (g->knnz < 0 || !g->kx) goto oom;
-    pl_free(&P);
+    cmp_pairs_free(&P);
     klu_defaults(&g->common);
     return g;
 oom:
     if (why) *why = "out of memory";
-    pl_free(&P);
+    cmp_pairs_free(&P);
     cmp_ggl_free(g);
     return NULL;
 }

@@ -11,7 +11,8 @@
 #define MAX_ROWS_DENSE BRAUN_MAX_DENSE
 #define MAX_ROWS_SPARSE BRAUN_MAX_SPARSE
 
-static int fail(braun_scene_error *err, int status, int element, int index, const char *what)
+int braun_scene__fail(braun_scene_error *err, int status, int element, int index,
+                      const char *what)
 {
     if (err) {
         err->status = status;
@@ -58,18 +59,18 @@ static int check_bodies(const braun_scene *s, braun_scene_error *err)
         const braun_scene_body *b = &s->bodies[k];
         const int E = BRAUN_SCENE_ELEM_BODY, A = BRAUN_ERR_ARGUMENT;
         if (b->kind != BRAUN_BODY_RIGID && b->kind != BRAUN_BODY_PARTICLE)
-            return fail(err, A, E, k, "unknown body kind");
+            return braun_scene__fail(err, A, E, k, "unknown body kind");
         if (!ok_num(b->mass) || !ok_num(b->inertia))
-            return fail(err, A, E, k, "mass or inertia is not a finite number in range");
+            return braun_scene__fail(err, A, E, k, "mass or inertia is not a finite number in range");
         for (int i = 0; i < 3; i++)
             if (!ok_num(b->q0[i]) || !ok_num(b->v0[i]))
-                return fail(err, A, E, k, "initial state is not a finite number in range");
+                return braun_scene__fail(err, A, E, k, "initial state is not a finite number in range");
         if (b->kind == BRAUN_BODY_RIGID && !(b->mass > 0))
-            return fail(err, A, E, k, "a rigid body needs a mass > 0");
+            return braun_scene__fail(err, A, E, k, "a rigid body needs a mass > 0");
         if (b->kind == BRAUN_BODY_RIGID && !(b->inertia > 0))
-            return fail(err, A, E, k, "a rigid body needs an inertia > 0");
+            return braun_scene__fail(err, A, E, k, "a rigid body needs an inertia > 0");
         if (b->kind == BRAUN_BODY_PARTICLE && b->mass < 0)
-            return fail(err, A, E, k, "a particle's mass must be >= 0");
+            return braun_scene__fail(err, A, E, k, "a particle's mass must be >= 0");
     }
     return BRAUN_OK;
 }
@@ -79,12 +80,12 @@ static int check_points(const braun_scene *s, braun_scene_error *err)
     for (int k = 0; k < s->npoints; k++) {
         const braun_scene_point *p = &s->points[k];
         const int E = BRAUN_SCENE_ELEM_POINT, A = BRAUN_ERR_ARGUMENT;
-        if (!ok_body_ref(s, p->body)) return fail(err, A, E, k, "point on an unknown body");
+        if (!ok_body_ref(s, p->body)) return braun_scene__fail(err, A, E, k, "point on an unknown body");
         if (!ok_num(p->x) || !ok_num(p->y))
-            return fail(err, A, E, k, "point coordinates are not finite numbers in range");
+            return braun_scene__fail(err, A, E, k, "point coordinates are not finite numbers in range");
         if (p->body >= 0 && s->bodies[p->body].kind == BRAUN_BODY_PARTICLE &&
             (p->x != 0 || p->y != 0))
-            return fail(err, A, E, k, "a point of a particle has no offset");
+            return braun_scene__fail(err, A, E, k, "a point of a particle has no offset");
     }
     return BRAUN_OK;
 }
@@ -95,17 +96,17 @@ static int check_rods(const braun_scene *s, braun_scene_error *err)
         const braun_scene_rod *r = &s->rods[k];
         const int E = BRAUN_SCENE_ELEM_ROD, A = BRAUN_ERR_ARGUMENT;
         if (!ok_point_ref(s, r->a) || !ok_point_ref(s, r->b))
-            return fail(err, A, E, k, "rod end is not a point of the scene");
+            return braun_scene__fail(err, A, E, k, "rod end is not a point of the scene");
         const int ba = body_of(s, r->a), bb = body_of(s, r->b);
         if (is_rigid(s, ba) || is_rigid(s, bb))
-            return fail(err, A, E, k, "rod end is on a rigid body (natural coordinates need "
+            return braun_scene__fail(err, A, E, k, "rod end is on a rigid body (natural coordinates need "
                                       "particles or ground points)");
-        if (ba < 0 && bb < 0) return fail(err, A, E, k, "rod has both ends on the ground");
-        if (ba == bb) return fail(err, A, E, k, "rod has both ends on the same particle");
+        if (ba < 0 && bb < 0) return braun_scene__fail(err, A, E, k, "rod has both ends on the ground");
+        if (ba == bb) return braun_scene__fail(err, A, E, k, "rod has both ends on the same particle");
         if (!ok_num(r->mass) || r->mass < 0)
-            return fail(err, A, E, k, "rod mass must be a finite number >= 0");
+            return braun_scene__fail(err, A, E, k, "rod mass must be a finite number >= 0");
         if (!ok_num(r->length) || !(r->length > 0))
-            return fail(err, A, E, k, "rod length must be a finite number > 0");
+            return braun_scene__fail(err, A, E, k, "rod length must be a finite number > 0");
     }
     return BRAUN_OK;
 }
@@ -115,41 +116,41 @@ static int check_joint(const braun_scene *s, int k, braun_scene_error *err)
     const braun_scene_joint *j = &s->joints[k];
     const int E = BRAUN_SCENE_ELEM_JOINT, A = BRAUN_ERR_ARGUMENT;
     if (j->type < BRAUN_JOINT_REVOLUTE || j->type > BRAUN_JOINT_ANGLE)
-        return fail(err, A, E, k, "unknown joint type");
+        return braun_scene__fail(err, A, E, k, "unknown joint type");
     if (!ok_num(j->value) || !ok_num(j->axis[0]) || !ok_num(j->axis[1]))
-        return fail(err, A, E, k, "joint parameters are not finite numbers in range");
+        return braun_scene__fail(err, A, E, k, "joint parameters are not finite numbers in range");
     if (j->driven) {
         if (j->type == BRAUN_JOINT_REVOLUTE)
-            return fail(err, A, E, k, "a revolute joint cannot be driven");
-        if (!ok_fn(&j->drive)) return fail(err, A, E, k, "drive is not a valid function");
+            return braun_scene__fail(err, A, E, k, "a revolute joint cannot be driven");
+        if (!ok_fn(&j->drive)) return braun_scene__fail(err, A, E, k, "drive is not a valid function");
         if (j->drive.kind == BRAUN_FN_STEP)
-            return fail(err, A, E, k, "a drive must be smooth (constant, linear or sine)");
+            return braun_scene__fail(err, A, E, k, "a drive must be smooth (constant, linear or sine)");
     }
     if (j->type == BRAUN_JOINT_ANGLE) {
         if (!ok_body_ref(s, j->a) || !ok_body_ref(s, j->b))
-            return fail(err, A, E, k, "angle joint refers to an unknown body");
+            return braun_scene__fail(err, A, E, k, "angle joint refers to an unknown body");
         if ((j->a >= 0 && !is_rigid(s, j->a)) || (j->b >= 0 && !is_rigid(s, j->b)))
-            return fail(err, A, E, k, "angle joint needs rigid bodies (or the ground)");
-        if (j->a == j->b) return fail(err, A, E, k, "joint connects a body to itself");
+            return braun_scene__fail(err, A, E, k, "angle joint needs rigid bodies (or the ground)");
+        if (j->a == j->b) return braun_scene__fail(err, A, E, k, "joint connects a body to itself");
         return BRAUN_OK;
     }
     if (!ok_point_ref(s, j->a) || !ok_point_ref(s, j->b))
-        return fail(err, A, E, k, "joint refers to an unknown point");
+        return braun_scene__fail(err, A, E, k, "joint refers to an unknown point");
     if (body_of(s, j->a) == body_of(s, j->b))
-        return fail(err, A, E, k, "joint connects a body to itself");
+        return braun_scene__fail(err, A, E, k, "joint connects a body to itself");
     if (j->type == BRAUN_JOINT_DISTANCE && !j->driven && !(j->value > 0))
-        return fail(err, A, E, k, "distance must be > 0");
+        return braun_scene__fail(err, A, E, k, "distance must be > 0");
     if (j->type == BRAUN_JOINT_SLIDER || j->type == BRAUN_JOINT_PRISMATIC) {
         if (j->axis[0] == 0 && j->axis[1] == 0)
-            return fail(err, A, E, k, "slider axis is the zero vector");
+            return braun_scene__fail(err, A, E, k, "slider axis is the zero vector");
         if (body_of(s, j->a) < 0)
-            return fail(err, A, E, k, "the sliding point is on the ground");
+            return braun_scene__fail(err, A, E, k, "the sliding point is on the ground");
         const int bl = body_of(s, j->b);
         if (bl >= 0 && !is_rigid(s, bl))
-            return fail(err, A, E, k, "the line of a slider must be on a rigid body or the "
+            return braun_scene__fail(err, A, E, k, "the line of a slider must be on a rigid body or the "
                                       "ground");
         if (j->type == BRAUN_JOINT_PRISMATIC && !is_rigid(s, body_of(s, j->a)))
-            return fail(err, A, E, k, "a prismatic joint's sliding body must be rigid");
+            return braun_scene__fail(err, A, E, k, "a prismatic joint's sliding body must be rigid");
     }
     return BRAUN_OK;
 }
@@ -159,11 +160,11 @@ static int check_knives(const braun_scene *s, braun_scene_error *err)
     for (int k = 0; k < s->nknives; k++) {
         const braun_scene_knife *kn = &s->knives[k];
         const int E = BRAUN_SCENE_ELEM_KNIFE, A = BRAUN_ERR_ARGUMENT;
-        if (!is_rigid(s, kn->body)) return fail(err, A, E, k, "knife edge needs a rigid body");
+        if (!is_rigid(s, kn->body)) return braun_scene__fail(err, A, E, k, "knife edge needs a rigid body");
         if (!ok_num(kn->x) || !ok_num(kn->y) || !ok_num(kn->dir[0]) || !ok_num(kn->dir[1]))
-            return fail(err, A, E, k, "knife edge numbers are not finite in range");
+            return braun_scene__fail(err, A, E, k, "knife edge numbers are not finite in range");
         if (kn->dir[0] == 0 && kn->dir[1] == 0)
-            return fail(err, A, E, k, "knife edge direction is the zero vector");
+            return braun_scene__fail(err, A, E, k, "knife edge direction is the zero vector");
     }
     return BRAUN_OK;
 }
@@ -185,49 +186,49 @@ static int check_effects(braun_scene *s, braun_scene_error *err)
         if (!ok_num(e->g[0]) || !ok_num(e->g[1]) || !ok_num(e->k) || !ok_num(e->c) ||
             !ok_num(e->rest) || !ok_num(e->tau0) || !ok_num(e->omega0) || !ok_fn(&e->f[0]) ||
             !ok_fn(&e->f[1]))
-            return fail(err, A, E, k, "effect parameters are not finite numbers in range");
+            return braun_scene__fail(err, A, E, k, "effect parameters are not finite numbers in range");
         switch (e->type) {
         case BRAUN_EFFECT_GRAVITY:
-            if (++gravities > 1) return fail(err, A, E, k, "more than one gravity");
+            if (++gravities > 1) return braun_scene__fail(err, A, E, k, "more than one gravity");
             break;
         case BRAUN_EFFECT_SPRING:
             if (!ok_point_ref(s, e->a) || !ok_point_ref(s, e->b))
-                return fail(err, A, E, k, "spring refers to an unknown point");
+                return braun_scene__fail(err, A, E, k, "spring refers to an unknown point");
             if (body_of(s, e->a) == body_of(s, e->b))
-                return fail(err, A, E, k, "spring connects a body to itself");
+                return braun_scene__fail(err, A, E, k, "spring connects a body to itself");
             if (e->k < 0 || e->c < 0 || e->rest < 0)
-                return fail(err, A, E, k, "stiffness, damping and rest length must be >= 0");
+                return braun_scene__fail(err, A, E, k, "stiffness, damping and rest length must be >= 0");
             if (e->c != 0) s->energy_input = 1;
             break;
         case BRAUN_EFFECT_TORSION:
             if (!ok_body_ref(s, e->a) || !ok_body_ref(s, e->b) ||
                 (e->a >= 0 && !is_rigid(s, e->a)) || (e->b >= 0 && !is_rigid(s, e->b)))
-                return fail(err, A, E, k, "rotational spring needs rigid bodies (or ground)");
-            if (e->a == e->b) return fail(err, A, E, k, "rotational spring connects a body to "
+                return braun_scene__fail(err, A, E, k, "rotational spring needs rigid bodies (or ground)");
+            if (e->a == e->b) return braun_scene__fail(err, A, E, k, "rotational spring connects a body to "
                                                         "itself");
             if (e->k < 0 || e->c < 0)
-                return fail(err, A, E, k, "stiffness and damping must be >= 0");
+                return braun_scene__fail(err, A, E, k, "stiffness and damping must be >= 0");
             if (e->c != 0) s->energy_input = 1;
             break;
         case BRAUN_EFFECT_FORCE:
-            if (!ok_point_ref(s, e->a)) return fail(err, A, E, k, "force on an unknown point");
-            if (body_of(s, e->a) < 0) return fail(err, A, E, k, "force on a ground point");
+            if (!ok_point_ref(s, e->a)) return braun_scene__fail(err, A, E, k, "force on an unknown point");
+            if (body_of(s, e->a) < 0) return braun_scene__fail(err, A, E, k, "force on a ground point");
             s->energy_input = 1;
             break;
         case BRAUN_EFFECT_TORQUE:
             if (!check_pair(s, e))
-                return fail(err, A, E, k, "torque needs a rigid body and a different rigid "
+                return braun_scene__fail(err, A, E, k, "torque needs a rigid body and a different rigid "
                                           "body or the ground");
             s->energy_input = 1;
             break;
         case BRAUN_EFFECT_MOTOR:
             if (!check_pair(s, e))
-                return fail(err, A, E, k, "motor needs a rigid rotor and a different rigid "
+                return braun_scene__fail(err, A, E, k, "motor needs a rigid rotor and a different rigid "
                                           "stator or the ground");
-            if (e->omega0 == 0) return fail(err, A, E, k, "motor no-load speed must not be 0");
+            if (e->omega0 == 0) return braun_scene__fail(err, A, E, k, "motor no-load speed must not be 0");
             s->energy_input = 1;
             break;
-        default: return fail(err, A, E, k, "unknown effect type");
+        default: return braun_scene__fail(err, A, E, k, "unknown effect type");
         }
     }
     return BRAUN_OK;
@@ -244,7 +245,7 @@ static int check_masses(const braun_scene *s, braun_scene_error *err)
             carried = s->rods[r].mass > 0 &&
                       (body_of(s, s->rods[r].a) == k || body_of(s, s->rods[r].b) == k);
         if (!carried)
-            return fail(err, BRAUN_ERR_ARGUMENT, BRAUN_SCENE_ELEM_BODY, k,
+            return braun_scene__fail(err, BRAUN_ERR_ARGUMENT, BRAUN_SCENE_ELEM_BODY, k,
                         "particle has no mass (none of its own and no rod with mass at it)");
     }
     return BRAUN_OK;
@@ -253,15 +254,15 @@ static int check_masses(const braun_scene *s, braun_scene_error *err)
 int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err)
 {
     const int A = BRAUN_ERR_ARGUMENT, S = BRAUN_SCENE_ELEM_SCENE;
-    fail(err, BRAUN_OK, S, -1, NULL);
-    if (!s || !sys) return fail(err, A, S, -1, "no scene or no system");
+    braun_scene__fail(err, BRAUN_OK, S, -1, NULL);
+    if (!s || !sys) return braun_scene__fail(err, A, S, -1, "no scene or no system");
     if (s->nbodies < 0 || s->npoints < 0 || s->nrods < 0 || s->njoints < 0 ||
         s->nknives < 0 || s->neffects < 0)
-        return fail(err, A, S, -1, "negative element count");
+        return braun_scene__fail(err, A, S, -1, "negative element count");
     if ((s->nbodies && !s->bodies) || (s->npoints && !s->points) || (s->nrods && !s->rods) ||
         (s->njoints && !s->joints) || (s->nknives && !s->knives) ||
         (s->neffects && !s->effects))
-        return fail(err, A, S, -1, "element array missing");
+        return braun_scene__fail(err, A, S, -1, "element array missing");
     int st = check_bodies(s, err);
     if (!st) st = check_points(s, err);
     if (!st) st = check_rods(s, err);
@@ -279,7 +280,7 @@ int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err)
         n += s->bodies[k].kind == BRAUN_BODY_RIGID ? 3 : 2;
         if (n > max) break;
     }
-    if (n == 0) return fail(err, BRAUN_ERR_SIZE, S, -1, "the scene has no moving body");
+    if (n == 0) return braun_scene__fail(err, BRAUN_ERR_SIZE, S, -1, "the scene has no moving body");
     for (int k = 0; k < s->nrods && m <= max; k++) s->rods[k].row = (int)m++;
     s->driven = 0;
     for (int k = 0; k < s->njoints && m <= max; k++) {
@@ -289,7 +290,7 @@ int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err)
     }
     for (int k = 0; k < s->nknives; k++) s->knives[k].row = k;
     if (n > max || m > max || s->nknives > max)
-        return fail(err, BRAUN_ERR_SIZE, S, -1,
+        return braun_scene__fail(err, BRAUN_ERR_SIZE, S, -1,
                     s->nrods > 0 ? "more than 4096 coordinates or rows (a scene with rods is "
                                    "dense)"
                                  : "more than 1048576 coordinates or rows");

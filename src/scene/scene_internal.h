@@ -57,6 +57,10 @@ void braun_scene__rod_rows(const braun_scene *s, const braun_scene_rod *r, const
 
 /* ------------------------------------------------------------- joints */
 int braun_scene__joint_rows(const braun_scene_joint *j);
+
+/* Record a build error in err (may be NULL) and return status. */
+int braun_scene__fail(braun_scene_error *err, int status, int element, int index,
+                      const char *what);
 void braun_scene__revolute_rows(const braun_scene *s, const braun_scene_joint *j,
                                 const braun_real *q, const braun_real *v, braun_real *phi,
                                 braun_real *A, braun_real *b, braun_real *bv);

@@ -210,17 +210,6 @@ static int power_sparse(braun_real t, const braun_real *q, const braun_real *v,
 }
 
 /* ---------------------------------------------------------------- build */
-static int fail(braun_scene_error *err, int status, int element, int index, const char *what)
-{
-    if (err) {
-        err->status = status;
-        err->element = element;
-        err->index = index;
-        err->what = what;
-    }
-    return status;
-}
-
 /* Pattern of the rows of one element: its bodies' coordinates, sorted. */
 static int fill_rows(const braun_scene *s, braun_scene_sparse *sp, int first, int rows,
                      const int *bodies, int nb, int at)
@@ -242,14 +231,14 @@ int braun_scene_build_sparse(braun_scene *s, braun_system *sys, void *buffer, si
     int st = braun_scene_build(s, &dense, err);
     if (st) return st;
     if (s->nrods > 0)
-        return fail(err, BRAUN_ERR_ARGUMENT, BRAUN_SCENE_ELEM_ROD, 0,
+        return braun_scene__fail(err, BRAUN_ERR_ARGUMENT, BRAUN_SCENE_ELEM_ROD, 0,
                     "a scene with rods has no sparsity (a rod couples the mass blocks of its "
                     "ends)");
     int rows_max;
     long nnz;
     measure(s, &rows_max, &nnz);
     if (!buffer || bytes < bytes_for(s, rows_max, nnz))
-        return fail(err, BRAUN_ERR_BUFFER, S, -1,
+        return braun_scene__fail(err, BRAUN_ERR_BUFFER, S, -1,
                     "buffer smaller than braun_scene_sparse_size() bytes");
 
     /* Carve: the store, the scratch, the ints. */
