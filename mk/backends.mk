@@ -19,7 +19,7 @@ ifeq ($(BRAUN_LAPACK)$(wildcard src/backends/braun_lapack.c),1src/backends/braun
 BACKEND_SRC += src/backends/braun_lapack.c
 BACKEND_CPPFLAGS += -DBRAUN_WITH_LAPACK
 BACKEND_LDLIBS += -llapack -lblas
-BACKEND_DEPS += liblapack-dev libopenblas0-serial
+BACKEND_DEPS += liblapack-dev
 endif
 ifeq ($(BRAUN_SUITESPARSE)$(wildcard src/backends/braun_suitesparse.c),1src/backends/braun_suitesparse.c)
 BACKEND_SRC += src/backends/braun_suitesparse.c

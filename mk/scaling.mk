@@ -38,7 +38,11 @@ $(SCALING_BIN): $(SCALING_OBJ) $(BUILD)/libbraun_scene.a $(BUILD)/libbraun_backe
 
 scaling-bin: $(SCALING_BIN) $(BUILD)/bin/braun
 
+# The timings assume an optimised BLAS under LAPACK and CHOLMOD: OpenBLAS,
+# single-threaded (CPU time = one core's), which Debian's alternatives then
+# load for -llapack -lblas. Only the study needs it, not the tests.
 scaling: deps-backends
+	@tools/ensure-deps libopenblas0-serial
 	@$(MAKE) --no-print-directory scaling-bin
 	@sh bench/scaling/run.sh --bin $(SCALING_BIN) --braun $(BUILD)/bin/braun \
 	    --out $(SCALING_OUT) --n "$(SCALING_N)" --ladder-n "$(SCALING_LADDER_N)" \
