@@ -52,7 +52,8 @@ BACKENDS_LDLIBS := $(BUILD)/libbraun_backends.a $(BUILD)/libbraun.a $(BACKEND_LD
 # Tests of the backends (tests/test_backend_*.c) link them.
 BACKEND_TEST_BIN := $(filter $(BUILD)/tests/test_backend_%,$(TEST_BIN))
 $(BACKEND_TEST_BIN): $(BUILD)/libbraun_backends.a
-$(BACKEND_TEST_BIN): LDLIBS_ALL := $(BACKENDS_LDLIBS) $(LDLIBS_ALL)
+# (LAPACK always: the tests compute their references with it.)
+$(BACKEND_TEST_BIN): LDLIBS_ALL := $(BACKENDS_LDLIBS) -llapack -lblas $(LDLIBS_ALL)
 
 # The CLI selects backends (--backend).
 $(BUILD)/bin/braun: $(BUILD)/libbraun_backends.a

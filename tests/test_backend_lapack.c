@@ -1101,6 +1101,11 @@ static void test_bench(void **state)
 
 int main(void)
 {
+    if (!braun_linsolver_lapack()) {
+        /* libbraun_backends.a built with BRAUN_LAPACK=0. */
+        printf("[  SKIPPED ] lapack backend not built\n");
+        return 0;
+    }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_table),
         cmocka_unit_test(test_mass),
