@@ -70,7 +70,7 @@ $(BUILD)/obj/tests/%.o: tests/%.c tests/systems/test_systems.h $(HEADERS)
 # test_noalloc counts heap calls through the linker's --wrap.
 LDFLAGS_test_noalloc := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
 
-$(BUILD)/tests/%: tests/%.c tests/test_util.h tests/heap_count.h $(TEST_SUPPORT) $(BUILD)/libbraun.a | deps-test
+$(BUILD)/tests/%: tests/%.c tests/test_util.h tests/heap_count.h tests/heap_interpose.h $(TEST_SUPPORT) $(BUILD)/libbraun.a | deps-test
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) -Itests -Itests/systems $(CFLAGS_ALL) $< $(TEST_SUPPORT) $(BUILD)/libbraun.a -lcmocka $(LDLIBS_ALL) $(LDFLAGS_$*) -o $@
 

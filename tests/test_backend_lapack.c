@@ -20,63 +20,9 @@
 #include "braun_linalg.h"
 #include "braun_models.h"
 #include "test_systems.h"
+#include "heap_interpose.h"
 
 /* ------------------------------------------------------------------ */
-/* Heap calls: the executable's malloc family replaces glibc's (its
- * documented interposition) and counts. Not under AddressSanitizer, which
- * brings its own; valgrind replaces these too (heap_counting() sees it). */
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
-void *__libc_malloc(size_t size);
-void *__libc_calloc(size_t n, size_t size);
-void *__libc_realloc(void *p, size_t size);
-void __libc_free(void *p);
-static volatile long heap_calls, heap_allocs, heap_frees;
-void *malloc(size_t size)
-{
-    heap_calls++;
-    heap_allocs++;
-    return __libc_malloc(size);
-}
-void *calloc(size_t n, size_t size)
-{
-    heap_calls++;
-    heap_allocs++;
-    return __libc_calloc(n, size);
-}
-void *realloc(void *p, size_t size)
-{
-    heap_calls++;
-    return __libc_realloc(p, size);
-}
-void free(void *p)
-{
-    heap_calls++;
-    if (p) heap_frees++;
-    __libc_free(p);
-}
-#else
-static volatile long heap_calls, heap_allocs, heap_frees;
-#endif
-
-/* Whether the counters above see this program's allocations. */
-static int heap_counting(void)
-{
-    /* Through pointers: a direct call could be inlined from this file and
-     * miss what replaces the symbol (valgrind). */
-    void *(*volatile alloc)(size_t) = malloc;
-    void (*volatile release)(void *) = free;
-    const long before = heap_allocs;
-    release(alloc(16));
-    return heap_allocs > before;
-}
-
-/* ------------------------------------------------------------------ */
-static double frand(unsigned long long *s)
-{
-    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(*s >> 11) / 4503599627370496.0 - 1.0; /* [-1, 1) */
-}
-
 static braun_real *vec(size_t len)
 {
     braun_real *p = calloc(len ? len : 1, sizeof *p);
@@ -88,8 +34,8 @@ static braun_real *vec(size_t len)
 static void random_spd(int n, unsigned long long seed, braun_real *M)
 {
     braun_real *B = vec((size_t)n * (size_t)n), *d = vec((size_t)n);
-    for (int i = 0; i < n * n; i++) B[i] = frand(&seed);
-    for (int i = 0; i < n; i++) d[i] = 1.25 + 0.75 * frand(&seed);
+    for (int i = 0; i < n * n; i++) B[i] = test_frand(&seed);
+    for (int i = 0; i < n; i++) d[i] = 1.25 + 0.75 * test_frand(&seed);
     for (int i = 0; i < n; i++)
         for (int j = 0; j <= i; j++) {
             double s = 0;
@@ -103,7 +49,7 @@ static void random_spd(int n, unsigned long long seed, braun_real *M)
 
 static void random_fill(int len, unsigned long long seed, braun_real *x)
 {
-    for (int i = 0; i < len; i++) x[i] = frand(&seed);
+    for (int i = 0; i < len; i++) x[i] = test_frand(&seed);
 }
 
 /* max_i |a_i - b_i| / max(1, max_i |b_i|). */
@@ -345,7 +291,7 @@ static int build_a(enum a_kind kind, int rows, int n, unsigned long long seed, b
             unsigned long long s2 = seed + 1000 + (unsigned long long)i;
             for (int k = 0; k < n; k++) A[i * n + k] = 0;
             for (int j = 0; j < indep; j++) {
-                double c = frand(&s2);
+                double c = test_frand(&s2);
                 for (int k = 0; k < n; k++) A[i * n + k] += c * A[j * n + k];
             }
         }

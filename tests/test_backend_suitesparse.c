@@ -16,62 +16,12 @@
 
 #include "test_util.h"
 #include "braun_backends.h"
-
-/* Heap calls of the per-call operations: the executable's malloc family
- * replaces glibc's (its documented interposition; CHOLMOD allocates through
- * the same symbols) and counts. Not under AddressSanitizer, which brings its
- * own; valgrind replaces these too (heap_counting() sees it). */
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
-void *__libc_malloc(size_t size);
-void *__libc_calloc(size_t n, size_t size);
-void *__libc_realloc(void *p, size_t size);
-void __libc_free(void *p);
-static volatile long heap_calls;
-void *malloc(size_t size)
-{
-    heap_calls++;
-    return __libc_malloc(size);
-}
-void *calloc(size_t n, size_t size)
-{
-    heap_calls++;
-    return __libc_calloc(n, size);
-}
-void *realloc(void *p, size_t size)
-{
-    heap_calls++;
-    return __libc_realloc(p, size);
-}
-void free(void *p)
-{
-    heap_calls++;
-    __libc_free(p);
-}
-#else
-static volatile long heap_calls;
-#endif
-
-static int heap_counting(void)
-{
-    /* Through pointers: a direct call could be inlined and miss what
-     * replaces the symbol (valgrind). */
-    void *(*volatile alloc)(size_t) = malloc;
-    void (*volatile release)(void *) = free;
-    const long before = heap_calls;
-    release(alloc(16));
-    return heap_calls > before;
-}
+#include "heap_interpose.h"
 
 /* LAPACK (linked for the backend tests): minimum-norm least squares by SVD. */
 void dgelsd_(const int *m, const int *n, const int *nrhs, double *a, const int *lda, double *b,
              const int *ldb, double *s, const double *rcond, int *rank, double *work,
              const int *lwork, int *iwork, int *info);
-
-static double frand(unsigned long long *s)
-{
-    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(*s >> 11) / 4503599627370496.0 - 1.0; /* [-1, 1) */
-}
 
 static void *xcalloc(size_t count, size_t size)
 {
@@ -237,16 +187,16 @@ static void ts_mass(tsys *t, int kind, unsigned long long *seed)
 {
     for (int k = 0; k < t->nb; k++) {
         double *Mb = t->M + 9 * k;
-        double mass = 1.5 + frand(seed), inertia = 0.2 + 0.1 * frand(seed);
+        double mass = 1.5 + test_frand(seed), inertia = 0.2 + 0.1 * test_frand(seed);
         memset(Mb, 0, 9 * sizeof *Mb);
         Mb[0] = Mb[4] = mass;
         Mb[8] = inertia;
         if (kind == 1) {
-            double cx = 0.3 * frand(seed), cy = 0.3 * frand(seed), B[9];
+            double cx = 0.3 * test_frand(seed), cy = 0.3 * test_frand(seed), B[9];
             Mb[2] = Mb[6] = -mass * cy;
             Mb[5] = Mb[7] = mass * cx;
             Mb[8] += mass * (cx * cx + cy * cy);
-            for (int i = 0; i < 9; i++) B[i] = 0.3 * frand(seed);
+            for (int i = 0; i < 9; i++) B[i] = 0.3 * test_frand(seed);
             for (int i = 0; i < 3; i++)
                 for (int j = 0; j < 3; j++)
                     for (int l = 0; l < 3; l++) Mb[3 * i + j] += B[3 * l + i] * B[3 * l + j];
@@ -271,7 +221,7 @@ static void chain_config(int N, unsigned long long *seed, double *q, double *len
 {
     double x = 0, y = 0;
     for (int k = 0; k < N; k++) {
-        double th = 3.14159 * frand(seed), l = 1 + 0.25 * frand(seed);
+        double th = 3.14159 * test_frand(seed), l = 1 + 0.25 * test_frand(seed);
         len[k] = l;
         q[3 * k] = x + 0.5 * l * cos(th);
         q[3 * k + 1] = y + 0.5 * l * sin(th);
@@ -520,11 +470,11 @@ static void check_slot(void *st, const tsys *t, const dref *d, int slot, double 
     for (int kind = 0; kind < 2; kind++) {
         /* kind 0: consistent r = C y; kind 1: random r (inconsistent when
          * rank < rows). */
-        for (int j = 0; j < n; j++) y[j] = frand(&seed);
+        for (int j = 0; j < n; j++) y[j] = test_frand(&seed);
         if (kind == 0)
             c_mul(d, y, r);
         else
-            for (int i = 0; i < rows; i++) r[i] = frand(&seed);
+            for (int i = 0; i < rows; i++) r[i] = test_frand(&seed);
         for (int i = 0; i < rows; i++) rr[i] = (braun_real)r[i];
         ref_pinv(d, r, xref, rcond);
         double scale = amax(n, xref) + 1;
@@ -553,7 +503,7 @@ static void check_slot(void *st, const tsys *t, const dref *d, int slot, double 
     }
 
     /* null_project against z - C^+ C z; then C N z = 0 and N N z = N z. */
-    for (int j = 0; j < n; j++) z0[j] = frand(&seed), z[j] = (braun_real)z0[j];
+    for (int j = 0; j < n; j++) z0[j] = test_frand(&seed), z[j] = (braun_real)z0[j];
     c_mul(d, z0, tmp);
     ref_pinv(d, tmp, xref, rcond);
     for (int j = 0; j < n; j++) zref[j] = z0[j] - xref[j];
@@ -570,8 +520,8 @@ static void check_slot(void *st, const tsys *t, const dref *d, int slot, double 
         braun_real *A = rvec((size_t)t->row_ptr[rows] + 1), *atil = rvec((size_t)n),
                    *res = rvec((size_t)rows);
         for (int k = 0; k < t->row_ptr[rows]; k++) A[k] = (braun_real)t->A[k];
-        for (int j = 0; j < n; j++) y[j] = frand(&seed), atil[j] = (braun_real)y[j];
-        for (int i = 0; i < rows; i++) r[i] = frand(&seed), res[i] = (braun_real)r[i];
+        for (int j = 0; j < n; j++) y[j] = test_frand(&seed), atil[j] = (braun_real)y[j];
+        for (int i = 0; i < rows; i++) r[i] = test_frand(&seed), res[i] = (braun_real)r[i];
         assert_int_equal(LS()->factor_c(st, slot, rows, A, (braun_real)tol, atil, res), rank);
         c_mul(d, y, tmp);
         for (int i = 0; i < rows; i++) assert_near(res[i], r[i] - tmp[i], 1e-13 * (cnorm + 1) * 4);
@@ -643,7 +593,7 @@ static void test_mass(void **state)
         unsigned long long seed = 5;
         double *b = dvec((size_t)n), *ref = dvec((size_t)n);
         braun_real *x = rvec((size_t)n), *y = rvec((size_t)n), *bb = rvec((size_t)n);
-        for (int j = 0; j < n; j++) b[j] = frand(&seed), bb[j] = (braun_real)b[j];
+        for (int j = 0; j < n; j++) b[j] = test_frand(&seed), bb[j] = (braun_real)b[j];
 
         /* R^-T b: forward substitution with the dense R^T. */
         for (int i = 0; i < n; i++) {
@@ -737,7 +687,7 @@ static void test_stars(void **state)
     q[2] = 0.4, q[3] = 1.0, q[4] = 0.2, q[5] = -0.3;
     for (int k = 2; k < K + 2; k++) {
         const int h = k % 2;
-        double th = 3.14159 * frand(&seed), l = 1 + 0.3 * frand(&seed), s0 = 0.5 * frand(&seed);
+        double th = 3.14159 * test_frand(&seed), l = 1 + 0.3 * test_frand(&seed), s0 = 0.5 * test_frand(&seed);
         double ax = q[3 * h] + s0 * cos(q[3 * h + 2]), ay = q[3 * h + 1] + s0 * sin(q[3 * h + 2]);
         q[3 * k] = ax + 0.5 * l * cos(th);
         q[3 * k + 1] = ay + 0.5 * l * sin(th);
@@ -809,7 +759,7 @@ static void test_two_slots(void **state)
     unsigned long long seed = 3;
     double *r = dvec((size_t)t.rows), *xref = dvec((size_t)t.n);
     braun_real *rr = rvec((size_t)t.rows), *x = rvec((size_t)t.n);
-    for (int i = 0; i < t.rows; i++) r[i] = frand(&seed), rr[i] = (braun_real)r[i];
+    for (int i = 0; i < t.rows; i++) r[i] = test_frand(&seed), rr[i] = (braun_real)r[i];
     ref_pinv(&d0, r, xref, 1e-12);
     LS()->pinv(st, 0, rr, x);
     assert_le(rdiff(t.n, x, xref), 1e-11 * (amax(t.n, xref) + 1));
@@ -975,7 +925,7 @@ static void test_path_switching(void **state)
     const int last = t.row_ptr[t.rows - 1], nc = t.row_ptr[t.rows] - last;
     double dep[8], ind[8];
     unsigned long long seed = 9;
-    for (int j = 0; j < nc; j++) dep[j] = t.A[last + j], ind[j] = dep[j] + 0.5 * frand(&seed);
+    for (int j = 0; j < nc; j++) dep[j] = t.A[last + j], ind[j] = dep[j] + 0.5 * test_frand(&seed);
     void *st = be_create(&t);
     be_factor_mass(st, &t);
     const int seq[16] = {0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0};
@@ -1182,7 +1132,7 @@ static void test_no_allocation(void **state)
     for (int i = 0; i < 9 * t.nb; i++) M[i] = (braun_real)t.M[i];
     for (int k = 0; k < t.row_ptr[rows]; k++) A[k] = (braun_real)t.A[k];
     unsigned long long seed = 3;
-    for (int j = 0; j < n; j++) atil[j] = (braun_real)frand(&seed);
+    for (int j = 0; j < n; j++) atil[j] = (braun_real)test_frand(&seed);
     void *st = be_create(&t);
     long calls = 0;
     braun_real rn;
@@ -1193,7 +1143,7 @@ static void test_no_allocation(void **state)
         LS()->solve_r(st, x, x);
         LS()->mul_r(st, x, y);
         assert_true(LS()->factor_c(st, 1, m, A, 1e-13, NULL, NULL) == m);
-        for (int i = 0; i < rows; i++) res[i] = (braun_real)frand(&seed);
+        for (int i = 0; i < rows; i++) res[i] = (braun_real)test_frand(&seed);
         assert_true(LS()->factor_c(st, 0, rows, A, 1e-13, atil, res) == rows);
         LS()->pinv(st, 0, res, x);
         LS()->lsq(st, 1, res, x, &rn);
@@ -1318,7 +1268,7 @@ static braun_system sim_system(sim_chain *c, int dup, int knife, double *q, doub
     /* Velocities consistent with the joints (none with a knife edge). */
     double vx = 0, vy = 0;
     for (int k = 0; k < NS; k++) {
-        double w = knife ? 0 : 0.8 * frand(&seed), th = q[3 * k + 2];
+        double w = knife ? 0 : 0.8 * test_frand(&seed), th = q[3 * k + 2];
         double ex = -sin(th), ey = cos(th);
         v[3 * k] = vx + 0.5 * c->len[k] * w * ex;
         v[3 * k + 1] = vy + 0.5 * c->len[k] * w * ey;
@@ -1432,7 +1382,7 @@ static void test_bench(void **state)
                        *x = rvec((size_t)t.n);
             for (int k = 0; k < t.row_ptr[t.rows]; k++) A[k] = (braun_real)t.A[k];
             unsigned long long seed = 1;
-            for (int i = 0; i < t.rows; i++) r[i] = (braun_real)frand(&seed);
+            for (int i = 0; i < t.rows; i++) r[i] = (braun_real)test_frand(&seed);
             const double tol = default_tol(t.rows, t.n);
             int reps = 0, rank = 0;
             double tf = 0, tp = 0, tn = 0;

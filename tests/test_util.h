@@ -36,6 +36,13 @@
         }                                                                        \
     } while (0)
 
+/* A reproducible uniform number in [-1, 1) (64-bit LCG, state *s). */
+static inline double test_frand(unsigned long long *s)
+{
+    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(*s >> 11) / 4503599627370496.0 - 1.0;
+}
+
 /* A braun_data with its buffer from malloc (tests only). */
 typedef struct test_sim {
     braun_model model;
