@@ -31,6 +31,15 @@ static int nonfinite_culprit(braun_data *d, braun_real t, unsigned want)
     return st;
 }
 
+/* A factorization of C_v (slot 0) or C_q (slot 1) of `rows` rows found
+ * this rank: kept for the corrections, counted in the statistics. */
+static void record_rank(braun_data *d, int slot, int rank, int rows)
+{
+    braun__priv(d)->rank[slot] = rank;
+    d->stats.constraint_factorizations++;
+    if (rank < rows) d->stats.rank_deficient++;
+}
+
 #ifndef BRAUN_NO_LINSOLVER
 /* Backend path of the constraint factorizations: C_q (when separate, and
  * only when the corrections need it) and C_v, with b_v -= C_v atil. */
@@ -43,9 +52,7 @@ static int factor_backend(braun_data *d, int wphi)
     if (pv->need_fq && wphi) {
         int rq = pv->ls->factor_c(pv->ls_state, 1, m, A, rank_tol(d, m), NULL, NULL);
         if (rq < 0) return braun__fail(d, rq, "linear solver (C_q)", -1, -1, 0, (double)d->t);
-        pv->rank[1] = rq;
-        d->stats.constraint_factorizations++;
-        if (rq < m) d->stats.rank_deficient++;
+        record_rank(d, 1, rq, m);
     }
     int rank = pv->ls->factor_c(pv->ls_state, 0, rows, A, rank_tol(d, rows), pv->atil, pv->bv);
     if (rank < 0) return braun__fail(d, rank, "linear solver (C_v)", -1, -1, 0, (double)d->t);
@@ -112,16 +119,11 @@ int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
             }
             if (pv->need_fq && wphi) {
                 for (size_t i = 0; i < (size_t)m * (size_t)n; i++) pv->fq.a[i] = C[i];
-                int rq = braun_qrcp_factor(&pv->fq, rank_tol(d, m));
-                pv->rank[1] = rq;
-                d->stats.constraint_factorizations++;
-                if (rq < m) d->stats.rank_deficient++;
+                record_rank(d, 1, braun_qrcp_factor(&pv->fq, rank_tol(d, m)), m);
             }
             rank = braun_qrcp_factor(&pv->fv, rank_tol(d, rows));
         }
-        pv->rank[0] = rank;
-        d->stats.constraint_factorizations++;
-        if (rank < rows) d->stats.rank_deficient++;
+        record_rank(d, 0, rank, rows);
         /* Ideal constraint force, weighted: u = C_v^+ (b_v - C_v atil) (Eq. 11). */
         braun__pinv(pv, 0, pv->bv, pv->u);
         for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i] + pv->u[i];

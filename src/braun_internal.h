@@ -29,7 +29,7 @@ typedef struct braun_priv {
     braun_real *Avals;    /* nnz = sp->row_ptr[rows] */
     braun_real *Mvals;    /* mass callback output: mass_count values */
     size_t mass_count;    /* n*n dense, sum of block^2 sparse */
-    braun_real *Mdense;   /* n*n: M for a dense backend (NULL otherwise) */
+    braun_real *Mdense;   /* n*n: M of a sparse system for a dense backend (else NULL) */
     int dense_A;          /* A holds the dense rows x n Jacobian */
     int rank[2];          /* numerical rank of C_v (slot 0) and C_q (slot 1) */
     braun_chol chol;      /* M = R^T R (R, reciprocal pivots, envelope) */

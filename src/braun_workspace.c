@@ -58,7 +58,8 @@ static size_t layout(const braun_model *model, unsigned char *base,
     /* Mass callback output: the built-in Cholesky factors in place (in R);
      * a backend, or a sparse system, needs its own buffer. */
     TAKE(P(Mvals), (ls || sp) ? mass_count : 0);
-    TAKE(P(Mdense), (ls && dense) ? nn : 0);
+    /* A dense backend given a sparse system gets M scattered here. */
+    TAKE(P(Mdense), (ls && dense && sp) ? nn : 0);
     TAKE(P(phi), rows);
     TAKE(P(b), m);
     TAKE(P(bv), rows);
@@ -101,7 +102,7 @@ static size_t layout(const braun_model *model, unsigned char *base,
         pv->dense_A = dense;
         /* Buffers this configuration does not use point nowhere. */
         pv->Mvals = (ls || sp) ? pv->Mvals : NULL;
-        pv->Mdense = (ls && dense) ? pv->Mdense : NULL;
+        pv->Mdense = (ls && dense && sp) ? pv->Mdense : NULL;
         pv->A = dense ? pv->A : NULL;
         pv->Avals = sp ? pv->Avals : NULL;
         pv->rank[0] = rows;
@@ -212,8 +213,6 @@ static int factor_mass(braun_data *d, braun_real t, const braun_real *q)
         braun_real *dst = BRAUN_LS(pv) ? pv->Mdense : pv->chol.R;
         scatter_mass_blocks(pv->sp, n, out, dst);
         M = dst;
-    } else if (!pv->sp && BRAUN_LS(pv)) {
-        M = pv->Mvals;
     }
     if (BRAUN_LS(pv)) st = pv->ls->factor_mass(pv->ls_state, M, tol, &bi, &bj, &bad);
     else st = braun_chol_factor(&pv->chol, M, tol, &bi, &bj, &bad);
