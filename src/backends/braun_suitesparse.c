@@ -191,20 +191,13 @@ static void fill_nan(int len, braun_real *x)
     for (int i = 0; i < len; i++) x[i] = (braun_real)NAN;
 }
 
+/* BLAS (linked under CHOLMOD and SPQR anyway): the scaled 2-norm. */
+double dnrm2_(const int *n, const double *x, const int *incx);
+
 static double nrm2(int len, const double *x)
 {
-    double scale = 0, ssq = 1;
-    for (int i = 0; i < len; i++) {
-        double a = fabs(x[i]);
-        if (a == 0) continue;
-        if (scale < a) {
-            ssq = 1 + ssq * (scale / a) * (scale / a);
-            scale = a;
-        } else {
-            ssq += (a / scale) * (a / scale);
-        }
-    }
-    return scale * sqrt(ssq);
+    const int one = 1;
+    return dnrm2_(&len, x, &one);
 }
 
 static void qr_free(ss_qr *q, cholmod_common *cc)
