@@ -1,9 +1,19 @@
 # libbraun — top-level build.
-#   make              build/libbraun.a and build/bin/braun
+#   make              build/libbraun.a, build/libbraun_host.a and build/bin/braun
 #   make test         build and run every test (installs missing Debian packages)
 #   make install      PREFIX=/usr/local DESTDIR=
 #   make clean
 # Options: BRAUN_SINGLE=1 builds braun_real = float.
+#
+# Two tiers (docs/architecture.md), one source list each:
+#   core  src/core/**    C99, libm only, no stdio, no allocator: libbraun.a,
+#                        the same objects for the host and for a Cortex-M
+#                        (mk/firmware.mk); public headers in include/core/.
+#   host  src/host/**    everything that needs an operating system: error
+#                        formatting, reference oracles, scene files (jansson),
+#                        scene-to-C: libbraun_host.a; the backends
+#                        (mk/backends.mk): libbraun_backends.a; the CLI:
+#                        build/bin/braun. Public headers in include/host/.
 
 CC      ?= cc
 AR      ?= ar
@@ -14,65 +24,101 @@ BUILD   ?= build
 WARN    := -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes
 OPT     ?= -O2 -g
 CFLAGS  ?=
-CPPFLAGS_ALL := -Iinclude -Isrc $(CPPFLAGS)
+# Core sources see the core's headers only: a core file that includes a
+# host header does not compile.
+CORE_CPPFLAGS := -Iinclude/core -Isrc/core
+HOST_CPPFLAGS := -Iinclude/core -Iinclude/host -Isrc/core
+CPPFLAGS_ALL := $(HOST_CPPFLAGS) $(CPPFLAGS)
 ifeq ($(BRAUN_SINGLE),1)
 CPPFLAGS_ALL += -DBRAUN_SINGLE
+CORE_CPPFLAGS += -DBRAUN_SINGLE
 endif
 CFLAGS_ALL := -std=c99 $(OPT) $(WARN) $(CFLAGS)
 LDLIBS_ALL := -lm $(LDLIBS)
+# Every object records the headers it read (-MMD -MP): a change to a header
+# rebuilds exactly the objects that include it.
+DEPFLAGS = -MMD -MP
 
-# Core library: src/*.c and src/models/*.c depend on nothing but libm.
-LIB_SRC := $(sort $(wildcard src/*.c) $(wildcard src/models/*.c))
-# Host conveniences (allocation, message formatting): in the host library,
-# never in the firmware build.
-HOST_SRC := $(sort $(wildcard src/host/*.c))
-CLI_SRC  := $(sort $(wildcard src/cli/*.c))
-LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/obj/%.o) $(HOST_SRC:%.c=$(BUILD)/obj/%.o)
+# The core tier: libbraun.a.
+CORE_SRC := $(sort $(shell find src/core -name '*.c'))
+# The host tier's library (error formatting, reference oracles, scene files,
+# scene-to-C): libbraun_host.a, with jansson.
+HOST_SRC := $(sort $(wildcard src/host/error/*.c src/host/reference/*.c \
+                              src/host/scene_file/*.c src/host/gen_c/*.c))
+CLI_SRC  := $(sort $(wildcard src/host/cli/*.c))
+CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/obj/%.o)
+HOST_OBJ := $(HOST_SRC:%.c=$(BUILD)/obj/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/obj/%.o)
-HEADERS  := $(wildcard include/*.h) $(wildcard src/*.h) $(wildcard src/*/*.h)
+HOST_DEPS := libjansson-dev
+# Link order of a host program: the host library, then the core, then jansson.
+HOST_LDLIBS := $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a -ljansson -lm
 
 TEST_SRC  := $(sort $(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
+VERSION := $(shell sed -n 's/^\#define BRAUN_VERSION "\(.*\)"/\1/p' include/core/braun.h)
+
 # Keep intermediate objects (test support) between runs.
 .SECONDARY:
 
-.PHONY: all lib cli test test-unit test-cli test-sanitize test-core-suites deps-test install clean convergence
+.PHONY: all lib cli test test-unit test-cli test-sanitize test-core-suites deps-test deps-host \
+        install clean convergence
 all: lib cli
-lib: $(BUILD)/libbraun.a
+lib: $(BUILD)/libbraun.a $(BUILD)/libbraun_host.a
 cli: $(BUILD)/bin/braun
 
-$(BUILD)/obj/%.o: %.c $(HEADERS)
-	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -c $< -o $@
+deps-host:
+	@tools/ensure-deps $(HOST_DEPS)
 
-$(BUILD)/libbraun.a: $(LIB_OBJ)
+$(CORE_OBJ): $(BUILD)/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CORE_CPPFLAGS) $(CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
+
+# Host objects (and everything else under obj/: tests, bench, compare).
+$(BUILD)/obj/src/host/%.o: src/host/%.c | deps-host
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
+
+$(BUILD)/libbraun.a: $(CORE_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@
 	$(AR) rcs $@ $^
 
-$(BUILD)/bin/braun: $(CLI_OBJ) $(BUILD)/libbraun.a
+$(BUILD)/libbraun_host.a: $(HOST_OBJ)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) $(CLI_OBJ) $(BUILD)/libbraun.a $(LDLIBS_ALL) -o $@
+	rm -f $@
+	$(AR) rcs $@ $^
+
+$(BUILD)/bin/braun: $(CLI_OBJ) $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) $(CLI_OBJ) $(LDLIBS_ALL) -o $@
+
+# The CLI reads scene files and reports against the references.
+$(BUILD)/bin/braun: LDLIBS_ALL := $(HOST_LDLIBS) $(LDLIBS_ALL)
 
 # ---------------------------------------------------------------- tests
 TEST_DEPS := libcmocka-dev
 
 deps-test:
-	@tools/ensure-deps $(TEST_DEPS)
+	@tools/ensure-deps $(TEST_DEPS) $(HOST_DEPS)
+
+# Tests may reach into either tier's private headers (element internals,
+# kernels): they test them.
+TEST_CPPFLAGS = $(CPPFLAGS_ALL) -Isrc/core/scene -Isrc/core/models -Itests -Itests/systems
 
 # Test-only systems with known solutions, linked into every test binary.
 TEST_SUPPORT := $(BUILD)/obj/tests/systems/test_systems.o
-$(BUILD)/obj/tests/%.o: tests/%.c tests/systems/test_systems.h $(HEADERS)
+$(BUILD)/obj/tests/%.o: tests/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) -Itests -Itests/systems $(CFLAGS_ALL) -c $< -o $@
+	$(CC) $(TEST_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
 # test_noalloc counts heap calls through the linker's --wrap.
 LDFLAGS_test_noalloc := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
 
-$(BUILD)/tests/%: tests/%.c tests/test_util.h tests/heap_count.h tests/heap_interpose.h $(TEST_SUPPORT) $(BUILD)/libbraun.a | deps-test
+$(BUILD)/tests/%: tests/%.c $(TEST_SUPPORT) $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a | deps-test
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) -Itests -Itests/systems $(CFLAGS_ALL) $< $(TEST_SUPPORT) $(BUILD)/libbraun.a -lcmocka $(LDLIBS_ALL) $(LDFLAGS_$*) -o $@
+	$(CC) $(TEST_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -MF $(BUILD)/tests/$*.d $< $(TEST_SUPPORT) \
+	    $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a -lcmocka $(LDLIBS_ALL) -ljansson $(LDFLAGS_$*) -o $@
 
 # Suites added by other parts of the project (mk/*.mk append to TEST_SUITES
 # the command of a suite that ends with "N passed, M failed", and to
@@ -108,20 +154,24 @@ convergence: $(BUILD)/bin/braun
 	@sh tools/convergence.sh $(BUILD)/bin/braun
 
 # ---------------------------------------------------------------- install
+# Headers flat under include/, the three archives, pkg-config files from
+# their .pc.in templates (braun, braun-host, braun-backends), the tool.
+PC_SUBST = sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' \
+               -e 's|@BACKEND_LDLIBS@|$(BACKEND_LDLIBS)|g'
 install: all $(BUILD)/libbraun_backends.a
 	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
-	install -m 644 include/braun.h include/braun_models.h include/braun_host.h \
-	    include/braun_linsolver.h include/braun_backends.h $(DESTDIR)$(PREFIX)/include/
-	install -m 644 $(BUILD)/libbraun.a $(BUILD)/libbraun_backends.a $(DESTDIR)$(PREFIX)/lib/
+	install -m 644 include/core/*.h include/host/*.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(BUILD)/libbraun.a $(BUILD)/libbraun_host.a $(BUILD)/libbraun_backends.a \
+	    $(DESTDIR)$(PREFIX)/lib/
 	install -m 755 $(BUILD)/bin/braun $(DESTDIR)$(PREFIX)/bin/
-	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/^#define BRAUN_VERSION "\(.*\)"/\1/p' include/braun.h)|g' \
-	    braun.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/braun.pc
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\n\nName: braun-backends\nDescription: LAPACK and SuiteSparse backends of libbraun (braun_backends.h)\nVersion: %s\nRequires: braun\nLibs: -L$${libdir} -lbraun_backends\nLibs.private: %s\n' \
-	    '$(PREFIX)' '$(shell sed -n 's/^#define BRAUN_VERSION "\(.*\)"/\1/p' include/braun.h)' '$(BACKEND_LDLIBS)' \
-	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/braun-backends.pc
+	for pc in braun braun-host braun-backends; do \
+	    $(PC_SUBST) $$pc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/$$pc.pc || exit 1; done
 
 clean:
 	rm -rf $(BUILD)
 
 # Feature areas keep their rules in mk/*.mk (scenes, compare, firmware, ...).
 -include $(sort $(wildcard mk/*.mk))
+
+# The headers each object read, recorded by -MMD.
+-include $(shell find $(BUILD)/obj $(BUILD)/tests -name '*.d' 2>/dev/null)

@@ -8,7 +8,7 @@
 
 #include "braun.h"
 #include "braun_models.h"
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 
 /* Linear-algebra backend the rows were measured with. Only the built-in
  * dense kernels exist today; a LAPACK or SuiteSparse build reports its own

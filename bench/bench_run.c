@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "bench.h"
+#include "braun_reference.h"
 
 struct bench_run {
     const bench_target *tg;
@@ -123,7 +124,7 @@ static void floor_start(bench_run *r)
 {
     const braun_builtin *b = r->tg->minimal;
     r->t = 0;
-    for (int i = 0; i < b->minimal_dim; i++) r->y[i] = b->minimal_y0[i];
+    for (int i = 0; i < braun_minimal_find(b->name)->dim; i++) r->y[i] = braun_minimal_find(b->name)->y0[i];
 }
 
 static void record_floor(bench_run *r)

@@ -3,6 +3,8 @@
 #include <string.h>
 
 #include "bench.h"
+#include "braun_reference.h"
+#include "braun_scene_file.h"
 
 static const char *const item_names[BENCH_ITEMS] = {
     "step-none", "step-pv", "step-all", "step-free", "step-floor",
@@ -59,7 +61,7 @@ int bench_target_open(const char *name, bench_target *tg, char *err, size_t errs
     if (b) {
         tg->source = "built-in";
         tg->sys = b->sys;
-        tg->minimal = b->minimal_rhs ? b : NULL;
+        tg->minimal = braun_minimal_find(b->name)->rhs ? b : NULL;
         if (copy_state(tg, b->q0, b->v0)) goto oom;
         return 0;
     }
@@ -87,7 +89,7 @@ int bench_target_open(const char *name, bench_target *tg, char *err, size_t errs
     tg->sys = f->sys;
     /* A scene that reproduces a built-in model has its minimal equation. */
     const braun_builtin *ref = f->reference ? braun_builtin_find(f->reference) : NULL;
-    tg->minimal = ref && ref->minimal_rhs ? ref : NULL;
+    tg->minimal = ref && braun_minimal_find(ref->name)->rhs ? ref : NULL;
     if (copy_state(tg, f->q0, f->v0)) goto oom;
     return 0;
 oom:

@@ -17,7 +17,8 @@
 #include <stdio.h>
 
 #include "braun.h"
-#include "braun_models.h"
+#include "braun_reference.h"
+#include "braun_scene_file.h"
 
 #ifdef BRAUN_SINGLE
 #error "braun-compare measures errors down to 1e-12: build it with braun_real = double"

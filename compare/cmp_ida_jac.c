@@ -31,7 +31,7 @@
 
 #include "cmp.h"
 #ifdef CMP_HAVE_SCENES
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 #endif
 
 

@@ -13,6 +13,7 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "cmp.h"
+#include "braun_reference.h"
 
 #define REF_DIM_MAX 4
 
@@ -110,8 +111,8 @@ cmp_ref *cmp_ref_new_traj(const cmp_target *tg, double T, double h, double dt_ta
 static int minimal_rhs(double t, const double y[], double dydt[], void *params)
 {
     const cmp_target *tg = params;
-    tg->builtin->minimal_rhs(t, y, dydt, tg->builtin->sys.user);
-    for (int i = 0; i < tg->builtin->minimal_dim; i++)
+    braun_minimal_find(tg->builtin->name)->rhs(t, y, dydt, tg->builtin->sys.user);
+    for (int i = 0; i < braun_minimal_find(tg->builtin->name)->dim; i++)
         if (!isfinite(dydt[i])) return GSL_EBADFUNC;
     return GSL_SUCCESS;
 }
@@ -128,22 +129,22 @@ cmp_ref *cmp_ref_new(const cmp_target *tg, cmp_ref_kind kind, double tol)
         }
         return r;
     }
-    if (!b || !b->minimal_to_state || b->minimal_dim > REF_DIM_MAX) return NULL;
-    if (kind == CMP_REF_CLOSED && !b->minimal_exact) return NULL;
-    if (kind == CMP_REF_RK8PD && !b->minimal_rhs) return NULL;
+    if (!b || !braun_minimal_find(b->name)->to_state || braun_minimal_find(b->name)->dim > REF_DIM_MAX) return NULL;
+    if (kind == CMP_REF_CLOSED && !braun_minimal_find(b->name)->exact) return NULL;
+    if (kind == CMP_REF_RK8PD && !braun_minimal_find(b->name)->rhs) return NULL;
     if (kind != CMP_REF_CLOSED && kind != CMP_REF_RK8PD) return NULL;
     cmp_ref *r = calloc(1, sizeof *r);
     if (!r) return NULL;
     r->tg = tg;
     r->kind = kind;
     r->tol = tol;
-    for (int i = 0; i < b->minimal_dim; i++) r->y[i] = b->minimal_y0[i];
+    for (int i = 0; i < braun_minimal_find(b->name)->dim; i++) r->y[i] = braun_minimal_find(b->name)->y0[i];
     if (kind == CMP_REF_RK8PD) {
         /* Errors are returned, never aborted on. */
         gsl_set_error_handler_off();
         r->sys.function = minimal_rhs;
         r->sys.jacobian = NULL;
-        r->sys.dimension = (size_t)b->minimal_dim;
+        r->sys.dimension = (size_t)braun_minimal_find(b->name)->dim;
         r->sys.params = (void *)tg;
         r->drv = gsl_odeiv2_driver_alloc_y_new(&r->sys, gsl_odeiv2_step_rk8pd, 1e-6, tol,
                                                tol);
@@ -190,7 +191,7 @@ int cmp_ref_eval(cmp_ref *r, double t, double *q, double *v)
         return r->offgrid ? cmp_ref_eval(r->offgrid, t, q, v) : -1;
     }
     if (r->kind == CMP_REF_CLOSED) {
-        if (b->minimal_exact(t, y, b->sys.user) < 0) return -1;
+        if (braun_minimal_find(b->name)->exact(t, y, b->sys.user) < 0) return -1;
     } else {
         if (t < r->t) return -1;
         if (t > r->t) {
@@ -201,9 +202,9 @@ int cmp_ref_eval(cmp_ref *r, double t, double *q, double *v)
                 return -1;
             }
         }
-        for (int i = 0; i < b->minimal_dim; i++) y[i] = r->y[i];
+        for (int i = 0; i < braun_minimal_find(b->name)->dim; i++) y[i] = r->y[i];
     }
-    b->minimal_to_state(y, q, v, b->sys.user);
+    braun_minimal_find(b->name)->to_state(y, q, v, b->sys.user);
     return 0;
 }
 

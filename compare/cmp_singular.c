@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "cmp.h"
+#include "braun_reference.h"
 
 #define PI 3.14159265358979323846
 
@@ -41,7 +42,7 @@ int cmp_singularity_scan(const cmp_target *tg, FILE *f)
 {
     const braun_builtin *b = tg->builtin;
     const int n = tg->sys.n, m = tg->sys.m;
-    if (!b || !b->minimal_to_state || b->minimal_dim != 2 || m < 1) return -1;
+    if (!b || !braun_minimal_find(b->name)->to_state || braun_minimal_find(b->name)->dim != 2 || m < 1) return -1;
     const size_t sz = (size_t)n * n + (size_t)m * n + 4 * (size_t)n + 2 * (size_t)m;
     double *M = malloc(sz * sizeof(double));
     if (!M) return -1;
@@ -53,7 +54,7 @@ int cmp_singularity_scan(const cmp_target *tg, FILE *f)
     for (int k = 0; k <= STEPS + 1; k++) {
         const double th = -PI + 2.0 * PI * (double)k / STEPS;
         double y[2] = {th, 0.0};
-        b->minimal_to_state(y, q, v, b->sys.user);
+        braun_minimal_find(b->name)->to_state(y, q, v, b->sys.user);
         double r = rows_at(tg, 0, q, v, M, A, NULL, NULL) ? NAN : cmp_sigma_ratio(n, m, M, A);
         /* A local minimum of the ratio at the previous angle: refine it by
          * golden-section search, then look at the multipliers beside it. */
@@ -62,10 +63,10 @@ int cmp_singularity_scan(const cmp_target *tg, FILE *f)
             for (int it = 0; it < 80; it++) {
                 double a = lo + 0.381966 * (hi - lo), c = hi - 0.381966 * (hi - lo);
                 double ya[2] = {a, 0}, yc[2] = {c, 0};
-                b->minimal_to_state(ya, q, v, b->sys.user);
+                braun_minimal_find(b->name)->to_state(ya, q, v, b->sys.user);
                 rows_at(tg, 0, q, v, M, A, NULL, NULL);
                 double ra = cmp_sigma_ratio(n, m, M, A);
-                b->minimal_to_state(yc, q, v, b->sys.user);
+                braun_minimal_find(b->name)->to_state(yc, q, v, b->sys.user);
                 rows_at(tg, 0, q, v, M, A, NULL, NULL);
                 double rc = cmp_sigma_ratio(n, m, M, A);
                 if (ra < rc) hi = c;
@@ -77,7 +78,7 @@ int cmp_singularity_scan(const cmp_target *tg, FILE *f)
                 const double delta = pow(10.0, -e);
                 /* θ' = 1 rad/s: the multipliers' growth is what matters. */
                 double ys[2] = {star + delta, 1.0};
-                b->minimal_to_state(ys, q, v, b->sys.user);
+                braun_minimal_find(b->name)->to_state(ys, q, v, b->sys.user);
                 if (rows_at(tg, 0, q, v, M, A, Q, bv)) continue;
                 const double sr = cmp_sigma_ratio(n, m, M, A);
                 if (cmp_kkt_accel(n, m, M, Q, A, bv, acc, lam)) continue;

@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include "cmp.h"
+#include "braun_reference.h"
 #include "cmp_study.h"
 
 /* ------------------------------------------------------------ plans */
@@ -228,7 +229,7 @@ static int plan_jobs(joblist *l, const char *study, const cmp_target *tg, const 
                     st |= fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.HS[i], BG_FIXED, v, 0);
                 }
             } else if (m == CMP_ODE_RK4) {
-                if (!tg->builtin || !tg->builtin->minimal_rhs) continue;
+                if (!tg->builtin || !braun_minimal_find(tg->builtin->name)->rhs) continue;
                 for (int i = 0; i < p.nH; i++)
                     st |= fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.H[i], 0, "", 1);
             } else if (m == CMP_IDA_GGL) {

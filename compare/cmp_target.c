@@ -7,8 +7,9 @@
 #include <string.h>
 
 #include "cmp.h"
+#include "braun_reference.h"
 #ifdef CMP_HAVE_SCENES
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 #endif
 
 /* Slider end of the slider-crank (Fig. 2): x_s = x2 + (l/2)cos θ2,
@@ -176,7 +177,7 @@ void cmp_target_free(cmp_target *tg)
 cmp_ref_kind cmp_target_ref_kind(const cmp_target *tg)
 {
     if (!tg->builtin) return tg->ref_kind;
-    if (tg->builtin->minimal_exact) return CMP_REF_CLOSED;
-    if (tg->builtin->minimal_rhs) return CMP_REF_RK8PD;
+    if (braun_minimal_find(tg->builtin->name)->exact) return CMP_REF_CLOSED;
+    if (braun_minimal_find(tg->builtin->name)->rhs) return CMP_REF_RK8PD;
     return CMP_REF_NONE;
 }

@@ -1,8 +1,8 @@
 # Optional linear-algebra backends (issue 7): build/libbraun_backends.a.
 #
-#   src/backends/braun_lapack.c       BRAUN_LAPACK=1       (liblapack-dev)
-#   src/backends/braun_suitesparse.c  BRAUN_SUITESPARSE=1  (libsuitesparse-dev)
-#   src/backends/braun_backend_select.c  always: names, auto selection
+#   src/host/backends/braun_lapack.c       BRAUN_LAPACK=1       (liblapack-dev)
+#   src/host/backends/braun_suitesparse.c  BRAUN_SUITESPARSE=1  (libsuitesparse-dev)
+#   src/host/backends/braun_backend_select.c  always: names, auto selection
 #
 # libbraun.a never contains them (tests/backends/check-core.sh proves it).
 # Both default to on for host builds; `make BRAUN_LAPACK=0 BRAUN_SUITESPARSE=0`
@@ -11,18 +11,18 @@
 BRAUN_LAPACK ?= 1
 BRAUN_SUITESPARSE ?= 1
 
-BACKEND_SRC := src/backends/braun_backend_select.c
+BACKEND_SRC := src/host/backends/braun_backend_select.c
 BACKEND_CPPFLAGS :=
 BACKEND_LDLIBS :=
 BACKEND_DEPS :=
-ifeq ($(BRAUN_LAPACK)$(wildcard src/backends/braun_lapack.c),1src/backends/braun_lapack.c)
-BACKEND_SRC += src/backends/braun_lapack.c
+ifeq ($(BRAUN_LAPACK)$(wildcard src/host/backends/braun_lapack.c),1src/host/backends/braun_lapack.c)
+BACKEND_SRC += src/host/backends/braun_lapack.c
 BACKEND_CPPFLAGS += -DBRAUN_WITH_LAPACK
 BACKEND_LDLIBS += -llapack -lblas
 BACKEND_DEPS += liblapack-dev
 endif
-ifeq ($(BRAUN_SUITESPARSE)$(wildcard src/backends/braun_suitesparse.c),1src/backends/braun_suitesparse.c)
-BACKEND_SRC += src/backends/braun_suitesparse.c
+ifeq ($(BRAUN_SUITESPARSE)$(wildcard src/host/backends/braun_suitesparse.c),1src/host/backends/braun_suitesparse.c)
+BACKEND_SRC += src/host/backends/braun_suitesparse.c
 BACKEND_CPPFLAGS += -DBRAUN_WITH_SUITESPARSE -I/usr/include/suitesparse
 BACKEND_LDLIBS := -lspqr -lcholmod -lsuitesparseconfig $(filter-out -llapack -lblas,$(BACKEND_LDLIBS)) -llapack -lblas
 BACKEND_DEPS += libsuitesparse-dev
@@ -32,7 +32,7 @@ BACKEND_OBJ := $(BACKEND_SRC:%.c=$(BUILD)/obj/%.o)
 $(BACKEND_OBJ): CPPFLAGS_ALL += $(BACKEND_CPPFLAGS)
 $(BACKEND_OBJ): | deps-backends
 # The flags decide what the archive holds: rebuild when they change.
-$(BUILD)/obj/src/backends/braun_backend_select.o: $(BUILD)/backends.flags
+$(BUILD)/obj/src/host/backends/braun_backend_select.o: $(BUILD)/backends.flags
 $(BUILD)/backends.flags: FORCE_BACKEND_FLAGS
 	@mkdir -p $(dir $@)
 	@echo "$(BACKEND_CPPFLAGS)" | cmp -s - $@ || echo "$(BACKEND_CPPFLAGS)" > $@
@@ -57,7 +57,7 @@ $(BACKEND_TEST_BIN): LDLIBS_ALL := $(BACKENDS_LDLIBS) -llapack -lblas $(LDLIBS_A
 
 # The CLI selects backends (--backend).
 $(BUILD)/bin/braun: $(BUILD)/libbraun_backends.a
-$(BUILD)/bin/braun: LDLIBS_ALL += $(BACKENDS_LDLIBS)
+$(BUILD)/bin/braun: LDLIBS_ALL := $(BUILD)/libbraun_backends.a $(HOST_LDLIBS) $(BACKEND_LDLIBS) $(LDLIBS_ALL)
 
 # The core stays free of the backends' libraries.
 TEST_SUITES += "sh tests/backends/check-core.sh $(BUILD)/libbraun.a"

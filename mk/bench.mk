@@ -36,20 +36,20 @@ deps-bench:
 
 bench-bin: $(BENCH_BIN) $(BENCH_STATIC)
 
-$(BUILD)/obj/bench/%.o: bench/%.c bench/bench.h $(HEADERS) | deps-scene
+$(BUILD)/obj/bench/%.o: bench/%.c | deps-host
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) -c $< -o $@
+	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
 # Not position independent: callgrind's instruction addresses are then the
 # ones objdump prints (bench/flops.awk). The static twin puts libm's sin/cos
 # in the same file, so their floating-point instructions are classified too.
-$(BENCH_BIN): $(BENCH_OBJ) $(BUILD)/libbraun_scene.a $(BUILD)/libbraun.a
+$(BENCH_BIN): $(BENCH_OBJ) $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -no-pie $(BENCH_OBJ) $(SCENE_LDLIBS) -o $@
+	$(CC) $(CFLAGS_ALL) -no-pie $(BENCH_OBJ) $(HOST_LDLIBS) -o $@
 
-$(BENCH_STATIC): $(BENCH_OBJ) $(BUILD)/libbraun_scene.a $(BUILD)/libbraun.a
+$(BENCH_STATIC): $(BENCH_OBJ) $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -static $(BENCH_OBJ) $(SCENE_LDLIBS) -o $@
+	$(CC) $(CFLAGS_ALL) -static $(BENCH_OBJ) $(HOST_LDLIBS) -o $@
 
 bench: deps-bench
 	@$(MAKE) --no-print-directory bench-bin

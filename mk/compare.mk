@@ -37,9 +37,9 @@ deps-compare:
 
 compare-bin: $(COMPARE_BIN)
 
-$(BUILD)/obj/compare/%.o: compare/%.c $(COMPARE_HDR) $(HEADERS) | deps-compare
+$(BUILD)/obj/compare/%.o: compare/%.c | deps-compare deps-host
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(CFLAGS_ALL) -c $< -o $@
+	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
 $(COMPARE_BIN): $(COMPARE_OBJ) $(BUILD)/libbraun.a
 	@mkdir -p $(dir $@)
@@ -69,14 +69,11 @@ TEST_SUITES += "tools/run-tests $(COMPARE_TEST)" "sh tests/compare/quick.sh $(CO
 TEST_SUITES += "sh tests/compare/parallel.sh $(COMPARE_BIN)"
 TEST_PREREQS += $(COMPARE_TEST) $(COMPARE_BIN)
 
-# Scenes (mk/scenes.mk): scene files and Andrews' mechanism become targets.
-ifneq ($(wildcard include/braun_scene.h mk/scenes.mk),)
+# Scene files and Andrews' mechanism become targets (the host library).
 COMPARE_CPPFLAGS += -DCMP_HAVE_SCENES
-COMPARE_PRE_LIBS := $(BUILD)/libbraun_scene.a
+COMPARE_PRE_LIBS := $(BUILD)/libbraun_host.a
 COMPARE_LDLIBS += -ljansson
-$(COMPARE_BIN) $(COMPARE_TEST): $(BUILD)/libbraun_scene.a
-$(COMPARE_OBJ): | deps-scene
-endif
+$(COMPARE_BIN) $(COMPARE_TEST): $(BUILD)/libbraun_host.a
 
 # ---------------------------------------------------------------- IDA + KLU (issue 7)
 # braun-ida-run SCENE T RTOL: one IDA+KLU run with its counts and CPU time
@@ -102,6 +99,4 @@ $(COMPARE_JAC_TEST): tests/compare/test_ida_jac.c tests/test_util.h $(COMPARE_HD
 
 TEST_SUITES += "tools/run-tests $(COMPARE_JAC_TEST)"
 TEST_PREREQS += $(COMPARE_JAC_TEST) $(COMPARE_IDA_RUN)
-ifneq ($(COMPARE_PRE_LIBS),)
-$(COMPARE_IDA_RUN) $(COMPARE_JAC_TEST): $(BUILD)/libbraun_scene.a
-endif
+$(COMPARE_IDA_RUN) $(COMPARE_JAC_TEST): $(BUILD)/libbraun_host.a

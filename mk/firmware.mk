@@ -10,8 +10,8 @@
 #   make firmware-long     the float study: slider-crank, h = 1e-3, 100 s
 #   make firmware-profile  instructions per function of a corrected float step
 #
-# The library is built from the host core's sources ($(LIB_SRC): src/*.c
-# and src/models/*.c; never src/host) with its own objects per
+# The library is built from the core tier's sources ($(CORE_SRC): src/core,
+# the same list as the host's libbraun.a; never src/host) with its own objects per
 # configuration. Missing tools are installed through tools/ensure-deps.
 
 FW_DEPS := gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm libjansson-dev
@@ -44,12 +44,11 @@ FW_QEMU_FLAGS := -M mps2-an386 -nographic \
 FW_DIR := $(BUILD)/firmware
 # One short line per object unless make runs silently (make -s, make test).
 FW_SAY := $(if $(findstring s,$(firstword -$(MAKEFLAGS))),@true,@echo)
-# The core and the scene builder (firmware-friendly C99, include/braun_scene.h);
-# never src/host or the JSON reader.
-FW_LIB_SRC := $(LIB_SRC) $(sort $(wildcard src/scene/*.c))
+# The core tier, exactly as in the host's libbraun.a: never src/host.
+FW_LIB_SRC := $(CORE_SRC)
 FW_DEMO_SRC := $(sort $(wildcard firmware/demo/*.c))
 FW_BOARD_SRC := firmware/board/semihost.c firmware/board/board.c firmware/board/demo_scenes.c
-FW_INC := -Iinclude -Isrc -Ifirmware/board -Ifirmware/demo
+FW_INC := -Iinclude/core -Isrc/core -Ifirmware/board -Ifirmware/demo
 
 # Scenes the demo runs from generated C (`braun gen-c`, firmware/gen_c):
 # a holonomic mechanism (the paper's slider-crank as a scene file), a
@@ -70,7 +69,7 @@ FW_COPT_double = $(FW_OPT) -fstack-usage
 FW_COPT_float = $(FW_OPT) -fstack-usage
 FW_AR_double = $(FW_AR)
 FW_AR_float = $(FW_AR)
-FW_HAVE_FIXED := $(shell grep -q BRAUN_FIXED_N src/braun_linalg.h 2>/dev/null && echo 1)
+FW_HAVE_FIXED := $(shell grep -q BRAUN_FIXED_N src/core/braun_linalg.h 2>/dev/null && echo 1)
 ifeq ($(FW_HAVE_FIXED),1)
 FW_CONFIGS += float-fixed
 FW_DEF_float-fixed := -DBRAUN_SINGLE -DBRAUN_FIXED_N=6 -DBRAUN_FIXED_ROWS=5
@@ -99,11 +98,11 @@ $(FW_DIR)/$(1)/obj/firmware/board/demo_scenes.o: $(FW_GEN_DIR)/fw_scene_list.h
 
 # Objects: compiler messages also go to OBJ.log, which firmware-test
 # requires to be empty (the warning-free build of the issue).
-$(FW_DIR)/$(1)/obj/%.o: %.c $$(HEADERS) $$(wildcard firmware/*/*.h) | firmware-deps
+$(FW_DIR)/$(1)/obj/%.o: %.c | firmware-deps
 	@mkdir -p $$(dir $$@)
 	$$(FW_SAY) "FW_CC($(1)) $$<"
 	@$$(FW_CC) $$(FW_CFLAGS) $$(FW_COPT_$(1)) $$(FW_DEF_$(1)) $$(FW_INC) -I$(FW_DIR)/$(1) \
-	    $$(FW_EXTRA_$$(notdir $$*)) -c $$< -o $$@ 2> $$@.log; \
+	    $$(FW_EXTRA_$$(notdir $$*)) -MMD -MP -c $$< -o $$@ 2> $$@.log; \
 	    st=$$$$?; cat $$@.log >&2; exit $$$$st
 
 $(FW_DIR)/$(1)/obj/startup.o: firmware/board/startup.S | firmware-deps
@@ -115,8 +114,7 @@ $(FW_DIR)/$(1)/libbraun.a: $$(FW_LIB_OBJ_$(1))
 	$$(FW_AR_$(1)) rcs $$@ $$^
 
 # Bootstrap image without the size table: it prints the table.
-$(FW_DIR)/$(1)/obj/bootstrap/demo_main.o: firmware/board/demo_main.c $$(HEADERS) \
-        $$(wildcard firmware/*/*.h) | firmware-deps
+$(FW_DIR)/$(1)/obj/bootstrap/demo_main.o: firmware/board/demo_main.c | firmware-deps
 	@mkdir -p $$(dir $$@)
 	$$(FW_CC) $$(FW_CFLAGS) $$(FW_COPT_$(1)) $$(FW_DEF_$(1)) $$(FW_INC) -c $$< -o $$@
 
@@ -147,7 +145,7 @@ $(foreach c,$(FW_CONFIGS),$(eval $(call FW_CONFIG_RULES,$(c))))
 
 # ---------------------------------------------------------------- scene to C
 # `braun gen-c` reads a scene file with the host's JSON reader and writes
-# static C (src/scene_json/scene_gen_c.c).
+# static C (src/host/gen_c/braun_gen_c.c).
 $(FW_GEN_DIR)/scene_%.c: $(BUILD)/bin/braun
 	@mkdir -p $(dir $@)
 	$(BUILD)/bin/braun gen-c data/$(subst _,-,$*).json --symbol $* -o $@
@@ -168,7 +166,7 @@ define FW_PRECISION_RULES
 # The same step loop linked with different feature sets (firmware/gc):
 # what each image pulls out of libbraun.a is what it costs in flash.
 FW_GC_ELF_$(1) := $(foreach v,ideal pv all,$(FW_DIR)/$(1)/gc-$(v).elf)
-$(FW_DIR)/$(1)/obj/gc/gc_%.o: firmware/gc/gc_main.c $$(HEADERS) | firmware-deps
+$(FW_DIR)/$(1)/obj/gc/gc_%.o: firmware/gc/gc_main.c | firmware-deps
 	@mkdir -p $$(dir $$@)
 	$$(FW_SAY) "FW_CC($(1)) $$< ($$*)"
 	@$$(FW_CC) $$(FW_CFLAGS) $$(FW_COPT_$(1)) $$(FW_DEF_$(1)) -DFW_GC_CORRECTIONS=$$(FW_GC_CORR_$$*) \
@@ -189,12 +187,12 @@ $(FW_DIR)/$(1)/stack-usage.txt: $(FW_DIR)/$(1)/libbraun.a
 
 # Host build of the same demo, same precision; it reads the scenes from
 # their files (the JSON reader, in this precision too).
-FW_HOST_SRC := $$(FW_LIB_SRC) $$(sort $$(wildcard src/scene_json/*.c)) $$(FW_DEMO_SRC) \
+FW_HOST_SRC := $$(FW_LIB_SRC) $$(HOST_SRC) $$(FW_DEMO_SRC) \
                tests/firmware/fw_host.c
-$(FW_DIR)/host-$(1)/fw_host: $$(FW_HOST_SRC) $$(HEADERS) $$(wildcard firmware/demo/*.h) \
+$(FW_DIR)/host-$(1)/fw_host: $$(FW_HOST_SRC) $$(wildcard include/*/*.h src/core/*.h src/core/*/*.h firmware/demo/*.h) \
         $(FW_GEN_DIR)/fw_scene_list.h | firmware-deps
 	@mkdir -p $$(dir $$@)
-	$$(CC) -std=c99 $$(OPT) $$(WARN) $$(FW_DEF_$(1)) -Iinclude -Isrc -Ifirmware/demo \
+	$$(CC) -std=c99 $$(OPT) $$(WARN) $$(FW_DEF_$(1)) $$(HOST_CPPFLAGS) -Ifirmware/demo \
 	    -I$(FW_GEN_DIR) -DFW_HAVE_SCENE_LIST $$(FW_HOST_SRC) -ljansson -lm -o $$@
 endef
 FW_GC_CORR_ideal := 0
@@ -207,9 +205,9 @@ $(FW_DIR)/fw_compare: tests/firmware/fw_compare.c
 	@mkdir -p $(dir $@)
 	$(CC) -std=c99 -D_POSIX_C_SOURCE=200809L $(OPT) $(WARN) $< -lm -o $@
 
-$(FW_DIR)/fw_traj: tests/firmware/fw_traj.c $(LIB_SRC) $(HEADERS)
+$(FW_DIR)/fw_traj: tests/firmware/fw_traj.c $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a
 	@mkdir -p $(dir $@)
-	$(CC) -std=c99 -D_POSIX_C_SOURCE=200809L $(OPT) $(WARN) -Iinclude -Isrc $< $(LIB_SRC) -lm -o $@
+	$(CC) -std=c99 -D_POSIX_C_SOURCE=200809L $(OPT) $(WARN) $(HOST_CPPFLAGS) $< $(HOST_LDLIBS) -o $@
 
 FW_ALL := $(foreach c,$(FW_CONFIGS),$(FW_DIR)/$(c)/libbraun.a $(FW_DIR)/$(c)/demo.elf) \
           $(foreach p,double float,$(FW_DIR)/$(p)/size.txt $(FW_DIR)/$(p)/stack-usage.txt \
@@ -240,3 +238,6 @@ firmware-profile: $(FW_DIR)/float/demo.elf
 
 # make test runs the firmware checks as one suite.
 TEST_SUITES += "$(MAKE) -s --no-print-directory firmware-test"
+# The tiers apart, and the host and firmware libbraun.a of the same objects
+# (after firmware-test: it builds the firmware libraries).
+TEST_SUITES += "sh tests/tiers.sh $(BUILD)"

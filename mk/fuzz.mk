@@ -8,16 +8,16 @@
 FUZZ_SECONDS ?= 30
 FUZZ_CC := clang
 FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-              -Iinclude -Isrc -Isrc/cli -std=c99 -D_POSIX_C_SOURCE=200809L
-FUZZ_LIB_SRC = $(LIB_SRC) $(wildcard src/scene/*.c) $(wildcard src/scene_json/*.c) $(HOST_SRC)
-FUZZ_CLI_SRC = src/cli/cli_args.c src/cli/cli_error.c src/cli/cli_usage.c
+              $(HOST_CPPFLAGS) -Isrc/host/cli -std=c99 -D_POSIX_C_SOURCE=200809L
+FUZZ_LIB_SRC = $(CORE_SRC) $(HOST_SRC)
+FUZZ_CLI_SRC = src/host/cli/cli_args.c src/host/cli/cli_error.c src/host/cli/cli_usage.c
 
-$(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_LIB_SRC) $(HEADERS) | deps-fuzz
+$(BUILD)/fuzz/fuzz_scene: tests/fuzz/fuzz_scene.c $(FUZZ_LIB_SRC) | deps-fuzz
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_FLAGS) tests/fuzz/fuzz_scene.c $(FUZZ_LIB_SRC) -ljansson -lm -o $@
-$(BUILD)/fuzz/fuzz_args: tests/fuzz/fuzz_args.c $(FUZZ_CLI_SRC) $(LIB_SRC) $(HEADERS) | deps-fuzz
+$(BUILD)/fuzz/fuzz_args: tests/fuzz/fuzz_args.c $(FUZZ_CLI_SRC) $(CORE_SRC) | deps-fuzz
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_FLAGS) tests/fuzz/fuzz_args.c $(FUZZ_CLI_SRC) $(LIB_SRC) -lm -o $@
+	$(FUZZ_CC) $(FUZZ_FLAGS) tests/fuzz/fuzz_args.c $(FUZZ_CLI_SRC) $(CORE_SRC) -lm -o $@
 
 deps-fuzz:
 	@tools/ensure-deps clang libclang-rt-14-dev libjansson-dev

@@ -1,17 +1,17 @@
 # Tools that find what tests miss (issue: robustness). All part of make test.
 #   make lint           cppcheck + clang-tidy on the library and the tool
 #   make test-valgrind  memcheck on a subset of the tests and a CLI run
-LINT_SRC = $(LIB_SRC) $(HOST_SRC) $(CLI_SRC) $(wildcard src/scene/*.c) $(wildcard src/scene_json/*.c) \
+LINT_SRC = $(CORE_SRC) $(HOST_SRC) $(CLI_SRC) \
 	$(BACKEND_SRC)
 # The backends' headers are system headers to the linters (SuiteSparse's
 # macros trip clang-tidy's checks); their code is compiled as built.
-LINT_FLAGS = -std=c99 -Iinclude -Isrc -isystem /usr/include/suitesparse $(BACKEND_CPPFLAGS:-I/usr/include/suitesparse=)
+LINT_FLAGS = -std=c99 $(HOST_CPPFLAGS) -isystem /usr/include/suitesparse $(BACKEND_CPPFLAGS:-I/usr/include/suitesparse=)
 
 .PHONY: lint test-valgrind
 lint:
 	@tools/ensure-deps cppcheck clang-tidy
 	@cppcheck --enable=warning,style,performance,portability --std=c99 --inline-suppr \
-	    --error-exitcode=1 -q -Iinclude -Isrc $(filter -D%,$(BACKEND_CPPFLAGS)) $(LINT_SRC) \
+	    --error-exitcode=1 -q $(HOST_CPPFLAGS) $(filter -D%,$(BACKEND_CPPFLAGS)) $(LINT_SRC) \
 	    && echo "ok - cppcheck clean" || { echo "not ok - cppcheck"; exit 1; }
 	@clang-tidy -quiet $(LINT_SRC) -- $(LINT_FLAGS) $(CPPFLAGS) >$(BUILD)/clang-tidy.log 2>&1 \
 	    && echo "ok - clang-tidy clean (.clang-tidy)" || { grep -E "error:|warning:" $(BUILD)/clang-tidy.log; echo "not ok - clang-tidy"; exit 1; }

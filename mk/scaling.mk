@@ -27,13 +27,13 @@ SCALING_PRE_LIBS = $(COMPARE_LIB_OBJ) $(COMPARE_PRE_LIBS)
 SCALING_LDLIBS = $(COMPARE_LDLIBS)
 $(SCALING_BIN): $(COMPARE_LIB_OBJ)
 
-$(BUILD)/obj/bench/scaling/%.o: bench/scaling/%.c bench/scaling/scaling.h $(HEADERS) | deps-scene deps-backends
+$(BUILD)/obj/bench/scaling/%.o: bench/scaling/%.c | deps-host deps-backends
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) $(SCALING_CPPFLAGS) $(CFLAGS_ALL) -c $< -o $@
+	$(CC) $(CPPFLAGS_ALL) $(SCALING_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
-$(SCALING_BIN): $(SCALING_OBJ) $(BUILD)/libbraun_scene.a $(BUILD)/libbraun_backends.a $(BUILD)/libbraun.a
+$(SCALING_BIN): $(SCALING_OBJ) $(BUILD)/libbraun_host.a $(BUILD)/libbraun_backends.a $(BUILD)/libbraun.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) $(SCALING_OBJ) $(SCALING_PRE_LIBS) $(BUILD)/libbraun_scene.a \
+	$(CC) $(CFLAGS_ALL) $(SCALING_OBJ) $(SCALING_PRE_LIBS) $(BUILD)/libbraun_host.a \
 	    $(BACKENDS_LDLIBS) $(SCALING_LDLIBS) -ljansson -lm -o $@
 
 scaling-bin: $(SCALING_BIN) $(BUILD)/bin/braun

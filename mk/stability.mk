@@ -1,21 +1,31 @@
 # Stability suite (tests/stability/): the same source for double and float.
-# The float library is built from the same sources into $(BUILD)/float.
-FLOAT_OBJ := $(LIB_SRC:%.c=$(BUILD)/float/obj/%.o)
-$(BUILD)/float/obj/%.o: %.c $(HEADERS)
+# The float libraries are built from the same sources into $(BUILD)/float.
+FLOAT_OBJ := $(CORE_SRC:%.c=$(BUILD)/float/obj/%.o)
+FLOAT_HOST_OBJ := $(HOST_SRC:%.c=$(BUILD)/float/obj/%.o)
+$(FLOAT_OBJ): $(BUILD)/float/obj/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) -DBRAUN_SINGLE $(CFLAGS_ALL) -c $< -o $@
+	$(CC) $(CORE_CPPFLAGS) -DBRAUN_SINGLE $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
+$(FLOAT_HOST_OBJ): $(BUILD)/float/obj/%.o: %.c | deps-host
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) -DBRAUN_SINGLE $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 $(BUILD)/float/libbraun.a: $(FLOAT_OBJ)
+	@mkdir -p $(dir $@)
+	rm -f $@
+	$(AR) rcs $@ $^
+$(BUILD)/float/libbraun_host.a: $(FLOAT_HOST_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@
 	$(AR) rcs $@ $^
 
 STABILITY_BIN := $(BUILD)/tests/stability_double $(BUILD)/tests/stability_float
-$(BUILD)/tests/stability_double: tests/stability/test_stability.c tests/test_util.h $(BUILD)/libbraun.a | deps-test
+$(BUILD)/tests/stability_double: tests/stability/test_stability.c $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a | deps-test
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) -Itests $(CFLAGS_ALL) $< $(BUILD)/libbraun.a -lcmocka $(LDLIBS_ALL) -o $@
-$(BUILD)/tests/stability_float: tests/stability/test_stability.c tests/test_util.h $(BUILD)/float/libbraun.a | deps-test
+	$(CC) $(CPPFLAGS_ALL) -Itests $(CFLAGS_ALL) $(DEPFLAGS) -MF $@.d $< $(BUILD)/libbraun_host.a \
+	    $(BUILD)/libbraun.a -lcmocka -ljansson $(LDLIBS_ALL) -o $@
+$(BUILD)/tests/stability_float: tests/stability/test_stability.c $(BUILD)/float/libbraun_host.a $(BUILD)/float/libbraun.a | deps-test
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) -DBRAUN_SINGLE -Itests $(CFLAGS_ALL) $< $(BUILD)/float/libbraun.a -lcmocka $(LDLIBS_ALL) -o $@
+	$(CC) $(CPPFLAGS_ALL) -DBRAUN_SINGLE -Itests $(CFLAGS_ALL) $(DEPFLAGS) -MF $@.d $< \
+	    $(BUILD)/float/libbraun_host.a $(BUILD)/float/libbraun.a -lcmocka -ljansson $(LDLIBS_ALL) -o $@
 
 TEST_PREREQS += $(STABILITY_BIN)
 # CORE_SUITES is part of TEST_SUITES and of the sanitizer run.

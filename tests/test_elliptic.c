@@ -5,7 +5,7 @@
  */
 #include "test_util.h"
 
-#include "braun_models.h"
+#include "braun_reference.h"
 
 #define PI 3.14159265358979323846
 

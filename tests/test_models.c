@@ -6,7 +6,7 @@
  */
 #include "test_util.h"
 
-#include "braun_models.h"
+#include "braun_reference.h"
 
 #define PI 3.14159265358979323846
 #define NMAX BRAUN_MODEL_MAX_N
@@ -196,16 +196,16 @@ static void minimal_acceleration(const braun_builtin *b, const double *y,
                                  double *a)
 {
     const braun_link_params *p = b->sys.user;
-    int n = b->sys.n, d = b->minimal_dim;
+    int n = b->sys.n, d = braun_minimal_find(b->name)->dim;
     double f[4], yp[4], ym[4], q[NMAX], vp[NMAX], vm[NMAX];
     const double h = 1e-6;
-    b->minimal_rhs(0.0, y, f, p);
+    braun_minimal_find(b->name)->rhs(0.0, y, f, p);
     for (int i = 0; i < d; ++i) {
         yp[i] = y[i] + h * f[i];
         ym[i] = y[i] - h * f[i];
     }
-    b->minimal_to_state(yp, q, vp, p);
-    b->minimal_to_state(ym, q, vm, p);
+    braun_minimal_find(b->name)->to_state(yp, q, vp, p);
+    braun_minimal_find(b->name)->to_state(ym, q, vm, p);
     for (int i = 0; i < n; ++i) a[i] = (vp[i] - vm[i]) / (2.0 * h);
 }
 
@@ -234,9 +234,9 @@ static void test_table(void **state)
         assert_non_null(b->sys.holonomic);
         assert_non_null(b->sys.energy);
         assert_non_null(b->sys.user);
-        assert_int_equal(b->minimal_dim, 2);
-        assert_non_null(b->minimal_rhs);
-        assert_non_null(b->minimal_to_state);
+        assert_int_equal(braun_minimal_find(b->name)->dim, 2);
+        assert_non_null(braun_minimal_find(b->name)->rhs);
+        assert_non_null(braun_minimal_find(b->name)->to_state);
         assert_true((b->point_x < 0 && b->point_y < 0)
                     || (b->point_x < b->sys.n && b->point_y < b->sys.n));
     }
@@ -247,8 +247,8 @@ static void test_table(void **state)
     assert_non_null(braun_builtin_find("slider-crank"));
     assert_non_null(braun_builtin_find("four-bar"));
     assert_non_null(braun_builtin_find("pendulum"));
-    assert_null(braun_builtin_find("slider-crank")->minimal_exact);
-    assert_non_null(braun_builtin_find("four-bar")->minimal_exact);
+    assert_null(braun_minimal_find("slider-crank")->exact);
+    assert_non_null(braun_minimal_find("four-bar")->exact);
     assert_int_equal(braun_builtin_find("four-bar")->point_x, 4); /* x3 */
     assert_int_equal(braun_builtin_find("four-bar")->point_y, 5); /* y3 */
 }
@@ -272,7 +272,7 @@ static void test_initial_state(void **state)
             assert_near(Av, bq[i], TOL_EXACT);
         }
         double ql[NMAX], vl[NMAX];
-        b->minimal_to_state(b->minimal_y0, ql, vl, b->sys.user);
+        braun_minimal_find(b->name)->to_state(braun_minimal_find(b->name)->y0, ql, vl, b->sys.user);
         for (int j = 0; j < n; ++j) {
             assert_near(ql[j], q[j], TOL_EXACT);
             assert_near(vl[j], v[j], TOL_EXACT);
@@ -481,11 +481,11 @@ static void test_minimal_matches_kkt(void **state)
         for (int s = 0; s < 6; ++s) {
             double y[2] = {thetas[s], s == 0 ? 0.0 : 2.0 * urand()};
             if (s == 1) {
-                y[0] = b->minimal_y0[0];
-                y[1] = b->minimal_y0[1];
+                y[0] = braun_minimal_find(b->name)->y0[0];
+                y[1] = braun_minimal_find(b->name)->y0[1];
             }
             double q[NMAX], v[NMAX], a_kkt[NMAX], a_min[NMAX];
-            b->minimal_to_state(y, q, v, b->sys.user);
+            braun_minimal_find(b->name)->to_state(y, q, v, b->sys.user);
             assert_int_equal(kkt_acceleration(b, q, v, NULL, a_kkt), 0);
             minimal_acceleration(b, y, a_min);
             double scale = 1.0 + max_abs(n, a_min);
@@ -508,7 +508,7 @@ static void test_four_bar_printed_force_is_wrong(void **state)
     double y[2] = {1.0, -1.0}, q[NMAX], v[NMAX], a_kkt[NMAX], a_min[NMAX];
     double Q_printed[6] = {0, -p->m * p->g, 0, 1.5 * p->m * p->g, 0,
                            -p->m * p->g};
-    b->minimal_to_state(y, q, v, p);
+    braun_minimal_find(b->name)->to_state(y, q, v, p);
     assert_int_equal(kkt_acceleration(b, q, v, Q_printed, a_kkt), 0);
     minimal_acceleration(b, y, a_min);
     double worst = 0.0;
@@ -537,7 +537,7 @@ static void test_minimal_is_euler_lagrange(void **state)
                 double y[2] = {th + (s - 1) * h, 1.0}, q[NMAX], v[NMAX];
                 double M[NMAX * NMAX], zero[NMAX] = {0};
                 int n = b->sys.n;
-                b->minimal_to_state(y, q, v, p);
+                braun_minimal_find(b->name)->to_state(y, q, v, p);
                 call_mass(b, q, M);
                 double T = 0.0;
                 for (int i = 0; i < n; ++i)
@@ -549,7 +549,7 @@ static void test_minimal_is_euler_lagrange(void **state)
             double dV = (Vv[2] - Vv[0]) / (2 * h);
             for (double w = -2.0; w <= 2.0; w += 1.0) {
                 double y[2] = {th, w}, f[2];
-                b->minimal_rhs(0.0, y, f, p);
+                braun_minimal_find(b->name)->rhs(0.0, y, f, p);
                 double el = -(0.5 * dJ * w * w + dV) / J;
                 worst = fmax(worst, fabs(f[1] - el) / (1.0 + fabs(el)));
                 assert_near(f[0], w, 0.0);
@@ -573,12 +573,12 @@ static void test_minimal_energies(void **state)
     double l = p->l, m = p->m, g = p->g;
     for (double th = -4.0; th <= 4.0; th += 0.29) {
         double y[2] = {th, 0.8}, q[NMAX], v[NMAX];
-        sc->minimal_to_state(y, q, v, p);
+        braun_minimal_find(sc->name)->to_state(y, q, v, p);
         double E = scalar_energy(sc, q, v);
         double want = 0.5 * m * l * l * (5.0 / 3.0 - cos(2 * th)) * 0.64
                       + m * g * l * sin(th);
         assert_near(E, want, TOL_EXACT * 100);
-        fb->minimal_to_state(y, q, v, fb->sys.user);
+        braun_minimal_find(fb->name)->to_state(y, q, v, fb->sys.user);
         E = scalar_energy(fb, q, v);
         want = 0.5 * 3.0 * m * l * l * 0.64 + 3.5 * m * g * l * sin(th);
         assert_near(E, want, TOL_EXACT * 100);
@@ -628,11 +628,11 @@ static void test_reference_closed_form(void **state)
     (void)state;
     const braun_builtin *fb = braun_builtin_find("four-bar");
     const braun_link_params *p = fb->sys.user;
-    braun_builtin integrated = *fb;
-    integrated.minimal_exact = NULL;
+    braun_minimal integrated = *braun_minimal_find(fb->name);
+    integrated.exact = NULL;
     braun_reference re, ri;
     assert_int_equal(braun_reference_init(&re, fb, 0.0), BRAUN_OK);
-    assert_int_equal(braun_reference_init(&ri, &integrated, 0.0), BRAUN_OK);
+    assert_int_equal(braun_reference_init_minimal(&ri, fb, &integrated, 0.0), BRAUN_OK);
     double worst_cf = 0.0, worst_rk = 0.0;
     for (int i = 0; i <= 200; ++i) {
         double t = 0.1 * i, qe[NMAX], ve[NMAX], qi[NMAX], vi[NMAX];
@@ -644,7 +644,7 @@ static void test_reference_closed_form(void **state)
                          0);
         y[0] = phi - PI / 2.0;
         y[1] = dphi;
-        fb->minimal_to_state(y, qc, vc, p);
+        braun_minimal_find(fb->name)->to_state(y, qc, vc, p);
         for (int j = 0; j < 6; ++j) {
             worst_cf = fmax(worst_cf, fmax(fabs(qe[j] - qc[j]), fabs(ve[j] - vc[j])));
             worst_rk = fmax(worst_rk, fmax(fabs(qe[j] - qi[j]), fabs(ve[j] - vi[j])));
@@ -658,10 +658,10 @@ static void test_reference_closed_form(void **state)
     assert_le(worst_rk, 1e-10);
     /* The pendulum's closed form too. */
     const braun_builtin *pe = braun_builtin_find("pendulum");
-    integrated = *pe;
-    integrated.minimal_exact = NULL;
+    integrated = *braun_minimal_find(pe->name);
+    integrated.exact = NULL;
     assert_int_equal(braun_reference_init(&re, pe, 0.0), BRAUN_OK);
-    assert_int_equal(braun_reference_init(&ri, &integrated, 0.0), BRAUN_OK);
+    assert_int_equal(braun_reference_init_minimal(&ri, pe, &integrated, 0.0), BRAUN_OK);
     double qe[NMAX], ve[NMAX], qi[NMAX], vi[NMAX];
     assert_int_equal(braun_reference_eval(&re, 20.0, qe, ve), BRAUN_OK);
     assert_int_equal(braun_reference_eval(&ri, 20.0, qi, vi), BRAUN_OK);

@@ -2,7 +2,7 @@
  * acceptance figures of the core issue, and the observed order of RK4
  * under both discretisations of the 1/h terms. */
 #include "test_util.h"
-#include "braun_models.h"
+#include "braun_reference.h"
 
 typedef struct monitor {
     const braun_builtin *model;

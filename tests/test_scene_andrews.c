@@ -4,6 +4,7 @@
  * state at t = 0.03 against the test set's reference solution. */
 #include "test_util.h"
 #include "braun_scene.h"
+#include "braun_reference.h"
 #include "scene/scene_fd.h"
 
 static void test_derivatives(void **state)

@@ -6,7 +6,7 @@
 #include <dirent.h>
 
 #include "test_util.h"
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 
 static char *slurp(const char *path, size_t *len)
 {

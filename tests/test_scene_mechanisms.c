@@ -5,8 +5,8 @@
  *   parallelogram-redundant.json  rank 11 of 12 rows vs the closed-form pendulum
  *   double-pendulum.json   distance joints vs the angle equations */
 #include "test_util.h"
-#include "braun_models.h"
-#include "braun_scene.h"
+#include "braun_reference.h"
+#include "braun_scene_file.h"
 
 #define PI 3.14159265358979323846
 

@@ -4,7 +4,7 @@
  * file allocates (host only); building a scene from caller arrays does
  * not. */
 #include "test_util.h"
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 
 #include "heap_count.h"
 

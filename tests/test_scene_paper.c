@@ -5,7 +5,7 @@
  * scene does not ask for, it does not pay for: callbacks counted. */
 #include "test_util.h"
 #include "braun_models.h"
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 
 static braun_scene_file *load(const char *path)
 {

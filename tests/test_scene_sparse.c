@@ -1,6 +1,6 @@
 /* Sparse scenes (braun_scene_build_sparse): for every shipped scene without
  * rods, for chains and ladders written by the generator of `braun gen`
- * (src/cli/cli_gen.c, compiled in below) and for a scene with every element
+ * (src/host/cli/cli_gen.c, compiled in below) and for a scene with every element
  * type, the sparse callbacks' compressed values scattered into dense
  * matrices equal the dense callbacks' output exactly, at random states and
  * with any outputs left NULL; the pattern is sorted, in range and exactly
@@ -14,10 +14,10 @@
 
 #include "test_util.h"
 #include "braun_linalg.h"
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 
 /* ------------------------------------------ the generator of `braun gen` */
-#include "cli/cli_gen.c"
+#include "../src/host/cli/cli_gen.c"
 
 /* What cli_gen.c needs from the rest of the tool. */
 int braun_cli_error(const char *fmt, ...)

@@ -6,7 +6,7 @@
 
 #include "braun.h"
 #include "braun_backends.h"
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 
 /* A generated scene (braun gen chain|ladder N) loaded with its sparse system. */
 typedef struct sc_scene {

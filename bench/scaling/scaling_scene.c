@@ -6,6 +6,7 @@
 #include <time.h>
 
 #include "scaling.h"
+#include "braun_scene_file.h"
 
 double sc_cpu_seconds(void)
 {

@@ -15,6 +15,11 @@
 int fw_minimal_init(fw_minimal *s, const braun_builtin *b)
 {
     const braun_link_params *p = b->sys.user;
+    /* [θ(0), θ'(0)] of each model's minimal equation (the host's oracles
+     * in braun_reference.h hold the same: Fig. 1, Fig. 6, the pendulum). */
+    static const double y0[3][2] = {{0.78539816339744828, 0.0},
+                                    {1.5707963267948966, -1.0},
+                                    {1.5707963267948966, 0.0}};
     if (strcmp(b->name, "slider-crank") == 0)
         s->kind = 0;
     else if (strcmp(b->name, "four-bar") == 0)
@@ -24,8 +29,8 @@ int fw_minimal_init(fw_minimal *s, const braun_builtin *b)
     else
         return -1;
     s->g_l = (braun_real)(p->g / p->l);
-    s->y[0] = (braun_real)b->minimal_y0[0];
-    s->y[1] = (braun_real)b->minimal_y0[1];
+    s->y[0] = (braun_real)y0[s->kind][0];
+    s->y[1] = (braun_real)y0[s->kind][1];
     return 0;
 }
 

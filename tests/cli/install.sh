@@ -9,7 +9,7 @@ pass=0; fail=0
 ok() { echo "ok - $1"; pass=$((pass + 1)); }
 no() { echo "not ok - $1"; fail=$((fail + 1)); }
 if make -s -C "$top" install PREFIX=/opt/braun DESTDIR="$tmp" >"$tmp/log" 2>&1; then ok "make install"; else no "make install"; cat "$tmp/log"; fi
-for f in include/braun.h include/braun_models.h include/braun_host.h lib/libbraun.a lib/pkgconfig/braun.pc bin/braun; do
+for f in include/braun.h include/braun_models.h include/braun_scene.h include/braun_host.h include/braun_reference.h include/braun_scene_file.h lib/libbraun.a lib/libbraun_host.a lib/pkgconfig/braun.pc lib/pkgconfig/braun-host.pc bin/braun; do
     [ -f "$tmp/opt/braun/$f" ] && ok "installed $f" || no "installed $f"
 done
 pc="$tmp/opt/braun/lib/pkgconfig"

@@ -260,7 +260,7 @@ check "gen-c sleigh: exit 0, defines sleigh_build and SLEIGH_N 3" sh -c '
     [ "$1" -eq 0 ] && grep -q "^int sleigh_build(" "$2" && grep -q "^#define SLEIGH_N 3$" "$2"' \
     sh "$rc" "$TMP/sleigh.c"
 check "gen-c output compiles warning-free (double, -Werror)" \
-    ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -Iinclude -c "$TMP/sleigh.c" -o "$TMP/sleigh.o"
+    ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -Iinclude/core -c "$TMP/sleigh.c" -o "$TMP/sleigh.o"
 "$BRAUN" gen-c data/sleigh.json --symbol 9bad > /dev/null 2> "$TMP/gce"; rc=$?
 check "gen-c --symbol 9bad: exit 2, one line" sh -c '[ "$1" -eq 2 ] && [ "$(wc -l < "$2")" -eq 1 ]' sh "$rc" "$TMP/gce"
 "$BRAUN" gen-c data/no-such.json > /dev/null 2> "$TMP/gce"; rc=$?

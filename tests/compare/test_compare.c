@@ -6,6 +6,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "cmp.h"
+#include "braun_reference.h"
 #include "cmp_csv.h"
 
 /* An exact state of a target with a minimal model: q, v lifted from the
@@ -22,23 +23,23 @@ static void exact_state(const cmp_target *tg, double t, double *q, double *v, do
     /* The minimal state behind q, v: y = [θ, θ'] from the reference again. */
     double y[2], f[2], yp[2], ym[2], qq[BRAUN_MODEL_MAX_N], vp[BRAUN_MODEL_MAX_N],
         vm[BRAUN_MODEL_MAX_N];
-    if (b->minimal_exact) {
-        assert_int_equal(b->minimal_exact(t, y, b->sys.user), 0);
+    if (braun_minimal_find(b->name)->exact) {
+        assert_int_equal(braun_minimal_find(b->name)->exact(t, y, b->sys.user), 0);
     } else {
         /* Integrate the minimal equation to t with rk8pd via the reference
          * object's lift is not exposed; use t = 0 states only then. */
         assert_true(t == 0.0);
-        y[0] = b->minimal_y0[0];
-        y[1] = b->minimal_y0[1];
+        y[0] = braun_minimal_find(b->name)->y0[0];
+        y[1] = braun_minimal_find(b->name)->y0[1];
     }
-    b->minimal_rhs(t, y, f, b->sys.user);
+    braun_minimal_find(b->name)->rhs(t, y, f, b->sys.user);
     const double d = 1e-5;
     for (int i = 0; i < 2; i++) {
         yp[i] = y[i] + d * f[i];
         ym[i] = y[i] - d * f[i];
     }
-    b->minimal_to_state(yp, qq, vp, b->sys.user);
-    b->minimal_to_state(ym, qq, vm, b->sys.user);
+    braun_minimal_find(b->name)->to_state(yp, qq, vp, b->sys.user);
+    braun_minimal_find(b->name)->to_state(ym, qq, vm, b->sys.user);
     for (int i = 0; i < n; i++) a[i] = (vp[i] - vm[i]) / (2 * d);
 }
 

@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 #include "fw_demo.h"
 #include "fw_out.h"
 

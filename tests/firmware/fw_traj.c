@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "braun_models.h"
+#include "braun_reference.h"
 
 static double hex_real(const char *s)
 {
@@ -101,7 +101,7 @@ int main(int argc, char **argv)
             }
             const double t = (double)i * h;
             if (braun_reference_eval(&ref, t, qr, vr) != 0) return 2;
-            b->minimal_to_state(y, qm, vm, b->sys.user);
+            braun_minimal_find(b->name)->to_state(y, qm, vm, b->sys.user);
             double eb = 0, em = 0;
             for (int k = 0; k < n; k++) {
                 eb += (q[k] - qr[k]) * (q[k] - qr[k]);

@@ -103,7 +103,7 @@ for json in data/*.json; do
     for def in "" -DBRAUN_SINGLE; do
         # shellcheck disable=SC2086
         ${FW_CC:-arm-none-eabi-gcc} -std=c99 -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
-            -Wall -Wextra -Wpedantic -Wdouble-promotion -Wconversion -Werror $def -Iinclude \
+            -Wall -Wextra -Wpedantic -Wdouble-promotion -Wconversion -Werror $def -Iinclude/core \
             -c "$OUT/gen-$sym.c" -o "$OUT/gen-$sym.o" 2>> "$OUT/gen-$sym.log" || gen_bad="$gen_bad $json$def"
     done
 done

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "braun.h"
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -3,7 +3,7 @@
  * (docs/robustness.md lists them with the measured values). BRAUN_STRESS=1
  * in the environment selects the long forms (make stress). */
 #include "test_util.h"
-#include "braun_models.h"
+#include "braun_reference.h"
 
 #ifdef BRAUN_SINGLE
 #define PREC(d, f) (f)

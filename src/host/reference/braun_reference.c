@@ -8,7 +8,7 @@
 #include <math.h>
 #include <stddef.h>
 
-#include "braun_models_internal.h"
+#include "braun_reference.h"
 
 #define REF_H_DEFAULT 1e-4
 #define REF_DIM_MAX 4
@@ -16,15 +16,21 @@
 int braun_reference_init(braun_reference *ref, const braun_builtin *model,
                          double ref_h)
 {
-    if (!ref || !model || !model->minimal_to_state || !model->minimal_y0
-        || model->minimal_dim < 1 || model->minimal_dim > REF_DIM_MAX
-        || (!model->minimal_exact && !model->minimal_rhs) || isnan(ref_h)
-        || isinf(ref_h))
+    return braun_reference_init_minimal(ref, model, model ? braun_minimal_find(model->name) : NULL,
+                                        ref_h);
+}
+
+int braun_reference_init_minimal(braun_reference *ref, const braun_builtin *model,
+                                 const braun_minimal *mn, double ref_h)
+{
+    if (!ref || !model || !mn || !mn->to_state || !mn->y0 || mn->dim < 1 || mn->dim > REF_DIM_MAX
+        || (!mn->exact && !mn->rhs) || isnan(ref_h) || isinf(ref_h))
         return BRAUN_ERR_ARGUMENT;
     ref->model = model;
+    ref->minimal = mn;
     ref->t = 0.0;
     for (int i = 0; i < REF_DIM_MAX; ++i)
-        ref->y[i] = i < model->minimal_dim ? model->minimal_y0[i] : 0.0;
+        ref->y[i] = i < mn->dim ? mn->y0[i] : 0.0;
     ref->ref_h = ref_h > 0.0 ? ref_h : REF_H_DEFAULT;
     return BRAUN_OK;
 }
@@ -32,34 +38,34 @@ int braun_reference_init(braun_reference *ref, const braun_builtin *model,
 /* One classic RK4 step of the minimal equation. The increment is returned
  * separately so the caller can sum it with compensation: over 10^7 substeps
  * plain summation would lose ~1e-12. */
-static void rk4_increment(const braun_builtin *b, const braun_link_params *p,
+static void rk4_increment(const braun_minimal *b, const braun_link_params *p,
                           double t, const double *y, double h, double *dy)
 {
-    int n = b->minimal_dim;
+    int n = b->dim;
     double k1[REF_DIM_MAX], k2[REF_DIM_MAX], k3[REF_DIM_MAX], k4[REF_DIM_MAX];
     double tmp[REF_DIM_MAX];
-    b->minimal_rhs(t, y, k1, p);
+    b->rhs(t, y, k1, p);
     for (int i = 0; i < n; ++i) tmp[i] = y[i] + 0.5 * h * k1[i];
-    b->minimal_rhs(t + 0.5 * h, tmp, k2, p);
+    b->rhs(t + 0.5 * h, tmp, k2, p);
     for (int i = 0; i < n; ++i) tmp[i] = y[i] + 0.5 * h * k2[i];
-    b->minimal_rhs(t + 0.5 * h, tmp, k3, p);
+    b->rhs(t + 0.5 * h, tmp, k3, p);
     for (int i = 0; i < n; ++i) tmp[i] = y[i] + h * k3[i];
-    b->minimal_rhs(t + h, tmp, k4, p);
+    b->rhs(t + h, tmp, k4, p);
     for (int i = 0; i < n; ++i)
         dy[i] = h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
 }
 
 int braun_reference_eval(braun_reference *ref, double t, double *q, double *v)
 {
-    if (!ref || !ref->model || !q || !v || !isfinite(t))
+    if (!ref || !ref->model || !ref->minimal || !q || !v || !isfinite(t))
         return BRAUN_ERR_ARGUMENT;
-    const braun_builtin *b = ref->model;
-    const braun_link_params *p = b->sys.user;
-    int n = b->minimal_dim;
+    const braun_minimal *b = ref->minimal;
+    const braun_link_params *p = ref->model->sys.user;
+    int n = b->dim;
 
-    if (b->minimal_exact) {
+    if (b->exact) {
         double y[REF_DIM_MAX];
-        int st = b->minimal_exact(t, y, p);
+        int st = b->exact(t, y, p);
         if (st < 0) return BRAUN_ERR_ARGUMENT;
         for (int i = 0; i < n; ++i) ref->y[i] = y[i];
         ref->t = t;
@@ -83,6 +89,6 @@ int braun_reference_eval(braun_reference *ref, double t, double *q, double *v)
         }
         ref->t = t;
     }
-    b->minimal_to_state(ref->y, q, v, p);
+    b->to_state(ref->y, q, v, p);
     return BRAUN_OK;
 }

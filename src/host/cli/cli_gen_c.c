@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "braun_cli.h"
+#include "braun_scene_file.h"
 
 static void symbol_from_path(const char *path, char *buf, size_t size)
 {

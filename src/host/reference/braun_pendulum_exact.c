@@ -14,7 +14,10 @@
  */
 #include <math.h>
 
-#include "braun_models_internal.h"
+#include "braun_reference.h"
+
+/* π in double; C99 has no M_PI. */
+#define BRAUN_PI_D 3.14159265358979323846
 
 /* Closer to the separatrix than this the periods blow up. */
 #define SEPARATRIX_TOL 1e-12

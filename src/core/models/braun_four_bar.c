@@ -140,44 +140,6 @@ static int energy(braun_real t, const braun_real *q, const braun_real *v,
     return 0;
 }
 
-/* Fig. 6 caption: θ'' + (7g/6l) cos θ = 0. */
-static void minimal_rhs(double t, const double *y, double *dydt,
-                        const braun_link_params *p)
-{
-    (void)t;
-    dydt[0] = y[1];
-    dydt[1] = -7.0 * p->g / (6.0 * p->l) * cos(y[0]);
-}
-
-static const double min_y0[2] = {BRAUN_PI_D / 2.0, -1.0};
-
-/* phi = θ + π/2 turns the equation into the pendulum with w2 = 7g/(6l);
- * from the paper's state phi(0) = π, phi'(0) = -1 the linkage rotates. */
-static int minimal_exact(double t, double *y, const braun_link_params *p)
-{
-    double phi, dphi;
-    int st = braun_pendulum_exact(7.0 * p->g / (6.0 * p->l),
-                                  min_y0[0] + BRAUN_PI_D / 2.0, min_y0[1], t,
-                                  &phi, &dphi);
-    if (st < 0) return st;
-    y[0] = phi - BRAUN_PI_D / 2.0;
-    y[1] = dphi;
-    return 0;
-}
-
-static void minimal_to_state(const double *y, double *q, double *v,
-                             const braun_link_params *p)
-{
-    double c = cos(y[0]), s = sin(y[0]);
-    for (int i = 0; i < 3; ++i) {
-        q[2 * i] = i * p->l + p->l * c;
-        q[2 * i + 1] = p->l * s;
-        v[2 * i] = -p->l * s * y[1];
-        v[2 * i + 1] = p->l * c * y[1];
-    }
-}
-
-/* Fig. 6 caption. */
 static const braun_real q0[6] = {BRAUN_R(0.0), BRAUN_R(1.0), BRAUN_R(1.0),
                                  BRAUN_R(1.0), BRAUN_R(2.0), BRAUN_R(1.0)};
 static const braun_real v0[6] = {BRAUN_R(1.0), BRAUN_R(0.0), BRAUN_R(1.0),
@@ -191,10 +153,5 @@ const braun_builtin braun_builtin_four_bar = {
      (void *)&params, NULL},
     q0,
     v0,
-    2,
-    min_y0,
-    minimal_rhs,
-    minimal_exact,
-    minimal_to_state,
     4, /* joint 3: ε3 of Fig. 7 */
     5};

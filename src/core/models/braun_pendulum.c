@@ -76,33 +76,6 @@ static int energy(braun_real t, const braun_real *q, const braun_real *v,
     return 0;
 }
 
-static void minimal_rhs(double t, const double *y, double *dydt,
-                        const braun_link_params *p)
-{
-    (void)t;
-    dydt[0] = y[1];
-    dydt[1] = -p->g / p->l * sin(y[0]);
-}
-
-/* Released at rest from the horizontal. */
-static const double min_y0[2] = {BRAUN_PI_D / 2.0, 0.0};
-
-static int minimal_exact(double t, double *y, const braun_link_params *p)
-{
-    return braun_pendulum_exact(p->g / p->l, min_y0[0], min_y0[1], t, &y[0],
-                                &y[1]);
-}
-
-static void minimal_to_state(const double *y, double *q, double *v,
-                             const braun_link_params *p)
-{
-    double c = cos(y[0]), s = sin(y[0]);
-    q[0] = p->l * s;
-    q[1] = -p->l * c;
-    v[0] = p->l * c * y[1];
-    v[1] = p->l * s * y[1];
-}
-
 static const braun_real q0[2] = {BRAUN_R(1.0), BRAUN_R(0.0)}; /* [l, 0] */
 static const braun_real v0[2] = {BRAUN_R(0.0), BRAUN_R(0.0)};
 
@@ -114,10 +87,5 @@ const braun_builtin braun_builtin_pendulum = {
      (void *)&params, NULL},
     q0,
     v0,
-    2,
-    min_y0,
-    minimal_rhs,
-    minimal_exact,
-    minimal_to_state,
     0,
     1};

@@ -15,7 +15,10 @@
 #include <float.h>
 #include <math.h>
 
-#include "braun_models_internal.h"
+#include "braun_reference.h"
+
+/* π in double; C99 has no M_PI. */
+#define BRAUN_PI_D 3.14159265358979323846
 
 #define PI_L 3.141592653589793238462643383279502884L
 

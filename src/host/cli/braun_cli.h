@@ -5,8 +5,8 @@
 #include <stdio.h>
 
 #include "braun.h"
-#include "braun_models.h"
-#include "braun_scene.h"
+#include "braun_reference.h"
+#include "braun_scene_file.h"
 
 /* Exit statuses: the solver failed at run time / the command line is wrong. */
 enum { BRAUN_CLI_FAILED = 1, BRAUN_CLI_USAGE = 2 };

@@ -13,7 +13,7 @@
 #include <stddef.h>
 #include <jansson.h>
 
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 
 #define SJ_MAX_DEPTH 8
 

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "braun_cli.h"
+#include "braun_scene_file.h"
 
 /* Models the tool adds to braun_models.h: no minimal-coordinate reference. */
 static const struct {

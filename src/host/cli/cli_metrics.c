@@ -3,6 +3,7 @@
 #include <math.h>
 
 #include "braun_cli.h"
+#include "braun_reference.h"
 
 /* Keeps NaN once seen: a maximum over a run that met a NaN is not a number. */
 static void track_max(double *mx, double x)

@@ -1,5 +1,5 @@
 /* Scene to C: a loaded scene as static C data (braun_scene.h, braun_gen_c_write). */
-#include "braun_scene.h"
+#include "braun_scene_file.h"
 
 #include <ctype.h>
 #include <string.h>

@@ -133,36 +133,6 @@ static int energy(braun_real t, const braun_real *q, const braun_real *v,
     return 0;
 }
 
-/* Eq. 24. */
-static void minimal_rhs(double t, const double *y, double *dydt,
-                        const braun_link_params *p)
-{
-    (void)t;
-    dydt[0] = y[1];
-    dydt[1] = -3.0 / (5.0 - 3.0 * cos(2.0 * y[0]))
-              * (sin(2.0 * y[0]) * y[1] * y[1] + p->g / p->l * cos(y[0]));
-}
-
-static void minimal_to_state(const double *y, double *q, double *v,
-                             const braun_link_params *p)
-{
-    double h = 0.5 * p->l;
-    double c = cos(y[0]), s = sin(y[0]), w = y[1];
-    q[0] = h * c;
-    q[1] = h * s;
-    q[2] = y[0];
-    q[3] = 3.0 * h * c;
-    q[4] = h * s;
-    q[5] = -y[0];
-    v[0] = -h * s * w;
-    v[1] = h * c * w;
-    v[2] = w;
-    v[3] = -3.0 * h * s * w;
-    v[4] = h * c * w;
-    v[5] = -w;
-}
-
-/* Fig. 1: released at rest with the crank at 45 degrees. */
 static const braun_real q0[6] = {
     BRAUN_R(0.35355339059327379),  /* x1 = √2/4 */
     BRAUN_R(0.35355339059327379),  /* y1 = √2/4 */
@@ -172,7 +142,6 @@ static const braun_real q0[6] = {
     BRAUN_R(-0.78539816339744828)  /* θ2 = -π/4 */
 };
 static const braun_real v0[6] = {0};
-static const double min_y0[2] = {0.78539816339744828, 0.0};
 
 const braun_builtin braun_builtin_slider_crank = {
     "slider-crank",
@@ -182,11 +151,6 @@ const braun_builtin braun_builtin_slider_crank = {
      (void *)&params, NULL},
     q0,
     v0,
-    2,
-    min_y0,
-    minimal_rhs,
-    NULL, /* Eq. 24 has no closed form used here: integrated by RK4 */
-    minimal_to_state,
     /* The paper plots the slider end (Fig. 2), which is no single coordinate
      * of q (it is x2 + (l/2)cos θ2); no ε point. */
     -1,

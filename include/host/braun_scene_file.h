@@ -1,0 +1,69 @@
+/*
+ * libbraun scene files and scene-to-C (host tier: libbraun_host.a, links
+ * jansson; uses stdio and the allocator). The scenes themselves, their
+ * builder and their callbacks are core tier: braun_scene.h.
+ */
+#ifndef BRAUN_SCENE_FILE_H
+#define BRAUN_SCENE_FILE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "braun_scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A scene read from a JSON file (docs/scene-format.md) with everything
+ * the file says beyond the mechanism. */
+typedef struct braun_scene_file {
+    braun_scene scene;        /* built: sizes and rows are set */
+    braun_system sys;         /* its callbacks; sys.user = &scene */
+    const char *path;         /* as given to braun_scene_load */
+    const char *name;         /* "name" of the file */
+    const char *description;  /* "description", "" if none */
+    unsigned corrections;     /* braun_corrections the file asks for */
+    const char *reference;    /* "reference": built-in model name, or NULL */
+    braun_real *q0, *v0;      /* initial state, n entries each */
+    /* Names of the elements, for messages (same order as the arrays). */
+    const char **body_names, **joint_names, **knife_names, **effect_names;
+} braun_scene_file;
+
+/* Read, validate and build a scene file. On failure returns NULL and writes
+ * one line "FILE:LINE:COLUMN: message" (no newline) into err; nothing is
+ * returned from a half-read file. */
+braun_scene_file *braun_scene_load(const char *path, char *err, size_t err_size);
+
+/* The same from text in memory; path names it in messages. */
+braun_scene_file *braun_scene_load_text(const char *path, const char *text, size_t len,
+                                        char *err, size_t err_size);
+
+void braun_scene_free(braun_scene_file *f);
+
+/* Scene to C (`braun gen-c`): write a C99 source that defines a
+ * scene statically — its element arrays as initialised data and a function
+ * that builds the braun_system at start-up with braun_scene_build() — so
+ * that firmware runs a scene with no parser, no file and no allocation.
+ * Host only (stdio); the output compiles in double and in float
+ * (BRAUN_SINGLE): numbers are written as the exact double the host read,
+ * cast to braun_real, which is what the host's own float build does.
+ *
+ * The generated file defines, for SYMBOL:
+ *   #define SYMBOL_N, SYMBOL_M, SYMBOL_P        sizes (for static buffers and
+ *                                               BRAUN_FIXED_N/ROWS builds)
+ *   extern const unsigned SYMBOL_corrections;   what the scene file asks for
+ *   int SYMBOL_build(braun_system *sys, braun_real *q0, braun_real *v0);
+ *       braun_scene_build() on the static arrays, then the initial state
+ *       (SYMBOL_N entries each; either may be NULL); returns its status.
+ */
+/* Write the C source of a loaded scene. symbol: a C identifier prefix;
+ * source: the file it came from (for the header comment). Returns 0, or -1
+ * if the symbol is not an identifier or writing failed. */
+int braun_gen_c_write(FILE *out, const braun_scene_file *sf, const char *symbol,
+                      const char *source);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* BRAUN_SCENE_FILE_H */
