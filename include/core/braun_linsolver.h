@@ -5,17 +5,20 @@
  * factor M = R^T R, solve with R and R^T, factor the weighted constraint
  * matrix C = A R^-1 with a rank-revealing method, and apply C^+ (minimum-norm
  * least squares) and the null-space projector N = I - C^+ C. libbraun's own
- * dense kernels do this for small systems (model.opt.linsolver == NULL, the
- * default: allocation-free, libm only). A backend is a table of those
- * operations, so LAPACK or SuiteSparse can take over for large mechanisms
- * without the core depending on either: they live in separate archives
- * (libbraun_backends.a, built with BRAUN_LAPACK=1 / BRAUN_SUITESPARSE=1) and
- * are selected through braun_backends.h.
+ * dense kernels are one such table (model.opt.linsolver == NULL selects
+ * them, the default: allocation-free, libm only, state in the data block).
+ * A backend is a table of those operations, so LAPACK or SuiteSparse can
+ * take over for large mechanisms without the core depending on either: they
+ * live in separate archives (libbraun_backends.a, built with BRAUN_LAPACK=1 /
+ * BRAUN_SUITESPARSE=1) and are selected through braun_backends.h.
  *
  * Conventions (all vectors braun_real, lengths as stated):
- *  - A backend owns its state; create() may allocate (host backends do),
- *    destroy() frees it. braun_data_init calls create, braun_data_release
- *    calls destroy.
+ *  - A backend owns its state: either create() allocates it (host backends
+ *    do) and destroy() frees it — braun_data_init calls create, after every
+ *    check that can fail, and braun_data_release calls destroy — or, with
+ *    create == NULL, it lives in the caller's data block: braun_data_size
+ *    adds state_bytes(model) and braun_data_init calls bind on that memory
+ *    (16-byte aligned).
  *  - "dense" backends (BRAUN_LS_DENSE) always see dense row-major A
  *    (rows x n) and M (n x n): the core scatters a sparse system's
  *    compressed values for them. Other backends see the system's own format:
@@ -70,6 +73,12 @@ struct braun_linsolver {
                 braun_real *resid_norm);
     /* z[n] := z - C^+ C z. */
     void (*null_project)(void *state, int slot, braun_real *z);
+    /* Optional (NULL when create is used): state in the data block. */
+    size_t (*state_bytes)(const braun_model *model);
+    int (*bind)(void **state, void *memory, const braun_model *model);
+    /* Optional: where the mass callback may write M (dense format) for
+     * factor_mass to factor in place; NULL: the core keeps its own copy. */
+    braun_real *(*mass_buffer)(void *state);
 };
 
 #ifdef __cplusplus

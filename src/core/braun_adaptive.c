@@ -47,7 +47,10 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
                              braun_real t_end, long every, braun_output_fn out,
                              void *out_user)
 {
-    if (!d || !d->priv || !ctl) return BRAUN_ERR_ARGUMENT;
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    int st = braun__check_ready(d, "braun_integrate_adaptive");
+    if (st) return st;
+    if (!ctl) return braun__fail(d, BRAUN_ERR_ARGUMENT, "adaptive control (NULL)", -1, -1, 0, (double)d->t);
     if (!(ctl->rtol >= 0) || !(ctl->atol >= 0) || (ctl->rtol == 0 && ctl->atol == 0))
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "tolerances", -1, -1, (double)ctl->rtol, (double)d->t);
     if (!braun_is_finite(t_end) || !(t_end > d->t))
@@ -60,7 +63,8 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
     const double hmin = ctl->h_min > 0 ? (double)ctl->h_min : 1e-12 * span;
     const double hmax = ctl->h_max > 0 ? (double)ctl->h_max : span;
     const long max_steps = ctl->max_steps > 0 ? ctl->max_steps : 100000000L;
-    long accepted = 0;
+    /* The step limit counts this call's attempts, accepted and rejected. */
+    long accepted = 0, rejected = 0;
 
     if (out && out(d, out_user)) return BRAUN_STOPPED;
     while (d->t < t_end) {
@@ -70,13 +74,13 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
             h = (double)(t_end - d->t);
             last = 1;
         }
-        if (accepted + d->stats.rejected_steps >= max_steps)
+        if (accepted + rejected >= max_steps)
             return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "adaptive", -1, -1, (double)max_steps, (double)d->t);
         braun__load_state(d);
         /* Always per step: with a varying h the literal Δ = Φ/h changes
          * meaning from one trial step to the next and the error test, which
          * would see the 1/h terms, rejects without end. */
-        int st = braun__rk_attempt(d, tb, (braun_real)h, 0, pv->y1, pv->yerr);
+        st = braun__rk_attempt(d, tb, (braun_real)h, 0, pv->y1, pv->yerr);
         double err;
         if (st == BRAUN_ERR_CALLBACK_RECOVERABLE || st == BRAUN_ERR_DIVERGED) {
             err = 1e10; /* retry smaller, as SUNDIALS does for recoverable failures */
@@ -97,6 +101,7 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
             h *= fac > 5.0 ? 5.0 : (fac < 0.2 ? 0.2 : fac);
         } else {
             d->stats.rejected_steps++;
+            rejected++;
             double fac = 0.9 * pow(err, -0.2);
             h *= fac < 0.1 ? 0.1 : (fac > 0.9 ? 0.9 : fac);
             if (h < hmin) {

@@ -7,7 +7,9 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
                     braun_real t_end, long every, braun_output_fn out,
                     void *out_user)
 {
-    if (!d || !d->priv) return BRAUN_ERR_ARGUMENT;
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    int st = braun__check_ready(d, "braun_integrate");
+    if (st) return st;
     const braun_tableau *tb = braun__tableau(method);
     if (!tb) return braun__fail(d, BRAUN_ERR_ARGUMENT, "method", (int)method, -1, 0, (double)d->t);
     if (!(h > 0) || !braun_is_finite(h))
@@ -30,7 +32,7 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
         const braun_real t_new = i == steps ? t_end : (braun_real)(t0 + (double)i * (double)h);
         const braun_real hi = t_new - d->t;
         braun__load_state(d);
-        int st = braun__rk_attempt(d, tb, hi, per_stage, pv->y1, NULL);
+        st = braun__rk_attempt(d, tb, hi, per_stage, pv->y1, NULL);
         if (st) return st;
         braun__commit(d, pv->y1, t_new);
         if (out && every > 0 && (i % every == 0 || i == steps) && out(d, out_user))

@@ -1,139 +1,219 @@
-/* Private state of libbraun: the scratch carved from the caller's buffer. */
+/* Private state of libbraun: the data block's scratch and the stages of the
+ * corrected equation of motion (docs/architecture.md).
+ *
+ * An evaluation at one point (t, q, v, ∫Ė; h for the 1/h terms) runs named
+ * stages in order, MuJoCo-style. The point is stored once, in pv->at; every
+ * stage reads it and what the stages before it left under the names below,
+ * writes its own outputs, and marks itself done in pv->done. A stage whose
+ * inputs are not done at this point fails (BRAUN_ERR_ARGUMENT "stage
+ * order"): no stage can use what an evaluation at another point left.
+ *
+ *   stage         equation                         reads            writes
+ *   mass          M = RᵀR (Eq. 1, Sec. 2.3)        t, q             R (linear solver)
+ *   forces        a = M⁻¹Q kept as ã = R⁻ᵀQ        t, q, v, R       Q, atil
+ *   constraints   Φ, A, b, b_v (Sec. 2.2, Eqs.4-5) t, q, v          phi, A, b, bv, ev
+ *   factor        C = A R⁻¹, rank-revealing;       A, R, atil, bv   C_v (slot 0), C_q
+ *                 r_v = b_v − C_v ã (Eq. 10)                        (slot 1), rank, rv
+ *   ideal         Udwadia–Kalaba (Eq. 13, Δ = 0,   atil, rv, C_v    u, z, vdot
+ *                 Q0 = 0): v' = R⁻¹(ã + C_v⁺ r_v)
+ *   power         Ė = power() + Q_c·v              t, q, v, u, R    Edot
+ *   position      Eq. 16 × h: dq = R⁻¹C_q⁺         phi, ev, C_q     dq
+ *                 (h b_q − h A_q v − Φ_q)
+ *   velocity      Δ_v of Eq. 17 × h:               ev, C_v          dv
+ *                 dv = −R⁻¹C_v⁺[Φ̇_q; Φ_v]
+ *   energy        Eq. 20 × h with its guard        t, q, v, W, vdot, dv += ...
+ *                                                  Edot, C_v, dv
+ *
+ * Compositions (braun_forward.c): braun__forward = mass → forces →
+ * constraints → factor → ideal; braun__corrections = position → velocity →
+ * energy. The Runge–Kutta stepper, the drivers, braun_eval and
+ * braun_residuals are short compositions of stages.
+ */
 #ifndef BRAUN_INTERNAL_H
 #define BRAUN_INTERNAL_H
 
 #include "braun.h"
+#include "braun_dense.h"
 #include "braun_linalg.h"
 #include "braun_linsolver.h"
 
 /* Firmware builds with compile-time sizes run the built-in kernels only:
- * no backend dispatch, not even a branch. */
+ * no backend dispatch, not even an indirect call. */
 #if defined(BRAUN_FIXED_N) && !defined(BRAUN_NO_LINSOLVER)
 #define BRAUN_NO_LINSOLVER
 #endif
 
 #define BRAUN_MAX_STAGES 7
 
+/* The evaluation point every stage reads (set by braun__at). */
+typedef struct braun_point {
+    braun_real t;
+    const braun_real *q, *v; /* n each */
+    braun_real W;            /* ∫_0^t Ė dτ at the point (Eq. 18) */
+    braun_real h;            /* step the 1/h terms meet (corrections) */
+} braun_point;
+
+/* Stages done at the current point (pv->done). */
+enum braun_stage_bits {
+    BRAUN_DONE_MASS = 1u << 0,
+    BRAUN_DONE_FORCES = 1u << 1,
+    BRAUN_DONE_CONSTRAINTS = 1u << 2, /* A, b_v */
+    BRAUN_DONE_RESIDUALS = 1u << 3,   /* Φ, b_q, [Φ̇_q; Φ_v]: asked for by the corrections */
+    BRAUN_DONE_FACTOR = 1u << 4,      /* C_v (and C_q when the residuals are wanted) */
+    BRAUN_DONE_IDEAL = 1u << 5,
+    BRAUN_DONE_POWER = 1u << 6
+};
+
 typedef struct braun_priv {
     int n, m, p, rows;
     int need_fq;          /* separate C_q factorization (p > 0 and m > 0) */
     int R_is_constant;    /* R computed once in braun_data_init */
     int state_integrated; /* the state came from a step, not braun_set_state */
-    /* Linear algebra: the built-in kernels (ls == NULL: chol, fv, fq below)
-     * or a backend's table and state (braun_linsolver.h). */
+    int state_set;        /* braun_set_state was called */
+    /* Where the stages are. */
+    braun_point at;
+    unsigned done;        /* braun_stage_bits at `at` */
+    /* Linear algebra: a backend's table and state (braun_linsolver.h). The
+     * built-in dense kernels are a backend too (braun_dense.c), whose state
+     * lives in this buffer. */
     const braun_linsolver *ls;
     void *ls_state;
+    int ls_owned;         /* ls_state was created (allocated) by ls->create */
     /* Sparse system (sys.sparsity): the callbacks write compressed values
      * into Avals and Mvals; dense solvers get them scattered into A / M. */
     const braun_sparsity *sp;
     braun_real *Avals;    /* nnz = sp->row_ptr[rows] */
-    braun_real *Mvals;    /* mass callback output: mass_count values */
+    braun_real *Mvals;    /* mass callback output when the solver does not
+                             take it in place: mass_count values */
     size_t mass_count;    /* n*n dense, sum of block^2 sparse */
-    braun_real *Mdense;   /* n*n: M of a sparse system for a dense backend (else NULL) */
+    braun_real *Mdense;   /* n*n: M of a sparse system for a dense solver (else NULL) */
     int dense_A;          /* A holds the dense rows x n Jacobian */
     int rank[2];          /* numerical rank of C_v (slot 0) and C_q (slot 1) */
-    braun_chol chol;      /* M = R^T R (R, reciprocal pivots, envelope) */
-    braun_real *Q;        /* n forces */
-    braun_real *atil;     /* n: R^-T Q, the weighted unconstrained acceleration */
-    braun_real *z;        /* n: R q'' (weighted ideal acceleration) */
-    braun_real *u;        /* n: C_v^+ (b_v - C_v atil) */
-    braun_real *A;        /* rows*n: [A_q; A_vv] from the callbacks */
+    /* Stage outputs, one meaning each (see the table above). */
+    braun_real *Q;        /* n: forces */
+    braun_real *atil;     /* n: ã = R⁻ᵀQ, the weighted unconstrained acceleration */
+    braun_real *A;        /* rows*n: [A_q; A_vv] from the callbacks (dense) */
     braun_real *phi;      /* rows: [Φ_q; Φ_v] */
     braun_real *b;        /* m: b_q */
-    braun_real *bv;       /* rows: [b_qv; b_vv], then the residual b_v - C_v atil */
+    braun_real *bv;       /* rows: [b_qv; b_vv] */
     braun_real *ev;       /* rows: velocity-level error [Φ̇_q; Φ_v] */
-    braun_real *ep;       /* m: Φ_q + h Φ̇_q */
-    braun_real *dEdq, *dEdv, *ce, *tmp; /* n each */
-    braun_qrcp fv;        /* C_v = A_v R^-1 */
-    braun_qrcp fq;        /* C_q = A_q R^-1 when need_fq */
+    braun_real *rv;       /* rows: r_v = b_v − C_v ã */
+    braun_real *u;        /* n: C_v⁺ r_v, the weighted ideal constraint force */
+    braun_real *z;        /* n: R q'' = ã + u (weighted ideal acceleration) */
+    braun_real Edot;      /* energy input rate at the point */
+    braun_real *ep;       /* m: −(Φ_q + h Φ̇_q), the position target of Eq. 16 */
+    braun_real *dEdq, *dEdv, *ce, *tmp; /* n each: energy stage scratch */
+    braun_real *dq, *dv;  /* n each: h × the correction terms (Eqs. 16, 17, 20) */
     /* Integrator scratch: states of length N = 2n + 1 ([q; v; ∫Ė]). */
     braun_real *y0, *ys, *y1, *yerr;
     braun_real *k[BRAUN_MAX_STAGES];
-    braun_real *dq, *dv;  /* correction increments of the step (n each) */
 } braun_priv;
-
-/* Flags for braun__eval_ideal: which constraint values are wanted besides
- * the Jacobians and b_v (the corrections need Φ and b_q). */
-enum { BRAUN_WANT_PHI = 1 };
-
-/* Ideal (Udwadia–Kalaba) acceleration at (t,q,v): fills R, atil, fv, u, z and
- * vdot = R^-1 z (vdot may be NULL). With BRAUN_WANT_PHI also phi, b, ev. */
-int braun__eval_ideal(braun_data *d, braun_real t, const braun_real *q,
-                      const braun_real *v, unsigned want, braun_real *vdot);
-
-/* Correction increments h·(Eq. 16 - v) and h·(Eq. 17 - ideal), with Eq. 20,
- * at the state of the last braun__eval_ideal(..., BRAUN_WANT_PHI, vdot):
- * dq, dv (n each), h the step. W is ∫Ė at that state. */
-int braun__eval_corrections(braun_data *d, braun_real t, const braun_real *q,
-                            const braun_real *v, braun_real W, braun_real h,
-                            const braun_real *vdot, braun_real *dq,
-                            braun_real *dv);
-
-/* Evaluate and factor M at (t,q) unless it is constant (factored once). */
-int braun__mass_update(braun_data *d, braun_real t, const braun_real *q);
-
-/* Ė at a state (0 without BRAUN_ENERGY_INPUT). */
-int braun__power(braun_data *d, braun_real t, const braun_real *q,
-                 const braun_real *v, braun_real *Edot);
-
-/* Record an error in d->error and return status. */
-int braun__fail(braun_data *d, int status, const char *where, int index,
-                int index2, double value, double t);
-
-/* Map a callback's return code: 0 ok, > 0 recoverable, < 0 fatal. */
-int braun__callback(braun_data *d, int rc, const char *where, braun_real t);
-
-/* Check n outputs of a callback for NaN/Inf. */
-int braun__check_finite(braun_data *d, int n, const braun_real *x,
-                        const char *where, int cols, braun_real t);
 
 static inline braun_priv *braun__priv(const braun_data *d)
 {
     return (braun_priv *)d->priv;
 }
 
-/* ---- Linear algebra dispatch: built-in kernels or the backend table ---- */
+/* ------------------------------------------------------------ errors */
+/* Record an error in d->error and return status (braun_error.c). */
+int braun__fail(braun_data *d, int status, const char *where, int index,
+                int index2, double value, double t);
+/* Map a callback's return code: 0 ok, > 0 recoverable, < 0 fatal. */
+int braun__callback_failed(braun_data *d, int rc, const char *where, braun_real t);
+static inline int braun__callback(braun_data *d, int rc, const char *where, braun_real t)
+{
+    return rc == 0 ? BRAUN_OK : braun__callback_failed(d, rc, where, t);
+}
+/* Check n outputs of a callback for NaN/Inf. */
+int braun__check_finite(braun_data *d, int n, const braun_real *x,
+                        const char *where, int cols, braun_real t);
+/* The options of d's model are valid (braun_options.c). */
+int braun__check_options(braun_data *d);
+/* The data block is usable (initialised, state set): BRAUN_OK or an error
+ * recorded in d->error; `where` names the calling function. */
+int braun__check_ready(braun_data *d, const char *where);
+
+/* ------------------------------------------------------------ stages */
+/* Store the evaluation point; no stage is done there yet. */
+static inline void braun__at(braun_priv *pv, braun_real t, const braun_real *q,
+                             const braun_real *v, braun_real W, braun_real h)
+{
+    pv->at.t = t;
+    pv->at.q = q;
+    pv->at.v = v;
+    pv->at.W = W;
+    pv->at.h = h;
+    pv->done = pv->R_is_constant ? BRAUN_DONE_MASS : 0u;
+}
+
+/* The stages are static functions of two files — braun_forward.c (mass,
+ * forces, constraints, factor, ideal, power) and braun_corrections.c
+ * (position, velocity, energy) — so the compiler sees each pass whole.
+ * Each returns BRAUN_OK or an error recorded in d->error. */
+
+/* Stage mass alone (braun_data_init factors a constant M with it). */
+int braun__stage_mass(braun_data *d);
+
+/* What braun__forward computes besides the ideal acceleration. */
+enum {
+    BRAUN_WITH_RESIDUALS = 1u << 0, /* Φ, b_q, [Φ̇_q; Φ_v]: the corrections need them */
+    BRAUN_WITH_POWER = 1u << 1      /* Ė (pv->Edot) */
+};
+/* The forward pass at pv->at: mass → forces → constraints → factor →
+ * ideal (→ power); the ideal acceleration into vdot (may be NULL). */
+int braun__forward(braun_data *d, unsigned with, braun_real *vdot);
+/* h × the correction terms at pv->at into pv->dq, pv->dv (zero for the
+ * corrections that are off): position → velocity → energy. After
+ * braun__forward(d, BRAUN_WITH_RESIDUALS | BRAUN_WITH_POWER, vdot). */
+int braun__corrections(braun_data *d, const braun_real *vdot);
+
+/* A stage's inputs are done at this point, else BRAUN_ERR_ARGUMENT. */
+static inline int braun__need(braun_data *d, unsigned bits, const char *stage)
+{
+    if ((braun__priv(d)->done & bits) == bits) return BRAUN_OK;
+    return braun__fail(d, BRAUN_ERR_ARGUMENT, stage, -1, -1, 0, (double)braun__priv(d)->at.t);
+}
+
+/* ------------------------------------------------- linear-solver calls */
+/* Through the backend table; the built-in dense kernels (braun_dense.h, the
+ * default) are called directly — the same functions the table holds — and
+ * a build without dispatch (firmware, compile-time sizes) knows no other. */
+extern const braun_linsolver braun__dense_linsolver;
 #ifdef BRAUN_NO_LINSOLVER
-#define BRAUN_LS(pv) 0
+#define BRAUN_LS_CALL(pv, op, ...) braun__dense_##op(__VA_ARGS__)
 #else
-#define BRAUN_LS(pv) ((pv)->ls != NULL)
+#define BRAUN_LS_CALL(pv, op, ...)                                                  \
+    ((pv)->ls == &braun__dense_linsolver ? braun__dense_##op(__VA_ARGS__)           \
+                                         : (pv)->ls->op(__VA_ARGS__))
 #endif
 
-/* x := R^-T b (x may be b). */
+/* x := R^-T b, x := R^-1 b (x may be b), y := R x. */
 static inline void braun__solve_rt(const braun_priv *pv, const braun_real *b, braun_real *x)
 {
-    if (BRAUN_LS(pv)) pv->ls->solve_rt(pv->ls_state, b, x);
-    else braun_chol_solve_rt_to(&pv->chol, b, x);
+    BRAUN_LS_CALL(pv, solve_rt, pv->ls_state, b, x);
 }
-/* x := R^-1 b (x may be b). */
 static inline void braun__solve_r(const braun_priv *pv, const braun_real *b, braun_real *x)
 {
-    if (BRAUN_LS(pv)) pv->ls->solve_r(pv->ls_state, b, x);
-    else braun_chol_solve_r_to(&pv->chol, b, x);
+    BRAUN_LS_CALL(pv, solve_r, pv->ls_state, b, x);
 }
-/* y := R x. */
 static inline void braun__mul_r(const braun_priv *pv, const braun_real *x, braun_real *y)
 {
-    if (BRAUN_LS(pv)) pv->ls->mul_r(pv->ls_state, x, y);
-    else braun_chol_mul_r(&pv->chol, x, y);
+    BRAUN_LS_CALL(pv, mul_r, pv->ls_state, x, y);
 }
-/* slot 0: C_v (pv->fv), slot 1: C_q (pv->fq). */
+/* slot 0: C_v, slot 1: C_q. */
 static inline void braun__pinv(const braun_priv *pv, int slot, const braun_real *r,
                                braun_real *x)
 {
-    if (BRAUN_LS(pv)) pv->ls->pinv(pv->ls_state, slot, r, x);
-    else braun_qrcp_pinv_apply(slot ? &pv->fq : &pv->fv, r, x);
+    BRAUN_LS_CALL(pv, pinv, pv->ls_state, slot, r, x);
 }
 static inline void braun__lsq(const braun_priv *pv, int slot, const braun_real *r,
                               braun_real *x, braun_real *resid)
 {
-    if (BRAUN_LS(pv)) pv->ls->lsq(pv->ls_state, slot, r, x, resid);
-    else braun_qrcp_lsq(slot ? &pv->fq : &pv->fv, r, x, resid);
+    BRAUN_LS_CALL(pv, lsq, pv->ls_state, slot, r, x, resid);
 }
 static inline void braun__null_project(const braun_priv *pv, int slot, braun_real *z)
 {
-    if (BRAUN_LS(pv)) pv->ls->null_project(pv->ls_state, slot, z);
-    else braun_qrcp_null_project(slot ? &pv->fq : &pv->fv, z);
+    BRAUN_LS_CALL(pv, null_project, pv->ls_state, slot, z);
 }
 
 /* Row i of the constraint Jacobian times x (compressed or dense). */
@@ -148,15 +228,25 @@ static inline braun_real braun__row_dot(const braun_priv *pv, int i, const braun
     return braun_dot(BRAUN_N(pv->n), pv->A + (size_t)i * (size_t)BRAUN_N(pv->n), x);
 }
 
-/* Scatter the compressed A values into the dense A (entries off the
- * pattern stay the zeros braun_data_init wrote). */
-void braun__scatter_A(braun_priv *pv);
-
 /* Where the constraint callbacks write A: row `row`'s first value. */
 static inline braun_real *braun__A_out(const braun_priv *pv, int row)
 {
     if (pv->sp) return pv->Avals + pv->sp->row_ptr[row];
     return pv->A + (size_t)row * (size_t)pv->n;
 }
+
+/* Relative rank tolerance of a factorization of `rows` rows. */
+static inline braun_real braun__rank_tol(const braun_data *d, int rows)
+{
+    const braun_real t = d->model->opt.rank_tol;
+    return t > 0 ? t : braun_default_rank_tol(rows, d->model->sys.n);
+}
+
+/* ------------------------------------------------------------ layout */
+/* Bytes of the data block (base == NULL), or carve it (braun_layout.c). */
+size_t braun__layout(const braun_model *model, unsigned char *base, braun_priv *pv,
+                     braun_real **q, braun_real **v);
+/* The model's linear solver: the built-in kernels unless a backend is set. */
+const braun_linsolver *braun__model_linsolver(const braun_model *model);
 
 #endif

@@ -55,15 +55,17 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         const braun_real ts = d->t + (braun_real)tb->c[s] * h;
         braun_real *k = pv->k[s];
         const int wants_corr = corr && (per_stage || s == 0);
-        st = diverged_if_integrated(d, s, braun__eval_ideal(d, ts, ys, ys + n,
-                                                           wants_corr ? BRAUN_WANT_PHI : 0u, k + n));
+        /* Stage s of the method: the ideal flow at (ts, ys), its energy input,
+         * and — at the step's start, or at every stage per stage — the
+         * corrections, at the same point. */
+        braun__at(pv, ts, ys, ys + n, ys[2 * n], h);
+        st = diverged_if_integrated(
+            d, s, braun__forward(d, BRAUN_WITH_POWER | (wants_corr ? BRAUN_WITH_RESIDUALS : 0u), k + n));
         if (st) return st;
         for (int i = 0; i < n; i++) k[i] = ys[n + i];
-        st = braun__power(d, ts, ys, ys + n, &k[2 * n]);
-        if (st) return st;
+        k[2 * n] = pv->Edot;
         if (wants_corr) {
-            st = diverged_if_integrated(d, s, braun__eval_corrections(d, ts, ys, ys + n, ys[2 * n], h,
-                                                                      k + n, pv->dq, pv->dv));
+            st = diverged_if_integrated(d, s, braun__corrections(d, k + n));
             if (st) return st;
             if (per_stage) /* the literal Eqs. 16-17 with Δ = Φ/h */
                 for (int i = 0; i < n; i++) {
@@ -126,15 +128,17 @@ void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new)
 
 int braun_step(braun_data *d, braun_method method, braun_real h)
 {
-    if (!d || !d->priv) return BRAUN_ERR_ARGUMENT;
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    int st = braun__check_ready(d, "braun_step");
+    if (st) return st;
     const braun_tableau *tb = braun__tableau(method);
     if (!tb) return braun__fail(d, BRAUN_ERR_ARGUMENT, "method", (int)method, -1, 0, (double)d->t);
     if (!(h > 0) || !braun_is_finite(h))
         return braun__fail(d, BRAUN_ERR_STEP, "step size", -1, -1, (double)h, (double)d->t);
     braun_priv *pv = braun__priv(d);
     braun__load_state(d);
-    int st = braun__rk_attempt(d, tb, h, d->model->opt.discretization == BRAUN_PER_STAGE,
-                               pv->y1, NULL);
+    st = braun__rk_attempt(d, tb, h, d->model->opt.discretization == BRAUN_PER_STAGE, pv->y1,
+                           NULL);
     if (st) return st;
     braun__commit(d, pv->y1, d->t + h);
     return BRAUN_OK;

@@ -365,6 +365,9 @@ static const braun_linsolver lapack_table = {
     ls_pinv,
     ls_lsq,
     ls_null_project,
+    NULL, /* state_bytes: created, not in the data block */
+    NULL, /* bind */
+    NULL, /* mass_buffer: the core keeps M */
 };
 
 const braun_linsolver *braun_linsolver_lapack(void) { return &lapack_table; }

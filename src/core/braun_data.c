@@ -1,0 +1,140 @@
+/* The data block: size, initialisation from the caller's buffer, release,
+ * and the state. */
+#include <stdint.h>
+
+#include "braun_internal.h"
+
+#define BRAUN_ALIGN 16u
+
+/* Dense kernels index n x n and rows x n arrays: bounded sizes. */
+static int dense_size_ok(const braun_model *model)
+{
+    const braun_system *s = &model->sys;
+    if (!(braun__model_linsolver(model)->flags & BRAUN_LS_DENSE)) return 1;
+    return s->n <= BRAUN_MAX_DENSE && s->m + s->p <= 2 * BRAUN_MAX_DENSE;
+}
+
+size_t braun_data_size(const braun_model *model)
+{
+    if (!model || model->sys.n <= 0 || !dense_size_ok(model)) return 0;
+    /* + alignment slack: the caller's buffer may start anywhere. */
+    return braun__layout(model, NULL, NULL, NULL, NULL) + BRAUN_ALIGN;
+}
+
+/* Nothing is left to release when this fails (a backend's state is
+ * created after every check, and freed again if what follows fails). */
+int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
+                    size_t bytes)
+{
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    d->priv = NULL;
+    d->model = model;
+    d->error = (braun_error_info){BRAUN_OK, NULL, -1, -1, 0, 0};
+    if (!model || !buffer)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, model ? "buffer (NULL)" : "model (NULL)", -1,
+                           -1, 0, 0);
+    size_t need = braun_data_size(model);
+    if (need == 0)
+        return braun__fail(d, BRAUN_ERR_SIZE, "sizes (dense limit)", -1, -1,
+                           (double)model->sys.n, 0);
+    if (bytes < need)
+        return braun__fail(d, BRAUN_ERR_BUFFER, "buffer (smaller than braun_data_size)", -1, -1,
+                           (double)bytes, 0);
+    d->t = 0;
+    d->work_in = 0;
+    d->E0 = 0;
+    d->has_E0 = 0;
+    d->stats = (braun_stats){0, 0, 0, 0, 0, 0, 0};
+    /* Every option, before anything is made. */
+    int st = braun__check_options(d);
+    if (st) return st;
+    const braun_linsolver *ls = braun__model_linsolver(model);
+    if ((ls->flags & BRAUN_LS_NEEDS_SPARSITY) && !model->sys.sparsity)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "linear solver needs a sparsity", -1, -1, 0, 0);
+
+    uintptr_t addr = (uintptr_t)buffer;
+    size_t shift = (size_t)((BRAUN_ALIGN - addr % BRAUN_ALIGN) % BRAUN_ALIGN);
+    unsigned char *base = (unsigned char *)buffer + shift;
+    braun_priv *pv = (braun_priv *)(void *)base;
+    const braun_system *s = &model->sys;
+    pv->n = s->n;
+    pv->m = s->m;
+    pv->p = s->p;
+    pv->rows = s->m + s->p;
+    pv->need_fq = s->p > 0 && s->m > 0;
+    pv->R_is_constant = 0;
+    pv->state_integrated = 0;
+    pv->state_set = 0;
+    pv->done = 0;
+    pv->rank[0] = pv->rows;
+    pv->rank[1] = s->m;
+    pv->Edot = 0;
+    braun__layout(model, base, pv, &d->q, &d->v);
+    for (int i = 0; i < s->n; i++) d->q[i] = d->v[i] = 0;
+    /* Off-pattern entries of a scattered A stay zero from here on. */
+    if (pv->sp && pv->dense_A)
+        for (size_t i = 0; i < (size_t)pv->rows * (size_t)pv->n; i++) pv->A[i] = 0;
+#ifndef BRAUN_NO_LINSOLVER
+    if (ls->create) {
+        st = ls->create(&pv->ls_state, model);
+        if (st) return braun__fail(d, st, "linear solver create", -1, -1, 0, 0);
+        pv->ls_owned = 1;
+    }
+#endif
+    d->priv = pv;
+    if (s->flags & BRAUN_MASS_CONSTANT) {
+        braun__at(pv, 0, d->q, d->v, 0, 0);
+        st = braun__stage_mass(d);
+        if (st) {
+            braun_data_release(d);
+            d->priv = NULL;
+            return st;
+        }
+        pv->R_is_constant = 1;
+    }
+    return BRAUN_OK;
+}
+
+void braun_data_release(braun_data *d)
+{
+    if (!d || !d->priv) return;
+    braun_priv *pv = braun__priv(d);
+#ifndef BRAUN_NO_LINSOLVER
+    if (pv->ls_owned && pv->ls_state && pv->ls->destroy) pv->ls->destroy(pv->ls_state);
+#endif
+    pv->ls_state = NULL;
+    pv->ls_owned = 0;
+}
+
+int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
+                    const braun_real *v)
+{
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    if (!d->priv || !d->model) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_set_state (data not initialised)", -1, -1, 0, 0);
+    if (!q || !v) return braun__fail(d, BRAUN_ERR_ARGUMENT, q ? "state v (NULL)" : "state q (NULL)", -1, -1, 0, (double)t);
+    const int n = d->model->sys.n;
+    if (!braun_is_finite(t)) return braun__fail(d, BRAUN_ERR_NONFINITE, "state t", -1, -1, (double)t, (double)t);
+    int st = braun__check_finite(d, n, q, "state q", 0, t);
+    if (st) return st;
+    st = braun__check_finite(d, n, v, "state v", 0, t);
+    if (st) return st;
+    for (int i = 0; i < n; i++) {
+        d->q[i] = q[i];
+        d->v[i] = v[i];
+    }
+    braun_priv *pv = braun__priv(d);
+    d->t = t;
+    d->work_in = 0;
+    pv->state_integrated = 0;
+    pv->state_set = 1;
+    d->has_E0 = 0;
+    d->E0 = 0;
+    if (d->model->sys.energy) {
+        braun_real E;
+        st = braun_energy(d, t, q, v, &E);
+        if (st) return st;
+        d->E0 = E;
+        d->has_E0 = 1;
+    }
+    return BRAUN_OK;
+}

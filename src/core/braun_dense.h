@@ -1,0 +1,84 @@
+/* libbraun's own dense kernels as a linear-solver backend
+ * (braun_linsolver.h): Cholesky M = RᵀR (braun_chol.c) and the
+ * rank-revealing pseudoinverse of C = A R⁻¹ by column-pivoted QR of Cᵀ
+ * (braun_qrcp.c). The default backend: allocation-free, its state lives in
+ * the data block, and the mass callback writes M straight into R, factored
+ * in place. Its operations are inline here so that the core calls them
+ * directly when the model uses this backend (BRAUN_LS_CALL in
+ * braun_internal.h); the table in braun_dense.c holds the same functions. */
+#ifndef BRAUN_DENSE_H
+#define BRAUN_DENSE_H
+
+#include "braun_linalg.h"
+#include "braun_linsolver.h"
+
+typedef struct braun_dense {
+    int n;
+    braun_chol chol; /* M = R^T R */
+    braun_qrcp fv;   /* slot 0: C_v = A_v R^-1, all rows */
+    braun_qrcp fq;   /* slot 1: C_q = A_q R^-1 when m > 0 and p > 0 */
+} braun_dense;
+
+static inline braun_dense *braun__dense(void *state) { return (braun_dense *)state; }
+static inline braun_qrcp *braun__dense_slot(void *state, int slot)
+{
+    return slot ? &braun__dense(state)->fq : &braun__dense(state)->fv;
+}
+
+static inline braun_real *braun__dense_mass_buffer(void *state) { return braun__dense(state)->chol.R; }
+
+static inline int braun__dense_factor_mass(void *state, const braun_real *M, braun_real sym_tol, int *bad_i,
+                             int *bad_j, braun_real *bad_value)
+{
+    return braun_chol_factor(&braun__dense(state)->chol, M, sym_tol, bad_i, bad_j, bad_value);
+}
+
+static inline void braun__dense_solve_rt(void *state, const braun_real *b, braun_real *x)
+{
+    braun_chol_solve_rt_to(&braun__dense(state)->chol, b, x);
+}
+
+static inline void braun__dense_solve_r(void *state, const braun_real *b, braun_real *x)
+{
+    braun_chol_solve_r_to(&braun__dense(state)->chol, b, x);
+}
+
+static inline void braun__dense_mul_r(void *state, const braun_real *x, braun_real *y)
+{
+    braun_chol_mul_r(&braun__dense(state)->chol, x, y);
+}
+
+/* C = A R^-1 row by row (row_i(C) = R^-T A_i^T), resid -= C atil fused into
+ * the same pass, then the pivoted QR of C^T in place. */
+static inline int braun__dense_factor_c(void *state, int slot, int rows, const braun_real *A, braun_real tol,
+                          const braun_real *atil, braun_real *resid)
+{
+    braun_dense *s = braun__dense(state);
+    braun_qrcp *f = braun__dense_slot(state, slot);
+    const int n = BRAUN_N(s->n);
+    braun_real *C = f->a;
+    for (int i = 0; i < rows; i++) {
+        braun_real *ci = C + (size_t)i * (size_t)n;
+        braun_chol_solve_rt_to(&s->chol, A + (size_t)i * (size_t)n, ci);
+        if (resid) resid[i] -= braun_dot(n, ci, atil);
+    }
+    return braun_qrcp_factor(f, tol);
+}
+
+static inline void braun__dense_pinv(void *state, int slot, const braun_real *r, braun_real *x)
+{
+    braun_qrcp_pinv_apply(braun__dense_slot(state, slot), r, x);
+}
+
+static inline void braun__dense_lsq(void *state, int slot, const braun_real *r, braun_real *x,
+                      braun_real *resid_norm)
+{
+    braun_qrcp_lsq(braun__dense_slot(state, slot), r, x, resid_norm);
+}
+
+static inline void braun__dense_null_project(void *state, int slot, braun_real *z)
+{
+    braun_qrcp_null_project(braun__dense_slot(state, slot), z);
+}
+
+#endif

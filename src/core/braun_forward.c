@@ -1,0 +1,369 @@
+/* The forward pass: the ideal (Udwadia–Kalaba) acceleration of the
+ * corrected equation of motion as named stages, in the order they run —
+ * mass → forces → constraints → factor → ideal — and the energy input rate
+ * (power), with the compositions braun__forward, braun_eval and
+ * braun_residuals. The corrections (Eqs. 16, 17, 20) are braun_corrections.c.
+ * Each stage reads the evaluation point pv->at and what the stages before it
+ * left, under the names of braun_internal.h. One file, so the compiler sees
+ * the whole pass (the stages are called once per evaluation). */
+#include "braun_internal.h"
+
+/* ================================================================ */
+/* Stage mass: M = RᵀR (Eq. 1; the Cholesky factor of Sec. 2.3). */
+
+/* A sparse system's blocks into the dense n x n matrix M. */
+static void scatter_mass_blocks(const braun_sparsity *sp, int n, const braun_real *blocks,
+                                braun_real *M)
+{
+    for (size_t i = 0; i < (size_t)n * (size_t)n; i++) M[i] = 0;
+    int off = 0;
+    for (int k = 0; k < sp->nblocks; k++) {
+        const int b = sp->block[k];
+        for (int i = 0; i < b; i++)
+            for (int j = 0; j < b; j++)
+                M[(size_t)(off + i) * (size_t)n + (size_t)(off + j)] = *blocks++;
+        off += b;
+    }
+}
+
+/* Stage mass (Eq. 1, Sec. 2.3): evaluate M at the point and factor
+ * M = RᵀR. Skipped when M is constant (factored once, in braun_data_init). */
+static int stage_mass(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    if (pv->done & BRAUN_DONE_MASS) return BRAUN_OK;
+    const braun_system *s = &d->model->sys;
+    const int n = pv->n;
+    const braun_real t = pv->at.t;
+    braun_real tol = d->model->opt.symmetry_tol > 0 ? d->model->opt.symmetry_tol
+                                                   : (braun_real)1e3 * BRAUN_EPS;
+    int bi = -1, bj = -1, st;
+    braun_real bad = 0;
+    /* The callback's output: in the solver's own buffer when it factors in
+     * place (the built-in Cholesky), else Mvals. */
+    braun_real *out = pv->Mvals ? pv->Mvals : BRAUN_LS_CALL(pv, mass_buffer, pv->ls_state);
+    st = braun__callback(d, s->mass(t, pv->at.q, out, s->user), "mass", t);
+    if (st) return st;
+    st = braun__check_finite(d, (int)pv->mass_count, out, "mass", pv->sp ? 0 : n, t);
+    if (st) return st;
+    const braun_real *M = out;
+    if (pv->sp && pv->dense_A) {
+        /* Dense solver, sparse system: scatter the blocks. */
+        braun_real *dst = pv->Mdense ? pv->Mdense : BRAUN_LS_CALL(pv, mass_buffer, pv->ls_state);
+        scatter_mass_blocks(pv->sp, n, out, dst);
+        M = dst;
+    }
+    st = BRAUN_LS_CALL(pv, factor_mass, pv->ls_state, M, tol, &bi, &bj, &bad);
+    d->stats.mass_factorizations++;
+    if (st) return braun__fail(d, st, "mass", bi, bj, (double)bad, (double)t);
+    pv->done |= BRAUN_DONE_MASS;
+    return BRAUN_OK;
+}
+
+/* ================================================================ */
+/* Stage forces: the applied and inertial forces Q(t, q, v) of Eq. 1 and the
+ * unconstrained acceleration a = M⁻¹Q (Eq. 9), kept in weighted form
+ * ã = R⁻ᵀQ (a = R⁻¹ã): every later stage works with C = A R⁻¹. */
+
+static int stage_forces(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    const braun_system *s = &d->model->sys;
+    int st = braun__callback(d, s->forces(pv->at.t, pv->at.q, pv->at.v, pv->Q, s->user), "forces",
+                         pv->at.t);
+    if (st) return st;
+    braun__solve_rt(pv, pv->Q, pv->atil);
+    pv->done |= BRAUN_DONE_FORCES;
+    return BRAUN_OK;
+}
+
+/* ================================================================ */
+/* Stage constraints (Sec. 2.2): the callbacks' Jacobians A = [A_q; A_vv]
+ * and right-hand sides b_v = [b_qv; b_vv] of the acceleration-level rows
+ * (Eq. 5) and, when the corrections need them, the residuals Φ = [Φ_q; Φ_v],
+ * b_q (Eq. 4) and the velocity-level error [Φ̇_q; Φ_v] = [A_q v − b_q; Φ_v]. */
+
+static int stage_constraints(braun_data *d, int with_residuals)
+{
+    braun_priv *pv = braun__priv(d);
+    const braun_system *s = &d->model->sys;
+    const int m = pv->m, p = pv->p, rows = pv->rows;
+    const braun_real t = pv->at.t, *q = pv->at.q, *v = pv->at.v;
+    int st;
+    if (m > 0) {
+        st = braun__callback(d, s->holonomic(t, q, v, with_residuals ? pv->phi : NULL,
+                                             braun__A_out(pv, 0),
+                                             with_residuals ? pv->b : NULL, pv->bv, s->user),
+                             "holonomic", t);
+        if (st) return st;
+    }
+    if (p > 0) {
+        st = braun__callback(d, s->nonholonomic(t, q, v, with_residuals ? pv->phi + m : NULL,
+                                                braun__A_out(pv, m), pv->bv + m, s->user),
+                             "nonholonomic", t);
+        if (st) return st;
+    }
+    if (with_residuals) {
+        for (int i = 0; i < m; i++) pv->ev[i] = braun__row_dot(pv, i, v) - pv->b[i];
+        for (int i = m; i < rows; i++) pv->ev[i] = pv->phi[i];
+        pv->done |= BRAUN_DONE_RESIDUALS;
+    }
+    pv->done |= BRAUN_DONE_CONSTRAINTS;
+    return BRAUN_OK;
+}
+
+/* ================================================================ */
+/* Stage factor (Sec. 2.3): the weighted constraint matrices C = A R⁻¹ and
+ * their rank-revealing factorizations, through the linear solver — C_v of
+ * all rows (slot 0) for Eqs. 17 and 20, and C_q of the holonomic rows
+ * (slot 1) for Eq. 16 when the system has both kinds of rows and the
+ * corrections need it (otherwise C_q = C_v) — and, in the same pass, the
+ * residual of Eq. 10 without corrections, r_v = b_v − C_v ã. */
+
+/* A factorization of `rows` rows found this rank: kept for the
+ * corrections, counted in the statistics. */
+static void record_rank(braun_data *d, int slot, int rank, int rows)
+{
+    braun__priv(d)->rank[slot] = rank;
+    d->stats.constraint_factorizations++;
+    if (rank < rows) d->stats.rank_deficient++;
+}
+
+/* The dense A of a sparse system (entries off the pattern stay zero). */
+static void scatter_A(braun_priv *pv)
+{
+    const braun_sparsity *sp = pv->sp;
+    const size_t n = (size_t)pv->n;
+    for (int i = 0; i < pv->rows; i++)
+        for (int k = sp->row_ptr[i]; k < sp->row_ptr[i + 1]; k++)
+            pv->A[(size_t)i * n + (size_t)sp->col[k]] = pv->Avals[k];
+}
+
+static int stage_factor(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    const int m = pv->m, rows = BRAUN_ROWS(pv->rows);
+    if (pv->sp && pv->dense_A) scatter_A(pv);
+    const braun_real *A = pv->dense_A ? pv->A : pv->Avals;
+    if (pv->need_fq && (pv->done & BRAUN_DONE_RESIDUALS)) {
+        const int rq = BRAUN_LS_CALL(pv, factor_c, pv->ls_state, 1, m, A, braun__rank_tol(d, m), NULL,
+                                              NULL);
+        if (rq < 0) return braun__fail(d, rq, "linear solver (C_q)", -1, -1, 0, (double)pv->at.t);
+        record_rank(d, 1, rq, m);
+    }
+    for (int i = 0; i < rows; i++) pv->rv[i] = pv->bv[i];
+    const int rank = BRAUN_LS_CALL(pv, factor_c, pv->ls_state, 0, rows, A, braun__rank_tol(d, rows),
+                                            pv->atil, pv->rv);
+    if (rank < 0) return braun__fail(d, rank, "linear solver (C_v)", -1, -1, 0, (double)pv->at.t);
+    record_rank(d, 0, rank, rows);
+    pv->done |= BRAUN_DONE_FACTOR;
+    return BRAUN_OK;
+}
+
+/* ================================================================ */
+/* Stage ideal: the Udwadia–Kalaba acceleration, Eq. 13 without the
+ * corrections (Δ_v = 0, Q0 = 0; footnote 2):
+ *   v' = a + R⁻¹C_v⁺(b_v − A_v a) = R⁻¹(ã + u),  u = C_v⁺ r_v,
+ * u the weighted ideal constraint force (Eq. 11: Q_c⊥ = Rᵀu). */
+
+/* A result was NaN/Inf: find the callback output that made it (in
+ * evaluation order), or blame the arithmetic (overflow). */
+static int nonfinite_culprit(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n, m = pv->m, rows = pv->rows;
+    const braun_real t = pv->at.t;
+    int st = braun__check_finite(d, n, pv->Q, "forces", 0, t);
+    if (!st && rows > 0) {
+        if (pv->sp)
+            st = braun__check_finite(d, pv->sp->row_ptr[rows], pv->Avals,
+                                     "constraint Jacobian (compressed)", 0, t);
+        else
+            st = braun__check_finite(d, rows * n, pv->A, "constraint Jacobian", n, t);
+    }
+    if (!st && rows > 0) st = braun__check_finite(d, rows, pv->bv, "constraint b_v", 0, t);
+    if (!st && rows > 0 && (pv->done & BRAUN_DONE_RESIDUALS)) {
+        st = braun__check_finite(d, rows, pv->phi, "constraint Φ", 0, t);
+        if (!st && m > 0) st = braun__check_finite(d, m, pv->b, "constraint b_q", 0, t);
+    }
+    if (!st) st = braun__fail(d, BRAUN_ERR_NONFINITE, "acceleration (overflow)", -1, -1, 0, (double)t);
+    return st;
+}
+
+static int stage_ideal(braun_data *d, braun_real *vdot)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = BRAUN_N(pv->n), m = pv->m, rows = BRAUN_ROWS(pv->rows);
+    const int with_rows = rows > 0;
+    if (with_rows) {
+        braun__pinv(pv, 0, pv->rv, pv->u);
+        for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i] + pv->u[i];
+    } else {
+        for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i];
+    }
+    /* NaN and Inf propagate through every operation above, so one check of
+     * the results covers all callback outputs; only on failure are they
+     * scanned, to name the culprit. r_v carries the Jacobian: an infinite
+     * entry of A makes every QR pivot "small" (rank 0, u = 0, z finite) but
+     * not this residual. */
+    const int res = (pv->done & BRAUN_DONE_RESIDUALS) != 0;
+    if (!braun_all_finite(n, pv->z) || (with_rows && !braun_all_finite(rows, pv->rv)) ||
+        (res && with_rows && (!braun_all_finite(rows, pv->ev) || !braun_all_finite(m, pv->phi))))
+        return nonfinite_culprit(d);
+    if (vdot) braun__solve_r(pv, pv->z, vdot);
+    pv->done |= BRAUN_DONE_IDEAL;
+    return BRAUN_OK;
+}
+
+/* ================================================================ */
+/* Stage power: the energy input rate Ė of Eq. 18 at the point — the
+ * system's power() (dampers, motors, applied forces; BRAUN_ENERGY_INPUT)
+ * plus, for rheonomic constraints (BRAUN_CONSTRAINT_WORK), the power of the
+ * ideal constraint force Q_c⊥ = Rᵀu: Q_c·v = u·(R v). */
+
+static int stage_power(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    const braun_system *s = &d->model->sys;
+    const braun_real t = pv->at.t;
+    braun_real Edot = 0;
+    if (s->flags & BRAUN_ENERGY_INPUT) {
+        int st = braun__callback(d, s->power(t, pv->at.q, pv->at.v, &Edot, s->user), "power", t);
+        if (!st) st = braun__check_finite(d, 1, &Edot, "power", 0, t);
+        if (st) return st;
+    }
+    if ((s->flags & BRAUN_CONSTRAINT_WORK) && pv->rows > 0) {
+        braun__mul_r(pv, pv->at.v, pv->tmp);
+        Edot += braun_dot(pv->n, pv->u, pv->tmp);
+    }
+    pv->Edot = Edot;
+    pv->done |= BRAUN_DONE_POWER;
+    return BRAUN_OK;
+}
+
+/* ================================================================ */
+/* Compositions. */
+int braun__stage_mass(braun_data *d) { return stage_mass(d); }
+
+int braun__forward(braun_data *d, unsigned with, braun_real *vdot)
+{
+    braun_priv *pv = braun__priv(d);
+    d->stats.rhs_evals++;
+    /* A constant M was factored once (stage mass is then done). */
+    int st = pv->done & BRAUN_DONE_MASS ? BRAUN_OK : stage_mass(d);
+    if (!st) st = stage_forces(d);
+    if (pv->rows > 0) {
+        if (!st) st = stage_constraints(d, (with & BRAUN_WITH_RESIDUALS) != 0);
+        if (!st) st = stage_factor(d);
+    } else {
+        /* No rows: nothing to evaluate or factor. */
+        pv->done |= BRAUN_DONE_CONSTRAINTS | BRAUN_DONE_FACTOR |
+                    (with & BRAUN_WITH_RESIDUALS ? BRAUN_DONE_RESIDUALS : 0u);
+    }
+    if (!st) st = stage_ideal(d, vdot);
+    /* Without energy input and constraint work Ė is 0: no stage to run. */
+    if (!st && (with & BRAUN_WITH_POWER)) {
+        if (d->model->sys.flags & (BRAUN_ENERGY_INPUT | BRAUN_CONSTRAINT_WORK)) st = stage_power(d);
+        else pv->Edot = 0, pv->done |= BRAUN_DONE_POWER;
+    }
+    return st;
+}
+
+static int check_state(braun_data *d, braun_real t, const braun_real *q,
+                       const braun_real *v)
+{
+    const int n = d->model->sys.n;
+    if (!braun_is_finite(t))
+        return braun__fail(d, BRAUN_ERR_NONFINITE, "state t", -1, -1, (double)t, (double)t);
+    int st = braun__check_finite(d, n, q, "state q", 0, t);
+    if (!st) st = braun__check_finite(d, n, v, "state v", 0, t);
+    return st;
+}
+
+/* The arguments of braun_eval, braun_residuals, braun_energy. */
+static int check_call(braun_data *d, const braun_real *q, const braun_real *v, const char *where)
+{
+    if (!d->priv || !d->model) return braun__fail(d, BRAUN_ERR_ARGUMENT, where, -1, -1, 0, 0);
+    if (!q || !v) return braun__fail(d, BRAUN_ERR_ARGUMENT, where, -1, -1, 0, (double)d->t);
+    return BRAUN_OK;
+}
+
+int braun_eval(braun_data *d, braun_real t, const braun_real *q,
+               const braun_real *v, braun_real h, braun_real *qdot,
+               braun_real *vdot)
+{
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    int st = check_call(d, q, v, "braun_eval");
+    if (st) return st;
+    if (!qdot || !vdot) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_eval (NULL output)", -1, -1, 0, (double)t);
+    st = braun__check_options(d);
+    if (st) return st;
+    const unsigned corr = d->model->opt.corrections;
+    const int n = d->model->sys.n;
+    st = check_state(d, t, q, v);
+    if (st) return st;
+    if (corr && !(h > 0 && braun_is_finite(h)))
+        return braun__fail(d, BRAUN_ERR_STEP, "braun_eval h", -1, -1, (double)h, (double)t);
+    braun_priv *pv = braun__priv(d);
+    braun__at(pv, t, q, v, d->work_in, h);
+    st = braun__forward(d, (corr ? BRAUN_WITH_RESIDUALS : 0u) |
+                               (corr & BRAUN_CORRECT_ENERGY ? BRAUN_WITH_POWER : 0u),
+                        vdot);
+    if (st) return st;
+    for (int i = 0; i < n; i++) qdot[i] = v[i];
+    if (!corr) return BRAUN_OK;
+    st = braun__corrections(d, vdot);
+    if (st) return st;
+    /* Continuous form: the increments are h times the correction terms. */
+    for (int i = 0; i < n; i++) {
+        qdot[i] += pv->dq[i] / h;
+        vdot[i] += pv->dv[i] / h;
+    }
+    return BRAUN_OK;
+}
+
+int braun_energy(braun_data *d, braun_real t, const braun_real *q,
+                 const braun_real *v, braun_real *E)
+{
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    int st = check_call(d, q, v, "braun_energy");
+    if (st) return st;
+    if (!E) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_energy (NULL output)", -1, -1, 0, (double)t);
+    const braun_system *s = &d->model->sys;
+    *E = 0;
+    if (!s->energy) return BRAUN_OK;
+    st = braun__callback(d, s->energy(t, q, v, E, NULL, NULL, NULL, s->user), "energy", t);
+    if (!st) st = braun__check_finite(d, 1, E, "energy E", 0, t);
+    return st;
+}
+
+int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
+                    const braun_real *v, braun_real *pos, braun_real *vel,
+                    braun_real *energy)
+{
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    int st = check_call(d, q, v, "braun_residuals");
+    if (st) return st;
+    braun_priv *pv = braun__priv(d);
+    const braun_system *s = &d->model->sys;
+    const int m = pv->m, rows = pv->rows;
+    st = check_state(d, t, q, v);
+    if (st) return st;
+    braun__at(pv, t, q, v, d->work_in, 0);
+    if (rows > 0) {
+        st = stage_constraints(d, 1);
+        if (st) return st;
+    }
+    if (pos) *pos = m > 0 ? braun_nrm2(m, pv->phi) : 0;
+    if (vel) *vel = rows > 0 ? braun_nrm2(rows, pv->ev) : 0;
+    if (energy) {
+        braun_real E = 0;
+        *energy = 0;
+        if (s->energy && d->has_E0) {
+            st = braun_energy(d, t, q, v, &E);
+            if (st) return st;
+            *energy = braun_fabs(E - d->E0 - d->work_in);
+        }
+    }
+    return BRAUN_OK;
+}
