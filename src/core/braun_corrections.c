@@ -130,9 +130,12 @@ int braun__corrections(braun_data *d, const braun_real *vdot)
                                 (energy ? BRAUN_DONE_POWER : 0u),
                          "corrections before a forward pass with residuals at the point");
     if (st) return st;
-    for (int i = 0; i < n; i++) pv->dq[i] = pv->dv[i] = 0;
+    /* A stage that runs writes all of its increment; one that is off leaves
+     * it zero. */
     if (pv->rows > 0 && pv->m > 0 && (corr & BRAUN_CORRECT_POSITION)) st = stage_position(d);
+    else for (int i = 0; i < n; i++) pv->dq[i] = 0;
     if (!st && pv->rows > 0 && (corr & BRAUN_CORRECT_VELOCITY)) st = stage_velocity(d);
+    else for (int i = 0; i < n; i++) pv->dv[i] = 0;
     if (!st && energy) st = stage_energy(d, vdot);
     return st;
 }

@@ -73,7 +73,6 @@ static int stage_forces(braun_data *d)
                          pv->at.t);
     if (st) return st;
     braun__solve_rt(pv, pv->Q, pv->atil);
-    pv->done |= BRAUN_DONE_FORCES;
     return BRAUN_OK;
 }
 
@@ -106,9 +105,7 @@ static int stage_constraints(braun_data *d, int with_residuals)
     if (with_residuals) {
         for (int i = 0; i < m; i++) pv->ev[i] = braun__row_dot(pv, i, v) - pv->b[i];
         for (int i = m; i < rows; i++) pv->ev[i] = pv->phi[i];
-        pv->done |= BRAUN_DONE_RESIDUALS;
     }
-    pv->done |= BRAUN_DONE_CONSTRAINTS;
     return BRAUN_OK;
 }
 
@@ -139,13 +136,13 @@ static void scatter_A(braun_priv *pv)
             pv->A[(size_t)i * n + (size_t)sp->col[k]] = pv->Avals[k];
 }
 
-static int stage_factor(braun_data *d)
+static int stage_factor(braun_data *d, int with_residuals)
 {
     braun_priv *pv = braun__priv(d);
     const int m = pv->m, rows = BRAUN_ROWS(pv->rows);
     if (pv->sp && pv->dense_A) scatter_A(pv);
     const braun_real *A = pv->dense_A ? pv->A : pv->Avals;
-    if (pv->need_fq && (pv->done & BRAUN_DONE_RESIDUALS)) {
+    if (pv->need_fq && with_residuals) {
         const int rq = BRAUN_LS_CALL(pv, factor_c, pv->ls_state, 1, m, A, braun__rank_tol(d, m), NULL,
                                               NULL);
         if (rq < 0) return braun__fail(d, rq, "linear solver (C_q)", -1, -1, 0, (double)pv->at.t);
@@ -156,7 +153,6 @@ static int stage_factor(braun_data *d)
                                             pv->atil, pv->rv);
     if (rank < 0) return braun__fail(d, rank, "linear solver (C_v)", -1, -1, 0, (double)pv->at.t);
     record_rank(d, 0, rank, rows);
-    pv->done |= BRAUN_DONE_FACTOR;
     return BRAUN_OK;
 }
 
@@ -168,7 +164,7 @@ static int stage_factor(braun_data *d)
 
 /* A result was NaN/Inf: find the callback output that made it (in
  * evaluation order), or blame the arithmetic (overflow). */
-static int nonfinite_culprit(braun_data *d)
+static int nonfinite_culprit(braun_data *d, int with_residuals)
 {
     braun_priv *pv = braun__priv(d);
     const int n = pv->n, m = pv->m, rows = pv->rows;
@@ -182,7 +178,7 @@ static int nonfinite_culprit(braun_data *d)
             st = braun__check_finite(d, rows * n, pv->A, "constraint Jacobian", n, t);
     }
     if (!st && rows > 0) st = braun__check_finite(d, rows, pv->bv, "constraint b_v", 0, t);
-    if (!st && rows > 0 && (pv->done & BRAUN_DONE_RESIDUALS)) {
+    if (!st && rows > 0 && with_residuals) {
         st = braun__check_finite(d, rows, pv->phi, "constraint Φ", 0, t);
         if (!st && m > 0) st = braun__check_finite(d, m, pv->b, "constraint b_q", 0, t);
     }
@@ -190,7 +186,7 @@ static int nonfinite_culprit(braun_data *d)
     return st;
 }
 
-static int stage_ideal(braun_data *d, braun_real *vdot)
+static int stage_ideal(braun_data *d, int with_residuals, braun_real *vdot)
 {
     braun_priv *pv = braun__priv(d);
     const int n = BRAUN_N(pv->n), m = pv->m, rows = BRAUN_ROWS(pv->rows);
@@ -206,12 +202,11 @@ static int stage_ideal(braun_data *d, braun_real *vdot)
      * scanned, to name the culprit. r_v carries the Jacobian: an infinite
      * entry of A makes every QR pivot "small" (rank 0, u = 0, z finite) but
      * not this residual. */
-    const int res = (pv->done & BRAUN_DONE_RESIDUALS) != 0;
     if (!braun_all_finite(n, pv->z) || (with_rows && !braun_all_finite(rows, pv->rv)) ||
-        (res && with_rows && (!braun_all_finite(rows, pv->ev) || !braun_all_finite(m, pv->phi))))
-        return nonfinite_culprit(d);
+        (with_residuals && with_rows &&
+         (!braun_all_finite(rows, pv->ev) || !braun_all_finite(m, pv->phi))))
+        return nonfinite_culprit(d, with_residuals);
     if (vdot) braun__solve_r(pv, pv->z, vdot);
-    pv->done |= BRAUN_DONE_IDEAL;
     return BRAUN_OK;
 }
 
@@ -237,7 +232,6 @@ static int stage_power(braun_data *d)
         Edot += braun_dot(pv->n, pv->u, pv->tmp);
     }
     pv->Edot = Edot;
-    pv->done |= BRAUN_DONE_POWER;
     return BRAUN_OK;
 }
 
@@ -248,25 +242,25 @@ int braun__stage_mass(braun_data *d) { return stage_mass(d); }
 int braun__forward(braun_data *d, unsigned with, braun_real *vdot)
 {
     braun_priv *pv = braun__priv(d);
+    const int res = (with & BRAUN_WITH_RESIDUALS) != 0;
     d->stats.rhs_evals++;
     /* A constant M was factored once (stage mass is then done). */
     int st = pv->done & BRAUN_DONE_MASS ? BRAUN_OK : stage_mass(d);
     if (!st) st = stage_forces(d);
-    if (pv->rows > 0) {
-        if (!st) st = stage_constraints(d, (with & BRAUN_WITH_RESIDUALS) != 0);
-        if (!st) st = stage_factor(d);
-    } else {
-        /* No rows: nothing to evaluate or factor. */
-        pv->done |= BRAUN_DONE_CONSTRAINTS | BRAUN_DONE_FACTOR |
-                    (with & BRAUN_WITH_RESIDUALS ? BRAUN_DONE_RESIDUALS : 0u);
-    }
-    if (!st) st = stage_ideal(d, vdot);
+    if (!st && pv->rows > 0) st = stage_constraints(d, res);
+    if (!st && pv->rows > 0) st = stage_factor(d, res);
+    if (!st) st = stage_ideal(d, res, vdot);
     /* Without energy input and constraint work Ė is 0: no stage to run. */
     if (!st && (with & BRAUN_WITH_POWER)) {
         if (d->model->sys.flags & (BRAUN_ENERGY_INPUT | BRAUN_CONSTRAINT_WORK)) st = stage_power(d);
-        else pv->Edot = 0, pv->done |= BRAUN_DONE_POWER;
+        else pv->Edot = 0;
     }
-    return st;
+    if (st) return st;
+    /* What the corrections may now use at this point. */
+    pv->done |= BRAUN_DONE_FORCES | BRAUN_DONE_CONSTRAINTS | BRAUN_DONE_FACTOR | BRAUN_DONE_IDEAL |
+                (res ? BRAUN_DONE_RESIDUALS : 0u) |
+                (with & BRAUN_WITH_POWER ? BRAUN_DONE_POWER : 0u);
+    return BRAUN_OK;
 }
 
 static int check_state(braun_data *d, braun_real t, const braun_real *q,
@@ -354,6 +348,7 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
         st = stage_constraints(d, 1);
         if (st) return st;
     }
+    pv->done |= BRAUN_DONE_CONSTRAINTS | BRAUN_DONE_RESIDUALS;
     if (pos) *pos = m > 0 ? braun_nrm2(m, pv->phi) : 0;
     if (vel) *vel = rows > 0 ? braun_nrm2(rows, pv->ev) : 0;
     if (energy) {

@@ -69,8 +69,11 @@ void braun_chol_mul_r(const braun_chol *c, const braun_real *x, braun_real *y);
 typedef struct braun_qrcp {
     int n, rows;       /* C is rows x n */
     int rank;          /* k */
-    braun_real *a;     /* rows columns of length n, contiguous (= C row-major):
-                          R above/on the diagonal, Householder vectors below */
+    braun_real *a;     /* rows columns of length n, contiguous (= C row-major);
+                          after factoring, column j of the factor (R above/on
+                          the diagonal, its Householder vector below) is
+                          stored where row perm[j] of C was: pivoting moves
+                          indices, not data */
     braun_real *tau;   /* rows */
     int *perm;         /* rows: column j of the factor is row perm[j] of C */
     braun_real *s;     /* rows x rows scratch: QR of S when rank < rows */

@@ -3,6 +3,10 @@
  * braun_linalg.h). Sizes are small and dense; everything is in place. */
 #include "braun_linalg.h"
 
+/* Column j of the factor (R above the diagonal, its Householder vector
+ * below) is stored where row perm[j] of C was written. */
+#define COL(a, f, j, n) ((a) + (size_t)(f)->perm[j] * (size_t)(n))
+
 size_t braun_qrcp_reals(int n, int rows)
 {
     int w = n > rows ? n : rows;
@@ -83,12 +87,8 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
         for (int j = k + 1; j < rows; j++)
             if (norm2[j] > norm2[best]) best = j;
         if (best != k) {
-            braun_real *ck = a + (size_t)k * (size_t)n, *cb = a + (size_t)best * (size_t)n;
-            for (int i = 0; i < n; i++) {
-                braun_real t = ck[i];
-                ck[i] = cb[i];
-                cb[i] = t;
-            }
+            /* Pivoting permutes the column order only: column j of the
+             * factor stays where row perm[j] of C was written. */
             int t = f->perm[k];
             f->perm[k] = f->perm[best];
             f->perm[best] = t;
@@ -99,7 +99,7 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
             ref[k] = ref[best];
             ref[best] = u;
         }
-        braun_real *col = a + (size_t)k * (size_t)n + k;
+        braun_real *col = COL(a, f, k, n) + k;
         /* The pivot's norm is recomputed exactly: the rank decision must not
          * rest on a downdated value (at k = 0 the initial norms are exact:
          * the same sum in the same order). */
@@ -109,7 +109,7 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
         if (pivot == 0 || pivot <= tol * r00) break;
         f->tau[k] = house(n - k, col, pivot);
         for (int j = k + 1; j < rows; j++) {
-            braun_real *cj = a + (size_t)j * (size_t)n + k;
+            braun_real *cj = COL(a, f, j, n) + k;
             reflect(n - k, col + 1, f->tau[k], cj);
             norm2[j] -= cj[0] * cj[0];
             /* Cancellation: recompute once the downdated value has lost
@@ -127,8 +127,7 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
         braun_real *s = f->s;
         for (int j = 0; j < rk; j++)
             for (int i = 0; i < rows; i++)
-                s[(size_t)j * (size_t)rows + (size_t)i] =
-                    i >= j ? a[(size_t)i * (size_t)n + (size_t)j] : 0;
+                s[(size_t)j * (size_t)rows + (size_t)i] = i >= j ? COL(a, f, i, n)[j] : 0;
         for (int j = 0; j < rk; j++) {
             braun_real *cj = s + (size_t)j * (size_t)rows + j;
             f->stau[j] = house(rows - j, cj, braun_nrm2(rows - j, cj));
@@ -152,9 +151,9 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
     const braun_real *a = f->a;
     braun_real *w = f->work;
 
-    for (int i = 0; i < n; i++) x[i] = 0;
     if (resid) *resid = 0;
     if (rk == 0) {
+        for (int i = 0; i < n; i++) x[i] = 0;
         if (resid) *resid = braun_nrm2(rows, r);
         return;
     }
@@ -163,7 +162,7 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
         /* S = R11^T is lower triangular: forward substitution. */
         for (int i = 0; i < rk; i++) {
             braun_real sum = w[i];
-            const braun_real *ci = a + (size_t)i * (size_t)n; /* R(j,i) = ci[j] */
+            const braun_real *ci = COL(a, f, i, n); /* R(j,i) = ci[j] */
             for (int j = 0; j < i; j++) sum -= ci[j] * w[j];
             w[i] = sum / ci[i];
         }
@@ -180,10 +179,12 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
             w[i] = sum / s[(size_t)i * (size_t)rows + (size_t)i];
         }
     }
-    /* x = Q1 w = H_0 ... H_{k-1} [w; 0]. */
-    for (int i = 0; i < rk; i++) x[i] = w[i];
+    /* x = Q1 w = H_0 ... H_{k-1} [w; 0]. (One loop, not a zero fill and a
+     * copy: compilers turn a zero fill into a memset call, which costs a
+     * small-vector kernel more than the fill itself on a Cortex-M.) */
+    for (int i = 0; i < n; i++) x[i] = i < rk ? w[i] : 0;
     for (int j = rk - 1; j >= 0; j--)
-        reflect(n - j, a + (size_t)j * (size_t)n + j + 1, f->tau[j], x + j);
+        reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], x + j);
 }
 
 void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
@@ -192,8 +193,11 @@ void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
     const braun_real *a = f->a;
     if (rk == 0) return;
     for (int j = 0; j < rk; j++)
-        reflect(n - j, a + (size_t)j * (size_t)n + j + 1, f->tau[j], z + j);
-    for (int j = 0; j < rk; j++) z[j] = 0;
-    for (int j = rk - 1; j >= 0; j--)
-        reflect(n - j, a + (size_t)j * (size_t)n + j + 1, f->tau[j], z + j);
+        reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
+    /* z := Q [0; z2]: H_j touches z[j..n) only, so zeroing z[j] just before
+     * it is the same as zeroing z[0..rk) first (and needs no memset). */
+    for (int j = rk - 1; j >= 0; j--) {
+        z[j] = 0;
+        reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
+    }
 }
