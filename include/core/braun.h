@@ -10,13 +10,19 @@
  *
  * Layers (GSL-like): braun_eval (corrected right-hand side, no time advance)
  *   -> braun_step (one explicit step) -> braun_integrate (driver to t_end).
+ * An evaluation is a list of named stages (MuJoCo-like; docs/architecture.md):
+ * mass -> forces -> constraints -> factor -> ideal (Udwadia–Kalaba) ->
+ * position (Eq. 16) -> velocity (Eq. 17) -> energy (Eq. 20).
  *
  * Memory (CMSIS-like): a braun_model (sizes, callbacks, options) is immutable
  * while simulating; a braun_data holds state, statistics and all scratch,
  * carved out of one caller-provided buffer of braun_data_size() bytes.
  * Nothing is allocated inside a step.
  *
- * Status convention: 0 is success, > 0 informational, < 0 an error.
+ * Status convention: 0 is success, > 0 informational, < 0 an error. Every
+ * call that fails on a braun_data records what failed, where and when in
+ * d->error (braun_error_format() in braun_host.h makes it a sentence) —
+ * argument and buffer checks included; only a NULL d itself cannot be.
  * Callbacks follow SUNDIALS: return 0 on success, > 0 for a recoverable
  * failure (the adaptive driver retries with a smaller step), < 0 fatal.
  */
@@ -47,7 +53,7 @@ typedef double braun_real;
 /* ------------------------------------------------------------------ */
 typedef enum braun_status {
     BRAUN_OK = 0,
-    BRAUN_ERR_ARGUMENT = -1,      /* NULL pointer, bad option or enum value */
+    BRAUN_ERR_ARGUMENT = -1,      /* NULL pointer, unknown option or enum value, no state set */
     BRAUN_ERR_SIZE = -2,          /* negative or inconsistent n, m, p */
     BRAUN_ERR_BUFFER = -3,        /* caller buffer too small or misaligned */
     BRAUN_ERR_NONFINITE = -4,     /* NaN/Inf in the state or a callback output */
@@ -187,6 +193,14 @@ typedef enum braun_discretization {
 /* A linear-algebra backend (braun_linsolver.h). */
 typedef struct braun_linsolver braun_linsolver;
 
+/* Options: braun_model_init sets the defaults; change them before
+ * braun_data_init or between calls. They are checked where they are used:
+ * braun_data_init refuses invalid values before it creates anything, and
+ * braun_eval, braun_step, braun_integrate and braun_integrate_adaptive
+ * check them again at every call (a few compares), so a change after
+ * braun_data_init is honoured, or refused with BRAUN_ERR_ARGUMENT naming
+ * the option: unknown correction bits or discretization, a NaN or infinite
+ * tolerance, rank_tol >= 1, or another linsolver than the data was made for. */
 typedef struct braun_options {
     unsigned corrections;   /* braun_corrections bits; default ALL (ENERGY only if a law exists) */
     braun_discretization discretization; /* default BRAUN_PER_STEP */
@@ -273,9 +287,15 @@ typedef struct braun_data {
 size_t braun_data_size(const braun_model *model);
 
 /* Carve the data out of buffer; no allocation. If M is constant it is
- * evaluated and factored here, once. State is zero until braun_set_state().
- * With a backend (opt.linsolver) its state is created here (it may
- * allocate): release it with braun_data_release. */
+ * evaluated and factored here, once. There is no state until
+ * braun_set_state() (the drivers refuse to run before it). With a backend
+ * (opt.linsolver) its state is created here, after every check (it may
+ * allocate): release it with braun_data_release. On failure nothing is left
+ * to release (d->priv is NULL) and d->error says why. Returns BRAUN_OK,
+ * BRAUN_ERR_ARGUMENT (NULL model or buffer, an invalid option),
+ * BRAUN_ERR_SIZE (beyond the dense limit), BRAUN_ERR_BUFFER (bytes <
+ * braun_data_size()), BRAUN_ERR_NO_ENERGY_LAW, a backend's creation status,
+ * or the mass matrix statuses for a constant M. */
 int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
                     size_t bytes);
 
@@ -340,7 +360,9 @@ typedef struct braun_adaptive {
     braun_real rtol, atol;  /* mixed error test on q, v */
     braun_real h0;          /* first trial step (<= 0: 1e-3·(t_end - t)) */
     braun_real h_min, h_max;/* <= 0: 1e-12·|span|, span */
-    long max_steps;         /* <= 0: 10^8 */
+    long max_steps;         /* attempts (accepted + rejected steps) of one call;
+                               <= 0: 10^8. Counted per call: the same call from
+                               the same state always behaves the same. */
 } braun_adaptive;
 
 /* Adaptive Dormand–Prince 5(4) driver; corrections applied once per accepted
