@@ -1,7 +1,8 @@
 /* Sparse Jacobians for IDA with KLU (issue 7): patterns in compressed
  * sparse columns, Curtis-Powell-Reid colored finite differences, and the
  * analytic provider of the GGL form for scenes of rigid bodies, particles,
- * rods, revolute joints and gravity.
+ * rods, revolute joints and gravity (a table keyed by class pointer says
+ * what it knows of each class: "the classes it knows" below).
  *
  * The provider (cmp_ggl) evaluates exactly the rows of cmp_dae.c's GGL
  * residual, unknowns y = [q, v, λ, μ] (n, n, m, m):
@@ -14,11 +15,8 @@
  *     r_v : -Σ_k λ_k H_k (q),  c_j M (v),  -A_qᵀ (λ)      (∂Q/∂q = ∂Q/∂v = 0: gravity)
  *     r_c1: (H_k v)ᵀ (q),  A_q (v)
  *     r_c2: A_q (q)
- * with H_k = ∂²Φ_k/∂q², which is where the rows' second derivatives enter:
- *   revolute (P_a - P_b, P = r + R(θ)s): ∂²P/∂θ² = -R(θ)s, so row k has
- *     -(R s_a)_k at (θ_a, θ_a) and +(R s_b)_k at (θ_b, θ_b), nothing else;
- *   rod (|P_b - P_a|² - L², particle ends): 2 on the diagonal of each end's
- *     x, y and -2 between the ends' x (and y).
+ * with H_k = ∂²Φ_k/∂q², which is where the rows' second derivatives enter
+ * (revolute_h, and the rods in rows_eval).
  * The pattern of J is built once, by emitting every entry in a fixed
  * order ("pattern mode") and recording where each lands in the compressed
  * columns; a Jacobian evaluation emits the same sequence with values. */
@@ -294,11 +292,31 @@ struct cmp_ggl {
     klu_common common;
 };
 
+/* ------------------------------------------------ the classes it knows */
+/* What the provider knows of each element class it supports, keyed by the
+ * class (braun_scene.h) — the one place the harness names element types:
+ * a body class's planar layout, a joint class's rows with their second
+ * derivatives, an effect class's (constant) generalized force. A scene
+ * with any other class is refused (supported()). */
+typedef struct ggl_body {
+    const braun_scene_body_class *cls;
+    int theta;              /* column of θ within the body, -1: none */
+} ggl_body;
+
+static const ggl_body ggl_bodies[] = {{BRAUN_BODY_RIGID, 2}, {BRAUN_BODY_PARTICLE, -1}};
+
 /* A point at q: position, ∂P/∂θ = R's and R s (rigid), columns. */
 typedef struct gpt {
     int ix, th;             /* column of x (-1: ground), of θ (-1: none) */
     double pos[2], jt[2], rs[2];
 } gpt;
+
+static const ggl_body *body_of_class(const braun_scene_body_class *c)
+{
+    for (size_t k = 0; k < sizeof ggl_bodies / sizeof ggl_bodies[0]; k++)
+        if (ggl_bodies[k].cls == c) return &ggl_bodies[k];
+    return NULL;
+}
 
 static void point_at(const braun_scene *s, int i, const double *q, gpt *P)
 {
@@ -314,10 +332,11 @@ static void point_at(const braun_scene *s, int i, const double *q, gpt *P)
     P->ix = bd->iq;
     P->pos[0] = q[bd->iq];
     P->pos[1] = q[bd->iq + 1];
-    if (bd->kind != BRAUN_BODY_RIGID) return;
-    const double c = cos(q[bd->iq + 2]), sn = sin(q[bd->iq + 2]);
+    const int theta = body_of_class(bd->kind)->theta;
+    if (theta < 0) return;
+    const double c = cos(q[bd->iq + theta]), sn = sin(q[bd->iq + theta]);
     const double rx = c * pt->x - sn * pt->y, ry = sn * pt->x + c * pt->y;
-    P->th = bd->iq + 2;
+    P->th = bd->iq + theta;
     P->pos[0] += rx;
     P->pos[1] += ry;
     P->jt[0] = -ry;
@@ -326,14 +345,89 @@ static void point_at(const braun_scene *s, int i, const double *q, gpt *P)
     P->rs[1] = ry;
 }
 
+/* Rows of one element: Φ, A and the Hessian's entries per row, appended
+ * at *ka, *kh (g->aj/ax, g->hi/hj/hx). */
+#define PUT_A(c, v) (g->aj[*ka] = (c), g->ax[*ka] = (v), (*ka)++)
+#define PUT_H(i, j, v) (g->hi[*kh] = (i), g->hj[*kh] = (j), g->hx[*kh] = (v), (*kh)++)
+
+/* Revolute (P_a - P_b, P = r + R(θ)s): ∂²P/∂θ² = -R(θ)s, so row k has
+ * -(R s_a)_k at (θ_a, θ_a) and +(R s_b)_k at (θ_b, θ_b), nothing else. */
+static void revolute_h(cmp_ggl *g, const braun_scene_joint *j, const double *q, int *ka, int *kh)
+{
+    gpt Pa, Pb;
+    point_at(g->s, j->a, q, &Pa);
+    point_at(g->s, j->b, q, &Pb);
+    for (int c = 0; c < 2; c++) {
+        const int row = j->row + c;
+        g->phi[row] = Pa.pos[c] - Pb.pos[c];
+        g->ap[row] = *ka;
+        g->hp[row] = *kh;
+        if (Pa.ix >= 0) PUT_A(Pa.ix + c, 1.0);
+        if (Pa.th >= 0) PUT_A(Pa.th, Pa.jt[c]);
+        if (Pb.ix >= 0) PUT_A(Pb.ix + c, -1.0);
+        if (Pb.th >= 0) PUT_A(Pb.th, -Pb.jt[c]);
+        if (Pa.th >= 0) PUT_H(Pa.th, Pa.th, -Pa.rs[c]);
+        if (Pb.th >= 0) PUT_H(Pb.th, Pb.th, Pb.rs[c]);
+    }
+}
+
+typedef struct ggl_joint {
+    const braun_scene_joint_class *cls;
+    int rows;               /* rows per joint (scleronomic: not driven) */
+    void (*eval)(cmp_ggl *g, const braun_scene_joint *j, const double *q, int *ka, int *kh);
+} ggl_joint;
+
+static const ggl_joint ggl_joints[] = {{BRAUN_JOINT_REVOLUTE, 2, revolute_h}};
+
+static const ggl_joint *joint_of_class(const braun_scene_joint_class *c)
+{
+    for (size_t k = 0; k < sizeof ggl_joints / sizeof ggl_joints[0]; k++)
+        if (ggl_joints[k].cls == c) return &ggl_joints[k];
+    return NULL;
+}
+
+/* Gravity: the generalized weight (scene_gravity.c), constant. */
+static void gravity_q(cmp_ggl *g, const braun_scene_effect *e)
+{
+    const braun_scene *s = g->s;
+    const double *gv = e->g;
+    for (int b = 0; b < s->nbodies; b++) {
+        g->Q[s->bodies[b].iq] += s->bodies[b].mass * gv[0];
+        g->Q[s->bodies[b].iq + 1] += s->bodies[b].mass * gv[1];
+    }
+    for (int r = 0; r < s->nrods; r++) {
+        const int ends[2] = {s->rods[r].a, s->rods[r].b};
+        for (int u = 0; u < 2; u++) {
+            const int b = s->points[ends[u]].body;
+            if (b < 0) continue;
+            g->Q[s->bodies[b].iq] += 0.5 * s->rods[r].mass * gv[0];
+            g->Q[s->bodies[b].iq + 1] += 0.5 * s->rods[r].mass * gv[1];
+        }
+    }
+}
+
+typedef struct ggl_effect {
+    const braun_scene_effect_class *cls;
+    void (*forces)(cmp_ggl *g, const braun_scene_effect *e); /* Q += constant forces */
+} ggl_effect;
+
+static const ggl_effect ggl_effects[] = {{BRAUN_EFFECT_GRAVITY, gravity_q}};
+
+static const ggl_effect *effect_of_class(const braun_scene_effect_class *c)
+{
+    for (size_t k = 0; k < sizeof ggl_effects / sizeof ggl_effects[0]; k++)
+        if (ggl_effects[k].cls == c) return &ggl_effects[k];
+    return NULL;
+}
+
 /* Φ, A and the Hessians at q, row by row in the scene's row order (rods,
- * then joints). The structure (columns) is the same at every q. */
+ * then joints). The structure (columns) is the same at every q. Rods
+ * (|P_b - P_a|² - L², particle ends): 2 on the diagonal of each end's x,
+ * y and -2 between the ends' x (and y). */
 static void rows_eval(cmp_ggl *g, const double *q)
 {
     const braun_scene *s = g->s;
-    int ka = 0, kh = 0;
-#define PUT_A(c, v) (g->aj[ka] = (c), g->ax[ka] = (v), ka++)
-#define PUT_H(i, j, v) (g->hi[kh] = (i), g->hj[kh] = (j), g->hx[kh] = (v), kh++)
+    int kav = 0, khv = 0, *ka = &kav, *kh = &khv;
     for (int k = 0; k < s->nrods; k++) {
         const braun_scene_rod *r = &s->rods[k];
         gpt Pa, Pb;
@@ -342,8 +436,8 @@ static void rows_eval(cmp_ggl *g, const double *q)
         const double dx = Pb.pos[0] - Pa.pos[0], dy = Pb.pos[1] - Pa.pos[1];
         const int row = r->row;
         g->phi[row] = dx * dx + dy * dy - r->length * r->length;
-        g->ap[row] = ka;
-        g->hp[row] = kh;
+        g->ap[row] = kav;
+        g->hp[row] = khv;
         if (Pa.ix >= 0) {
             PUT_A(Pa.ix, -2.0 * dx);
             PUT_A(Pa.ix + 1, -2.0 * dy);
@@ -363,27 +457,13 @@ static void rows_eval(cmp_ggl *g, const double *q)
     }
     for (int k = 0; k < s->njoints; k++) {
         const braun_scene_joint *j = &s->joints[k];
-        gpt Pa, Pb;
-        point_at(s, j->a, q, &Pa);
-        point_at(s, j->b, q, &Pb);
-        for (int c = 0; c < 2; c++) {
-            const int row = j->row + c;
-            g->phi[row] = Pa.pos[c] - Pb.pos[c];
-            g->ap[row] = ka;
-            g->hp[row] = kh;
-            if (Pa.ix >= 0) PUT_A(Pa.ix + c, 1.0);
-            if (Pa.th >= 0) PUT_A(Pa.th, Pa.jt[c]);
-            if (Pb.ix >= 0) PUT_A(Pb.ix + c, -1.0);
-            if (Pb.th >= 0) PUT_A(Pb.th, -Pb.jt[c]);
-            if (Pa.th >= 0) PUT_H(Pa.th, Pa.th, -Pa.rs[c]);
-            if (Pb.th >= 0) PUT_H(Pb.th, Pb.th, Pb.rs[c]);
-        }
+        joint_of_class(j->type)->eval(g, j, q, ka, kh);
     }
+    g->ap[g->m] = kav;
+    g->hp[g->m] = khv;
+}
 #undef PUT_A
 #undef PUT_H
-    g->ap[g->m] = ka;
-    g->hp[g->m] = kh;
-}
 
 /* The entries of J in their fixed order: pattern mode pushes (row, col),
  * value mode adds into val through map. */
@@ -445,18 +525,21 @@ static void emit_kkt(cmp_ggl *g, emitter *E, double delta)
 static const char *supported(const braun_scene *s)
 {
     if (s->n <= 0) return "the scene is not built";
-    if (s->nknives > 0 || s->p > 0) return "knife edges (nonholonomic rows)";
+    if (s->p > 0) return "knife edges (nonholonomic rows)";
+    for (int k = 0; k < s->nbodies; k++)
+        if (!body_of_class(s->bodies[k].kind)) return "bodies other than rigid bodies and particles";
     int row = 0;
     for (int k = 0; k < s->nrods; k++, row++)
         if (s->rods[k].row != row) return "unexpected row numbering";
-    for (int k = 0; k < s->njoints; k++, row += 2) {
-        if (s->joints[k].type != BRAUN_JOINT_REVOLUTE || s->joints[k].driven)
-            return "joints other than revolute";
+    for (int k = 0; k < s->njoints; k++) {
+        const ggl_joint *jc = joint_of_class(s->joints[k].type);
+        if (!jc || s->joints[k].driven) return "joints other than revolute";
         if (s->joints[k].row != row) return "unexpected row numbering";
+        row += jc->rows;
     }
     if (row != s->m) return "unexpected row count";
     for (int k = 0; k < s->neffects; k++)
-        if (s->effects[k].type != BRAUN_EFFECT_GRAVITY) return "effects other than gravity";
+        if (!effect_of_class(s->effects[k].type)) return "effects other than gravity";
     return NULL;
 }
 
@@ -515,12 +598,12 @@ cmp_ggl *cmp_ggl_new(const struct braun_scene *scene, const char **why)
         !g->hx || !g->rhs)
         goto oom;
 
-    /* M: bodies' diagonals and rods' blocks (scene_body.c, scene_rod.c). */
+    /* M: bodies' diagonal blocks (their classes' mass hooks) and rods'
+     * blocks (scene_rod.c). */
+    double blk[BRAUN_SCENE_MAX_DOF * BRAUN_SCENE_MAX_DOF];
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *bd = &s->bodies[k];
-        cmp_pairs_push(&P, bd->iq, bd->iq);
-        cmp_pairs_push(&P, bd->iq + 1, bd->iq + 1);
-        if (bd->kind == BRAUN_BODY_RIGID) cmp_pairs_push(&P, bd->iq + 2, bd->iq + 2);
+        for (int i = 0; i < bd->kind->dof; i++) cmp_pairs_push(&P, bd->iq + i, bd->iq + i);
     }
     for (int k = 0; k < s->nrods; k++) {
         const braun_scene_rod *r = &s->rods[k];
@@ -547,9 +630,10 @@ cmp_ggl *cmp_ggl_new(const struct braun_scene *scene, const char **why)
     long e = 0;
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *bd = &s->bodies[k];
-        g->mx[mmap[e++]] += bd->mass;
-        g->mx[mmap[e++]] += bd->mass;
-        if (bd->kind == BRAUN_BODY_RIGID) g->mx[mmap[e++]] += bd->inertia;
+        const int d = bd->kind->dof;
+        for (int i = 0; i < d * d; i++) blk[i] = 0;
+        bd->kind->mass(bd, blk, d);
+        for (int i = 0; i < d; i++) g->mx[mmap[e++]] += blk[i * d + i];
     }
     for (int k = 0; k < s->nrods; k++) {
         const braun_scene_rod *r = &s->rods[k];
@@ -567,23 +651,8 @@ cmp_ggl *cmp_ggl_new(const struct braun_scene *scene, const char **why)
     free(mmap);
     cmp_pairs_free(&P);
 
-    /* Q: the generalized weight (scene_gravity.c), constant. */
-    for (int k = 0; k < s->neffects; k++) {
-        const double *gv = s->effects[k].g;
-        for (int b = 0; b < s->nbodies; b++) {
-            g->Q[s->bodies[b].iq] += s->bodies[b].mass * gv[0];
-            g->Q[s->bodies[b].iq + 1] += s->bodies[b].mass * gv[1];
-        }
-        for (int r = 0; r < s->nrods; r++) {
-            const int ends[2] = {s->rods[r].a, s->rods[r].b};
-            for (int u = 0; u < 2; u++) {
-                const int b = s->points[ends[u]].body;
-                if (b < 0) continue;
-                g->Q[s->bodies[b].iq] += 0.5 * s->rods[r].mass * gv[0];
-                g->Q[s->bodies[b].iq + 1] += 0.5 * s->rods[r].mass * gv[1];
-            }
-        }
-    }
+    /* Q: the effects' constant forces. */
+    for (int k = 0; k < s->neffects; k++) effect_of_class(s->effects[k].type)->forces(g, &s->effects[k]);
 
     /* The rows' structure (at any q: here the zero vector). */
     double *q = calloc((size_t)n, sizeof(double));

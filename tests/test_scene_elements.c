@@ -11,16 +11,15 @@
  * the ground. Each test adds the elements it checks. */
 typedef struct playground {
     braun_scene_body bodies[4];
-    braun_scene_point points[8];
+    braun_scene_point points[10];
     braun_scene_rod rods[4];
     braun_scene_joint joints[6];
-    braun_scene_knife knives[3];
     braun_scene_effect effects[6];
     braun_scene s;
     braun_system sys;
 } playground;
 
-enum { B0_P = 0, B1_P, PART2, PART3, GROUND_P, B0_C, B1_Q };
+enum { B0_P = 0, B1_P, PART2, PART3, GROUND_P, B0_C, B1_Q, B1_C, B1_R };
 
 static void playground_init(playground *g)
 {
@@ -36,21 +35,22 @@ static void playground_init(playground *g)
     g->points[GROUND_P] = (braun_scene_point){BRAUN_SCENE_GROUND, 0.5, 0.7};
     g->points[B0_C] = (braun_scene_point){0, 0, 0};
     g->points[B1_Q] = (braun_scene_point){1, 0.2, 0.25};
+    g->points[B1_C] = (braun_scene_point){1, 0, 0};
+    g->points[B1_R] = (braun_scene_point){1, -0.5, 0.2};
     g->s.nbodies = 4;
     g->s.bodies = g->bodies;
-    g->s.npoints = 7;
+    g->s.npoints = 9;
     g->s.points = g->points;
     g->s.rods = g->rods;
     g->s.joints = g->joints;
-    g->s.knives = g->knives;
     g->s.effects = g->effects;
 }
 
 static const braun_scene_fn SINE = {BRAUN_FN_SINE, 0.2, 0.7, 2.3, 0.4};
 static const braun_scene_fn LINEAR = {BRAUN_FN_LINEAR, 0.4, -1.3, 0, 0};
 
-static braun_scene_joint joint(int type, int a, int b, double ax, double ay, double value,
-                               const braun_scene_fn *drive)
+static braun_scene_joint joint(const braun_scene_joint_class *type, int a, int b, double ax,
+                               double ay, double value, const braun_scene_fn *drive)
 {
     braun_scene_joint j;
     memset(&j, 0, sizeof j);
@@ -177,11 +177,14 @@ static void test_knife(void **state)
     (void)state;
     playground g;
     playground_init(&g);
-    g.knives[0] = (braun_scene_knife){0, 0.3, -0.2, {0.8, 0.6}, 0};
-    g.knives[1] = (braun_scene_knife){1, 0, 0, {1, 0}, 0};
-    g.knives[2] = (braun_scene_knife){1, -0.5, 0.2, {-0.2, 1.0}, 0};
-    g.s.nknives = 3;
+    /* Knife edges are nonholonomic joints: a the contact point, axis the
+     * blade, both in the body frame. */
+    g.joints[0] = joint(BRAUN_JOINT_KNIFE, B0_P, 0, 0.8, 0.6, 0, NULL);
+    g.joints[1] = joint(BRAUN_JOINT_KNIFE, B1_C, 0, 1, 0, 0, NULL);
+    g.joints[2] = joint(BRAUN_JOINT_KNIFE, B1_R, 0, -0.2, 1.0, 0, NULL);
+    g.s.njoints = 3;
     check_playground(&g, "knife");
+    assert_int_equal(g.joints[2].row, 2);
     assert_int_equal(g.s.p, 3);
     assert_int_equal(g.s.m, 0);
     assert_null(g.sys.holonomic);
@@ -291,9 +294,10 @@ static void test_null_outputs(void **state)
     g.joints[0] = joint(BRAUN_JOINT_REVOLUTE, B0_P, B1_P, 0, 0, 0, NULL);
     g.joints[1] = joint(BRAUN_JOINT_SLIDER, PART2, B0_P, 1, 1, 0, &SINE);
     g.s.njoints = 2;
-    g.knives[0] = (braun_scene_knife){1, 0, 0, {1, 0}, 0};
-    g.s.nknives = 1;
+    g.joints[2] = joint(BRAUN_JOINT_KNIFE, B1_C, 0, 1, 0, 0, NULL);
+    g.s.njoints = 3;
     assert_int_equal(braun_scene_build(&g.s, &g.sys, NULL), BRAUN_OK);
+    assert_int_equal(g.joints[2].row, 0); /* the first row of Φ_v */
     const int n = g.s.n, m = g.s.m;
     double q[FD_NMAX], v[FD_NMAX], phi[8], A[8 * FD_NMAX], b[8], bv[8], phi2[8], bv2[8];
     for (int i = 0; i < n; i++) q[i] = fd_urand(), v[i] = fd_urand();

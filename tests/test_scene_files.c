@@ -122,7 +122,8 @@ static void test_defaults_and_references(void **state)
                   "\"direction\": [0, 1]}]}");
     assert_int_equal(f->corrections, BRAUN_CORRECT_NONE);
     assert_int_equal(f->sys.p, 1);
-    assert_string_equal(f->knife_names[0], "blade");
+    assert_string_equal(f->joint_names[0], "blade");
+    assert_ptr_equal(f->scene.joints[0].type, BRAUN_JOINT_KNIFE);
     braun_scene_free(f);
 }
 

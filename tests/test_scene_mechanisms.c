@@ -106,8 +106,9 @@ static void test_sleigh(void **state)
     (void)state;
     braun_scene_file *f = load("data/sleigh.json");
     const braun_scene_body *b = &f->scene.bodies[0];
-    const braun_scene_knife *k = &f->scene.knives[0];
-    const sleigh_prm prm = {b->mass, b->inertia, -k->x}; /* blade at (-a, 0) */
+    const braun_scene_joint *k = &f->scene.joints[0];
+    assert_ptr_equal(k->type, BRAUN_JOINT_KNIFE);
+    const sleigh_prm prm = {b->mass, b->inertia, -f->scene.points[k->a].x}; /* blade at (-a, 0) */
     assert_int_equal(f->sys.p, 1);
     assert_int_equal(f->sys.m, 0);
     /* Body-frame speeds of the file's initial state: u = 1, aω = 0.5. */

@@ -91,21 +91,21 @@ static int dim_of(const braun_scene *s, int body)
 static void row_bodies(const braun_scene *s, int row, int *b0, int *b1)
 {
     *b0 = *b1 = -1;
-    if (row >= s->m) {
-        for (int k = 0; k < s->nknives; k++)
-            if (s->knives[k].row == row - s->m) *b0 = s->knives[k].body;
-        return;
-    }
+    const int nonholonomic = row >= s->m;
+    if (nonholonomic) row -= s->m;
     for (int k = 0; k < s->njoints; k++) {
         const braun_scene_joint *j = &s->joints[k];
         int rows = 1;
         if (j->type == BRAUN_JOINT_REVOLUTE) rows = 2;
         if (j->type == BRAUN_JOINT_SLIDER) rows = 1 + (j->driven != 0);
         if (j->type == BRAUN_JOINT_PRISMATIC) rows = 2 + (j->driven != 0);
+        if ((j->type == BRAUN_JOINT_KNIFE) != nonholonomic) continue;
         if (row < j->row || row >= j->row + rows) continue;
         if (j->type == BRAUN_JOINT_ANGLE) {
             *b0 = j->a;
             *b1 = j->b;
+        } else if (j->type == BRAUN_JOINT_KNIFE) {
+            *b0 = s->points[j->a].body;
         } else {
             *b0 = s->points[j->a].body;
             *b1 = s->points[j->b].body;

@@ -3,11 +3,13 @@
  * callbacks of braun_system (braun.h) with analytic derivatives.
  *
  * A scene is an immutable description — arrays of small structs for bodies,
- * points, rods, joints, knife edges and effects — plus a few sizes that
- * braun_scene_build() derives from it. The system's callbacks loop over the
- * elements; each element type lives in its own file under src/scene/ and
- * contributes rows of Φ_q, A_q, b_q, b_qv (holonomic), Φ_v, A_vv, b_vv
- * (nonholonomic), forces Q, energy E, ∂E/∂q, ∂E/∂v and input power Ė.
+ * points, rods, joints (holonomic ones and knife edges) and effects — plus a
+ * few sizes that braun_scene_build() derives from it. Each body, joint and
+ * effect names its class (below: "Elements and their classes"), one file
+ * per type under src/core/scene/, which contributes its rows of Φ_q, A_q,
+ * b_q, b_qv (holonomic), Φ_v, A_vv, b_vv (nonholonomic), forces Q, energy
+ * E, ∂E/∂q, ∂E/∂v and input power Ė; the system's callbacks loop over the
+ * elements and dispatch through their classes.
  *
  * Coordinates (SI units throughout):
  *   rigid body  x, y, θ   (centre of mass, angle from the x axis), M = diag(m, m, I)
@@ -15,7 +17,7 @@
  *   rod         none of its own: a uniform rod between two particles or
  *               ground points in natural coordinates; its kinetic energy
  *               (m/6)(|v_a|² + v_a·v_b + |v_b|²) adds blocks m/3, m/6 to M.
- * Every element type has a constant mass matrix, so a built scene always
+ * Every element class has a constant mass matrix, so a built scene always
  * sets BRAUN_MASS_CONSTANT.
  *
  * Only what a scene calls for is computed: no nonholonomic callback when it
@@ -70,28 +72,203 @@ void braun_scene_fn_eval(const braun_scene_fn *f, braun_real t, braun_real *valu
                          braun_real *rate, braun_real *accel);
 
 /* ------------------------------------------------------------------ */
-/* Elements                                                            */
+/* Elements and their classes                                          */
 /* ------------------------------------------------------------------ */
-typedef enum braun_scene_body_kind {
-    BRAUN_BODY_RIGID = 0,   /* x, y, θ */
-    BRAUN_BODY_PARTICLE = 1 /* x, y */
-} braun_scene_body_kind;
+/* Every body, joint and effect names its class: a constant struct of data
+ * and functions (as Chipmunk2D's cpConstraintClass) that says what the
+ * element's fields mean and computes its share of M, T, the rows, Q, V
+ * and Ė. The builder, the system's callbacks, the sparse pattern, the
+ * scene-file reader and `braun gen-c` know no element type: they go
+ * through the class. The built-in classes are one file each under
+ * src/core/scene/ (scene_revolute.c, ...); a program may define its own
+ * (below, "Writing a class", and tests/test_scene_toy_joint.c) and use it
+ * in a C scene or, through braun_scene_load_ex (braun_scene_file.h), in a
+ * scene file. Rods are not a class: they are the scene's natural-coordinate
+ * mass elements, with a mass coupling that no body class expresses.
+ *
+ * The enumerator names of earlier versions are kept as macros for the
+ * built-in classes' addresses, so `.type = BRAUN_JOINT_REVOLUTE` reads as
+ * before (and is an address constant: static initialisers keep working). */
+typedef struct braun_scene braun_scene;
+typedef struct braun_scene_body braun_scene_body;
+typedef struct braun_scene_point braun_scene_point;
+typedef struct braun_scene_joint braun_scene_joint;
+typedef struct braun_scene_effect braun_scene_effect;
+typedef struct braun_scene_body_class braun_scene_body_class;
+typedef struct braun_scene_joint_class braun_scene_joint_class;
+typedef struct braun_scene_effect_class braun_scene_effect_class;
 
-typedef struct braun_scene_body {
-    int kind;             /* braun_scene_body_kind */
+/* Most coordinates of one body (the size of braun_scene_body's q0, v0):
+ * 3 for the planar rigid body. A spatial body class (12 natural
+ * coordinates, or 7 with a quaternion) raises it; nothing else in the
+ * builder, the reader or the generator depends on it. */
+#define BRAUN_SCENE_MAX_DOF 3
+
+/* Partials of a point with respect to its body's coordinates that a body
+ * class may keep in braun_scene_pt.jac (room for 3 x 4). */
+#define BRAUN_SCENE_PT_PARTIALS 12
+
+/* ---------------------------------------------------- field descriptors */
+/* A class describes its scene-file fields as data: a table of descriptors,
+ * ended by one with key NULL. The reader (host) and the C generator (host)
+ * interpret them generically; the core's builder uses them to validate
+ * references. Each descriptor stores into the element struct at `offset`
+ * (offsetof(braun_scene_joint, a), ...):
+ *   BRAUN_FIELD_POINT       int: a point reference — "body.point", "body"
+ *                           (a rigid body's centre, the particle itself),
+ *                           "ground.NAME" or [x, y] (a new ground point)
+ *   BRAUN_FIELD_BODY        int: a body by name, or "ground"
+ *                           (BRAUN_SCENE_GROUND) with BRAUN_FIELD_GROUND;
+ *                           left out (optional), it is the ground
+ *   BRAUN_FIELD_BODY_POINT  int: a body by name; the element gets a new
+ *                           point of its own on that body, at the body's
+ *                           origin moved by a BRAUN_FIELD_OFFSET field with
+ *                           the same offset (a knife edge's contact point)
+ *   BRAUN_FIELD_OFFSET      `count` (2) reals: the body-frame offset of the point
+ *                           of the BRAUN_FIELD_BODY_POINT field at `offset`
+ *                           (0 when left out; read after that field)
+ *   BRAUN_FIELD_REAL        braun_real[count]: a number (count 1) or an
+ *                           array of count numbers (2: a planar vector, 3 a
+ *                           spatial one, 4 a quaternion)
+ *   BRAUN_FIELD_FN          braun_scene_fn: a number (a constant) or a
+ *                           function object
+ *   BRAUN_FIELD_POINTS      bodies only: named points {"NAME": [x, y], ...}
+ *                           in the body frame (count (2) coordinates each) */
+typedef enum braun_scene_field_kind {
+    BRAUN_FIELD_POINT = 1,
+    BRAUN_FIELD_BODY = 2,
+    BRAUN_FIELD_BODY_POINT = 3,
+    BRAUN_FIELD_OFFSET = 4,
+    BRAUN_FIELD_REAL = 5,
+    BRAUN_FIELD_FN = 6,
+    BRAUN_FIELD_POINTS = 7
+} braun_scene_field_kind;
+
+/* Flags of a descriptor. */
+#define BRAUN_FIELD_REQUIRED 0x01u /* missing is an error */
+#define BRAUN_FIELD_GROUND 0x02u   /* BODY: "ground" is accepted */
+#define BRAUN_FIELD_ANGLE 0x04u    /* BODY, BODY_POINT: the body has an angle (rigid) */
+#define BRAUN_FIELD_POSITIVE 0x08u /* REAL: every entry > 0 */
+#define BRAUN_FIELD_NONNEG 0x10u   /* REAL: every entry >= 0 */
+#define BRAUN_FIELD_NONZERO 0x20u  /* REAL: not 0 (count 1), not the zero vector */
+#define BRAUN_FIELD_SMOOTH 0x40u   /* FN: constant, linear or sine, not a step (a drive) */
+
+typedef struct braun_scene_field {
+    const char *key;      /* scene-file key; NULL ends the table */
+    int kind;             /* braun_scene_field_kind */
+    int count;            /* REAL, OFFSET, POINTS: reals per value (0 means 1) */
+    size_t offset;        /* offsetof(element struct, member) */
+    unsigned flags;       /* BRAUN_FIELD_* */
+    const char *excludes; /* key that may not be given with this one, or NULL
+                           * ("give 'length' or 'drive', not both") */
+} braun_scene_field;
+
+/* The given mask of a defaults hook: bit i set when field i of the class's
+ * table was in the scene file (so a table has at most 32 fields). */
+#define BRAUN_FIELD_GIVEN(mask, i) (((mask) >> (i)) & 1u)
+
+/* ------------------------------------------------------- point kinematics */
+/* A point at a state, computed by its body's class (braun_scene_pt_eval):
+ *   P' = J_P v,  P'' = J_P v' + cc,
+ * with J_P = ∂P/∂q nonzero only at the body's columns col .. col + dof - 1.
+ * A joint or effect reads pos, vel and cc and reaches J_P only through
+ * braun_scene_pt_grad, so it works on any body class (planar or, later,
+ * spatial). Planar classes leave the third entries 0. */
+typedef struct braun_scene_pt {
+    const braun_scene_body *body; /* its body, NULL on the ground (fixed) */
+    int col;                      /* column of the body's first coordinate, -1 on the ground */
+    braun_real pos[3];            /* world position */
+    braun_real vel[3];            /* P' (0 when v was NULL) */
+    braun_real cc[3];             /* velocity product of P'' (0 when v was NULL) */
+    braun_real jac[BRAUN_SCENE_PT_PARTIALS]; /* the body class's partials, its own layout */
+} braun_scene_pt;
+
+/* Point i of scene s at (q, v), both of n entries (v may be NULL). */
+void braun_scene_pt_eval(const braun_scene *s, int i, const braun_real *q, const braun_real *v,
+                         braun_scene_pt *P);
+
+/* row += gᵀ J_P: the gradient of g·P with respect to q (row: n entries;
+ * g: world components). Nothing for a ground point. */
+void braun_scene_pt_grad(const braun_scene_pt *P, const braun_real *g, braun_real *row);
+
+/* Angle θ and angular velocity ω of a body that has one (0 for the ground
+ * or a body without angle; omega 0 when v is NULL); returns θ's column, or
+ * -1 when the body has none. theta and omega may be NULL. */
+int braun_scene_body_angle(const braun_scene *s, int body, const braun_real *q,
+                           const braun_real *v, braun_real *theta, braun_real *omega);
+
+/* Before or after the build, for defaults hooks: the world position of
+ * point i at the bodies' initial state q0 (pos: 3 entries), the distance
+ * between two points there, and a body's initial angle (0 for the ground
+ * and bodies without angle). */
+void braun_scene_initial_point(const braun_scene *s, int i, braun_real *pos);
+braun_real braun_scene_initial_distance(const braun_scene *s, int a, int b);
+braun_real braun_scene_initial_angle(const braun_scene *s, int body);
+
+/* -------------------------------------------------------------- bodies */
+/* A body class: its coordinates, mass block, kinetic energy, weight and
+ * point kinematics. Every hook gets the body's own slice of q and v (dof
+ * entries, starting at the body's iq) and writes only its own entries.
+ *   mass     add the body's dof x dof mass block into M (row stride ld).
+ *            M must be constant (a scene sets BRAUN_MASS_CONSTANT); the
+ *            sparse system hands the block out as it is (a zeroed block
+ *            plus this hook), so it is also the sparsity's block.
+ *   kinetic  T = ½ vᵀ M_b v; adds ∂T/∂v into dEdv (NULL: not wanted).
+ *   point    kinematics of point pt of the body: P has body and col set
+ *            and vel, cc zeroed; write pos (and, when v is not NULL, vel
+ *            and cc) and whatever jac the grad hook needs.
+ *   grad     row[k] += (gᵀ J_P)_k for the body's columns (row points at the
+ *            body's first column).
+ *   weight   uniform gravity g (world): Q[k] += (m gᵀ ∂r_c/∂q)_k.
+ *   gravity_potential   -m g·r_c at q (the weight's potential).
+ *   check    NULL or a static sentence on what is wrong with b (the builder
+ *            has checked every number is finite and in range). */
+#define BRAUN_BODY_CLASS_POINT_MASS 0x01u /* a point mass whose coordinates are
+                                           * its position: rods may end on it,
+                                           * its points carry no offset */
+
+struct braun_scene_body_class {
+    const char *name;   /* scene-file "type" ("rigid") */
+    const char *c_name; /* what braun gen-c writes ("BRAUN_BODY_RIGID"; a
+                         * user class: "&symbol", declared extern by gen-c) */
+    int dof;            /* coordinates (and velocities): 1..BRAUN_SCENE_MAX_DOF */
+    int dim;            /* world dimension of its points: 2 (planar) or 3 */
+    int angle;          /* index of the planar angle θ among its coordinates, -1: none */
+    unsigned flags;     /* BRAUN_BODY_CLASS_* */
+    const braun_scene_field *fields; /* mass, inertia, position, ... */
+    const char *(*check)(const braun_scene *s, const braun_scene_body *b);
+    void (*mass)(const braun_scene_body *b, braun_real *M, int ld);
+    braun_real (*kinetic)(const braun_scene_body *b, const braun_real *v, braun_real *dEdv);
+    void (*point)(const braun_scene_body *b, const braun_scene_point *pt, const braun_real *q,
+                  const braun_real *v, braun_scene_pt *P);
+    void (*grad)(const braun_scene_pt *P, const braun_real *g, braun_real *row);
+    void (*weight)(const braun_scene_body *b, const braun_real *g, braun_real *Q);
+    braun_real (*gravity_potential)(const braun_scene_body *b, const braun_real *g,
+                                    const braun_real *q);
+};
+
+extern const braun_scene_body_class braun_scene_body_rigid;    /* x, y, θ; M = diag(m, m, I) */
+extern const braun_scene_body_class braun_scene_body_particle; /* x, y; M = diag(m, m), m >= 0 */
+#define BRAUN_BODY_RIGID (&braun_scene_body_rigid)
+#define BRAUN_BODY_PARTICLE (&braun_scene_body_particle)
+
+struct braun_scene_body {
+    const braun_scene_body_class *kind;
     braun_real mass;      /* kg; > 0 for rigid bodies, >= 0 for particles */
     braun_real inertia;   /* kg m² about the centre of mass (rigid, > 0) */
-    braun_real q0[3];     /* initial x, y, θ (θ ignored for particles) */
-    braun_real v0[3];     /* initial velocity and angular velocity */
-    int iq;               /* set by braun_scene_build: index of x in q */
-} braun_scene_body;
+    braun_real q0[BRAUN_SCENE_MAX_DOF]; /* initial coordinates: x, y, θ (θ unused by particles) */
+    braun_real v0[BRAUN_SCENE_MAX_DOF]; /* initial velocity and angular velocity */
+    int iq;               /* set by braun_scene_build: index of its first coordinate in q */
+};
 
 /* A point: fixed on a rigid body (body frame), a particle itself, or fixed
- * on the ground (world frame). */
-typedef struct braun_scene_point {
+ * on the ground (world frame). (Spatial bodies will add a z here, as they
+ * widen q0 and v0: the classes' interface already carries 3 world
+ * coordinates.) */
+struct braun_scene_point {
     int body;             /* body index or BRAUN_SCENE_GROUND */
     braun_real x, y;      /* body frame; world frame on the ground; 0 on a particle */
-} braun_scene_point;
+};
 
 /* Uniform rod between two points that are particles or on the ground;
  * adds its mass to M and one row |P_b - P_a|² - L² = 0. */
@@ -102,88 +279,199 @@ typedef struct braun_scene_rod {
     int row;              /* set by braun_scene_build */
 } braun_scene_rod;
 
-typedef enum braun_scene_joint_type {
-    /* a, b points: P_a - P_b = 0 (2 rows). */
-    BRAUN_JOINT_REVOLUTE = 0,
-    /* a, b points: |P_b - P_a|² - L² = 0 with L = value, or L = f(t) when
-     * driven (1 row). */
-    BRAUN_JOINT_DISTANCE = 1,
-    /* a: the sliding point P; b: a point A on the line, whose body carries
-     * the line; axis: its direction in that body's frame (world on ground).
-     * n·(P - A) = 0 with n the axis turned by +90° (1 row); when driven
-     * also u·(P - A) - f(t) = 0 along the unit axis u (1 more row). */
-    BRAUN_JOINT_SLIDER = 2,
-    /* A slider whose two bodies also keep their relative angle:
-     * θ_P - θ_A - value = 0 (slider rows + 1). P's body must be rigid. */
-    BRAUN_JOINT_PRISMATIC = 3,
-    /* a, b bodies (rigid or ground): θ_b - θ_a - α = 0 with α = value, or
-     * α = f(t) when driven (1 row). */
-    BRAUN_JOINT_ANGLE = 4
-} braun_scene_joint_type;
+/* -------------------------------------------------------------- joints */
+/* A joint class: rows of Φ_q (holonomic) or of Φ_v (nonholonomic).
+ *   rows     its number of rows (may depend on the joint: a driven slider
+ *            has one more); at least 1.
+ *   eval     its rows at (t, q, v). Every output is offset to the joint's
+ *            first row and may be NULL (not wanted at this call): phi[r],
+ *            A (row r at A + r·n, n = s->n; zeroed by the caller: add into
+ *            it, e.g. with braun_scene_pt_grad, so a point that meets the
+ *            same body twice gets the sum of its columns), b[r], bv[r].
+ *            Holonomic: phi = Φ_q, A = A_q = ∂Φ_q/∂q, b = b_q = -∂Φ_q/∂t,
+ *            bv = b_qv with Φ_q'' = A_q v' - b_qv (Sec. 2.2).
+ *            Nonholonomic: phi = Φ_v, A = A_vv = ∂Φ_v/∂v, b is NULL,
+ *            bv = b_vv with Φ_v' = A_vv v' - b_vv.
+ *            A row may only have entries at the columns of the bodies the
+ *            bodies hook names. Returns 0, or 1 (recoverable: the adaptive
+ *            driver retries with a smaller step) or < 0 (an error).
+ *   bodies   the two bodies (ground: BRAUN_SCENE_GROUND, twice the same is
+ *            fine) every row of the joint may touch, for the sparse
+ *            pattern; NULL: the bodies of its POINT, BODY and BODY_POINT
+ *            fields, in table order (at most two such fields).
+ *   check    NULL or a static sentence (as the builder's messages: "joint
+ *            connects a body to itself"). It runs after the builder has
+ *            checked the numbers (finite, in range) and that the reference
+ *            fields of the table are in range; after it, the builder checks
+ *            drives (driven: a valid function, not a step) and the fields'
+ *            GROUND and ANGLE flags.
+ *   defaults scene files only (the reader calls it once the fields are
+ *            read; C scenes give every value): values derived from the
+ *            initial state of the fields left out, e.g. a distance joint's
+ *            length = the initial distance, and `driven` from whether the
+ *            drive was given. s holds the bodies (with q0) and points read
+ *            so far; `given` has bit i set for field i that was given.
+ * A joint is driven (rheonomic) when its `driven` is non-zero: the scene
+ * then sets BRAUN_CONSTRAINT_WORK. */
+struct braun_scene_joint_class {
+    const char *name;         /* scene-file "type" ("revolute") */
+    const char *c_name;       /* what braun gen-c writes ("BRAUN_JOINT_REVOLUTE") */
+    int nonholonomic;         /* 0: rows of Φ_q, 1: rows of Φ_v */
+    const braun_scene_field *fields;
+    void (*defaults)(const braun_scene *s, braun_scene_joint *j, unsigned given);
+    const char *(*check)(const braun_scene *s, const braun_scene_joint *j);
+    int (*rows)(const braun_scene_joint *j);
+    void (*bodies)(const braun_scene *s, const braun_scene_joint *j, int body[2]);
+    int (*eval)(const braun_scene *s, const braun_scene_joint *j, braun_real t,
+                const braun_real *q, const braun_real *v, braun_real *phi, braun_real *A,
+                braun_real *b, braun_real *bv);
+};
 
-typedef struct braun_scene_joint {
-    int type;             /* braun_scene_joint_type */
-    int a, b;             /* points, or bodies for BRAUN_JOINT_ANGLE */
-    braun_real axis[2];   /* slider and prismatic: line direction (non-zero) */
+/* a, b points: P_a - P_b = 0 (2 rows). */
+extern const braun_scene_joint_class braun_scene_joint_revolute;
+/* a, b points: |P_b - P_a|² - L² = 0 with L = value, or L = f(t) when
+ * driven (1 row). */
+extern const braun_scene_joint_class braun_scene_joint_distance;
+/* a: the sliding point P; b: a point A on the line, whose body carries the
+ * line; axis: its direction in that body's frame (world on the ground).
+ * n·(P - A) = 0 with n the axis turned by +90° (1 row); when driven also
+ * u·(P - A) - f(t) = 0 along the unit axis u (1 more row). */
+extern const braun_scene_joint_class braun_scene_joint_slider;
+/* A slider whose two bodies also keep their relative angle:
+ * θ_P - θ_A - value = 0 (slider rows + 1). P's body must be rigid. */
+extern const braun_scene_joint_class braun_scene_joint_prismatic;
+/* a, b bodies (rigid or ground): θ_b - θ_a - α = 0 with α = value, or
+ * α = f(t) when driven (1 row). */
+extern const braun_scene_joint_class braun_scene_joint_angle;
+/* Knife edge (nonholonomic): a is the contact point, a point of the scene
+ * on a rigid body; axis is the blade direction in the body frame. The
+ * contact point's velocity has no component across the blade:
+ * n·v_P = 0 (1 row of Φ_v). */
+extern const braun_scene_joint_class braun_scene_joint_knife;
+#define BRAUN_JOINT_REVOLUTE (&braun_scene_joint_revolute)
+#define BRAUN_JOINT_DISTANCE (&braun_scene_joint_distance)
+#define BRAUN_JOINT_SLIDER (&braun_scene_joint_slider)
+#define BRAUN_JOINT_PRISMATIC (&braun_scene_joint_prismatic)
+#define BRAUN_JOINT_ANGLE (&braun_scene_joint_angle)
+#define BRAUN_JOINT_KNIFE (&braun_scene_joint_knife)
+
+struct braun_scene_joint {
+    const braun_scene_joint_class *type;
+    int a, b;             /* points, or bodies (angle joints), as the class says */
+    braun_real axis[2];   /* slider, prismatic: line direction; knife: blade (non-zero) */
     braun_real value;     /* length, or angle offset; unused when driven (distance, angle) */
     int driven;           /* 1: follows drive (rheonomic) */
     braun_scene_fn drive; /* constant, linear or sine */
-    int row;              /* set by braun_scene_build: first row */
-} braun_scene_joint;
+    int row;              /* set by braun_scene_build: its first row (of Φ_q, or of Φ_v
+                           * for a nonholonomic joint) */
+};
 
-/* Knife edge (nonholonomic): the velocity of a body-fixed point has no
- * component across a body-fixed direction: n·v_P = 0 (1 row of Φ_v). */
-typedef struct braun_scene_knife {
-    int body;             /* rigid body */
-    braun_real x, y;      /* contact point, body frame */
-    braun_real dir[2];    /* blade direction, body frame (non-zero) */
-    int row;              /* set by braun_scene_build: row of Φ_v */
-} braun_scene_knife;
+/* ------------------------------------------------------------- effects */
+/* An effect class: applied forces, and their share of the energy law.
+ *   forces    Q += the generalized force at (t, q, v) (Q: n entries).
+ *   potential NULL if none: *V = its potential energy at q (independent of
+ *             t: the scene's ∂E/∂t is 0) and dVdq += ∂V/∂q (NULL: not
+ *             wanted). Conservative forces must equal -∂V/∂q.
+ *   power     NULL if none: *P = the power its non-conservative forces put
+ *             in (negative: dissipate), the input rate Ė of the energy law.
+ *   inputs    whether an instance puts energy in or out (a damper only
+ *             when c != 0); NULL: every instance of a class with power.
+ *             The scene has a power callback (BRAUN_ENERGY_INPUT) only when
+ *             one does, and calls power only for those.
+ *   check, defaults  as for joints.
+ * forces, potential and power return 0, or 1 (recoverable: a spring whose
+ * two points coincide has no direction), or < 0 (an error). */
+struct braun_scene_effect_class {
+    const char *name;         /* scene-file "type" ("gravity") */
+    const char *c_name;       /* what braun gen-c writes ("BRAUN_EFFECT_GRAVITY") */
+    const braun_scene_field *fields;
+    void (*defaults)(const braun_scene *s, braun_scene_effect *e, unsigned given);
+    const char *(*check)(const braun_scene *s, const braun_scene_effect *e);
+    int (*forces)(const braun_scene *s, const braun_scene_effect *e, braun_real t,
+                  const braun_real *q, const braun_real *v, braun_real *Q);
+    int (*potential)(const braun_scene *s, const braun_scene_effect *e, const braun_real *q,
+                     braun_real *V, braun_real *dVdq);
+    int (*power)(const braun_scene *s, const braun_scene_effect *e, braun_real t,
+                 const braun_real *q, const braun_real *v, braun_real *P);
+    int (*inputs)(const braun_scene_effect *e);
+};
 
-typedef enum braun_scene_effect_type {
-    /* g[2]: uniform gravity on every mass (potential energy). */
-    BRAUN_EFFECT_GRAVITY = 0,
-    /* a, b points; k, c, rest: linear spring k (N/m, potential) and
-     * damper c (N s/m, dissipates) along P_b - P_a. */
-    BRAUN_EFFECT_SPRING = 1,
-    /* a, b bodies; k, c, rest: rotational spring (N m/rad) and damper
-     * (N m s/rad) on θ_b - θ_a. */
-    BRAUN_EFFECT_TORSION = 2,
-    /* a point; f[0], f[1]: world force components (N) as functions of t. */
-    BRAUN_EFFECT_FORCE = 3,
-    /* a body, b reaction body or ground; f[0]: torque (N m) on a, -f on b. */
-    BRAUN_EFFECT_TORQUE = 4,
-    /* a rotor body, b stator body or ground; torque–speed law
-     * τ = tau0 (1 - ω/omega0), ω = ω_a - ω_b; τ on a, -τ on b. */
-    BRAUN_EFFECT_MOTOR = 5
-} braun_scene_effect_type;
+/* g[2]: uniform gravity on every mass (potential energy; at most one). */
+extern const braun_scene_effect_class braun_scene_effect_gravity;
+/* a, b points; k, c, rest: linear spring k (N/m, potential) and damper c
+ * (N s/m, dissipates) along P_b - P_a. */
+extern const braun_scene_effect_class braun_scene_effect_spring;
+/* a, b bodies; k, c, rest: rotational spring (N m/rad) and damper
+ * (N m s/rad) on θ_b - θ_a. */
+extern const braun_scene_effect_class braun_scene_effect_torsion;
+/* a point; f[0], f[1]: world force components (N) as functions of t. */
+extern const braun_scene_effect_class braun_scene_effect_force;
+/* a body, b reaction body or ground; f[0]: torque (N m) on a, -f on b. */
+extern const braun_scene_effect_class braun_scene_effect_torque;
+/* a rotor body, b stator body or ground; torque–speed law
+ * τ = tau0 (1 - ω/omega0), ω = ω_a - ω_b; τ on a, -τ on b. */
+extern const braun_scene_effect_class braun_scene_effect_motor;
+#define BRAUN_EFFECT_GRAVITY (&braun_scene_effect_gravity)
+#define BRAUN_EFFECT_SPRING (&braun_scene_effect_spring)
+#define BRAUN_EFFECT_TORSION (&braun_scene_effect_torsion)
+#define BRAUN_EFFECT_FORCE (&braun_scene_effect_force)
+#define BRAUN_EFFECT_TORQUE (&braun_scene_effect_torque)
+#define BRAUN_EFFECT_MOTOR (&braun_scene_effect_motor)
 
-typedef struct braun_scene_effect {
-    int type;             /* braun_scene_effect_type */
-    int a, b;             /* points or bodies, as the type says */
+struct braun_scene_effect {
+    const braun_scene_effect_class *type;
+    int a, b;             /* points or bodies, as the class says */
     braun_real g[2];      /* gravity */
     braun_real k, c, rest;/* springs and dampers */
     braun_real tau0, omega0; /* motor: stall torque (N m), no-load speed (rad/s, != 0) */
     braun_scene_fn f[2];  /* force components, or torque in f[0] */
-} braun_scene_effect;
+};
+
+/* The built-in classes, each list ended by NULL, in the order the scene
+ * format documents them (the reader's "unknown type" messages list them). */
+extern const braun_scene_body_class *const braun_scene_body_classes[];
+extern const braun_scene_joint_class *const braun_scene_joint_classes[];
+extern const braun_scene_effect_class *const braun_scene_effect_classes[];
+
+/* Writing a class (tests/test_scene_toy_joint.c is a complete one):
+ *   static int toy_rows(const braun_scene_joint *j) { (void)j; return 1; }
+ *   static int toy_eval(const braun_scene *s, const braun_scene_joint *j, braun_real t,
+ *                       const braun_real *q, const braun_real *v, braun_real *phi,
+ *                       braun_real *A, braun_real *b, braun_real *bv)
+ *   {
+ *       braun_scene_pt P;
+ *       braun_scene_pt_eval(s, j->a, q, v, &P);   // pos, vel, cc of point a
+ *       if (phi) phi[0] = ...;
+ *       if (A) { const braun_real g[2] = {...}; braun_scene_pt_grad(&P, g, A); }
+ *       if (b) b[0] = 0;
+ *       if (bv) bv[0] = ...;                        // uses P.vel and P.cc
+ *       return 0;
+ *   }
+ *   static const braun_scene_field toy_fields[] = {
+ *       {"point", BRAUN_FIELD_POINT, 0, offsetof(braun_scene_joint, a), BRAUN_FIELD_REQUIRED, NULL},
+ *       {"radius", BRAUN_FIELD_REAL, 1, offsetof(braun_scene_joint, value),
+ *        BRAUN_FIELD_REQUIRED | BRAUN_FIELD_POSITIVE, NULL},
+ *       {NULL, 0, 0, 0, 0, NULL}};
+ *   const braun_scene_joint_class toy = {"toy", "&toy", 0, toy_fields, NULL, NULL,
+ *                                        toy_rows, NULL, toy_eval};
+ * then {.type = &toy, .a = 3, .value = 0.5} in a scene's joints. */
 
 /* ------------------------------------------------------------------ */
 /* The scene                                                           */
 /* ------------------------------------------------------------------ */
-typedef struct braun_scene {
+struct braun_scene {
     /* Description: arrays owned by the caller. The build writes only the
      * derived fields marked "set by braun_scene_build". */
     int nbodies;   braun_scene_body *bodies;
     int npoints;   braun_scene_point *points;
     int nrods;     braun_scene_rod *rods;
-    int njoints;   braun_scene_joint *joints;
-    int nknives;   braun_scene_knife *knives;
+    int njoints;   braun_scene_joint *joints;   /* holonomic and nonholonomic */
     int neffects;  braun_scene_effect *effects;
     /* Derived by braun_scene_build. */
     int n, m, p;          /* coordinates, holonomic rows, nonholonomic rows */
     int driven;           /* number of driven joints (then BRAUN_CONSTRAINT_WORK) */
-    int energy_input;     /* dampers, forces, torques or motors present */
-} braun_scene;
+    int energy_input;     /* an effect puts energy in or takes it out */
+};
 
 /* What braun_scene_build found wrong (element and index, static text). */
 typedef enum braun_scene_element {
@@ -192,7 +480,6 @@ typedef enum braun_scene_element {
     BRAUN_SCENE_ELEM_POINT,
     BRAUN_SCENE_ELEM_ROD,
     BRAUN_SCENE_ELEM_JOINT,
-    BRAUN_SCENE_ELEM_KNIFE,
     BRAUN_SCENE_ELEM_EFFECT
 } braun_scene_element;
 
@@ -203,14 +490,17 @@ typedef struct braun_scene_error {
     const char *what;     /* static sentence, e.g. "rod end is on a rigid body" */
 } braun_scene_error;
 
-/* Validate the description, number the coordinates (bodies in order: 3 for
- * a rigid body, 2 for a particle) and the rows (rods, then joints in order;
- * knife edges in order for Φ_v), and fill sys with the scene's callbacks
+/* Validate the description, number the coordinates (bodies in order, each
+ * its class's dof: 3 for a rigid body, 2 for a particle) and the rows (of
+ * Φ_q: rods, then holonomic joints in order; of Φ_v: nonholonomic joints
+ * — knife edges — in order), and fill sys with the scene's callbacks
  * (sys->user = s: the scene must outlive the system). Rejects dangling
  * indices, non-finite or out-of-range numbers (|x| > BRAUN_SCENE_MAX_ABS),
  * non-positive masses, inertias and lengths, a coordinate without mass,
  * rods ending on rigid bodies, joints of a body with itself, zero axes,
- * step drives and more than one gravity. err may be NULL.
+ * step drives and more than one gravity; a NULL class or a class without
+ * its required hooks (joints: rows, eval; bodies: mass, kinetic, point,
+ * grad, weight, gravity_potential). err may be NULL.
  * Sizes: a scene with rods has at most BRAUN_MAX_DENSE (4096) coordinates
  * and rows; one without rods up to BRAUN_MAX_SPARSE (2^20), since it can be
  * handed out sparse (below) — braun_model_init refuses the dense system of
@@ -224,8 +514,9 @@ int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err)
 /* ------------------------------------------------------------------ */
 /* A scene without rods has a block-diagonal M — one block per body, in
  * coordinate order: diag(m, m, I) for a rigid body, diag(m, m) for a
- * particle — and every row of A_q and A_vv belongs to one joint or knife
- * edge that touches at most two bodies. braun_scene_build_sparse hands out
+ * particle (the body class's mass block) — and every row of A_q and A_vv
+ * belongs to one joint that touches at most two bodies (its class's bodies
+ * hook). braun_scene_build_sparse hands out
  * that structure as the system's braun_sparsity (braun.h): the pattern of a
  * row is every coordinate of the bodies its element touches, sorted
  * (structural: entries that are 0 at some state are in it), and the

@@ -26,9 +26,22 @@ typedef struct braun_scene_file {
     unsigned corrections;     /* braun_corrections the file asks for */
     const char *reference;    /* "reference": built-in model name, or NULL */
     braun_real *q0, *v0;      /* initial state, n entries each */
-    /* Names of the elements, for messages (same order as the arrays). */
-    const char **body_names, **joint_names, **knife_names, **effect_names;
+    /* Names of the elements, for messages (same order as the arrays; NULL
+     * for an element without "name"). Knife edges are joints. */
+    const char **body_names, **joint_names, **effect_names;
 } braun_scene_file;
+
+/* Classes a program adds to the built-in ones (braun_scene.h) for the
+ * reader: each list NULL-terminated, or NULL for none. A file's "type" is
+ * looked up among the built-in classes first, then these; the fields of a
+ * class's descriptors are read as for any built-in type, and its defaults
+ * hook fills what the file leaves out. The classes must outlive the
+ * loaded scene. */
+typedef struct braun_scene_classes {
+    const braun_scene_body_class *const *bodies;
+    const braun_scene_joint_class *const *joints;
+    const braun_scene_effect_class *const *effects;
+} braun_scene_classes;
 
 /* Read, validate and build a scene file. On failure returns NULL and writes
  * one line "FILE:LINE:COLUMN: message" (no newline) into err; nothing is
@@ -38,6 +51,14 @@ braun_scene_file *braun_scene_load(const char *path, char *err, size_t err_size)
 /* The same from text in memory; path names it in messages. */
 braun_scene_file *braun_scene_load_text(const char *path, const char *text, size_t len,
                                         char *err, size_t err_size);
+
+/* braun_scene_load and braun_scene_load_text with the program's own
+ * classes besides the built-in ones (extra may be NULL). */
+braun_scene_file *braun_scene_load_ex(const char *path, const braun_scene_classes *extra,
+                                      char *err, size_t err_size);
+braun_scene_file *braun_scene_load_text_ex(const char *path, const char *text, size_t len,
+                                           const braun_scene_classes *extra, char *err,
+                                           size_t err_size);
 
 void braun_scene_free(braun_scene_file *f);
 
@@ -56,6 +77,9 @@ void braun_scene_free(braun_scene_file *f);
  *   int SYMBOL_build(braun_system *sys, braun_real *q0, braun_real *v0);
  *       braun_scene_build() on the static arrays, then the initial state
  *       (SYMBOL_N entries each; either may be NULL); returns its status.
+ * Each element is written with its class's c_name; a class of the program
+ * (c_name "&symbol") is declared extern in the file, and the program links
+ * its definition. Returns -1 for an element whose class has no c_name.
  */
 /* Write the C source of a loaded scene. symbol: a C identifier prefix;
  * source: the file it came from (for the header comment). Returns 0, or -1

@@ -6,9 +6,32 @@
  * (Φ'' = 2|d'|² + 2 d·(J_b v' + cc_b - J_a v' - cc_a) - 2(L'² + L L'')). */
 #include "scene_internal.h"
 
-void braun_scene__distance_rows(const braun_scene *s, const braun_scene_joint *j, braun_real t,
-                                const braun_real *q, const braun_real *v, braun_real *phi,
-                                braun_real *A, braun_real *b, braun_real *bv)
+enum { F_A, F_B, F_LENGTH, F_DRIVE };
+
+/* Scene files: a length left out is the initial distance. */
+static void distance_defaults(const braun_scene *s, braun_scene_joint *j, unsigned given)
+{
+    j->driven = (int)BRAUN_FIELD_GIVEN(given, F_DRIVE);
+    if (!BRAUN_FIELD_GIVEN(given, F_LENGTH)) j->value = braun_scene_initial_distance(s, j->a, j->b);
+}
+
+static const char *distance_check(const braun_scene *s, const braun_scene_joint *j)
+{
+    if (braun_scene__body_of(s, j->a) == braun_scene__body_of(s, j->b))
+        return "joint connects a body to itself";
+    if (!j->driven && !(j->value > 0)) return "distance must be > 0";
+    return NULL;
+}
+
+static int distance_rows(const braun_scene_joint *j)
+{
+    (void)j;
+    return 1; /* the drive replaces the constant */
+}
+
+static int distance_eval(const braun_scene *s, const braun_scene_joint *j, braun_real t,
+                         const braun_real *q, const braun_real *v, braun_real *phi,
+                         braun_real *A, braun_real *b, braun_real *bv)
 {
     scene_pt Pa, Pb;
     braun_real L = j->value, dL = 0, ddL = 0;
@@ -28,4 +51,18 @@ void braun_scene__distance_rows(const braun_scene *s, const braun_scene_joint *j
         bv[0] = BRAUN_R(-2.0) * (ux * ux + uy * uy) - BRAUN_R(2.0) * (dx * cx + dy * cy);
         if (j->driven) bv[0] += BRAUN_R(2.0) * (dL * dL + L * ddL);
     }
+    return 0;
 }
+
+static const braun_scene_field distance_fields[] = {
+    [F_A] = {"a", BRAUN_FIELD_POINT, 0, offsetof(braun_scene_joint, a), BRAUN_FIELD_REQUIRED, NULL},
+    [F_B] = {"b", BRAUN_FIELD_POINT, 0, offsetof(braun_scene_joint, b), BRAUN_FIELD_REQUIRED, NULL},
+    [F_LENGTH] = {"length", BRAUN_FIELD_REAL, 1, offsetof(braun_scene_joint, value),
+                  BRAUN_FIELD_POSITIVE, "drive"},
+    [F_DRIVE] = {"drive", BRAUN_FIELD_FN, 0, offsetof(braun_scene_joint, drive), BRAUN_FIELD_SMOOTH,
+                 NULL},
+    {NULL, 0, 0, 0, 0, NULL}};
+
+const braun_scene_joint_class braun_scene_joint_distance = {
+    "distance", "BRAUN_JOINT_DISTANCE", 0, distance_fields, distance_defaults, distance_check,
+    distance_rows, NULL, distance_eval};

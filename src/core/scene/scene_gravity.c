@@ -1,6 +1,7 @@
-/* Uniform gravity g on every mass: body and particle centres, and rod
- * centres (half of a rod's weight at each end). Conservative: the
- * potential V = -Σ m g·r_c enters the energy law (Eq. 18), Q = -∂V/∂q. */
+/* Uniform gravity g on every mass: bodies (through their class: the weight
+ * at the centre of mass) and rod centres (half of a rod's weight at each
+ * end). Conservative: the potential V = -Σ m g·r_c enters the energy law
+ * (Eq. 18), Q = -∂V/∂q. At most one per scene. */
 #include "scene_internal.h"
 
 /* Adds w·(gx, gy) at the x, y columns of a rod end (nothing on the ground). */
@@ -21,8 +22,7 @@ static void weigh(const braun_scene *s, const braun_scene_effect *e, braun_real 
     const braun_real g[2] = {sign * e->g[0], sign * e->g[1]};
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *bd = &s->bodies[k];
-        Q[bd->iq] += bd->mass * g[0];
-        Q[bd->iq + 1] += bd->mass * g[1];
+        bd->kind->weight(bd, g, Q + bd->iq);
     }
     for (int k = 0; k < s->nrods; k++) {
         const braun_scene_rod *r = &s->rods[k];
@@ -32,21 +32,24 @@ static void weigh(const braun_scene *s, const braun_scene_effect *e, braun_real 
     }
 }
 
-void braun_scene__gravity_forces(const braun_scene *s, const braun_scene_effect *e,
-                                 const braun_real *q, braun_real *Q)
+static int gravity_forces(const braun_scene *s, const braun_scene_effect *e, braun_real t,
+                          const braun_real *q, const braun_real *v, braun_real *Q)
 {
+    (void)t;
     (void)q;
+    (void)v;
     weigh(s, e, 1, Q);
+    return 0;
 }
 
 /* V = -Σ m g·r_c; dVdq = -Q (may be NULL). */
-braun_real braun_scene__gravity_potential(const braun_scene *s, const braun_scene_effect *e,
-                                          const braun_real *q, braun_real *dVdq)
+static int gravity_potential(const braun_scene *s, const braun_scene_effect *e,
+                             const braun_real *q, braun_real *Vout, braun_real *dVdq)
 {
     braun_real V = 0;
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *bd = &s->bodies[k];
-        V -= bd->mass * (e->g[0] * q[bd->iq] + e->g[1] * q[bd->iq + 1]);
+        V += bd->kind->gravity_potential(bd, e->g, q + bd->iq);
     }
     for (int k = 0; k < s->nrods; k++) {
         const braun_scene_rod *r = &s->rods[k];
@@ -61,5 +64,21 @@ braun_real braun_scene__gravity_potential(const braun_scene *s, const braun_scen
     }
     /* -∂V/∂q is exactly the generalized weight. */
     if (dVdq) weigh(s, e, -1, dVdq);
-    return V;
+    *Vout = V;
+    return 0;
 }
+
+static const char *gravity_check(const braun_scene *s, const braun_scene_effect *e)
+{
+    for (const braun_scene_effect *o = s->effects; o < e; o++)
+        if (o->type == e->type) return "more than one gravity";
+    return NULL;
+}
+
+static const braun_scene_field gravity_fields[] = {
+    {"g", BRAUN_FIELD_REAL, 2, offsetof(braun_scene_effect, g), BRAUN_FIELD_REQUIRED, NULL},
+    {NULL, 0, 0, 0, 0, NULL}};
+
+const braun_scene_effect_class braun_scene_effect_gravity = {
+    "gravity", "BRAUN_EFFECT_GRAVITY", gravity_fields, NULL, gravity_check, gravity_forces,
+    gravity_potential, NULL, NULL};

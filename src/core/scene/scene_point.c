@@ -1,61 +1,41 @@
-/* Kinematics of a point of a scene: on a rigid body, a particle, or the
- * ground. Every joint, spring and force reaches q through these. */
+/* Kinematics of a point of a scene: fixed on the ground, or on a body,
+ * whose class computes it (scene_rigid.c, scene_particle.c). Every joint,
+ * spring and force reaches q through these. */
 #include "scene_internal.h"
 
-void braun_scene__point(const braun_scene *s, int i, const braun_real *q, const braun_real *v,
-                        scene_pt *P)
+/* The ground part, and the common start of a body point: body, column,
+ * zero velocity and velocity product. */
+static void start(const braun_scene_body *bd, scene_pt *P)
+{
+    P->body = bd;
+    P->col = bd ? bd->iq : -1;
+    for (int k = 0; k < 3; k++) P->vel[k] = P->cc[k] = 0;
+}
+
+void braun_scene_pt_eval(const braun_scene *s, int i, const braun_real *q, const braun_real *v,
+                         scene_pt *P)
 {
     const braun_scene_point *pt = &s->points[i];
-    P->ix = -1;
-    P->rigid = 0;
-    P->jt[0] = P->jt[1] = 0;
-    P->cc[0] = P->cc[1] = 0;
-    P->vel[0] = P->vel[1] = 0;
-    P->w = 0;
     if (pt->body < 0) { /* ground: world coordinates, fixed */
+        start(NULL, P);
         P->pos[0] = pt->x;
         P->pos[1] = pt->y;
+        P->pos[2] = 0;
         return;
     }
     const braun_scene_body *bd = &s->bodies[pt->body];
-    const int ix = bd->iq;
-    P->ix = ix;
-    P->pos[0] = q[ix];
-    P->pos[1] = q[ix + 1];
-    if (v) {
-        P->vel[0] = v[ix];
-        P->vel[1] = v[ix + 1];
-    }
-    if (bd->kind != BRAUN_BODY_RIGID) return;
-    /* Rigid: P = r + R(θ)p, ∂P/∂θ = R'(θ)p = (-Rp_y, Rp_x). */
-    const braun_real c = braun_cos(q[ix + 2]), sn = braun_sin(q[ix + 2]);
-    const braun_real rx = c * pt->x - sn * pt->y, ry = sn * pt->x + c * pt->y;
-    P->rigid = 1;
-    P->pos[0] += rx;
-    P->pos[1] += ry;
-    P->jt[0] = -ry;
-    P->jt[1] = rx;
-    if (v) {
-        const braun_real w = v[ix + 2];
-        P->w = w;
-        P->vel[0] += P->jt[0] * w;
-        P->vel[1] += P->jt[1] * w;
-        /* P'' = r'' + R'p ω' - R p ω²: the velocity product is -R p ω². */
-        P->cc[0] = -rx * w * w;
-        P->cc[1] = -ry * w * w;
-    }
+    start(bd, P);
+    bd->kind->point(bd, pt, q + bd->iq, v ? v + bd->iq : NULL, P);
 }
 
-void braun_scene__add_grad(const scene_pt *P, braun_real gx, braun_real gy, braun_real *row)
+void braun_scene_pt_grad(const scene_pt *P, const braun_real *g, braun_real *row)
 {
-    if (P->ix < 0) return;
-    row[P->ix] += gx;
-    row[P->ix + 1] += gy;
-    if (P->rigid) row[P->ix + 2] += gx * P->jt[0] + gy * P->jt[1];
+    if (!P->body) return;
+    P->body->kind->grad(P, g, row + P->col);
 }
 
-int braun_scene__angle(const braun_scene *s, int body, const braun_real *q, const braun_real *v,
-                       braun_real *theta, braun_real *omega)
+int braun_scene_body_angle(const braun_scene *s, int body, const braun_real *q,
+                           const braun_real *v, braun_real *theta, braun_real *omega)
 {
     const int col = braun_scene__theta_col(s, body);
     if (theta) *theta = col >= 0 ? q[col] : 0;
@@ -70,4 +50,39 @@ void braun_scene_point_position(const braun_scene *s, int i, const braun_real *q
     braun_scene__point(s, i, q, NULL, &P);
     xy[0] = P.pos[0];
     xy[1] = P.pos[1];
+}
+
+/* ------------------------------------------------------- initial state */
+void braun_scene_initial_point(const braun_scene *s, int i, braun_real *pos)
+{
+    const braun_scene_point *pt = &s->points[i];
+    scene_pt P;
+    if (pt->body < 0) {
+        pos[0] = pt->x;
+        pos[1] = pt->y;
+        pos[2] = 0;
+        return;
+    }
+    /* The body's own coordinates are q0: no numbering needed. */
+    const braun_scene_body *bd = &s->bodies[pt->body];
+    start(bd, &P);
+    bd->kind->point(bd, pt, bd->q0, NULL, &P);
+    for (int k = 0; k < 3; k++) pos[k] = P.pos[k];
+}
+
+braun_real braun_scene_initial_distance(const braun_scene *s, int a, int b)
+{
+    braun_real pa[3], pb[3];
+    braun_scene_initial_point(s, a, pa);
+    braun_scene_initial_point(s, b, pb);
+    if (pa[2] == pb[2]) return braun_scene__hypot(pb[0] - pa[0], pb[1] - pa[1]);
+    const braun_real dz = pb[2] - pa[2];
+    const braun_real dxy = braun_scene__hypot(pb[0] - pa[0], pb[1] - pa[1]);
+    return braun_scene__hypot(dxy, dz);
+}
+
+braun_real braun_scene_initial_angle(const braun_scene *s, int body)
+{
+    if (body < 0 || !s->bodies[body].kind || s->bodies[body].kind->angle < 0) return 0;
+    return s->bodies[body].q0[s->bodies[body].kind->angle];
 }

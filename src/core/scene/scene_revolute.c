@@ -3,12 +3,27 @@
  * Φ'' = A_q v' + cc_a - cc_b, so b_q = 0 and b_qv = cc_b - cc_a. */
 #include "scene_internal.h"
 
-void braun_scene__revolute_rows(const braun_scene *s, const braun_scene_joint *j,
-                                const braun_real *q, const braun_real *v, braun_real *phi,
-                                braun_real *A, braun_real *b, braun_real *bv)
+static const char *revolute_check(const braun_scene *s, const braun_scene_joint *j)
+{
+    if (j->driven) return "a revolute joint cannot be driven";
+    if (braun_scene__body_of(s, j->a) == braun_scene__body_of(s, j->b))
+        return "joint connects a body to itself";
+    return NULL;
+}
+
+static int revolute_rows(const braun_scene_joint *j)
+{
+    (void)j;
+    return 2;
+}
+
+static int revolute_eval(const braun_scene *s, const braun_scene_joint *j, braun_real t,
+                         const braun_real *q, const braun_real *v, braun_real *phi,
+                         braun_real *A, braun_real *b, braun_real *bv)
 {
     const int n = s->n;
     scene_pt Pa, Pb;
+    (void)t;
     braun_scene__point(s, j->a, q, v, &Pa);
     braun_scene__point(s, j->b, q, v, &Pb);
     for (int k = 0; k < 2; k++) {
@@ -22,4 +37,14 @@ void braun_scene__revolute_rows(const braun_scene *s, const braun_scene_joint *j
         if (b) b[k] = 0;
         if (bv) bv[k] = Pb.cc[k] - Pa.cc[k];
     }
+    return 0;
 }
+
+static const braun_scene_field revolute_fields[] = {
+    {"a", BRAUN_FIELD_POINT, 0, offsetof(braun_scene_joint, a), BRAUN_FIELD_REQUIRED, NULL},
+    {"b", BRAUN_FIELD_POINT, 0, offsetof(braun_scene_joint, b), BRAUN_FIELD_REQUIRED, NULL},
+    {NULL, 0, 0, 0, 0, NULL}};
+
+const braun_scene_joint_class braun_scene_joint_revolute = {
+    "revolute", "BRAUN_JOINT_REVOLUTE", 0, revolute_fields, NULL, revolute_check,
+    revolute_rows, NULL, revolute_eval};

@@ -1,7 +1,7 @@
-/* Slider (point on a line) and prismatic joint (slider + fixed relative
- * angle). The line passes through point A (on body L or the ground) with
- * unit direction u = R(θ_L) u_L and normal n = R(θ_L) n_L, n_L = u_L
- * turned by +90°. With e = P - A:
+/* Slider (point on a line); the prismatic joint (scene_prismatic.c) adds a
+ * fixed relative angle. The line passes through point A (on body L or the
+ * ground) with unit direction u = R(θ_L) u_L and normal n = R(θ_L) n_L,
+ * n_L = u_L turned by +90°. With e = P - A:
  *   Φ = n·e                                            (1 row)
  *   A_q = nᵀ(J_P - J_A) + (Jn·e) at θ_L                 (Jn = ∂n/∂θ_L)
  *   Φ'' = A_q v' + n·(cc_P - cc_A) + 2ω_L (Jn)·e' - ω_L² n·e
@@ -45,9 +45,9 @@ static void line_row(const braun_scene *s, int body_l, const scene_pt *P, const 
     }
 }
 
-void braun_scene__slider_rows(const braun_scene *s, const braun_scene_joint *j, braun_real t,
-                              const braun_real *q, const braun_real *v, braun_real *phi,
-                              braun_real *A, braun_real *b, braun_real *bv)
+void braun_scene__slider_rows(const braun_scene *s, const braun_scene_joint *j, int lock,
+                              braun_real t, const braun_real *q, const braun_real *v,
+                              braun_real *phi, braun_real *A, braun_real *b, braun_real *bv)
 {
     const int n = s->n;
     const int body_l = s->points[j->b].body;
@@ -62,11 +62,59 @@ void braun_scene__slider_rows(const braun_scene *s, const braun_scene_joint *j, 
                (b ? b + (k) : NULL), (bv ? bv + (k) : NULL)
     line_row(s, body_l, &P, &Pa, nl, NULL, t, q, v, ROW(r));
     r++;
-    if (j->type == BRAUN_JOINT_PRISMATIC) {
-        const braun_scene_fn lock = {BRAUN_FN_CONSTANT, j->value, 0, 0, 0};
-        braun_scene__angle_rows(s, body_l, s->points[j->a].body, &lock, t, q, v, ROW(r));
+    if (lock) {
+        const braun_scene_fn fixed = {BRAUN_FN_CONSTANT, j->value, 0, 0, 0};
+        braun_scene__angle_rows(s, body_l, s->points[j->a].body, &fixed, t, q, v, ROW(r));
         r++;
     }
     if (j->driven) line_row(s, body_l, &P, &Pa, u, &j->drive, t, q, v, ROW(r));
 #undef ROW
 }
+
+const char *braun_scene__slider_check(const braun_scene *s, const braun_scene_joint *j)
+{
+    if (braun_scene__body_of(s, j->a) == braun_scene__body_of(s, j->b))
+        return "joint connects a body to itself";
+    if (j->axis[0] == 0 && j->axis[1] == 0) return "slider axis is the zero vector";
+    if (braun_scene__body_of(s, j->a) < 0) return "the sliding point is on the ground";
+    const int bl = braun_scene__body_of(s, j->b);
+    if (bl >= 0 && !braun_scene__is_rigid(s, bl))
+        return "the line of a slider must be on a rigid body or the ground";
+    return NULL;
+}
+
+enum { F_POINT, F_LINE, F_AXIS, F_DRIVE };
+
+static void slider_defaults(const braun_scene *s, braun_scene_joint *j, unsigned given)
+{
+    (void)s;
+    j->driven = (int)BRAUN_FIELD_GIVEN(given, F_DRIVE);
+}
+
+static int slider_rows(const braun_scene_joint *j)
+{
+    return 1 + (j->driven ? 1 : 0);
+}
+
+static int slider_eval(const braun_scene *s, const braun_scene_joint *j, braun_real t,
+                       const braun_real *q, const braun_real *v, braun_real *phi, braun_real *A,
+                       braun_real *b, braun_real *bv)
+{
+    braun_scene__slider_rows(s, j, 0, t, q, v, phi, A, b, bv);
+    return 0;
+}
+
+static const braun_scene_field slider_fields[] = {
+    [F_POINT] = {"point", BRAUN_FIELD_POINT, 0, offsetof(braun_scene_joint, a),
+                 BRAUN_FIELD_REQUIRED, NULL},
+    [F_LINE] = {"line", BRAUN_FIELD_POINT, 0, offsetof(braun_scene_joint, b), BRAUN_FIELD_REQUIRED,
+                NULL},
+    [F_AXIS] = {"axis", BRAUN_FIELD_REAL, 2, offsetof(braun_scene_joint, axis),
+                BRAUN_FIELD_REQUIRED | BRAUN_FIELD_NONZERO, NULL},
+    [F_DRIVE] = {"drive", BRAUN_FIELD_FN, 0, offsetof(braun_scene_joint, drive), BRAUN_FIELD_SMOOTH,
+                 NULL},
+    {NULL, 0, 0, 0, 0, NULL}};
+
+const braun_scene_joint_class braun_scene_joint_slider = {
+    "slider", "BRAUN_JOINT_SLIDER", 0, slider_fields, slider_defaults, braun_scene__slider_check,
+    slider_rows, NULL, slider_eval};

@@ -1,14 +1,15 @@
 /* The sparse system of a scene without rods (braun_scene_build_sparse).
  *
- * Structure. Every body's mass block is its own (diag(m, m, I) or
- * diag(m, m)): M is block diagonal, one block per body in coordinate
- * order. Every row of A_q and A_vv belongs to one element that touches at
- * most two bodies; its pattern is all the coordinates of those bodies,
+ * Structure. Every body's mass block is its own (its class's mass hook:
+ * diag(m, m, I) or diag(m, m)): M is block diagonal, one block per body in
+ * coordinate order. Every row of A_q and A_vv belongs to one joint that
+ * touches at most two bodies (its class's bodies hook, or the bodies of its
+ * reference fields); its pattern is all the coordinates of those bodies,
  * sorted — structural, not value-based, so an entry that happens to be 0 at
  * some state (the y column of a revolute joint's x row) is in it. Rods are
  * excluded: a rod's kinetic energy couples the blocks of its two ends.
  *
- * Values. The element functions (scene_revolute.c, ...) write dense rows
+ * Values. The joint classes' eval hooks (scene_revolute.c, ...) write dense rows
  * with stride n. The sparse callbacks let each element write its rows into
  * a scratch block of rows_max x n held by the sparse store — all zero
  * between calls — then gather the element's pattern columns into the
@@ -36,11 +37,9 @@ struct braun_scene_sparse {
 
 static size_t round_up(size_t x) { return (x + SP_ALIGN - 1) / SP_ALIGN * SP_ALIGN; }
 
-static int body_of(const braun_scene *s, int point) { return s->points[point].body; }
-
 static int body_dim(const braun_scene *s, int body)
 {
-    return s->bodies[body].kind == BRAUN_BODY_RIGID ? 3 : 2;
+    return s->bodies[body].kind->dof;
 }
 
 /* The bodies an element touches, ground dropped, in coordinate order
@@ -60,10 +59,9 @@ static int sorted_bodies(int a, int b, int out[2])
 
 static int joint_bodies(const braun_scene *s, const braun_scene_joint *j, int out[2])
 {
-    if (j->type == BRAUN_JOINT_ANGLE) return sorted_bodies(j->a, j->b, out);
-    /* Revolute, distance: the two points' bodies; slider, prismatic: the
-     * sliding point's body and the line's (= the body of point b). */
-    return sorted_bodies(body_of(s, j->a), body_of(s, j->b), out);
+    int body[2];
+    braun_scene__joint_bodies(s, j, body);
+    return sorted_bodies(body[0], body[1], out);
 }
 
 /* Entries of one row of an element that touches these bodies. */
@@ -77,15 +75,15 @@ static int row_count(const braun_scene *s, const int *bodies, int nb)
 /* Sizes of the store of a built scene: rows_max, nnz. */
 static void measure(const braun_scene *s, int *rows_max, long *nnz)
 {
-    int bodies[2], rmax = s->nknives > 0 ? 1 : 0;
+    int bodies[2], rmax = 0;
     long total = 0;
     for (int k = 0; k < s->njoints; k++) {
-        const int rows = braun_scene__joint_rows(&s->joints[k]);
-        const int nb = joint_bodies(s, &s->joints[k], bodies);
+        const braun_scene_joint *j = &s->joints[k];
+        const int rows = j->type->rows(j);
+        const int nb = joint_bodies(s, j, bodies);
         total += (long)rows * row_count(s, bodies, nb);
         if (rows > rmax) rmax = rows;
     }
-    for (int k = 0; k < s->nknives; k++) total += body_dim(s, s->knives[k].body);
     *rows_max = rmax;
     *nnz = total;
 }
@@ -94,12 +92,17 @@ static void measure(const braun_scene *s, int *rows_max, long *nnz)
 static int is_built(const braun_scene *s)
 {
     if (!s || s->n <= 0 || s->nbodies <= 0 || !s->bodies) return 0;
-    long n = 0;
+    long n = 0, p = 0;
     for (int k = 0; k < s->nbodies; k++) {
-        if (s->bodies[k].iq != n) return 0;
-        n += s->bodies[k].kind == BRAUN_BODY_RIGID ? 3 : 2;
+        if (!s->bodies[k].kind || s->bodies[k].iq != n) return 0;
+        n += s->bodies[k].kind->dof;
     }
-    return n == s->n && s->p == s->nknives;
+    for (int k = 0; k < s->njoints; k++) {
+        const braun_scene_joint *j = &s->joints[k];
+        if (!j->type) return 0;
+        if (j->type->nonholonomic) p += j->type->rows(j);
+    }
+    return n == s->n && s->p == p;
 }
 
 static size_t bytes_for(const braun_scene *s, int rows_max, long nnz)
@@ -142,17 +145,31 @@ static int mass_sparse(braun_real t, const braun_real *q, braun_real *M, void *u
     const braun_scene *s = ((const braun_scene_sparse *)user)->scene;
     (void)t;
     (void)q;
+    /* Each body's block, row-major, as its class writes it into zeros. */
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *bd = &s->bodies[k];
-        if (bd->kind == BRAUN_BODY_RIGID) {
-            const braun_real blk[9] = {bd->mass, 0, 0, 0, bd->mass, 0, 0, 0, bd->inertia};
-            for (int i = 0; i < 9; i++) *M++ = blk[i];
-        } else {
-            *M++ = bd->mass;
-            *M++ = 0;
-            *M++ = 0;
-            *M++ = bd->mass;
-        }
+        const int d = bd->kind->dof;
+        for (int i = 0; i < d * d; i++) M[i] = 0;
+        bd->kind->mass(bd, M, d);
+        M += d * d;
+    }
+    return 0;
+}
+
+/* The rows of every joint of one kind (holonomic or not): evaluated into
+ * the scratch, gathered into the compressed values from base. */
+static int rows_sparse(braun_scene_sparse *sp, int nonholonomic, int first, int base,
+                       braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                       braun_real *A, braun_real *b, braun_real *bv)
+{
+    const braun_scene *s = sp->scene;
+    for (int k = 0; k < s->njoints; k++) {
+        const braun_scene_joint *j = &s->joints[k];
+        if (j->type->nonholonomic != nonholonomic) continue;
+        const int st = j->type->eval(s, j, t, q, v, AT(phi, j->row), A ? sp->scratch : NULL,
+                                     AT(b, j->row), AT(bv, j->row));
+        if (st) return st;
+        if (A) gather(sp, first + j->row, j->type->rows(j), A, base);
     }
     return 0;
 }
@@ -161,32 +178,15 @@ static int holonomic_sparse(braun_real t, const braun_real *q, const braun_real 
                             braun_real *phi, braun_real *A, braun_real *b, braun_real *bv,
                             void *user)
 {
-    braun_scene_sparse *sp = user;
-    const braun_scene *s = sp->scene;
-    for (int k = 0; k < s->njoints; k++) {
-        const braun_scene_joint *j = &s->joints[k];
-        if (braun_scene__joint_eval(s, j, t, q, v, AT(phi, j->row), A ? sp->scratch : NULL,
-                                    AT(b, j->row), AT(bv, j->row)))
-            return -1;
-        if (A) gather(sp, j->row, braun_scene__joint_rows(j), A, 0);
-    }
-    return 0;
+    return rows_sparse(user, 0, 0, 0, t, q, v, phi, A, b, bv);
 }
 
 static int nonholonomic_sparse(braun_real t, const braun_real *q, const braun_real *v,
                                braun_real *phi, braun_real *A, braun_real *bv, void *user)
 {
     braun_scene_sparse *sp = user;
-    const braun_scene *s = sp->scene;
-    const int base = sp->row_ptr[s->m];
-    (void)t;
-    for (int k = 0; k < s->nknives; k++) {
-        const braun_scene_knife *kn = &s->knives[k];
-        braun_scene__knife_rows(s, kn, q, v, AT(phi, kn->row), A ? sp->scratch : NULL,
-                                AT(bv, kn->row));
-        if (A) gather(sp, s->m + kn->row, 1, A, base);
-    }
-    return 0;
+    const int m = sp->scene->m;
+    return rows_sparse(sp, 1, m, sp->row_ptr[m], t, q, v, phi, A, NULL, bv);
 }
 
 /* Vectors are the same as the dense system's; only user differs. */
@@ -256,18 +256,16 @@ int braun_scene_build_sparse(braun_scene *s, braun_system *sys, void *buffer, si
     sp->col = sp->row_ptr + s->m + s->p + 1;
     sp->block = sp->col + nnz;
 
-    /* Rows in order: joints (rows are numbered joints in order when there
-     * are no rods), then knife edges. */
+    /* Rows in order: holonomic joints (rows are numbered joints in order
+     * when there are no rods), then nonholonomic ones. */
     int at = 0, bodies[2];
-    for (int k = 0; k < s->njoints; k++) {
-        const braun_scene_joint *j = &s->joints[k];
-        const int nb = joint_bodies(s, j, bodies);
-        at = fill_rows(s, sp, j->row, braun_scene__joint_rows(j), bodies, nb, at);
-    }
-    for (int k = 0; k < s->nknives; k++) {
-        bodies[0] = s->knives[k].body;
-        at = fill_rows(s, sp, s->m + s->knives[k].row, 1, bodies, 1, at);
-    }
+    for (int pass = 0; pass < 2; pass++)
+        for (int k = 0; k < s->njoints; k++) {
+            const braun_scene_joint *j = &s->joints[k];
+            if (j->type->nonholonomic != pass) continue;
+            const int nb = joint_bodies(s, j, bodies);
+            at = fill_rows(s, sp, (pass ? s->m : 0) + j->row, j->type->rows(j), bodies, nb, at);
+        }
     sp->row_ptr[s->m + s->p] = at;
     for (int k = 0; k < s->nbodies; k++) sp->block[k] = body_dim(s, k);
     sp->sparsity.row_ptr = sp->row_ptr;

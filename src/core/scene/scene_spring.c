@@ -26,10 +26,11 @@ static int measure(const braun_scene *s, const braun_scene_effect *e, const brau
     return 0;
 }
 
-int braun_scene__spring_forces(const braun_scene *s, const braun_scene_effect *e,
-                               const braun_real *q, const braun_real *v, braun_real *Q)
+static int spring_forces(const braun_scene *s, const braun_scene_effect *e, braun_real t,
+                         const braun_real *q, const braun_real *v, braun_real *Q)
 {
     geom g;
+    (void)t;
     if (measure(s, e, q, v, &g)) return 1;
     const braun_real f = -(e->k * (g.L - e->rest) + e->c * g.rate);
     braun_scene__add_grad(&g.Pb, f * g.ux, f * g.uy, Q);
@@ -37,8 +38,8 @@ int braun_scene__spring_forces(const braun_scene *s, const braun_scene_effect *e
     return 0;
 }
 
-int braun_scene__spring_potential(const braun_scene *s, const braun_scene_effect *e,
-                                  const braun_real *q, braun_real *V, braun_real *dVdq)
+static int spring_potential(const braun_scene *s, const braun_scene_effect *e,
+                            const braun_real *q, braun_real *V, braun_real *dVdq)
 {
     geom g;
     if (measure(s, e, q, NULL, &g)) return 1;
@@ -52,11 +53,50 @@ int braun_scene__spring_potential(const braun_scene *s, const braun_scene_effect
     return 0;
 }
 
-int braun_scene__spring_power(const braun_scene *s, const braun_scene_effect *e,
-                              const braun_real *q, const braun_real *v, braun_real *P)
+static int spring_power(const braun_scene *s, const braun_scene_effect *e, braun_real t,
+                        const braun_real *q, const braun_real *v, braun_real *P)
 {
     geom g;
+    (void)t;
     if (measure(s, e, q, v, &g)) return 1;
     *P = -e->c * g.rate * g.rate;
     return 0;
 }
+
+/* Only a damper puts energy in or out. */
+static int spring_inputs(const braun_scene_effect *e)
+{
+    return e->c != 0;
+}
+
+static const char *spring_check(const braun_scene *s, const braun_scene_effect *e)
+{
+    if (braun_scene__body_of(s, e->a) == braun_scene__body_of(s, e->b))
+        return "spring connects a body to itself";
+    if (e->k < 0 || e->c < 0 || e->rest < 0)
+        return "stiffness, damping and rest length must be >= 0";
+    return NULL;
+}
+
+enum { F_A, F_B, F_STIFFNESS, F_DAMPING, F_REST };
+
+/* Scene files: a rest length left out is the initial distance. */
+static void spring_defaults(const braun_scene *s, braun_scene_effect *e, unsigned given)
+{
+    if (!BRAUN_FIELD_GIVEN(given, F_REST)) e->rest = braun_scene_initial_distance(s, e->a, e->b);
+}
+
+static const braun_scene_field spring_fields[] = {
+    [F_A] = {"a", BRAUN_FIELD_POINT, 0, offsetof(braun_scene_effect, a), BRAUN_FIELD_REQUIRED, NULL},
+    [F_B] = {"b", BRAUN_FIELD_POINT, 0, offsetof(braun_scene_effect, b), BRAUN_FIELD_REQUIRED, NULL},
+    [F_STIFFNESS] = {"stiffness", BRAUN_FIELD_REAL, 1, offsetof(braun_scene_effect, k),
+                     BRAUN_FIELD_NONNEG, NULL},
+    [F_DAMPING] = {"damping", BRAUN_FIELD_REAL, 1, offsetof(braun_scene_effect, c),
+                   BRAUN_FIELD_NONNEG, NULL},
+    [F_REST] = {"rest_length", BRAUN_FIELD_REAL, 1, offsetof(braun_scene_effect, rest),
+                BRAUN_FIELD_NONNEG, NULL},
+    {NULL, 0, 0, 0, 0, NULL}};
+
+const braun_scene_effect_class braun_scene_effect_spring = {
+    "spring", "BRAUN_EFFECT_SPRING", spring_fields, spring_defaults, spring_check, spring_forces,
+    spring_potential, spring_power, spring_inputs};

@@ -1,5 +1,5 @@
 /*
- * Private to src/scene_json, the host-only scene file reader.
+ * Private to src/host/scene_file, the host-only scene file reader.
  *
  * jansson parses and validates the JSON text; its json_t values carry no
  * positions. To name FILE:LINE:COLUMN for an error found after parsing,
@@ -52,10 +52,10 @@ typedef struct sj_reader {
     /* Point table under construction. */
     int npoints, cap_points;
     const char **point_names;   /* name within its body ("" for implicit ones) */
-    /* JSON index among "joints" of each knife edge and of each joint
-     * (knife edges are joints in the file, a separate array in a scene). */
-    int *knife_json, *joint_json;
     const char **rod_names;
+    /* The program's own classes, besides the built-in ones (lists NULL or
+     * NULL-terminated). */
+    braun_scene_classes extra;
     /* The element being read, for messages: "body 'crank'", "joint #3". */
     char who[160];
 } sj_reader;

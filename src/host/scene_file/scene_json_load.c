@@ -78,13 +78,11 @@ void braun_scene_free(braun_scene_file *f)
     free(s->points);
     free(s->rods);
     free(s->joints);
-    free(s->knives);
     free(s->effects);
     free(f->q0);
     free(f->v0);
     free((void *)f->body_names);
     free((void *)f->joint_names);
-    free((void *)f->knife_names);
     free((void *)f->effect_names);
     if (o->root) json_decref(o->root);
     free(o->text);
@@ -92,8 +90,8 @@ void braun_scene_free(braun_scene_file *f)
 }
 
 /* Takes ownership of text (malloc'd, len bytes plus a NUL). */
-static braun_scene_file *load_owned(const char *path, char *text, size_t len, char *err,
-                                    size_t err_size)
+static braun_scene_file *load_owned(const char *path, char *text, size_t len,
+                                    const braun_scene_classes *extra, char *err, size_t err_size)
 {
     size_t i = 0;
     while (i < len && strchr(" \t\r\n", text[i])) i++;
@@ -140,10 +138,9 @@ static braun_scene_file *load_owned(const char *path, char *text, size_t len, ch
     r.err = err;
     r.err_size = err_size;
     r.out = &o->file;
+    if (extra) r.extra = *extra;
     int st = sj_read_scene(&r, root);
     free(r.point_names);
-    free(r.knife_json);
-    free(r.joint_json);
     free((void *)r.rod_names);
     if (st) {
         braun_scene_free(&o->file);
@@ -152,8 +149,9 @@ static braun_scene_file *load_owned(const char *path, char *text, size_t len, ch
     return &o->file;
 }
 
-braun_scene_file *braun_scene_load_text(const char *path, const char *text, size_t len,
-                                        char *err, size_t err_size)
+braun_scene_file *braun_scene_load_text_ex(const char *path, const char *text, size_t len,
+                                           const braun_scene_classes *extra, char *err,
+                                           size_t err_size)
 {
     if (err && err_size) err[0] = '\0';
     if (!path || !text) {
@@ -167,10 +165,17 @@ braun_scene_file *braun_scene_load_text(const char *path, const char *text, size
     }
     memcpy(copy, text, len);
     copy[len] = '\0';
-    return load_owned(path, copy, len, err, err_size);
+    return load_owned(path, copy, len, extra, err, err_size);
 }
 
-braun_scene_file *braun_scene_load(const char *path, char *err, size_t err_size)
+braun_scene_file *braun_scene_load_text(const char *path, const char *text, size_t len,
+                                        char *err, size_t err_size)
+{
+    return braun_scene_load_text_ex(path, text, len, NULL, err, err_size);
+}
+
+braun_scene_file *braun_scene_load_ex(const char *path, const braun_scene_classes *extra,
+                                      char *err, size_t err_size)
 {
     if (err && err_size) err[0] = '\0';
     if (!path) {
@@ -208,5 +213,10 @@ braun_scene_file *braun_scene_load(const char *path, char *err, size_t err_size)
         return NULL;
     }
     text[len] = '\0';
-    return load_owned(path, text, len, err, err_size);
+    return load_owned(path, text, len, extra, err, err_size);
+}
+
+braun_scene_file *braun_scene_load(const char *path, char *err, size_t err_size)
+{
+    return braun_scene_load_ex(path, NULL, err, err_size);
 }

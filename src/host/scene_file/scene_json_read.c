@@ -1,6 +1,9 @@
 /* The scene file reader: from a jansson tree to the element arrays of a
  * braun_scene (docs/scene-format.md). Every check names the element and
- * the field and, through the reader's path, the file position. */
+ * the field and, through the reader's path, the file position. It knows no
+ * element type: bodies, joints and effects are read through the field
+ * descriptors of their classes (braun_scene.h), looked up by name among
+ * the built-in classes and the program's own (braun_scene_load_ex). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,6 +11,11 @@
 
 #include "braun_models.h"
 #include "scene_json_internal.h"
+
+/* Points an element makes for itself (a knife edge's contact point) are
+ * named with a leading '.', which no name in a file can have: references
+ * never find them, and messages do not list them. */
+#define OWN_POINT "."
 
 /* ------------------------------------------------------------ helpers */
 
@@ -79,28 +87,26 @@ static int num_field_min(sj_reader *r, json_t *obj, const char *key, int require
     return 0;
 }
 
-static int vec2_value(sj_reader *r, json_t *v, const char *field, double *xy)
+/* An array of count numbers in range; the path is at the value. */
+static int vec_value(sj_reader *r, json_t *v, const char *field, int count, double *x)
 {
-    if (!json_is_array(v) || json_array_size(v) != 2 || !json_is_number(json_array_get(v, 0)) ||
-        !json_is_number(json_array_get(v, 1)))
-        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be an array of 2 numbers", r->who, field);
-    for (int i = 0; i < 2; i++) {
+    int ok = json_is_array(v) && json_array_size(v) == (size_t)count;
+    for (int i = 0; ok && i < count; i++) ok = json_is_number(json_array_get(v, (size_t)i));
+    if (!ok)
+        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be an array of %d numbers", r->who,
+                       field, count);
+    for (int i = 0; i < count; i++) {
         sj_push_index(r, i);
-        int st = number_value(r, json_array_get(v, (size_t)i), field, &xy[i]);
+        int st = number_value(r, json_array_get(v, (size_t)i), field, &x[i]);
         sj_pop(r);
         if (st) return st;
     }
     return 0;
 }
 
-static int vec2_field(sj_reader *r, json_t *obj, const char *key, int required, double *xy)
+static int vec2_value(sj_reader *r, json_t *v, const char *field, double *xy)
 {
-    json_t *v = json_object_get(obj, key);
-    if (!v) return required ? missing(r, key) : 1;
-    sj_push_key(r, key);
-    int st = vec2_value(r, v, key, xy);
-    sj_pop(r);
-    return st;
+    return vec_value(r, v, field, 2, xy);
 }
 
 static int str_field(sj_reader *r, json_t *obj, const char *key, int required, const char **s)
@@ -214,19 +220,6 @@ static int fn_object(sj_reader *r, json_t *v, braun_scene_fn *f)
     return 0;
 }
 
-static int fn_field(sj_reader *r, json_t *obj, const char *key, int required, braun_scene_fn *f)
-{
-    json_t *v = json_object_get(obj, key);
-    if (!v) {
-        memset(f, 0, sizeof *f);
-        return required ? missing(r, key) : 1;
-    }
-    sj_push_key(r, key);
-    int st = fn_value(r, v, key, f);
-    sj_pop(r);
-    return st;
-}
-
 /* ------------------------------------------------------ bodies, points */
 static int find_body(const sj_reader *r, const char *name, size_t len)
 {
@@ -238,16 +231,16 @@ static int find_body(const sj_reader *r, const char *name, size_t len)
 }
 
 /* Index of a new point. The table is sized for every point the file can
- * make (named ones, one centre per body, two references per element); the
- * guard only keeps a miscount from writing past it. */
-static int add_point(sj_reader *r, int body, double x, double y, const char *name)
+ * make (named ones, one centre per body, one per member of an element);
+ * the guard only keeps a miscount from writing past it. */
+static int add_point(sj_reader *r, int body, const double *xyz, const char *name)
 {
     braun_scene *s = &r->out->scene;
     if (r->npoints >= r->cap_points) return r->cap_points - 1;
     const int i = r->npoints++;
     s->points[i].body = body;
-    s->points[i].x = (braun_real)x;
-    s->points[i].y = (braun_real)y;
+    s->points[i].x = (braun_real)xyz[0];
+    s->points[i].y = (braun_real)xyz[1];
     r->point_names[i] = name;
     s->npoints = r->npoints;
     return i;
@@ -260,39 +253,6 @@ static int find_point(const sj_reader *r, int body, const char *name)
     return -1;
 }
 
-/* World position of a point at the initial state. */
-static void initial_point(const sj_reader *r, int point, double *xy)
-{
-    const braun_scene *s = &r->out->scene;
-    const braun_scene_point *p = &s->points[point];
-    if (p->body < 0) {
-        xy[0] = p->x;
-        xy[1] = p->y;
-        return;
-    }
-    const braun_scene_body *b = &s->bodies[p->body];
-    const double c = cos(b->q0[2]), sn = sin(b->q0[2]);
-    xy[0] = b->q0[0];
-    xy[1] = b->q0[1];
-    if (b->kind == BRAUN_BODY_RIGID) {
-        xy[0] += c * p->x - sn * p->y;
-        xy[1] += sn * p->x + c * p->y;
-    }
-}
-
-static double initial_distance(const sj_reader *r, int a, int b)
-{
-    double pa[2], pb[2];
-    initial_point(r, a, pa);
-    initial_point(r, b, pb);
-    return hypot(pb[0] - pa[0], pb[1] - pa[1]);
-}
-
-static double initial_angle(const sj_reader *r, int body)
-{
-    return body >= 0 ? r->out->scene.bodies[body].q0[2] : 0.0;
-}
-
 /* A point reference: "body.point", "body" (a rigid body's centre or the
  * particle itself), "ground.point", or [x, y] on the ground. */
 static int point_ref(sj_reader *r, json_t *obj, const char *key, int *point)
@@ -302,9 +262,9 @@ static int point_ref(sj_reader *r, json_t *obj, const char *key, int *point)
     sj_push_key(r, key);
     int st = 0;
     if (json_is_array(v)) {
-        double xy[2] = {0, 0};
-        st = vec2_value(r, v, key, xy);
-        if (!st) *point = add_point(r, BRAUN_SCENE_GROUND, xy[0], xy[1], "");
+        double xyz[3] = {0, 0, 0};
+        st = vec2_value(r, v, key, xyz);
+        if (!st) *point = add_point(r, BRAUN_SCENE_GROUND, xyz, "");
     } else if (json_is_string(v)) {
         const char *ref = json_string_value(v), *dot = strchr(ref, '.');
         const size_t blen = dot ? (size_t)(dot - ref) : strlen(ref);
@@ -317,9 +277,11 @@ static int point_ref(sj_reader *r, json_t *obj, const char *key, int *point)
             if (*point < 0 || dot[1] == '\0') {
                 char names[200] = "";
                 for (int i = 0; i < r->npoints; i++) {
-                    if (r->out->scene.points[i].body != body || !r->point_names[i][0]) continue;
+                    const char *pn = r->point_names[i];
+                    if (r->out->scene.points[i].body != body || !pn[0] || pn[0] == OWN_POINT[0])
+                        continue;
                     if (names[0]) strncat(names, ", ", sizeof names - strlen(names) - 1);
-                    strncat(names, r->point_names[i], sizeof names - strlen(names) - 1);
+                    strncat(names, pn, sizeof names - strlen(names) - 1);
                 }
                 st = sj_fail(r, SJ_AT_VALUE, "%s refers to unknown point '%s' (%.*s has %s%s)",
                              r->who, ref, (int)blen, ref, names[0] ? "points " : "no points",
@@ -330,8 +292,9 @@ static int point_ref(sj_reader *r, json_t *obj, const char *key, int *point)
                                          "or [x, y])", r->who, key);
         } else {
             /* The centre: one implicit point per body, made on first use. */
+            static const double origin[3] = {0, 0, 0};
             *point = find_point(r, body, "");
-            if (*point < 0) *point = add_point(r, body, 0, 0, "");
+            if (*point < 0) *point = add_point(r, body, origin, "");
         }
     } else {
         st = sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be a point: \"body.point\", \"body\" "
@@ -341,12 +304,13 @@ static int point_ref(sj_reader *r, json_t *obj, const char *key, int *point)
     return st;
 }
 
-/* A body reference: a body's name, or "ground" where allowed. */
-static int body_ref(sj_reader *r, json_t *obj, const char *key, int required, int ground_ok,
+/* A body reference: a body's name, or "ground" where allowed; a body with
+ * an angle (rigid) where asked. */
+static int body_ref(sj_reader *r, json_t *obj, const char *key, int ground_ok, int angle,
                     int *body)
 {
     const char *name = "";
-    int st = str_field(r, obj, key, required, &name);
+    int st = str_field(r, obj, key, 1, &name);
     if (st) return st;
     sj_push_key(r, key);
     if (strcmp(name, "ground") == 0) {
@@ -355,7 +319,7 @@ static int body_ref(sj_reader *r, json_t *obj, const char *key, int required, in
     } else {
         *body = find_body(r, name, strlen(name));
         if (*body == -2) st = sj_fail(r, SJ_AT_VALUE, "%s refers to unknown body '%s'", r->who, name);
-        else if (r->out->scene.bodies[*body].kind != BRAUN_BODY_RIGID)
+        else if (angle && r->out->scene.bodies[*body].kind->angle < 0)
             st = sj_fail(r, SJ_AT_VALUE, "%s: body '%s' in field '%s' must be rigid (it has no "
                                          "angle)", r->who, name, key);
     }
@@ -363,8 +327,9 @@ static int body_ref(sj_reader *r, json_t *obj, const char *key, int required, in
     return st;
 }
 
-/* Named points of a rigid body or of the ground: {"NAME": [x, y], ...}. */
-static int read_points(sj_reader *r, json_t *obj, int body)
+/* Named points of a body or of the ground: {"NAME": [x, y], ...} (count
+ * coordinates each: 2, as braun_scene_point has). */
+static int read_points(sj_reader *r, json_t *obj, int body, int count)
 {
     json_t *pts = json_object_get(obj, "points");
     if (!pts) return 0;
@@ -376,30 +341,189 @@ static int read_points(sj_reader *r, json_t *obj, int body)
     const char *key;
     json_t *val;
     json_object_foreach(pts, key, val) {
-        double xy[2] = {0, 0};
+        double xyz[3] = {0, 0, 0};
         sj_push_key(r, key);
+        if (count != 2) return sj_fail(r, SJ_AT_KEY, "%s: points of %d coordinates", r->who, count);
         if (key[0] == '\0' || strchr(key, '.'))
             return sj_fail(r, SJ_AT_KEY, "%s: point name '%s' must be non-empty and contain no "
                                          "'.'", r->who, key);
         char field[160];
         snprintf(field, sizeof field, "points.%s", key);
-        if (vec2_value(r, val, field, xy)) return -1;
-        add_point(r, body, xy[0], xy[1], key);
+        if (vec_value(r, val, field, count, xyz)) return -1;
+        add_point(r, body, xyz, key);
         sj_pop(r);
     }
     sj_pop(r);
     return 0;
 }
 
+/* ------------------------------------------------------------ classes */
+/* fn: the class named type among the built-in list and the program's
+ * extra one (each NULL-terminated, extra may be NULL); NULL, with the
+ * names of both in names, when there is none. */
+#define CLASS_FINDER(fn, T)                                                                 \
+    static const T *fn(const T *const *builtin, const T *const *extra, const char *type,   \
+                       char *names, size_t size)                                           \
+    {                                                                                      \
+        const T *const *lists[2] = {builtin, extra};                                       \
+        names[0] = '\0';                                                                   \
+        for (int l = 0; l < 2; l++)                                                        \
+            for (const T *const *c = lists[l]; c && *c; c++)                               \
+                if (strcmp((*c)->name, type) == 0) return *c;                              \
+        for (int l = 0; l < 2; l++)                                                        \
+            for (const T *const *c = lists[l]; c && *c; c++) {                             \
+                if (names[0]) strncat(names, ", ", size - strlen(names) - 1);              \
+                strncat(names, (*c)->name, size - strlen(names) - 1);                      \
+            }                                                                              \
+        return NULL;                                                                       \
+    }
+CLASS_FINDER(find_body_class, braun_scene_body_class)
+CLASS_FINDER(find_joint_class, braun_scene_joint_class)
+CLASS_FINDER(find_effect_class, braun_scene_effect_class)
+
+/* An unknown "type": the message names the known ones ("unknown joint
+ * type 'welded' (revolute, distance, ...)"). */
+static int unknown_type(sj_reader *r, const char *kind, const char *type, const char *names)
+{
+    sj_push_key(r, "type");
+    return sj_fail(r, SJ_AT_VALUE, "%s: unknown %s type '%s' (%s)", r->who, kind, type, names);
+}
+
+/* "name", "type" and the keys of a class's fields: the members an object
+ * of that class may have. */
+static int check_class_fields(sj_reader *r, json_t *obj, const braun_scene_field *fields,
+                              int named)
+{
+    const char *keys[40];
+    int k = 0;
+    if (named) keys[k++] = "name";
+    keys[k++] = "type";
+    for (const braun_scene_field *f = fields; f && f->key && k < 39; f++) keys[k++] = f->key;
+    keys[k] = NULL;
+    return check_fields(r, obj, keys);
+}
+
+/* A number or an array of numbers into count braun_reals, with the
+ * descriptor's domain; the path is at the value. */
+static int real_value(sj_reader *r, json_t *v, const braun_scene_field *f, braun_real *out)
+{
+    const int count = f->count > 0 ? f->count : 1;
+    double x[8] = {0};
+    if (count > 8) return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' has too many entries", r->who, f->key);
+    if (count == 1 ? number_value(r, v, f->key, x) : vec_value(r, v, f->key, count, x)) return -1;
+    int zero = 1;
+    for (int i = 0; i < count; i++) {
+        if ((f->flags & BRAUN_FIELD_POSITIVE) && !(x[i] > 0))
+            return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be > 0 (got %g)", r->who, f->key, x[i]);
+        if ((f->flags & BRAUN_FIELD_NONNEG) && !(x[i] >= 0))
+            return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be >= 0 (got %g)", r->who, f->key,
+                           x[i]);
+        zero = zero && x[i] == 0;
+    }
+    if ((f->flags & BRAUN_FIELD_NONZERO) && zero)
+        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must not be %s", r->who, f->key,
+                       count == 1 ? "0" : "the zero vector");
+    for (int i = 0; i < count; i++) out[i] = (braun_real)x[i];
+    return 0;
+}
+
+/* One field, present in obj, into the element at elem. */
+static int read_field(sj_reader *r, json_t *obj, json_t *v, const braun_scene_field *f,
+                      void *elem, int body)
+{
+    char *at = (char *)elem + f->offset;
+    int *ref = (int *)(void *)at;
+    const int count = f->count > 0 ? f->count : 1;
+    int st;
+    switch (f->kind) {
+    case BRAUN_FIELD_POINT: return point_ref(r, obj, f->key, ref);
+    case BRAUN_FIELD_BODY:
+        return body_ref(r, obj, f->key, (f->flags & BRAUN_FIELD_GROUND) != 0,
+                        (f->flags & BRAUN_FIELD_ANGLE) != 0, ref);
+    case BRAUN_FIELD_BODY_POINT: {
+        /* The element's own point, at the body's origin until an OFFSET
+         * field moves it. */
+        static const double origin[3] = {0, 0, 0};
+        int b;
+        if (body_ref(r, obj, f->key, 0, (f->flags & BRAUN_FIELD_ANGLE) != 0, &b)) return -1;
+        *ref = add_point(r, b, origin, OWN_POINT);
+        return 0;
+    }
+    case BRAUN_FIELD_OFFSET: {
+        double x[3] = {0, 0, 0};
+        sj_push_key(r, f->key);
+        st = count != 2 ? sj_fail(r, SJ_AT_VALUE, "%s: field '%s': points have 2 coordinates",
+                                  r->who, f->key)
+                        : vec_value(r, v, f->key, count, x);
+        sj_pop(r);
+        if (st) return -1;
+        if (*ref >= 0 && *ref < r->npoints) {
+            braun_scene_point *pt = &r->out->scene.points[*ref];
+            pt->x = (braun_real)x[0];
+            pt->y = (braun_real)x[1];
+        }
+        return 0;
+    }
+    case BRAUN_FIELD_REAL:
+        sj_push_key(r, f->key);
+        st = real_value(r, v, f, (braun_real *)(void *)at);
+        sj_pop(r);
+        return st;
+    case BRAUN_FIELD_FN: {
+        braun_scene_fn *fn = (braun_scene_fn *)(void *)at;
+        sj_push_key(r, f->key);
+        st = fn_value(r, v, f->key, fn);
+        if (!st && (f->flags & BRAUN_FIELD_SMOOTH) && fn->kind == BRAUN_FN_STEP)
+            st = sj_fail(r, SJ_AT_VALUE, "%s: a %s must be smooth (constant, linear or sine), "
+                                         "not a step", r->who, f->key);
+        sj_pop(r);
+        return st;
+    }
+    case BRAUN_FIELD_POINTS: return read_points(r, obj, body, count);
+    default:
+        sj_push_key(r, f->key);
+        return sj_fail(r, SJ_AT_KEY, "%s: field '%s' has a kind the reader does not know (%d)",
+                       r->who, f->key, f->kind);
+    }
+}
+
+/* Every field of a class's table, in table order, then the exclusions;
+ * given: a bit per field present. body: the element's index, for a body's
+ * named points. */
+static int read_fields(sj_reader *r, json_t *obj, const braun_scene_field *fields, void *elem,
+                       int body, unsigned *given)
+{
+    *given = 0;
+    int i = 0;
+    for (const braun_scene_field *f = fields; f && f->key; f++, i++) {
+        json_t *v = json_object_get(obj, f->key);
+        if (!v) {
+            if (f->flags & BRAUN_FIELD_REQUIRED) return missing(r, f->key);
+            /* Optional references left out: a body is the ground, a point
+             * none (the builder refuses it unless the class allows). */
+            if (f->kind == BRAUN_FIELD_BODY) *(int *)(void *)((char *)elem + f->offset) = BRAUN_SCENE_GROUND;
+            if (f->kind == BRAUN_FIELD_POINT || f->kind == BRAUN_FIELD_BODY_POINT)
+                *(int *)(void *)((char *)elem + f->offset) = -1;
+            continue;
+        }
+        if (i < 32) *given |= 1u << i;
+        if (read_field(r, obj, v, f, elem, body)) return -1;
+    }
+    i = 0;
+    for (const braun_scene_field *f = fields; f && f->key; f++, i++) {
+        if (!f->excludes || i >= 32 || !BRAUN_FIELD_GIVEN(*given, i)) continue;
+        if (!json_object_get(obj, f->excludes)) continue;
+        sj_push_key(r, f->key);
+        return sj_fail(r, SJ_AT_KEY, "%s: give '%s' or '%s', not both", r->who, f->key, f->excludes);
+    }
+    return 0;
+}
+
+/* ------------------------------------------------------------- bodies */
 static int read_body(sj_reader *r, json_t *obj, int k)
 {
-    static const char *const keys[] = {"name",  "type",     "mass",  "inertia", "position",
-                                       "angle", "velocity", "omega", "points",  NULL};
-    static const char *const keys_particle[] = {"name", "type", "mass", "position", "velocity",
-                                                NULL};
     braun_scene_body *b = &r->out->scene.bodies[k];
-    const char *name = NULL, *type = "";
-    double x = 0, xy[2] = {0, 0};
+    const char *name = NULL;
     set_who(r, "body", NULL, k);
     if (name_field(r, obj, &name)) return -1;
     if (!name) return missing(r, "name");
@@ -416,39 +540,18 @@ static int read_body(sj_reader *r, json_t *obj, int k)
         return sj_fail(r, SJ_AT_VALUE, "%s: field 'name': '%s' is already the name of body #%d",
                        r->who, name, twin + 1);
     }
+    const char *type = "";
+    char names[512];
     if (str_field(r, obj, "type", 1, &type)) return -1;
-    if (strcmp(type, "rigid") == 0) {
-        b->kind = BRAUN_BODY_RIGID;
-    } else if (strcmp(type, "particle") == 0) {
-        b->kind = BRAUN_BODY_PARTICLE;
-    } else {
-        sj_push_key(r, "type");
-        return sj_fail(r, SJ_AT_VALUE, "%s: unknown body type '%s' (rigid, particle)", r->who, type);
-    }
-    const int rigid = b->kind == BRAUN_BODY_RIGID;
-    if (check_fields(r, obj, rigid ? keys : keys_particle)) return -1;
-    if (num_field_min(r, obj, "mass", 1, rigid, &x)) return -1;
-    b->mass = (braun_real)x;
-    if (rigid) {
-        if (num_field_min(r, obj, "inertia", 1, 1, &x)) return -1;
-        b->inertia = (braun_real)x;
-    }
-    if (vec2_field(r, obj, "position", 1, xy)) return -1;
-    b->q0[0] = (braun_real)xy[0];
-    b->q0[1] = (braun_real)xy[1];
-    xy[0] = xy[1] = 0;
-    if (vec2_field(r, obj, "velocity", 0, xy) < 0) return -1;
-    b->v0[0] = (braun_real)xy[0];
-    b->v0[1] = (braun_real)xy[1];
-    x = 0;
-    if (rigid && num_field(r, obj, "angle", 0, &x) < 0) return -1;
-    b->q0[2] = (braun_real)x;
-    x = 0;
-    if (rigid && num_field(r, obj, "omega", 0, &x) < 0) return -1;
-    b->v0[2] = (braun_real)x;
+    const braun_scene_body_class *c =
+        find_body_class(braun_scene_body_classes, r->extra.bodies, type, names, sizeof names);
+    if (!c) return unknown_type(r, "body", type, names);
+    b->kind = c;
+    if (check_class_fields(r, obj, c->fields, 1)) return -1;
     r->out->body_names[k] = name;
     r->out->scene.nbodies = k + 1; /* visible to find_body from now on */
-    return rigid ? read_points(r, obj, k) : 0;
+    unsigned given;
+    return read_fields(r, obj, c->fields, b, k, &given);
 }
 
 /* --------------------------------------------------------------- rods */
@@ -468,228 +571,61 @@ static int read_rod(sj_reader *r, json_t *obj, int k)
     rod->mass = (braun_real)x;
     int st = num_field_min(r, obj, "length", 0, 1, &x);
     if (st < 0) return -1;
-    rod->length = (braun_real)(st == 1 ? initial_distance(r, rod->a, rod->b) : x);
+    rod->length = st == 1 ? braun_scene_initial_distance(&r->out->scene, rod->a, rod->b)
+                          : (braun_real)x;
     return 0;
 }
 
 /* ------------------------------------------------------------- joints */
-static int drive_field(sj_reader *r, json_t *obj, braun_scene_joint *j)
+static int read_joint(sj_reader *r, json_t *obj, int k)
 {
-    int st = fn_field(r, obj, "drive", 0, &j->drive);
-    if (st < 0) return -1;
-    j->driven = st == 0;
-    if (j->driven && j->drive.kind == BRAUN_FN_STEP) {
-        sj_push_key(r, "drive");
-        return sj_fail(r, SJ_AT_VALUE, "%s: a drive must be smooth (constant, linear or sine), "
-                                       "not a step", r->who);
-    }
-    return 0;
-}
-
-static int axis_field(sj_reader *r, json_t *obj, braun_scene_joint *j)
-{
-    double xy[2] = {0, 0};
-    if (vec2_field(r, obj, "axis", 1, xy)) return -1;
-    if (xy[0] == 0 && xy[1] == 0) {
-        sj_push_key(r, "axis");
-        return sj_fail(r, SJ_AT_VALUE, "%s: field 'axis' must not be the zero vector", r->who);
-    }
-    j->axis[0] = (braun_real)xy[0];
-    j->axis[1] = (braun_real)xy[1];
-    return 0;
-}
-
-static int read_knife(sj_reader *r, json_t *obj, int json_index)
-{
-    static const char *const keys[] = {"name", "type", "body", "at", "direction", NULL};
     braun_scene *s = &r->out->scene;
-    const int k = s->nknives;
-    braun_scene_knife *kn = &s->knives[k];
-    double xy[2] = {0, 0};
-    int body;
-    if (check_fields(r, obj, keys) || body_ref(r, obj, "body", 1, 0, &body)) return -1;
-    kn->body = body;
-    if (vec2_field(r, obj, "at", 0, xy) < 0) return -1;
-    kn->x = (braun_real)xy[0];
-    kn->y = (braun_real)xy[1];
-    if (vec2_field(r, obj, "direction", 1, xy)) return -1;
-    if (xy[0] == 0 && xy[1] == 0) {
-        sj_push_key(r, "direction");
-        return sj_fail(r, SJ_AT_VALUE, "%s: field 'direction' must not be the zero vector", r->who);
-    }
-    kn->dir[0] = (braun_real)xy[0];
-    kn->dir[1] = (braun_real)xy[1];
-    r->knife_json[k] = json_index;
-    r->out->knife_names[k] = r->out->joint_names[json_index];
-    s->nknives = k + 1;
-    return 0;
-}
-
-static int read_joint(sj_reader *r, json_t *obj, int json_index)
-{
-    static const char *const k_rev[] = {"name", "type", "a", "b", NULL};
-    static const char *const k_dist[] = {"name", "type", "a", "b", "length", "drive", NULL};
-    static const char *const k_slide[] = {"name", "type", "point", "line", "axis", "drive", NULL};
-    static const char *const k_prism[] = {"name", "type", "point", "line",
-                                          "axis", "angle", "drive", NULL};
-    static const char *const k_angle[] = {"name", "type", "a", "b", "angle", "drive", NULL};
-    braun_scene *s = &r->out->scene;
-    const char *name = NULL, *type = "";
-    double x = 0;
-    set_who(r, "joint", NULL, json_index);
-    if (name_field(r, obj, &name)) return -1;
-    set_who(r, "joint", name, json_index);
-    r->out->joint_names[json_index] = name;
-    if (str_field(r, obj, "type", 1, &type)) return -1;
-    if (strcmp(type, "knife") == 0) return read_knife(r, obj, json_index);
-
-    braun_scene_joint *j = &s->joints[s->njoints];
+    braun_scene_joint *j = &s->joints[k];
+    const char *name = NULL;
     memset(j, 0, sizeof *j);
-    int st;
-    if (strcmp(type, "revolute") == 0) {
-        j->type = BRAUN_JOINT_REVOLUTE;
-        st = check_fields(r, obj, k_rev) || point_ref(r, obj, "a", &j->a) ||
-             point_ref(r, obj, "b", &j->b);
-    } else if (strcmp(type, "distance") == 0) {
-        j->type = BRAUN_JOINT_DISTANCE;
-        st = check_fields(r, obj, k_dist) || point_ref(r, obj, "a", &j->a) ||
-             point_ref(r, obj, "b", &j->b) || drive_field(r, obj, j);
-        if (!st) {
-            const int got = num_field_min(r, obj, "length", 0, 1, &x);
-            st = got < 0;
-            j->value = (braun_real)(got == 1 ? initial_distance(r, j->a, j->b) : x);
-            if (!st && got == 0 && j->driven) {
-                sj_push_key(r, "length");
-                st = sj_fail(r, SJ_AT_KEY, "%s: give 'length' or 'drive', not both", r->who) != 0;
-            }
-        }
-    } else if (strcmp(type, "slider") == 0 || strcmp(type, "prismatic") == 0) {
-        const int prism = type[0] == 'p';
-        j->type = prism ? BRAUN_JOINT_PRISMATIC : BRAUN_JOINT_SLIDER;
-        st = check_fields(r, obj, prism ? k_prism : k_slide) ||
-             point_ref(r, obj, "point", &j->a) || point_ref(r, obj, "line", &j->b) ||
-             axis_field(r, obj, j) || drive_field(r, obj, j);
-        if (!st && prism) {
-            const int got = num_field(r, obj, "angle", 0, &x);
-            st = got < 0;
-            j->value = (braun_real)(got == 1 ? initial_angle(r, s->points[j->a].body) -
-                                                   initial_angle(r, s->points[j->b].body)
-                                             : x);
-        }
-    } else if (strcmp(type, "angle") == 0) {
-        j->type = BRAUN_JOINT_ANGLE;
-        st = check_fields(r, obj, k_angle) || body_ref(r, obj, "a", 1, 1, &j->a) ||
-             body_ref(r, obj, "b", 1, 1, &j->b) || drive_field(r, obj, j);
-        if (!st) {
-            const int got = num_field(r, obj, "angle", 0, &x);
-            st = got < 0;
-            j->value = (braun_real)(got == 1 ? initial_angle(r, j->b) - initial_angle(r, j->a) : x);
-            if (!st && got == 0 && j->driven) {
-                sj_push_key(r, "angle");
-                st = sj_fail(r, SJ_AT_KEY, "%s: give 'angle' or 'drive', not both", r->who) != 0;
-            }
-        }
-    } else {
-        sj_push_key(r, "type");
-        return sj_fail(r, SJ_AT_VALUE, "%s: unknown joint type '%s' (revolute, distance, slider, "
-                                       "prismatic, angle, knife)", r->who, type);
-    }
-    if (st) return -1;
-    r->out->joint_names[json_index] = name;
-    r->joint_json[s->njoints] = json_index;
-    s->njoints++;
+    set_who(r, "joint", NULL, k);
+    if (name_field(r, obj, &name)) return -1;
+    set_who(r, "joint", name, k);
+    r->out->joint_names[k] = name;
+    const char *type = "";
+    char names[512];
+    if (str_field(r, obj, "type", 1, &type)) return -1;
+    const braun_scene_joint_class *c =
+        find_joint_class(braun_scene_joint_classes, r->extra.joints, type, names, sizeof names);
+    if (!c) return unknown_type(r, "joint", type, names);
+    j->type = c;
+    unsigned given;
+    if (check_class_fields(r, obj, c->fields, 1) || read_fields(r, obj, c->fields, j, k, &given))
+        return -1;
+    if (c->defaults) c->defaults(s, j, given);
+    s->njoints = k + 1;
     return 0;
 }
 
 /* ------------------------------------------------------------ effects */
 static int read_effect(sj_reader *r, json_t *obj, int k)
 {
-    static const char *const k_grav[] = {"name", "type", "g", NULL};
-    static const char *const k_spring[] = {"name",    "type",        "a", "b", "stiffness",
-                                           "damping", "rest_length", NULL};
-    static const char *const k_tors[] = {"name",    "type",       "a", "b", "stiffness",
-                                         "damping", "rest_angle", NULL};
-    static const char *const k_force[] = {"name", "type", "point", "fx", "fy", NULL};
-    static const char *const k_torque[] = {"name", "type", "body", "reaction", "torque", NULL};
-    static const char *const k_motor[] = {"name",         "type",         "rotor", "stator",
-                                          "stall_torque", "no_load_speed", NULL};
-    braun_scene_effect *e = &r->out->scene.effects[k];
-    const char *name = NULL, *type = "";
-    double x = 0;
+    braun_scene *s = &r->out->scene;
+    braun_scene_effect *e = &s->effects[k];
+    const char *name = NULL;
     memset(e, 0, sizeof *e);
     set_who(r, "effect", NULL, k);
     if (name_field(r, obj, &name)) return -1;
     set_who(r, "effect", name, k);
     r->out->effect_names[k] = name;
+    const char *type = "";
+    char names[512];
     if (str_field(r, obj, "type", 1, &type)) return -1;
-    int st, got;
-    if (strcmp(type, "gravity") == 0) {
-        double xy[2] = {0, 0};
-        e->type = BRAUN_EFFECT_GRAVITY;
-        st = check_fields(r, obj, k_grav) || vec2_field(r, obj, "g", 1, xy);
-        e->g[0] = (braun_real)xy[0];
-        e->g[1] = (braun_real)xy[1];
-    } else if (strcmp(type, "spring") == 0) {
-        e->type = BRAUN_EFFECT_SPRING;
-        st = check_fields(r, obj, k_spring) || point_ref(r, obj, "a", &e->a) ||
-             point_ref(r, obj, "b", &e->b);
-        x = 0;
-        st = st || num_field_min(r, obj, "stiffness", 0, 0, &x) < 0;
-        e->k = (braun_real)x;
-        x = 0;
-        st = st || num_field_min(r, obj, "damping", 0, 0, &x) < 0;
-        e->c = (braun_real)x;
-        if (!st) {
-            got = num_field_min(r, obj, "rest_length", 0, 0, &x);
-            st = got < 0;
-            e->rest = (braun_real)(got == 1 ? initial_distance(r, e->a, e->b) : x);
-        }
-    } else if (strcmp(type, "torsion") == 0) {
-        e->type = BRAUN_EFFECT_TORSION;
-        st = check_fields(r, obj, k_tors) || body_ref(r, obj, "a", 1, 1, &e->a) ||
-             body_ref(r, obj, "b", 1, 1, &e->b);
-        x = 0;
-        st = st || num_field_min(r, obj, "stiffness", 0, 0, &x) < 0;
-        e->k = (braun_real)x;
-        x = 0;
-        st = st || num_field_min(r, obj, "damping", 0, 0, &x) < 0;
-        e->c = (braun_real)x;
-        if (!st) {
-            got = num_field(r, obj, "rest_angle", 0, &x);
-            st = got < 0;
-            e->rest = (braun_real)(got == 1 ? initial_angle(r, e->b) - initial_angle(r, e->a) : x);
-        }
-    } else if (strcmp(type, "force") == 0) {
-        e->type = BRAUN_EFFECT_FORCE;
-        st = check_fields(r, obj, k_force) || point_ref(r, obj, "point", &e->a) ||
-             fn_field(r, obj, "fx", 0, &e->f[0]) < 0 || fn_field(r, obj, "fy", 0, &e->f[1]) < 0;
-    } else if (strcmp(type, "torque") == 0) {
-        e->type = BRAUN_EFFECT_TORQUE;
-        e->b = BRAUN_SCENE_GROUND;
-        st = check_fields(r, obj, k_torque) || body_ref(r, obj, "body", 1, 0, &e->a) ||
-             body_ref(r, obj, "reaction", 0, 1, &e->b) < 0 ||
-             fn_field(r, obj, "torque", 1, &e->f[0]);
-    } else if (strcmp(type, "motor") == 0) {
-        e->type = BRAUN_EFFECT_MOTOR;
-        e->b = BRAUN_SCENE_GROUND;
-        st = check_fields(r, obj, k_motor) || body_ref(r, obj, "rotor", 1, 0, &e->a) ||
-             body_ref(r, obj, "stator", 0, 1, &e->b) < 0 ||
-             num_field(r, obj, "stall_torque", 1, &x);
-        e->tau0 = (braun_real)x;
-        if (!st) {
-            st = num_field(r, obj, "no_load_speed", 1, &x) != 0;
-            e->omega0 = (braun_real)x;
-            if (!st && x == 0) {
-                sj_push_key(r, "no_load_speed");
-                st = sj_fail(r, SJ_AT_VALUE, "%s: field 'no_load_speed' must not be 0", r->who) != 0;
-            }
-        }
-    } else {
-        sj_push_key(r, "type");
-        return sj_fail(r, SJ_AT_VALUE, "%s: unknown effect type '%s' (gravity, spring, torsion, "
-                                       "force, torque, motor)", r->who, type);
-    }
-    return st ? -1 : 0;
+    const braun_scene_effect_class *c =
+        find_effect_class(braun_scene_effect_classes, r->extra.effects, type, names, sizeof names);
+    if (!c) return unknown_type(r, "effect", type, names);
+    e->type = c;
+    unsigned given;
+    if (check_class_fields(r, obj, c->fields, 1) || read_fields(r, obj, c->fields, e, k, &given))
+        return -1;
+    if (c->defaults) c->defaults(s, e, given);
+    s->neffects = k + 1;
+    return 0;
 }
 
 /* ------------------------------------------------- corrections, reference */
@@ -737,7 +673,7 @@ static int read_corrections(sj_reader *r, json_t *root)
 /* The JSON path of a scene element, for errors the builder finds. */
 static void element_path(sj_reader *r, const braun_scene_error *e)
 {
-    static const char *const arrays[] = {NULL, "bodies", NULL, "rods", "joints", "joints", "effects"};
+    static const char *const arrays[] = {NULL, "bodies", NULL, "rods", "joints", "effects"};
     const braun_scene *s = &r->out->scene;
     r->depth = 0;
     int index = e->index;
@@ -745,16 +681,7 @@ static void element_path(sj_reader *r, const braun_scene_error *e)
     switch (e->element) {
     case BRAUN_SCENE_ELEM_BODY: kind = "body"; name = r->out->body_names[index]; break;
     case BRAUN_SCENE_ELEM_ROD: kind = "rod"; name = r->rod_names[index]; break;
-    case BRAUN_SCENE_ELEM_JOINT:
-        kind = "joint";
-        index = r->joint_json[index];
-        name = r->out->joint_names[index];
-        break;
-    case BRAUN_SCENE_ELEM_KNIFE:
-        kind = "joint";
-        index = r->knife_json[index];
-        name = r->out->joint_names[index];
-        break;
+    case BRAUN_SCENE_ELEM_JOINT: kind = "joint"; name = r->out->joint_names[index]; break;
     case BRAUN_SCENE_ELEM_EFFECT: kind = "effect"; name = r->out->effect_names[index]; break;
     case BRAUN_SCENE_ELEM_POINT: {
         const int body = s->points[index].body;
@@ -808,15 +735,21 @@ int sj_read_scene(sj_reader *r, json_t *root)
         return sj_fail(r, SJ_AT_VALUE, "scene: field 'ground' must be an object {\"points\": {...}}");
     }
 
-    /* Sizes: every array is allocated once, before any element is read. */
+    /* Sizes: every array is allocated once, before any element is read.
+     * Points: a centre per body, its named points, and at most one per
+     * member of a rod, joint or effect. */
     const int nb = (int)json_array_size(bodies);
     const int nr = rods ? (int)json_array_size(rods) : 0;
     const int nj = joints ? (int)json_array_size(joints) : 0;
     const int ne = effects ? (int)json_array_size(effects) : 0;
-    int np = nb + 2 * (nr + nj + ne) + 1;
+    int np = nb + 2 * nr + 1;
     for (int k = 0; k < nb; k++) {
         json_t *pts = json_object_get(json_array_get(bodies, (size_t)k), "points");
         if (json_is_object(pts)) np += (int)json_object_size(pts);
+    }
+    for (int k = 0; k < nj + ne; k++) {
+        json_t *obj = json_array_get(k < nj ? joints : effects, (size_t)(k < nj ? k : k - nj));
+        if (json_is_object(obj)) np += (int)json_object_size(obj);
     }
     if (ground && json_is_object(json_object_get(ground, "points")))
         np += (int)json_object_size(json_object_get(ground, "points"));
@@ -825,26 +758,21 @@ int sj_read_scene(sj_reader *r, json_t *root)
     s->points = calloc((size_t)np, sizeof *s->points);
     s->rods = calloc((size_t)nr + 1, sizeof *s->rods);
     s->joints = calloc((size_t)nj + 1, sizeof *s->joints);
-    s->knives = calloc((size_t)nj + 1, sizeof *s->knives);
     s->effects = calloc((size_t)ne + 1, sizeof *s->effects);
     r->point_names = calloc((size_t)np, sizeof *r->point_names);
-    r->knife_json = calloc((size_t)nj + 1, sizeof *r->knife_json);
-    r->joint_json = calloc((size_t)nj + 1, sizeof *r->joint_json);
     r->rod_names = calloc((size_t)nr + 1, sizeof *r->rod_names);
     out->body_names = calloc((size_t)nb + 1, sizeof *out->body_names);
     out->joint_names = calloc((size_t)nj + 1, sizeof *out->joint_names);
-    out->knife_names = calloc((size_t)nj + 1, sizeof *out->knife_names);
     out->effect_names = calloc((size_t)ne + 1, sizeof *out->effect_names);
-    if (!s->bodies || !s->points || !s->rods || !s->joints || !s->knives || !s->effects ||
-        !r->point_names || !r->knife_json || !r->joint_json || !r->rod_names || !out->body_names || !out->joint_names ||
-        !out->knife_names || !out->effect_names)
+    if (!s->bodies || !s->points || !s->rods || !s->joints || !s->effects || !r->point_names ||
+        !r->rod_names || !out->body_names || !out->joint_names || !out->effect_names)
         return sj_fail(r, SJ_AT_VALUE, "out of memory");
 
     if (ground) {
         static const char *const gkeys[] = {"points", NULL};
         sj_push_key(r, "ground");
         snprintf(r->who, sizeof r->who, "ground");
-        if (check_fields(r, ground, gkeys) || read_points(r, ground, BRAUN_SCENE_GROUND)) return -1;
+        if (check_fields(r, ground, gkeys) || read_points(r, ground, BRAUN_SCENE_GROUND, 2)) return -1;
         sj_pop(r);
     }
     sj_push_key(r, "bodies");
@@ -873,7 +801,6 @@ int sj_read_scene(sj_reader *r, json_t *root)
     for (int k = 0; k < ne; k++) {
         json_t *obj;
         if (element(r, effects, k, "effect", &obj) || read_effect(r, obj, k)) return -1;
-        s->neffects = k + 1;
         sj_pop(r);
     }
     sj_pop(r);
