@@ -162,7 +162,7 @@ fixed-O3-lto|-O3 -g -flto|$FIX|gcc-ar|"
             src="$vb/tree"
             rm -rf "$src"
             mkdir -p "$src"
-            cp -R src include mk bench data tools Makefile "$src"/
+            cp -R src include mk bench compare data tools Makefile "$src"/
             if ! (cd "$src" && patch -p1 -s --dry-run < "$ROOT/$pat" > /dev/null 2>&1); then
                 echo "bench: $pat does not apply to src/ (applied already?): variant $name skipped" >&2
                 continue
@@ -238,7 +238,9 @@ CPU=$(sed -n 's/^model name[^:]*: *//p' /proc/cpuinfo 2>/dev/null | head -n 1)
     echo "compare_csv=$COMPARE"
 } > "$OUT/meta.txt"
 
-awk -f bench/tables.awk -v out="$OUT" -v meta="$OUT/meta.txt" \
+# The labels of the series (compare/series.tsv) as braun-bench has them.
+"$BIN" series > "$OUT/series.txt"
+awk -f bench/tables.awk -v out="$OUT" -v meta="$OUT/meta.txt" -v series="$OUT/series.txt" \
     "$OUT/targets.csv" "$OUT/time.csv" "$OUT/instructions.csv" "$OUT/flops.csv" \
     "$OUT/profile.csv" "$OUT/matched_error.csv" "$OUT/variants.csv"
 

@@ -5,6 +5,7 @@
  *   braun-bench flops TARGET...                           derived flop counts (CSV)
  *   braun-bench info TARGET...                            sizes (CSV)
  *   braun-bench matched RUNS_CSV [LEVEL...]               cost at matched error (CSV)
+ *   braun-bench series                                    the series table it uses
  *
  * Timing: every round runs one block of every item of a target, in an order
  * that rotates from round to round, with process CPU time around each
@@ -17,6 +18,7 @@
 #include <string.h>
 
 #include "bench.h"
+#include "cmp_series.h"
 
 static int usage(void)
 {
@@ -26,6 +28,7 @@ static int usage(void)
             "       braun-bench flops TARGET...\n"
             "       braun-bench info TARGET...\n"
             "       braun-bench matched RUNS_CSV [LEVEL...]\n"
+            "       braun-bench series\n"
             "items: step-none step-pv step-all step-free step-floor rhs-ideal rhs-corrected "
             "rhs-floor\n");
     return 2;
@@ -290,5 +293,9 @@ int main(int argc, char **argv)
     if (strcmp(cmd, "flops") == 0) return cmd_flops(argc - 2, argv + 2);
     if (strcmp(cmd, "info") == 0) return cmd_info(argc - 2, argv + 2);
     if (strcmp(cmd, "matched") == 0) return cmd_matched(argc - 2, argv + 2);
+    if (strcmp(cmd, "series") == 0) {
+        cmp_series_print(stdout); /* compare/series.tsv, as built in */
+        return 0;
+    }
     return usage();
 }

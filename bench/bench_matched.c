@@ -1,13 +1,16 @@
 /* Cost per simulated second at matched trajectory error, from make
  * compare's runs.csv (docs/compare.md lists its columns). For each scene,
- * horizon and method the runs that reached T form an error–cost curve;
+ * horizon and series the runs that reached T form an error–cost curve;
  * its Pareto front (no run both cheaper and more accurate) is interpolated
- * linearly in log(error)–log(CPU time) at each error level. */
+ * linearly in log(error)–log(CPU time) at each error level. The series are
+ * those of compare/series.tsv marked "bench", in its order; the method
+ * column is the series' key, ratios are to braun:rk4:-. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bench.h"
+#include "cmp_series.h"
 
 #define MAX_FIELDS 64
 #define MAX_RUNS 4096
@@ -18,19 +21,8 @@ typedef struct run_row {
     int ok;
 } run_row;
 
-/* The methods compared: label, method, integrator, variant ("*" any). */
-static const struct {
-    const char *label, *method, *integrator, *variant;
-} methods[] = {
-    {"braun rk4", "braun", "rk4", "-"},
-    {"braun rk4 no energy", "braun-noenergy", "rk4", "-"},
-    {"braun dopri5", "braun", "dopri5", "-"},
-    {"baumgarte rk4", "baumgarte", "rk4", "-"},
-    {"ida-ggl", "ida-ggl", "bdf", "-"},
-    {"ida-ggl tuned", "ida-ggl", "bdf", "tuned"},
-    {"ode-rk4 (minimal)", "ode-rk4", "rk4", "-"},
-};
-#define NMETHODS ((int)(sizeof methods / sizeof methods[0]))
+/* The baseline of the ratios. */
+#define BASELINE "braun:rk4:-"
 
 /* Split one CSV line in place (double quotes allowed around a field). */
 static int split(char *line, char **f)
@@ -95,6 +87,29 @@ static double cost_at(const run_row *pts, int np, double L, const char **how)
     return NAN;
 }
 
+/* The cost of series s at error level L on the scene and horizon of row
+ * at; *np: its runs that reached T (0: none, the rest is not set), *best:
+ * their smallest error. pts: room for MAX_RUNS rows. */
+static double curve_cost(const run_row *rows, int nr, const run_row *at, const cmp_series *s,
+                         double L, run_row *pts, int *np, double *best, const char **how)
+{
+    *np = 0;
+    for (int j = 0; j < nr; j++) {
+        const run_row *r = &rows[j];
+        if (!r->ok || strcmp(r->scene, at->scene) != 0 || r->T != at->T) continue;
+        if (!cmp_series_is(s, r->method, r->integrator, r->variant)) continue;
+        pts[(*np)++] = *r;
+    }
+    *how = "not-reached";
+    *best = NAN;
+    if (*np == 0) return NAN;
+    qsort(pts, (size_t)*np, sizeof pts[0], by_cpu);
+    *best = pts[0].err;
+    for (int j = 1; j < *np; j++)
+        if (pts[j].err < *best) *best = pts[j].err;
+    return cost_at(pts, *np, L, how);
+}
+
 int bench_matched_write(FILE *out, const char *runs_csv, const double *levels, int nlevels)
 {
     fprintf(out, "scene,T,error_level,method,cpu_s,cpu_per_sim_s,ratio_to_braun_rk4,how,runs,"
@@ -147,35 +162,27 @@ int bench_matched_write(FILE *out, const char *runs_csv, const double *levels, i
     fclose(f);
 
     /* Scenes and horizons in file order. */
+    const cmp_series *baseline = cmp_series_find(BASELINE);
     for (int i = 0; i < nr; i++) {
         int seen = 0;
         for (int j = 0; j < i && !seen; j++)
             seen = strcmp(rows[j].scene, rows[i].scene) == 0 && rows[j].T == rows[i].T;
         if (seen) continue;
         for (int l = 0; l < nlevels; l++) {
-            double base = NAN;
-            for (int mth = 0; mth < NMETHODS; mth++) {
-                int np = 0;
-                for (int j = 0; j < nr; j++) {
-                    const run_row *r = &rows[j];
-                    if (!r->ok || strcmp(r->scene, rows[i].scene) != 0 || r->T != rows[i].T)
-                        continue;
-                    if (strcmp(r->method, methods[mth].method) != 0 ||
-                        strcmp(r->integrator, methods[mth].integrator) != 0 ||
-                        strcmp(r->variant, methods[mth].variant) != 0)
-                        continue;
-                    pts[np++] = *r;
-                }
+            const char *how;
+            int np;
+            double best;
+            const double base = baseline ? curve_cost(rows, nr, &rows[i], baseline, levels[l], pts,
+                                                      &np, &best, &how)
+                                         : NAN;
+            for (int k = 0; k < cmp_series_count; k++) {
+                const cmp_series *s = &cmp_series_table[k];
+                if (!cmp_series_in(s, "bench")) continue;
+                const double c =
+                    curve_cost(rows, nr, &rows[i], s, levels[l], pts, &np, &best, &how);
                 if (np == 0) continue;
-                qsort(pts, (size_t)np, sizeof pts[0], by_cpu);
-                double best = pts[0].err;
-                for (int j = 1; j < np; j++)
-                    if (pts[j].err < best) best = pts[j].err;
-                const char *how;
-                const double c = cost_at(pts, np, levels[l], &how);
-                if (mth == 0) base = c;
                 fprintf(out, "%s,%g,%g,%s,%.6g,%.6g,%.4g,%s,%d,%.3g\n", rows[i].scene, rows[i].T,
-                        levels[l], methods[mth].label, c, c / rows[i].T, c / base, how, np, best);
+                        levels[l], s->key, c, c / rows[i].T, c / base, how, np, best);
             }
         }
     }

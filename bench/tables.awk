@@ -1,10 +1,23 @@
 # The markdown tables of make bench from its CSV files (bench/bench.sh).
-# Usage: awk -f bench/tables.awk -v out=DIR -v meta=FILE targets.csv
-#        time.csv instructions.csv flops.csv profile.csv matched_error.csv
-#        variants.csv
+# Usage: awk -f bench/tables.awk -v out=DIR -v meta=FILE [-v series=FILE]
+#        targets.csv time.csv instructions.csv flops.csv profile.csv
+#        matched_error.csv variants.csv
 # Writes DIR/{steps,instructions,rhs,flops,components,profile,matched,
-# variants,meta,summary}.md.
-BEGIN { FS = "," }
+# variants,meta,summary}.md. series: the series table as `braun-bench
+# series` prints it (key|label|...), for the labels of matched_error.csv's
+# series keys (compare/series.tsv).
+BEGIN {
+    FS = ","
+    baseline = "braun:rk4:-"
+    if (series != "") {
+        while ((getline line < series) > 0) {
+            split(line, sf, "|")
+            if (sf[1] != "") label[sf[1]] = sf[2]
+        }
+        close(series)
+    }
+}
+function label_of(key) { return (key in label) ? label[key] : key }
 FNR == 1 { file++; next }
 
 # targets.csv: target,source,n,m,p,rank,energy_law,minimal,h,...
@@ -42,7 +55,7 @@ file == 5 {
     pfl[k, np[k]] = $7 / ($5 > 0 ? $5 : 1)
     next
 }
-# matched_error.csv: scene,T,error_level,method,cpu_s,cpu_per_sim_s,ratio,how,runs
+# matched_error.csv: scene,T,error_level,method (a series key),cpu_s,cpu_per_sim_s,ratio,how,runs
 file == 6 {
     key = $1 SUBSEP $2 SUBSEP $3
     if (!(key in mseen)) { mseen[key] = 1; mk[++nm] = key }
@@ -195,7 +208,7 @@ END {
     } else {
         line = "| scene | T [s] | error level"
         sep = "|---|---|---"
-        for (c = 1; c <= nmm; c++) { line = line " | " mm[c]; sep = sep "|---" }
+        for (c = 1; c <= nmm; c++) { line = line " | " label_of(mm[c]); sep = sep "|---" }
         print line " |" > f
         print sep "|" > f
         for (i = 1; i <= nm; i++) {
@@ -206,13 +219,13 @@ END {
                 if (!(key in mh)) { line = line " | "; continue }
                 if (mh[key] == "not-reached") { line = line " | not reached (best " mb[key] ")"; continue }
                 cell = (mh[key] == "cheapest-run" ? "≤ " : "") sig(1e3 * mc[key])
-                if (mm[c] != "braun rk4" && num(mr[key])) cell = cell " (×" sig(mr[key]) ")"
+                if (mm[c] != baseline && num(mr[key])) cell = cell " (×" sig(mr[key]) ")"
                 line = line " | " cell
             }
             print line " |" > f
         }
         print "" > f
-        print "CPU milliseconds per simulated second (× braun rk4) from `" mv["matched_from"] "`; ≤: the cheapest run is already below the level (an upper bound); not reached: no run that reached T got there (best maximum error in brackets)." > f
+        print "CPU milliseconds per simulated second (× " label_of(baseline) ") from `" mv["matched_from"] "`; ≤: the cheapest run is already below the level (an upper bound); not reached: no run that reached T got there (best maximum error in brackets)." > f
     }
     close(f)
 

@@ -6,6 +6,8 @@
  *   braun-compare plan [the options of run]
  *   braun-compare report [--dir DIR]
  *   braun-compare list
+ *   braun-compare series        the series table (compare/series.tsv) as built in
+ *   braun-compare claims        the claims table (compare/cmp_claims.c)
  *
  * LIST: names separated by spaces or commas. plan, --prepare and --job are
  * the steps of compare/run.sh's parallel study (docs/compare.md). */
@@ -18,6 +20,8 @@
 #include <gsl/gsl_errno.h>
 
 #include "cmp.h"
+#include "cmp_claims.h"
+#include "cmp_series.h"
 #include "cmp_study.h"
 
 static void usage(FILE *f)
@@ -29,6 +33,8 @@ static void usage(FILE *f)
             "       braun-compare plan [the options of run]\n"
             "       braun-compare report [--dir DIR]\n"
             "       braun-compare list\n"
+            "       braun-compare series\n"
+            "       braun-compare claims\n"
             "\n"
             "run     integrate every scene with every method on the study's grid of step\n"
             "        sizes and tolerances; write DIR/runs.csv, history.csv,\n"
@@ -41,6 +47,10 @@ static void usage(FILE *f)
             "        'prepare G T' per group, 'job K G' per run\n"
             "report  write DIR/report.md from those files and the plots beside them\n"
             "list    methods and built-in scenes\n"
+            "series  the series of the report, plots and bench as this program has them\n"
+            "        (compare/series.tsv): key|label|colour|dash|point|in\n"
+            "claims  the paper's claims: claim, paper, figure, its arguments, the tests\n"
+            "        and the rule as the report states it (tab-separated)\n"
             "\n"
             "LIST is separated by spaces or commas. Defaults: the paper's scenes\n"
             "(slider-crank four-bar) and the pendulum; every method; K = 3.\n"
@@ -236,6 +246,14 @@ int main(int argc, char **argv)
     if (strcmp(argv[1], "report") == 0) return cmd_report(argc - 2, argv + 2);
     if (strcmp(argv[1], "list") == 0) return cmd_list();
     if (strcmp(argv[1], "scenes") == 0) return cmd_scenes(argc - 2, argv + 2);
+    if (strcmp(argv[1], "series") == 0) {
+        cmp_series_print(stdout);
+        return 0;
+    }
+    if (strcmp(argv[1], "claims") == 0) {
+        cmp_claims_print(stdout);
+        return 0;
+    }
     if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
         usage(stdout);
         return 0;

@@ -6,7 +6,16 @@
 #   slider_SCENE      slider position against time at h = 5e-2 (the paper's Fig. 2)
 #   ida_SCENE_T       IDA: error and time reached against the tolerance
 # Usage: sh compare/plot.sh DIR   (reads DIR/runs.csv and DIR/history.csv)
+#        sh compare/plot.sh --series   (the series as read: key|label|colour|dash|point|in)
+# The series, their legends, styles and which plot shows which: the table
+# compare/series.tsv (through compare/series.awk, as the C programs read it).
 set -eu
+here=$(dirname "$0")
+series_all=$(awk -f "$here/series.awk" -v out=plot "$here/series.tsv")
+if [ "${1:-}" = --series ]; then
+    printf '%s\n' "$series_all"
+    exit 0
+fi
 dir=${1:?usage: sh compare/plot.sh DIR}
 runs="$dir/runs.csv"
 hist="$dir/history.csv"
@@ -14,19 +23,12 @@ hist="$dir/history.csv"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/braun-plot.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT INT TERM
 
-# Series: method:integrator:variant|title|colour|dash|point type. One style
-# per method everywhere.
-series_all='braun:rk4:-|braun, RK4|#1f4e9c|1|7
-braun:dopri5:-|braun, DOPRI5 adaptive|#4a90d9|2|6
-braun:heun:-|braun, Heun|#2f6db5|4|4
-braun:euler:-|braun, Euler|#7fa9dc|5|2
-braun-noenergy:rk4:-|braun without energy corr., RK4|#e07b00|1|5
-braun-noenergy:dopri5:-|braun without energy corr., DOPRI5|#f0a640|2|14
-baumgarte:rk4:-|Baumgarte (a=b=0.1/h), RK4|#2ca02c|1|9
-ode-rk4:rk4:-|minimal-coordinate ODE, RK4|#555555|1|13
-ida-ggl:bdf:-|IDA GGL index-2, defaults|#d62728|1|11
-ida-ggl:bdf:tuned|IDA GGL index-2, tuned|#8c1515|2|10
-ida-index1:bdf:-|IDA index-1|#9467bd|4|12'
+# tagged TAG: the keys of the series whose "in" has TAG, in table order.
+tagged() {
+    printf '%s\n' "$series_all" | awk -F'|' -v tag="$1" '
+        { n = split($6, t, ","); for (i = 1; i <= n; i++) if (t[i] == tag) { printf "%s%s", sep, $1; sep = " " } }
+        END { print "" }'
+}
 
 # Terminals: PNG for the report, SVG beside it.
 png='set terminal pngcairo size 1200,800 font "DejaVu Sans,11" linewidth 1.5'
@@ -76,7 +78,7 @@ select_hist() {
 plot_cmd() {
     prefix=$1 using=$2 keys=${3:-}
     ycol=${using#*:}
-    printf '%s\n' "$series_all" | while IFS='|' read -r key title colour dash pt; do
+    printf '%s\n' "$series_all" | while IFS='|' read -r key title colour dash pt _; do
         if [ -n "$keys" ]; then
             case " $keys " in *" $key "*) ;; *) continue ;; esac
         fi
@@ -153,7 +155,7 @@ EOF
     fi
 
     # ---- Fig. 4: against the step size
-    fixed='braun:rk4:- braun:heun:- braun:euler:- braun-noenergy:rk4:- baumgarte:rk4:- ode-rk4:rk4:-'
+    fixed=$(tagged steps)
     for key in $fixed; do
         select_runs "$sc" "$T" "$key" "6 25 29 31 13" > "$base.st.$(printf '%s' "$key" | tr ':' '_').dat"
     done
@@ -186,7 +188,7 @@ EOF
     fi
 
     # ---- IDA against the tolerance
-    idak='ida-ggl:bdf:- ida-ggl:bdf:tuned ida-index1:bdf:- braun:dopri5:-'
+    idak=$(tagged tol)
     for key in $idak; do
         k=$(printf '%s' "$key" | tr ':' '_')
         select_runs "$sc" "$T" "$key" "7 31" > "$base.ie.$k.dat"
@@ -215,9 +217,11 @@ EOF
 
     # ---- Figs. 3 and 7: histories at h = 1e-2 (IDA and DOPRI5 at rtol 1e-8)
     [ -s "$hist" ] || continue
-    hk='braun:rk4:- braun-noenergy:rk4:- baumgarte:rk4:- ode-rk4:rk4:- ida-ggl:bdf:tuned braun:dopri5:-'
+    hk=$(tagged history)
     for key in $hk; do
-        case $key in *rk4*) x=$(hist_h "$sc" "$T" "$key" min) ;; *) x=1e-08 ;; esac
+        # fixed-step series: the smallest h with a history; the others rtol 1e-8
+        x=$(hist_h "$sc" "$T" "$key" min)
+        [ "$x" != nan ] || x=1e-08
         select_hist "$sc" "$T" "$key" "$x" > "$base.h.$(printf '%s' "$key" | tr ':' '_').dat"
     done
     p1=$(plot_cmd "$base.h" "1:2" "$hk")
@@ -266,7 +270,7 @@ EOF
     # ---- Fig. 2: the slider (the observable point's x) at h = 5e-2
     tmin=$(awk -F, 'NR > 1 && $1 == "slider-crank" { if (m == "" || $2 + 0 < m + 0) m = $2 } END { print m }' "$runs")
     if [ "$sc" = slider-crank ] && [ "$T" = "$tmin" ]; then
-        sk='braun:rk4:- braun-noenergy:rk4:- baumgarte:rk4:- ode-rk4:rk4:-'
+        sk=$(tagged slider)
         for key in $sk; do
             select_hist "$sc" "$T" "$key" "$(hist_h "$sc" "$T" "$key" max)" > "$base.s.$(printf '%s' "$key" | tr ':' '_').dat"
         done

@@ -16,7 +16,9 @@
 
 BENCH_DEPS := valgrind binutils libjansson-dev
 BENCH_SRC := $(sort $(wildcard bench/*.c))
-BENCH_OBJ := $(BENCH_SRC:%.c=$(BUILD)/obj/%.o)
+# The series table of make compare (compare/series.tsv, mk/compare.mk) names
+# the methods of the cost at matched error; no SUNDIALS or GSL in it.
+BENCH_OBJ := $(BENCH_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/bench/cmp_series.o
 BENCH_BIN := $(BUILD)/bin/braun-bench
 BENCH_STATIC := $(BUILD)/bin/braun-bench-static
 BENCH_OUT ?= results/bench
@@ -38,7 +40,11 @@ bench-bin: $(BENCH_BIN) $(BENCH_STATIC)
 
 $(BUILD)/obj/bench/%.o: bench/%.c | deps-host
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
+	$(CC) $(CPPFLAGS_ALL) -Icompare $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
+
+$(BUILD)/obj/bench/cmp_series.o: compare/cmp_series.c $(BUILD)/gen/cmp_series.inc | deps-host
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) -Icompare -I$(BUILD)/gen $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
 # Not position independent: callgrind's instruction addresses are then the
 # ones objdump prints (bench/flops.awk). The static twin puts libm's sin/cos

@@ -18,7 +18,10 @@ COMPARE_OBJ := $(COMPARE_SRC:%.c=$(BUILD)/obj/%.o)
 # Everything but main(), for the harness tests.
 COMPARE_LIB_OBJ := $(filter-out $(BUILD)/obj/compare/cmp_main.o,$(COMPARE_OBJ))
 COMPARE_HDR := $(wildcard compare/*.h)
-COMPARE_CPPFLAGS := -Icompare -I/usr/include/suitesparse
+# The series table (compare/series.tsv) as C initializers, for
+# compare/cmp_series.c (here and in braun-bench, mk/bench.mk).
+CMP_SERIES_INC := $(BUILD)/gen/cmp_series.inc
+COMPARE_CPPFLAGS := -Icompare -I$(BUILD)/gen -I/usr/include/suitesparse
 COMPARE_LDLIBS := -lsundials_ida -lsundials_sunlinsolklu -lsundials_sunlinsoldense \
 	-lsundials_sunmatrixsparse -lsundials_sunmatrixdense -lsundials_nvecserial \
 	-lklu -lgsl -lgslcblas
@@ -40,6 +43,11 @@ compare-bin: $(COMPARE_BIN)
 $(BUILD)/obj/compare/%.o: compare/%.c | deps-compare deps-host
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
+
+$(CMP_SERIES_INC): compare/series.tsv compare/series.awk
+	@mkdir -p $(dir $@)
+	awk -f compare/series.awk -v out=c compare/series.tsv > $@.tmp && mv $@.tmp $@
+$(BUILD)/obj/compare/cmp_series.o: $(CMP_SERIES_INC)
 
 $(COMPARE_BIN): $(COMPARE_OBJ) $(BUILD)/libbraun.a
 	@mkdir -p $(dir $@)
@@ -67,7 +75,9 @@ $(COMPARE_TEST): tests/compare/test_compare.c tests/test_util.h $(COMPARE_LIB_OB
 
 TEST_SUITES += "tools/run-tests $(COMPARE_TEST)" "sh tests/compare/quick.sh $(COMPARE_BIN)"
 TEST_SUITES += "sh tests/compare/parallel.sh $(COMPARE_BIN)"
-TEST_PREREQS += $(COMPARE_TEST) $(COMPARE_BIN)
+# The series table's three readers: the report, plot.sh and braun-bench.
+TEST_SUITES += "sh tests/compare/series.sh $(COMPARE_BIN) $(BENCH_BIN)"
+TEST_PREREQS += $(COMPARE_TEST) $(COMPARE_BIN) $(BENCH_BIN)
 
 # Scene files and Andrews' mechanism become targets (the host library).
 COMPARE_CPPFLAGS += -DCMP_HAVE_SCENES

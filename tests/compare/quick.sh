@@ -70,6 +70,20 @@ for sc in four-bar slider-crank; do
 done
 check "slider plot (Fig. 2)" sh -c "[ -s '$out/slider_slider-crank.png' ] && grep -q '<svg' '$out/slider_slider-crank.svg'"
 
+# Legends and the report's rows come from the series table (compare/series.tsv,
+# tests/compare/series.sh checks the rest): every legend entry but the
+# slider plot's reference is a label, and each series that ran has a row in
+# the report under its label.
+"$BIN" series > "$TMP/series"
+cut -d'|' -f2 "$TMP/series" | sort > "$TMP/labels"
+check "every plot legend entry is a series label" sh -c \
+    "for f in '$out'/*.svg; do grep -o '<title>[^<]*</title>' \"\$f\"; done | sed 's/<title>//; s/<\/title>//' |
+     grep -v '^Gnuplot\$' | grep -v '^numerically exact' | sort -u | comm -23 - '$TMP/labels' | grep -q . && exit 1; exit 0"
+check "the report names every series that ran by its label" sh -c \
+    "awk -F, 'NR > 1 { print \$3 \":\" \$4 \":\" \$5 }' '$out/runs.csv' | sort -u > '$TMP/ran'
+     awk -F'|' 'FNR == NR { ran[\$1] = 1; next } (\$1 in ran) { print \$2 }' '$TMP/ran' '$TMP/series' |
+     while IFS= read -r l; do grep -qF \"| \$l | \" '$out/report.md' || { echo \"#   no row: \$l\"; exit 1; }; done"
+
 # The report embeds the plots and states verdicts.
 check "report.md written" [ -s "$out/report.md" ]
 check "report embeds every PNG" sh -c \

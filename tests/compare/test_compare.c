@@ -5,9 +5,12 @@
 
 #include <gsl/gsl_errno.h>
 
-#include "cmp.h"
 #include "braun_reference.h"
+#include "cmp.h"
+#include "cmp_claims.h"
 #include "cmp_csv.h"
+#include "cmp_series.h"
+#include "cmp_study.h"
 
 /* An exact state of a target with a minimal model: q, v lifted from the
  * closed form or a short rk8pd run at time t, and the acceleration along
@@ -350,6 +353,198 @@ static void test_csv_reader(void **state)
     cmp_csv_free(&t);
 }
 
+/* ------------------------------------------------------------ series */
+/* The series table (compare/series.tsv): keys match their parts, are
+ * unique, carry only known tags; bench's baseline comes first. */
+static void test_series_table(void **state)
+{
+    (void)state;
+    static const char *const tags[] = {"steps", "tol", "history", "slider", "bench"};
+    assert_true(cmp_series_count >= 1);
+    assert_string_equal(cmp_series_table[0].key, "braun:rk4:-");
+    assert_true(cmp_series_in(&cmp_series_table[0], "bench"));
+    for (int i = 0; i < cmp_series_count; i++) {
+        const cmp_series *s = &cmp_series_table[i];
+        char key[128];
+        snprintf(key, sizeof key, "%s:%s:%s", s->method, s->integ, s->variant);
+        assert_string_equal(key, s->key);
+        assert_ptr_equal(cmp_series_find(s->key), s);
+        assert_ptr_equal(cmp_series_of(s->method, s->integ, s->variant), s);
+        assert_true(s->label[0] != '\0' && s->colour[0] == '#');
+        int ntags = 0;
+        for (size_t t = 0; t < sizeof tags / sizeof tags[0]; t++)
+            ntags += cmp_series_in(s, tags[t]);
+        int commas = 0;
+        for (const char *p = s->in; *p; p++) commas += *p == ',';
+        assert_int_equal(ntags, strcmp(s->in, "-") ? commas + 1 : 0);
+    }
+    assert_null(cmp_series_find("no:such:series"));
+    assert_false(cmp_series_in(&cmp_series_table[0], "step")); /* whole tags only */
+}
+
+/* A scratch directory of its own under $TMPDIR. */
+static void scratch_dir(char *dir, size_t size)
+{
+    const char *tmp = getenv("TMPDIR");
+    snprintf(dir, size, "%s/braun-test-compare-%.0f", tmp && *tmp ? tmp : "/tmp",
+             fmod(cmp_wall_seconds() * 1e6, 1e12));
+    assert_int_equal(cmp_mkdir_p(dir), 0);
+}
+
+/* The report's per-scene tables label every series with its row of the
+ * table: one run of each series, report.md names each by its label. */
+static void test_report_labels_from_series(void **state)
+{
+    (void)state;
+    char dir[512], path[600];
+    scratch_dir(dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/runs.csv", dir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("scene,T,method,integrator,variant,h,rtol,status,t_reached,cpu_s,steps,traj_max\n", f);
+    for (int i = 0; i < cmp_series_count; i++) {
+        const cmp_series *s = &cmp_series_table[i];
+        fprintf(f, "four-bar,20,%s,%s,%s,0.01,nan,ok,20,%g,2000,%g\n", s->method, s->integ,
+                s->variant, 0.001 * (i + 1), 1e-3 * (i + 1));
+    }
+    fclose(f);
+    assert_int_equal(cmp_report_write(dir), 0);
+    snprintf(path, sizeof path, "%s/report.md", dir);
+    f = fopen(path, "r");
+    assert_non_null(f);
+    static char md[1 << 16];
+    const size_t n = fread(md, 1, sizeof md - 1, f);
+    md[n] = '\0';
+    fclose(f);
+    for (int i = 0; i < cmp_series_count; i++) {
+        char row[256];
+        snprintf(row, sizeof row, "\n| %s | ", cmp_series_table[i].label);
+        if (!strstr(md, row)) fail_msg("report.md has no row '%s'", cmp_series_table[i].label);
+    }
+    remove(path);
+    snprintf(path, sizeof path, "%s/runs.csv", dir);
+    remove(path);
+    remove(dir);
+}
+
+/* ------------------------------------------------------------ claims */
+/* braun RK4 at h = 1e-2 on both paper scenes and horizons, with the given
+ * max ||Phi_q|| each. */
+static cmp_row claim_rows[4];
+static cmp_rows paper_runs(const double pos[4])
+{
+    static const char *const sc[] = {"slider-crank", "four-bar"};
+    for (int k = 0; k < 4; k++) {
+        cmp_row *r = &claim_rows[k];
+        memset(r, 0, sizeof *r);
+        r->scene = sc[k / 2];
+        r->T = k % 2 ? 1000 : 100;
+        r->method = "braun";
+        r->integ = "rk4";
+        r->variant = "-";
+        r->status = "ok";
+        r->detail = "-";
+        r->ok = 1;
+        r->h = 1e-2;
+        r->rtol = NAN;
+        r->cpu = 0.1;
+        r->t_reached = r->T;
+        r->pos = pos[k];
+        r->traj = 1e-4;
+    }
+    return (cmp_rows){claim_rows, 4};
+}
+
+static const cmp_claim *claim_by_figure(const char *name)
+{
+    for (int i = 0; i < cmp_nclaims; i++)
+        if (!strcmp(cmp_claims[i].figure_name, name)) return &cmp_claims[i];
+    fail_msg("no claim with figure %s", name);
+    return NULL;
+}
+
+/* The generic loop judges a row by its table entries: the same figure
+ * with a threshold it violates is not confirmed (refuted), and the rule in
+ * the evidence is the row's. A max can carry a spike a median does not. */
+static void test_claim_thresholds(void **state)
+{
+    (void)state;
+    cmp_fig fig;
+    char ev[2048];
+    const cmp_claim *row = claim_by_figure("fig_constraint_error");
+    assert_int_equal(row->test[0].stat, CMP_MAX);
+
+    const double calm[4] = {1e-9, 2e-9, 3e-9, 4e-9};
+    cmp_rows d = paper_runs(calm);
+    assert_int_equal(cmp_claim_eval(row, &d, &fig, ev, sizeof ev), 1);
+    assert_int_equal(fig.cases, 4);
+    assert_non_null(
+        strstr(ev, "max ‖Φ_q‖ of braun over both scenes and horizons: 4e-9 (rule: < 1e-6)"));
+
+    cmp_claim strict = *row; /* the same claim, a threshold the runs violate */
+    strict.test[0].threshold = 1e-9;
+    assert_int_equal(cmp_claim_eval(&strict, &d, &fig, ev, sizeof ev), -1);
+    assert_non_null(strstr(ev, "(rule: < 1e-9)"));
+
+    /* One spike: the max refutes, the median (the same row, judged by its
+     * median) confirms. */
+    const double spike[4] = {1e-9, 2e-9, 3e-3, 4e-9};
+    d = paper_runs(spike);
+    assert_int_equal(cmp_claim_eval(row, &d, &fig, ev, sizeof ev), -1);
+    cmp_claim median = *row;
+    median.test[0].stat = CMP_MEDIAN;
+    assert_int_equal(cmp_claim_eval(&median, &d, &fig, ev, sizeof ev), 1);
+    assert_non_null(strstr(ev, "median ‖Φ_q‖ of braun over both scenes and horizons: 3e-9"));
+    /* ... and a second test on the same values, a max with a looser bound. */
+    median.test[1] = (cmp_test){0, CMP_MAX, CMP_LE, 1e-3};
+    assert_int_equal(cmp_claim_eval(&median, &d, &fig, ev, sizeof ev), -1);
+    median.test[1].threshold = 1e-2;
+    assert_int_equal(cmp_claim_eval(&median, &d, &fig, ev, sizeof ev), 1);
+
+    /* A NaN (a run that lost the constraints) confirms nothing. */
+    const double lost[4] = {NAN, 1e-9, 1e-9, 1e-9};
+    d = paper_runs(lost);
+    assert_int_equal(cmp_claim_eval(row, &d, &fig, ev, sizeof ev), -1);
+
+    /* No runs: not tested. */
+    d.n = 0;
+    assert_int_equal(cmp_claim_eval(row, &d, &fig, ev, sizeof ev), 0);
+    assert_int_equal(fig.cases, 0);
+}
+
+/* The statistics, and every row of the table well formed: a claim, a
+ * figure, tests with thresholds, a rule that names only its tests. */
+static void test_claims_table(void **state)
+{
+    (void)state;
+    const double x[5] = {3, 1, 4, 1, 5};
+    assert_near(cmp_stat_of(x, 5, CMP_MAX), 5, 0);
+    assert_near(cmp_stat_of(x, 5, CMP_MIN), 1, 0);
+    assert_near(cmp_stat_of(x, 5, CMP_MEDIAN), 3, 0);
+    assert_near(cmp_stat_of(x, 4, CMP_MEDIAN), 2, 0);
+    assert_near(cmp_stat_of(x, 5, CMP_MEAN), 2.8, 1e-15);
+    assert_near(cmp_stat_of(x, 0, CMP_MAX), 0, 0);
+    assert_true(isinf(cmp_stat_of(x, 0, CMP_MIN)));
+    assert_true(isnan(cmp_stat_of(x, 0, CMP_MEDIAN)));
+    const double y[2] = {1, NAN};
+    assert_true(isnan(cmp_stat_of(y, 2, CMP_MAX)));
+    assert_true(cmp_nclaims >= 10);
+    for (int i = 0; i < cmp_nclaims; i++) {
+        const cmp_claim *c = &cmp_claims[i];
+        assert_non_null(c->figure);
+        assert_true(c->claim[0] && c->paper[0] && c->figure_name[0]);
+        assert_int_not_equal(c->test[0].op, CMP_NONE);
+        int ntests = 0;
+        while (ntests < CMP_CLAIM_TESTS && c->test[ntests].op != CMP_NONE) {
+            assert_true(isfinite(c->test[ntests].threshold));
+            assert_in_range(c->test[ntests].q, 0, CMP_FIG_QUANTITIES - 1);
+            ntests++;
+        }
+        for (const char *p = c->rule ? c->rule : ""; *p; p++)
+            if (p[0] == '%') assert_in_range(p[1] - '1', 0, ntests - 1);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -364,6 +559,10 @@ int main(void)
         cmocka_unit_test(test_common_grid),
         cmocka_unit_test(test_singularity_scan),
         cmocka_unit_test(test_csv_reader),
+        cmocka_unit_test(test_series_table),
+        cmocka_unit_test(test_report_labels_from_series),
+        cmocka_unit_test(test_claim_thresholds),
+        cmocka_unit_test(test_claims_table),
     };
     return cmocka_run_group_tests_name("compare", tests, NULL, NULL);
 }

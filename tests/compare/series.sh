@@ -1,0 +1,105 @@
+#!/bin/sh
+# The three readers of the series table compare/series.tsv see the same
+# series: braun-compare (the report), compare/plot.sh (the legends) and
+# braun-bench (the cost at matched error). On a made-up runs.csv with two
+# runs of every series: the report's rows, the plots' legends and bench's
+# columns are the table's labels and keys, nothing else; a malformed table
+# is refused.
+# Usage: sh tests/compare/series.sh build/bin/braun-compare [build/bin/braun-bench]
+# Prints "ok - NAME" / "not ok - NAME" and a closing "N passed, M failed".
+BIN=${1:?usage: sh tests/compare/series.sh path/to/braun-compare [path/to/braun-bench]}
+BENCH=${2:-}
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/braun-compare-series.XXXXXX") || exit 1
+trap 'rm -rf "$TMP"' EXIT INT TERM
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); echo "ok - $1"; }
+not_ok() { failed=$((failed + 1)); echo "not ok - $1"; [ -z "${2:-}" ] || echo "#   $2"; }
+check() { # check NAME COMMAND...
+    name=$1; shift
+    if "$@"; then ok "$name"; else not_ok "$name"; fi
+}
+same() { # same A B: files equal, else the first differences
+    cmp -s "$1" "$2" && return 0
+    diff "$1" "$2" | head -n 6 | sed 's/^/#   /'
+    return 1
+}
+
+# The table as each reader has it.
+awk -f compare/series.awk -v out=plot compare/series.tsv > "$TMP/table" 2> "$TMP/awk.err"
+check "series.tsv is well formed" sh -c "[ -s '$TMP/table' ] && [ ! -s '$TMP/awk.err' ]"
+sh compare/plot.sh --series > "$TMP/plot"
+"$BIN" series > "$TMP/compare"
+check "plot.sh reads the table" same "$TMP/table" "$TMP/plot"
+check "braun-compare was built from the table" same "$TMP/table" "$TMP/compare"
+if [ -n "$BENCH" ]; then
+    "$BENCH" series > "$TMP/bench"
+    check "braun-bench was built from the table" same "$TMP/table" "$TMP/bench"
+fi
+cut -d'|' -f2 "$TMP/table" | sort > "$TMP/labels"
+tagged() { awk -F'|' -v t="$1" '{ n = split($6, a, ","); for (i = 1; i <= n; i++) if (a[i] == t) print $1 }' "$TMP/table"; }
+
+# Two runs of every series on one scene: fixed-step series (tag steps, or
+# an RK4-like key) at h = 0.01 and 0.005, the others at rtol 1e-4, 1e-6.
+out="$TMP/study"
+mkdir -p "$out"
+hdr="scene,T,method,integrator,variant,h,rtol,atol,alpha,beta,status,t_reached,cpu_s,cpu_s_max,reps,steps,rejected,rhs_evals,jac_evals,lin_setups,lin_solves,err_test_fails,conv_fails,restarts,pos_max,pos_final,vel_max,vel_final,energy_max,energy_final,traj_max,traj_final,point_max,point_final,samples,sigma_end,reference,detail"
+awk -F'|' -v hdr="$hdr" 'BEGIN { print hdr }
+    {
+        split($1, k, ":"); fixed = ("," $6 ",") ~ /,steps,/ || k[2] ~ /^(rk4|heun|euler)$/
+        for (j = 1; j <= 2; j++) {
+            h = fixed ? (j == 1 ? 0.01 : 0.005) : "nan"; r = fixed ? "nan" : (j == 1 ? 1e-4 : 1e-6)
+            e = 1e-3 * NR / j
+            printf "four-bar,20,%s,%s,%s,%s,%s,%s,nan,nan,ok,20,%g,%g,1,%d,0,%d,0,0,0,0,0,0,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,401,0.5,closed-form,-\n",
+                k[1], k[2], k[3], h, r, r, 0.01 * NR * j, 0.01 * NR * j, 2000 * j, 8000 * j,
+                1e-9 * NR, 1e-9, 1e-8, 1e-8, 1e-6 * NR, 1e-6, e, e, e, e
+        }
+    }' "$TMP/table" > "$out/runs.csv"
+
+# The report: one row per series in the per-scene table, by its label.
+"$BIN" report --dir "$out" 2> "$TMP/report.log"
+check "report written" [ -s "$out/report.md" ]
+awk '/^\| method \| best error \(reached T\)/ { on = 1; next } on && /^\|---/ { next }
+     on && /^\| / { split($0, f, " \\| "); sub(/^\| /, "", f[1]); print f[1]; next } on { exit }' \
+    "$out/report.md" | sort > "$TMP/report.labels"
+check "the report's rows are the table's labels" same "$TMP/labels" "$TMP/report.labels"
+
+# The plots: every series in the work-precision legend, each tagged series
+# in its plot, and no legend entry that is not a label.
+sh compare/plot.sh "$out" 2> "$TMP/plot.log"
+titles() { grep -o '<title>[^<]*</title>' "$1" | sed 's/<title>//; s/<\/title>//' | grep -v '^Gnuplot$' | sort -u; }
+check "work-precision plot written" [ -s "$out/wp_four-bar_20.svg" ]
+titles "$out/wp_four-bar_20.svg" > "$TMP/wp.labels"
+check "the work-precision legend is the table's labels" same "$TMP/labels" "$TMP/wp.labels"
+for pair in steps:steps tol:ida; do
+    tag=${pair%%:*} plot=${pair#*:}
+    for key in $(tagged "$tag"); do
+        grep -F "$key|" "$TMP/table" | cut -d'|' -f2
+    done | sort > "$TMP/want.$tag"
+    titles "$out/${plot}_four-bar_20.svg" > "$TMP/got.$tag"
+    check "the $plot plot shows the series tagged $tag, by label" same "$TMP/want.$tag" "$TMP/got.$tag"
+done
+check "every legend entry of every plot is a label" sh -c \
+    "for f in '$out'/*.svg; do grep -o '<title>[^<]*</title>' \"\$f\"; done | sed 's/<title>//; s/<\/title>//' |
+     grep -v '^Gnuplot\$' | sort -u | comm -23 - '$TMP/labels' | grep -q . && exit 1; exit 0"
+
+# Bench: one column per series tagged bench, by key, in table order.
+if [ -n "$BENCH" ]; then
+    "$BENCH" matched "$out/runs.csv" 1e-3 > "$TMP/matched.csv"
+    tagged bench > "$TMP/want.bench"
+    awk -F, 'NR > 1 { print $4 }' "$TMP/matched.csv" > "$TMP/got.bench"
+    check "bench's methods are the series tagged bench" same "$TMP/want.bench" "$TMP/got.bench"
+    check "bench's ratios are to braun:rk4:-" sh -c \
+        "awk -F, 'NR > 1 && \$4 == \"braun:rk4:-\" && \$7 != 1 { bad = 1 } END { exit bad }' '$TMP/matched.csv'"
+fi
+
+# A malformed table is refused with its line.
+printf 'braun:rk4\tbraun, RK4\t#1f4e9c\t1\t7\tsteps\n' > "$TMP/bad.tsv"
+check "a key without a variant is refused" sh -c \
+    "! awk -f compare/series.awk -v out=c '$TMP/bad.tsv' > /dev/null 2> '$TMP/bad.err' && grep -q 'bad.tsv:1:' '$TMP/bad.err'"
+printf 'braun:rk4:-\tbraun, RK4\t#1f4e9c\t1\t7\tstep\n' > "$TMP/bad.tsv"
+check "an unknown tag is refused" sh -c \
+    "! awk -f compare/series.awk -v out=plot '$TMP/bad.tsv' > /dev/null 2>&1"
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
