@@ -116,7 +116,9 @@ typedef struct braun_scene_effect_class braun_scene_effect_class;
  * (offsetof(braun_scene_joint, a), ...):
  *   BRAUN_FIELD_POINT       int: a point reference — "body.point", "body"
  *                           (a rigid body's centre, the particle itself),
- *                           "ground.NAME" or [x, y] (a new ground point)
+ *                           "ground.NAME" or [x, y] (a new ground point);
+ *                           left out (optional), -1: no point, which the
+ *                           builder refuses
  *   BRAUN_FIELD_BODY        int: a body by name, or "ground"
  *                           (BRAUN_SCENE_GROUND) with BRAUN_FIELD_GROUND;
  *                           left out (optional), it is the ground
@@ -124,9 +126,9 @@ typedef struct braun_scene_effect_class braun_scene_effect_class;
  *                           point of its own on that body, at the body's
  *                           origin moved by a BRAUN_FIELD_OFFSET field with
  *                           the same offset (a knife edge's contact point)
- *   BRAUN_FIELD_OFFSET      `count` (2) reals: the body-frame offset of the point
- *                           of the BRAUN_FIELD_BODY_POINT field at `offset`
- *                           (0 when left out; read after that field)
+ *   BRAUN_FIELD_OFFSET      `count` (2) reals: the body-frame offset of the
+ *                           point of the BRAUN_FIELD_BODY_POINT field at
+ *                           `offset` (0 when left out; after that field)
  *   BRAUN_FIELD_REAL        braun_real[count]: a number (count 1) or an
  *                           array of count numbers (2: a planar vector, 3 a
  *                           spatial one, 4 a quaternion)
@@ -188,7 +190,8 @@ void braun_scene_pt_eval(const braun_scene *s, int i, const braun_real *q, const
                          braun_scene_pt *P);
 
 /* row += gᵀ J_P: the gradient of g·P with respect to q (row: n entries;
- * g: world components). Nothing for a ground point. */
+ * g: world components, the first dim of them read). Nothing for a ground
+ * point. */
 void braun_scene_pt_grad(const braun_scene_pt *P, const braun_real *g, braun_real *row);
 
 /* Angle θ and angular velocity ω of a body that has one (0 for the ground
@@ -209,14 +212,17 @@ braun_real braun_scene_initial_angle(const braun_scene *s, int body);
 /* A body class: its coordinates, mass block, kinetic energy, weight and
  * point kinematics. Every hook gets the body's own slice of q and v (dof
  * entries, starting at the body's iq) and writes only its own entries.
- *   mass     add the body's dof x dof mass block into M (row stride ld).
+ *   mass     add the body's dof x dof mass block into M: entry (i, j) at
+ *            M[i·ld + j], M pointing at the block's (0, 0).
  *            M must be constant (a scene sets BRAUN_MASS_CONSTANT); the
  *            sparse system hands the block out as it is (a zeroed block
  *            plus this hook), so it is also the sparsity's block.
  *   kinetic  T = ½ vᵀ M_b v; adds ∂T/∂v into dEdv (NULL: not wanted).
  *   point    kinematics of point pt of the body: P has body and col set
- *            and vel, cc zeroed; write pos (and, when v is not NULL, vel
- *            and cc) and whatever jac the grad hook needs.
+ *            and vel, cc zeroed; write pos (all 3 entries: a planar class
+ *            writes pos[2] = 0), when v is not NULL vel and cc, and
+ *            whatever jac the grad hook needs. Also called on q0 before
+ *            the build (braun_scene_initial_point).
  *   grad     row[k] += (gᵀ J_P)_k for the body's columns (row points at the
  *            body's first column).
  *   weight   uniform gravity g (world): Q[k] += (m gᵀ ∂r_c/∂q)_k.
