@@ -1,15 +1,17 @@
 /* The SuiteSparse backend (src/backends/braun_suitesparse.c) on planar
  * multibody systems with block-diagonal M and sparse A, against dense
  * references computed here (plain Cholesky, C = A R^-1 by substitution,
- * C^+ by LAPACK's SVD-based dgelsd), and against definitions: C x = r for
+ * C^+ by LAPACK's SVD-based dgelsd, and for ill-conditioned C the exact
+ * C^+ in quadruple precision), and against definitions: C x = r for
  * consistent r, x in range(C^T) (N x = 0), N N = N, C N z = 0. Also the
- * redundant systems (duplicated rows, a double parallelogram), the switch
- * between its Cholesky and QR paths, error statuses, and whole simulations
- * against libbraun's built-in dense kernels.
+ * redundant systems (duplicated rows, a double parallelogram), nearly
+ * dependent rows and a closed chain near its singular configuration, the
+ * switch between its Cholesky and QR paths, error statuses, and whole
+ * simulations against libbraun's built-in dense kernels.
  *
  *   BRAUN_BENCH_SUITESPARSE=1 build/tests/test_backend_suitesparse
- * also times factor_c + pinv + null_project on chains of N = 100 ... 2000
- * links (full rank and with redundant rows). */
+ * also times factor_c + pinv + null_project on chains of N = 100 ... 5000
+ * links (full rank, with redundant rows, with one nearly dependent row). */
 #define _POSIX_C_SOURCE 200809L
 #include <float.h>
 #include <time.h>
@@ -287,6 +289,36 @@ static void build_parallelogram(tsys *t, double alpha, int mass_kind, unsigned l
     ts_model(t, t->rows);
 }
 
+/* A kinematic singularity: a chain of N links from the origin, each within
+ * bend of the x axis, its last tip pinned to the ground where it is. At
+ * bend 0 the closed chain is straight and its 2N + 2 rows have rank 2N + 1;
+ * near it C has full rank and cond(C) ~ 1/bend, and the dependence is spread
+ * over all pins, not concentrated on a copy of one row. */
+static void build_loop(tsys *t, int N, double bend, unsigned long long seed)
+{
+    double *q = dvec(3 * (size_t)N), *len = dvec((size_t)N), x = 0, y = 0;
+    ts_open(t, N, 2 * N + 2);
+    for (int k = 0; k < N; k++) {
+        double th = bend * test_frand(&seed), l = 1 + 0.25 * test_frand(&seed);
+        len[k] = l;
+        q[3 * k] = x + 0.5 * l * cos(th);
+        q[3 * k + 1] = y + 0.5 * l * sin(th);
+        q[3 * k + 2] = th;
+        x += l * cos(th);
+        y += l * sin(th);
+    }
+    for (int k = 0; k < N; k++) {
+        pin j = chain_joint(k, len);
+        ts_pin(t, &j, q);
+    }
+    pin tip = {-1, N - 1, 0, 0.5 * len[N - 1], x, y};
+    ts_pin(t, &tip, q);
+    ts_mass(t, 1, &seed);
+    ts_model(t, t->rows);
+    free(q);
+    free(len);
+}
+
 /* ------------------------------------------------------------------ */
 /* Dense reference                                                     */
 /* ------------------------------------------------------------------ */
@@ -408,6 +440,89 @@ static double rdiff(int len, const braun_real *a, const double *b)
 }
 
 static double default_tol(int rows, int n) { return 10.0 * (rows > n ? rows : n) * DBL_EPSILON; }
+
+/* ------------------------------------------------------------------ */
+/* A reference in quadruple precision, for ill-conditioned C           */
+/* ------------------------------------------------------------------ */
+/* dgelsd is backward stable, so its own error is about cond(C)·eps (3e-7
+ * of |x| for cond 1.2e10): too coarse to judge a solver that does better.
+ * Here x = C^+ b for the given double C and b is computed in a type of at
+ * least 106 bits (__float128, or such a long double): G = C C^T, L D L^T
+ * without pivoting (G is SPD and cond(G) = cond(C)^2 <= 1e25 in these tests,
+ * far below 1/eps of that type, 5e33 for __float128), then three steps of
+ * refinement of G y = b with x = C^T y and the residual b - C x in the same
+ * type: the double result is the exact C^+ b rounded. Small dense C only. */
+#if defined(__SIZEOF_FLOAT128__)
+__extension__ typedef __float128 xreal;
+#define HAVE_XREAL 1
+#elif LDBL_MANT_DIG >= 106
+typedef long double xreal;
+#define HAVE_XREAL 1
+#else
+#define HAVE_XREAL 0
+#endif
+
+#if HAVE_XREAL
+/* x := C^+ b with b = r (z NULL) or b = C z, formed exactly (r NULL). */
+static void xref_pinv(const dref *d, const double *r, const double *z, double *x)
+{
+    const int m = d->rows, n = d->n;
+    const double *C = d->C;
+    xreal *L = xcalloc((size_t)m * (size_t)m, sizeof *L), *b = xcalloc((size_t)m, sizeof *b),
+          *res = xcalloc((size_t)m, sizeof *res), *u = xcalloc((size_t)m, sizeof *u),
+          *y = xcalloc((size_t)m, sizeof *y), *xx = xcalloc((size_t)n, sizeof *xx);
+    for (int i = 0; i < m; i++) {
+        for (int j = 0; j < m; j++) {
+            xreal g = 0;
+            for (int k = 0; k < n; k++)
+                g += (xreal)C[(size_t)i * n + k] * (xreal)C[(size_t)j * n + k];
+            L[(size_t)i * m + j] = g;
+        }
+        xreal bi = r ? (xreal)r[i] : 0;
+        if (!r)
+            for (int k = 0; k < n; k++) bi += (xreal)C[(size_t)i * n + k] * (xreal)z[k];
+        b[i] = res[i] = bi;
+    }
+    /* G = L D L^T in place: multipliers below the diagonal, D L^T on and
+     * above it. */
+    for (int k = 0; k < m; k++)
+        for (int i = k + 1; i < m; i++) {
+            const xreal l = L[(size_t)i * m + k] / L[(size_t)k * m + k];
+            for (int j = k + 1; j < m; j++) L[(size_t)i * m + j] -= l * L[(size_t)k * m + j];
+            L[(size_t)i * m + k] = l;
+        }
+    for (int it = 0; it < 3; it++) {
+        for (int i = 0; i < m; i++) {
+            xreal t = res[i];
+            for (int k = 0; k < i; k++) t -= L[(size_t)i * m + k] * u[k];
+            u[i] = t;
+        }
+        for (int i = m - 1; i >= 0; i--) {
+            xreal t = u[i];
+            for (int j = i + 1; j < m; j++) t -= L[(size_t)i * m + j] * u[j];
+            u[i] = t / L[(size_t)i * m + i];
+        }
+        for (int i = 0; i < m; i++) y[i] += u[i];
+        for (int k = 0; k < n; k++) {
+            xreal t = 0;
+            for (int i = 0; i < m; i++) t += (xreal)C[(size_t)i * n + k] * y[i];
+            xx[k] = t;
+        }
+        for (int i = 0; i < m; i++) {
+            xreal t = b[i];
+            for (int k = 0; k < n; k++) t -= (xreal)C[(size_t)i * n + k] * xx[k];
+            res[i] = t;
+        }
+    }
+    for (int k = 0; k < n; k++) x[k] = (double)xx[k];
+    free(L);
+    free(b);
+    free(res);
+    free(u);
+    free(y);
+    free(xx);
+}
+#endif
 
 /* ------------------------------------------------------------------ */
 /* The backend                                                         */
@@ -863,6 +978,119 @@ static void test_near_dependent(void **state)
     near_dependent(1e-9, 1e-6, 1e-6, 1, 1e-10);
 }
 
+/* All rows of t kept at the default tolerance (full rank, however badly
+ * conditioned), and pinv, lsq and null_project within rel of the exact
+ * answers for this C (xref_pinv), relative to their size. */
+static void check_accurate(void *st, const tsys *t, const dref *d, double rel,
+                           unsigned long long seed)
+{
+#if HAVE_XREAL
+    const int n = t->n, rows = d->rows;
+    assert_int_equal(be_factor_c(st, t, 0, rows, default_tol(rows, n)), rows);
+    double *y = dvec((size_t)n), *r = dvec((size_t)rows), *xref = dvec((size_t)n),
+           *zref = dvec((size_t)n);
+    braun_real *rr = rvec((size_t)rows), *x = rvec((size_t)n), *z = rvec((size_t)n);
+    braun_real resid = -1;
+    double cnorm = 0;
+    for (int i = 0; i < rows; i++) cnorm = fmax(cnorm, nrm2(n, d->C + (size_t)i * n));
+    for (int kind = 0; kind < 2; kind++) {
+        /* kind 0: r = C y, |x| ~ |y|; kind 1: random r, |x| ~ cond(C). */
+        for (int j = 0; j < n; j++) y[j] = test_frand(&seed);
+        if (kind == 0)
+            c_mul(d, y, r);
+        else
+            for (int i = 0; i < rows; i++) r[i] = test_frand(&seed);
+        for (int i = 0; i < rows; i++) rr[i] = (braun_real)r[i];
+        xref_pinv(d, r, NULL, xref);
+        const double scale = amax(n, xref) + 1;
+        LS()->pinv(st, 0, rr, x);
+        assert_le(rdiff(n, x, xref), rel * scale);
+        LS()->lsq(st, 0, rr, x, &resid);
+        assert_le(rdiff(n, x, xref), rel * scale);
+        assert_le(resid, 1e-13 * (cnorm * scale + 1));
+    }
+    /* N z = z - C^+ (C z). */
+    for (int j = 0; j < n; j++) y[j] = test_frand(&seed), z[j] = (braun_real)y[j];
+    xref_pinv(d, NULL, y, xref);
+    for (int j = 0; j < n; j++) zref[j] = y[j] - xref[j];
+    LS()->null_project(st, 0, z);
+    assert_le(rdiff(n, z, zref), rel * (amax(n, y) + 1));
+    free(y);
+    free(r);
+    free(xref);
+    free(zref);
+    free(rr);
+    free(x);
+    free(z);
+#else
+    (void)st, (void)t, (void)d, (void)rel, (void)seed;
+    print_message("no floating type of at least 106 bits: accuracy check skipped\n");
+#endif
+}
+
+/* The near-dependent rows of test_near_dependent at delta 1e-7, 1e-9, 1e-11
+ * (cond(C) 1.2e8, 1.2e10, 1.2e12): CHOLMOD refuses G (not positive definite,
+ * or its L-diagonal ratio below 1e-6), SPQR keeps every row at the default
+ * tolerance, and the solves, refined on the augmented system with residuals
+ * in doubled precision, are exact up to about (cond(C)·eps)^2 + eps: 1e-16,
+ * 1.6e-13, 1e-9 of |x| measured (N z: 6e-17, 3e-14, 2.4e-9). Unrefined
+ * (SPQR's Householder QR alone, or dgelsd) they are off by about
+ * cond(C)·eps: 6e-9, 1.6e-6 (dgelsd 2.8e-7), 1.2e-4 of |x|, N z by 1.3e-9,
+ * 2e-7, 1.1e-5. */
+static void test_near_dependent_accuracy(void **state)
+{
+    (void)state;
+    const double deltas[3] = {1e-7, 1e-9, 1e-11}, rels[3] = {1e-12, 1e-10, 1e-7};
+    for (int i = 0; i < 3; i++) {
+        tsys t;
+        build_chain(&t, 6, 1, 0, 61);
+        ts_dup(&t, 4, 1.0);
+        t.A[t.row_ptr[t.rows - 1]] += deltas[i];
+        ts_model(&t, t.rows);
+        dref d;
+        dref_open(&d, &t, t.rows);
+        void *st = be_create(&t);
+        be_factor_mass(st, &t);
+        check_accurate(st, &t, &d, rels[i], 600 + (unsigned long long)i);
+        /* The same state again after a well-conditioned factorization. */
+        t.A[t.row_ptr[t.rows - 1]] += 0.5;
+        dref_close(&d);
+        dref_open(&d, &t, t.rows);
+        check_accurate(st, &t, &d, 1e-12, 610 + (unsigned long long)i);
+        LS()->destroy(st);
+        dref_close(&d);
+        ts_close(&t);
+    }
+}
+
+/* Closed chains near their straight configuration (build_loop): 6 links
+ * bent by 1e-9 (cond(C) 7.5e9) and 20 links by 1e-8 (4.2e8) take the QR
+ * path (errors 4e-15 and 3e-17 of |x|; 1.3e-6 and 6e-8 unrefined); 20
+ * links bent by 1e-4 (4.2e4) the Cholesky path, whose refinement against
+ * the sparse C gives 3e-13 (dgelsd 2e-12). */
+static void test_singular_configuration(void **state)
+{
+    (void)state;
+    const int Ns[3] = {6, 20, 20};
+    const double bends[3] = {1e-9, 1e-8, 1e-4}, rels[3] = {1e-10, 1e-12, 1e-10};
+    const double dgelsd_rels[3] = {1e-5, 1e-6, 1e-10};
+    for (int i = 0; i < 3; i++) {
+        tsys t;
+        build_loop(&t, Ns[i], bends[i], 5);
+        dref d;
+        dref_open(&d, &t, t.rows);
+        void *st = be_create(&t);
+        be_factor_mass(st, &t);
+        check_accurate(st, &t, &d, rels[i], 700 + (unsigned long long)i);
+        /* Also against dgelsd and the definitions, at dgelsd's accuracy. */
+        check_slot(st, &t, &d, 0, default_tol(t.rows, t.n), 1e-15, t.rows, dgelsd_rels[i],
+                   710 + (unsigned long long)i);
+        LS()->destroy(st);
+        dref_close(&d);
+        ts_close(&t);
+    }
+}
+
 /* The rank decision is relative: scaling A (and so C) by any factor, or M,
  * changes neither the rank nor, up to the scale, the answers. */
 static void test_scale_invariance(void **state)
@@ -1173,6 +1401,9 @@ typedef struct sim_chain {
     int dup, knife;
     double len[NS];
     tsys t; /* pattern and mass blocks */
+    /* near_system: a last row nearly repeating row 4 (near_delta != 0) */
+    double near_delta, x1;
+    int near_well;
 } sim_chain;
 
 static pin sim_joint(const sim_chain *c, int pair)
@@ -1200,8 +1431,9 @@ static int sim_hol(braun_real t, const braun_real *q, const braun_real *v, braun
                    braun_real *A, braun_real *b, braun_real *bv, void *user)
 {
     const sim_chain *c = user;
+    const int near = c->near_delta != 0;
     (void)t;
-    for (int pair = 0; 2 * pair < c->t.m; pair++) {
+    for (int pair = 0; 2 * pair < c->t.m - near; pair++) {
         pin j = sim_joint(c, pair);
         int cols[2][4];
         double vals[2][4], ph[2], bb[2];
@@ -1213,6 +1445,26 @@ static int sim_hol(braun_real t, const braun_real *q, const braun_real *v, braun
             if (bv) bv[r] = bb[i];
             if (A)
                 for (int k = 0; k < nc; k++) A[c->t.row_ptr[r] + k] = vals[i][k];
+        }
+    }
+    if (near) {
+        /* Row 4 (joint 2's x row; its first column is body 1's x) plus
+         * near_delta (x_1 - x1), or that constraint as x_1 - x1 = 0. */
+        const int r = c->t.m - 1, o = c->t.row_ptr[r], o4 = c->t.row_ptr[4];
+        const int nc = c->t.row_ptr[5] - o4;
+        if (b) b[r] = 0;
+        if (c->near_well) {
+            if (phi) phi[r] = q[3] - c->x1;
+            if (bv) bv[r] = 0;
+            if (A)
+                for (int k = 0; k < nc; k++) A[o + k] = k == 0;
+        } else {
+            if (phi) phi[r] = phi[4] + c->near_delta * (q[3] - c->x1);
+            if (bv) bv[r] = bv[4];
+            if (A) {
+                for (int k = 0; k < nc; k++) A[o + k] = A[o4 + k];
+                A[o] += c->near_delta;
+            }
         }
     }
     return 0;
@@ -1255,6 +1507,8 @@ static braun_system sim_system(sim_chain *c, int dup, int knife, double *q, doub
     unsigned long long seed = 77;
     c->dup = dup;
     c->knife = knife;
+    c->near_delta = c->x1 = 0;
+    c->near_well = 0;
     ts_open(&c->t, NS, 2 * NS + 4);
     chain_config(NS, &seed, q, c->len);
     for (int k = 0; k < NS + (dup ? 1 : 0); k++) {
@@ -1350,6 +1604,82 @@ static void test_simulation_nonholonomic(void **state)
     run_sim(1, 1, BRAUN_HEUN, 100, 1e-10);
 }
 
+/* The chain of sim_system with body 1's x frozen by a row that nearly
+ * repeats row 4: row 4 + delta (x_1 - x_1(0)), full rank, cond(C) ~ 1/delta;
+ * well: the same constraint as x_1 - x_1(0) = 0 (the same manifold and row
+ * space of A, well conditioned). */
+static braun_system near_system(sim_chain *c, double delta, int well, double *q, double *v)
+{
+    braun_system s = sim_system(c, 0, 0, q, v);
+    ts_dup(&c->t, 4, 1.0); /* the pattern of row 4 */
+    c->t.m = c->t.rows;
+    c->near_delta = delta;
+    c->near_well = well;
+    c->x1 = q[3];
+    s.m = c->t.m;
+    return s;
+}
+
+/* A near-singular mechanism end to end (near_system, delta 1e-9): the
+ * backend (CHOLMOD refuses G, the refined QR path) against the built-in
+ * dense kernels on the same rows and on the well-conditioned equivalent.
+ * The bound is of order eps/delta: the core forms the right-hand sides row
+ * by row in double, so the difference of the two near rows, which carries
+ * the frozen coordinate, is known only to eps/delta relative before any
+ * solver sees it. Measured 1.2e-7 and 7e-8 (unrefined 3.3e-7 and 2.9e-7;
+ * the dense kernels on the near rows 1e-7 from the well-conditioned run).
+ * So this does not tell refined from unrefined solves (the linear-algebra
+ * tests above do, with exact data); it guards the full-rank QR path through
+ * whole simulations: corrections, the Cholesky skipped and retried, the
+ * rank counts. */
+static void test_simulation_near_singular(void **state)
+{
+    (void)state;
+    const double delta = 1e-9, bound = 5e3 * DBL_EPSILON / delta;
+    sim_chain cn, cw;
+    double q[3 * NS], v[3 * NS], qw[3 * NS], vw[3 * NS];
+    braun_system sn = near_system(&cn, delta, 0, q, v), sw = near_system(&cw, delta, 1, qw, vw);
+    test_sim a, b, w;
+    sim_open(&a, &sn, LS());
+    sim_open(&b, &sn, NULL);
+    sim_open(&w, &sw, NULL);
+    q[0] += 1e-4; /* an inconsistent start, as run_sim */
+    v[5] += 0.3;
+    assert_int_equal(braun_set_state(&a.data, 0, q, v), BRAUN_OK);
+    assert_int_equal(braun_set_state(&b.data, 0, q, v), BRAUN_OK);
+    assert_int_equal(braun_set_state(&w.data, 0, q, v), BRAUN_OK);
+    double dense = 0, well = 0;
+    for (int i = 0; i < 300; i++) {
+        assert_int_equal(braun_step(&a.data, BRAUN_RK4, 1e-3), BRAUN_OK);
+        assert_int_equal(braun_step(&b.data, BRAUN_RK4, 1e-3), BRAUN_OK);
+        assert_int_equal(braun_step(&w.data, BRAUN_RK4, 1e-3), BRAUN_OK);
+        for (int j = 0; j < 3 * NS; j++) {
+            dense = fmax(dense, fabs(a.data.q[j] - b.data.q[j]));
+            dense = fmax(dense, fabs(a.data.v[j] - b.data.v[j]));
+            well = fmax(well, fabs(a.data.q[j] - w.data.q[j]));
+            well = fmax(well, fabs(a.data.v[j] - w.data.v[j]));
+        }
+    }
+    if (getenv("BRAUN_TEST_VERBOSE"))
+        printf("  worst |difference| %.3g (dense, same rows), %.3g (well conditioned)\n", dense,
+               well);
+    assert_le(dense, bound);
+    assert_le(well, bound);
+    assert_int_equal(a.data.stats.rank_deficient, 0);
+    assert_int_equal(b.data.stats.rank_deficient, 0);
+    assert_le(fabs(a.data.q[3] - cn.x1), 1e-10);
+    double pa, va, ea;
+    assert_int_equal(braun_residuals(&a.data, a.data.t, a.data.q, a.data.v, &pa, &va, &ea), 0);
+    assert_le(pa, 1e-9);
+    assert_le(va, 1e-7);
+    assert_le(fabs(ea), 1e-7);
+    test_sim_close(&a);
+    test_sim_close(&b);
+    test_sim_close(&w);
+    ts_close(&cn.t);
+    ts_close(&cw.t);
+}
+
 /* ------------------------------------------------------------------ */
 /* Cost against N (BRAUN_BENCH_SUITESPARSE=1)                          */
 /* ------------------------------------------------------------------ */
@@ -1367,13 +1697,22 @@ static void test_bench(void **state)
     if (!env || !*env || strcmp(env, "0") == 0) skip();
     const int Ns[6] = {100, 200, 500, 1000, 2000, 5000};
     printf("# chain of N links, time per call in microseconds (and per link)\n");
-    printf("# %5s %6s %6s %5s | %9s %9s %9s %9s | %12s\n", "N", "n", "rows", "path", "create",
+    printf("# %5s %6s %6s %6s | %9s %9s %9s %9s | %12s\n", "N", "n", "rows", "path", "create",
            "factor_c", "pinv", "null_prj", "f+p+n per N");
-    for (int extra = 0; extra < 2; extra++)
+    /* kind 0: full rank (Cholesky path); 1: redundant rows (QR path, rank
+     * deficient); 2: one row 1e-9 from row 4 (QR path at full rank, the
+     * solves refined). */
+    const char *paths[3] = {"chol", "qr", "qr-fr"};
+    for (int kind = 0; kind < 3; kind++)
         for (int ii = 0; ii < 6; ii++) {
             const int N = Ns[ii];
             tsys t;
-            build_chain(&t, N, 1, extra, 1000 + (unsigned long long)N);
+            build_chain(&t, N, 1, kind == 1, 1000 + (unsigned long long)N);
+            if (kind == 2) {
+                ts_dup(&t, 4, 1.0);
+                t.A[t.row_ptr[t.rows - 1]] += 1e-9;
+                ts_model(&t, t.rows);
+            }
             double t0 = now();
             void *st = be_create(&t);
             double tcreate = now() - t0;
@@ -1397,10 +1736,10 @@ static void test_bench(void **state)
                 tf += t1 - t0, tp += t2 - t1, tn += t3 - t2;
                 reps++;
             }
-            assert_int_equal(rank, extra ? 2 * N : t.rows);
+            assert_int_equal(rank, kind == 1 ? 2 * N : t.rows);
             double us = 1e6 / reps;
-            printf("  %5d %6d %6d %5s | %9.1f %9.1f %9.1f %9.1f | %12.3f\n", N, t.n, t.rows,
-                   extra ? "qr" : "chol", 1e6 * tcreate, tf * us, tp * us, tn * us,
+            printf("  %5d %6d %6d %6s | %9.1f %9.1f %9.1f %9.1f | %12.3f\n", N, t.n, t.rows,
+                   paths[kind], 1e6 * tcreate, tf * us, tp * us, tn * us,
                    (tf + tp + tn) * us / N);
             free(A);
             free(r);
@@ -1427,6 +1766,8 @@ int main(void)
         cmocka_unit_test(test_duplicated_rows),
         cmocka_unit_test(test_parallelogram),
         cmocka_unit_test(test_near_dependent),
+        cmocka_unit_test(test_near_dependent_accuracy),
+        cmocka_unit_test(test_singular_configuration),
         cmocka_unit_test(test_scale_invariance),
         cmocka_unit_test(test_rank_zero),
         cmocka_unit_test(test_path_switching),
@@ -1437,6 +1778,7 @@ int main(void)
         cmocka_unit_test(test_simulation),
         cmocka_unit_test(test_simulation_redundant),
         cmocka_unit_test(test_simulation_nonholonomic),
+        cmocka_unit_test(test_simulation_near_singular),
         cmocka_unit_test(test_bench),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

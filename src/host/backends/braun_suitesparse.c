@@ -49,8 +49,21 @@
  *   diagonal at ~sqrt(eps)·||C|| = 1.5e-8·||C||, far above a relative
  *   tolerance such as the default 10·max(rows,n)·eps. The ratio is always
  *   >= 1/cond(C) (min L_jj >= sigma_min(C), max L_jj <= sigma_max(C)), so
- *   well-conditioned C never takes the slower path. A rejected G hands over
- *   to the QR path, which then decides the rank with the caller's tol.
+ *   well-conditioned C never takes the slower path. It is only a bound:
+ *   measured, it exceeds 1/cond(C) by 3x for a row 1e-3 ... 1e-7 from a copy
+ *   of another, and by about sqrt(rows) when the near dependence is spread
+ *   over many rows (a closed chain near its straight configuration: 3x at 6
+ *   links, 13x at 150, 32x at 1000), so G is accepted up to cond(C) ~ 2e7
+ *   (cond(G) ~ 5e14). The refinement below still makes those solves as
+ *   accurate as a backward-stable method's (1000-link closed chain at cond
+ *   2.3e7: 2e-10 of |x|, cond·eps = 5e-9; N z to 1e-8 of |z|). A real
+ *   estimate of cond_1(G) from the factor (Hager and Higham, as LAPACK's
+ *   xLACN2) is within 1.4x of cond_2(G) in those cases but costs about five
+ *   solves with L: factor_c on a 1000-link chain 74 -> 173 us (2.3x), for no
+ *   accuracy gained, so the diagonal bound stays. (A row 1e-9 from a copy of
+ *   another, cond(C) 1.2e10, never reaches the ratio: CHOLMOD finds G not
+ *   positive definite.) A rejected G hands over to the QR path, which then
+ *   decides the rank with the caller's tol.
  *   After a rejection the next CHOL_SKIP_CALLS factorizations of the slot go
  *   to the QR path directly (a redundant mechanism would otherwise pay for
  *   a useless Cholesky at every call); then the Cholesky is tried again.
@@ -84,10 +97,45 @@
  *   parallelogram, a row 1e-9 from another with tol 1e-6 and with the
  *   default tol).
  *
+ *  Full rank on the QR path (k = rows: G refused but every row kept, i.e.
+ *   cond(C) beyond ~1e6 yet below 1/tol; or the CHOL_SKIP_CALLS after a
+ *   rejection): C = E R^T Q1^T, C^+ b = Q1 R^-T E^T b. Householder QR is
+ *   backward stable, hence only cond(C)·eps accurate: the computed Q1 spans
+ *   the row space of a C perturbed by eps·|C|, turned by ~cond(C)·eps, and
+ *   the minimum-norm solution turns with it, mostly into null(C), where a
+ *   residual r - C x does not see it. Measured with a row 1e-9 from a copy
+ *   of another (cond(C) 1.2e10): C^+ r off by 1.6e-6 of |x| (dgelsd's own
+ *   error 2.8e-7), N z by 2e-7. So when min/max |R_jj| < QR_REFINE_RATIO =
+ *   1e-3 (the same bound on 1/cond(C) as L's diagonal; above it cond(C) is
+ *   at most ~3e4 with the overestimates measured above, and the unrefined
+ *   error ~cond(C)·eps at most ~3e-12) the solves are refined on the
+ *   augmented system
+ *       x - C^T y = 0,  C x = b       (Björck, BIT 7 (1967) and 8 (1968)),
+ *   y = E R^-1 R^-T E^T b to start (so that C^T y = x), with the residuals
+ *   d = C^T y - x and g = b - C x in doubled precision (compensated sums of
+ *   exact products: Dot2 of Ogita, Rump and Oishi, SISC 26 (2005); one sweep
+ *   over C) and
+ *   the correction from the same factor: w = R^-T E^T (g - C d),
+ *   dy = E R^-1 w, dx = d + Q1 w; at most QR_REFINE_MAX = 2 steps, fewer
+ *   once the correction is at rounding level of x. null_project refines
+ *   x = C^+ (C z) the same way with C z formed exactly inside g, then
+ *   returns z - x. The error then behaves as (cond(C)·eps)^2 + eps, x and y
+ *   being stored in double: measured 1e-16, 1.6e-13, 1e-9 of |x| at cond(C)
+ *   1.2e8, 1.2e10, 1.2e12 (unrefined 6e-9, 1.6e-6, 1.2e-4), N z 6e-17,
+ *   3e-14, 2.4e-9 (unrefined 1.3e-9, 2e-7, 1.1e-5). Cost on a 1000-link chain
+ *   with one such row (test_bench, "qr-fr"): pinv 37 -> 270 us, null_project
+ *   44 -> 320 us, beside 700 us for factor_c (factor_c + pinv + null_project
+ *   0.77 -> 1.30 us per link); the Cholesky path and the rank-deficient QR
+ *   path are unchanged (74 us per factor_c on that chain without the row).
+ *   Rank-deficient factorizations are not refined: the residuals would be
+ *   those of C, not of the truncated E S Q1^T whose pseudoinverse is wanted.
+ *
  * lsq's residual ||r - C C^+ r|| is computed with the sparse C from the
  * returned x (both paths). Cost per call: O(nnz(C)·block size) to form C,
  * O(products of the map) for G, then CHOLMOD's or SPQR's factorization and
- * O(nnz(L)) resp. O(nnz(H) + nnz(R) + nnz(R2)) per solve.
+ * O(nnz(L)) resp. O(nnz(H) + nnz(R) + nnz(R2)) per solve (refined: up to
+ * three times that, plus two compensated sweeps over C). The refinement's
+ * work vectors (2 of rows, 2 of n entries) are allocated in create().
  *
  * tol <= 0 in factor_c selects the core's default, 10·max(rows, n)·eps.
  *
@@ -125,6 +173,10 @@ typedef SuiteSparse_long sslong;
  * (|r| + |C||x|)_i; else up to REFINE_MAX refinement steps. */
 #define REFINE_TOL 64.0
 #define REFINE_MAX 2
+/* The full-rank QR path refines its solves (qr_refine, up to QR_REFINE_MAX
+ * steps) when the ratio min/max |R_jj| is below QR_REFINE_RATIO. */
+#define QR_REFINE_MAX 2
+#define QR_REFINE_RATIO 1e-3
 
 enum { PATH_NONE = 0, PATH_ZERO, PATH_CHOL, PATH_QR };
 
@@ -141,6 +193,7 @@ typedef struct ss_slot {
     double *Cx;      /* values of C, pattern cp/ci of the state */
     double cmax;     /* largest row 2-norm of C */
     int path, rank, skip_chol;
+    int qr_refine;   /* full-rank QR path: refine the solves (see above) */
     /* full-rank path */
     cholmod_sparse *G; /* upper triangle of P C C^T P^T, fixed pattern */
     sslong *gptr;    /* G entry e: products gmap[3·gptr[e] .. 3·gptr[e+1]) */
@@ -168,8 +221,8 @@ typedef struct ss_state {
     sslong *sptr;        /* row i's block segments: sptr[i] .. sptr[i+1] */
     int *sblk;           /* block of a segment */
     sslong *spos;        /* first position of a segment in Cx */
-    double *wr, *wr2, *wr3; /* rows each */
-    double *wn, *wn2, *wn3; /* n each */
+    double *wr, *wr2, *wr3, *wr4, *wr5; /* rows each */
+    double *wn, *wn2, *wn3, *wn4, *wn5; /* n each */
     cholmod_common cc;
     int cc_started;
     ss_slot s[2];
@@ -342,8 +395,72 @@ static double inf_norm(int len, const double *x)
 {
     double a = 0;
     for (int i = 0; i < len; i++)
-        if (!(fabs(x[i]) <= a)) a = fabs(x[i]); /* NaN wins */
+        if (!(fabs(x[i]) <= a)) {
+            a = fabs(x[i]);
+            if (a != a) break; /* NaN wins */
+        }
     return a;
+}
+
+/* Error-free transformations: a + b = *s + *e (Knuth's TwoSum) and
+ * a·b = *p + *e (TwoProduct) exactly, barring overflow and underflow, in
+ * IEEE double with FLT_EVAL_METHOD 0 (SSE2, every 64-bit target). The
+ * product's error is fma(a, b, -p) where the target has a fused
+ * multiply-add (the compiler may contract only there); elsewhere, where a
+ * call to fma() would be a slow software emulation, Dekker's product of
+ * Veltkamp halves. */
+static void two_sum(double a, double b, double *s, double *e)
+{
+    const double t = a + b, z = t - a;
+    *s = t;
+    *e = (a - (t - z)) + (b - z);
+}
+
+static void two_prod(double a, double b, double *p, double *e)
+{
+    const double t = a * b;
+    *p = t;
+#ifdef FP_FAST_FMA
+    *e = fma(a, b, -t);
+#else
+    const double split = 134217729.0; /* 2^27 + 1 */
+    const double ca = split * a, ah = ca - (ca - a), al = a - ah;
+    const double cb = split * b, bh = cb - (cb - b), bl = b - bh;
+    *e = ((ah * bh - t) + ah * bl + al * bh) + al * bl;
+#endif
+}
+
+/* The residuals of the augmented system x - C^T y = 0, C x = b, in one
+ * sweep over C: g := b - C x with b = r (z NULL) or b = C z (r NULL), and
+ * d := C^T y - x, each entry as accurate as if computed in twice the
+ * working precision and then rounded (Ogita, Rump and Oishi's Dot2:
+ * compensated sums of exact products). e: n entries of workspace. */
+static void aug_resid(const ss_state *s, const ss_slot *f, const double *x, const double *y,
+                      const double *r, const double *z, double *g, double *d, double *e)
+{
+    const int n = s->n;
+    for (int j = 0; j < n; j++) d[j] = -x[j], e[j] = 0;
+    for (int i = 0; i < f->rows; i++) {
+        const double yi = y[i];
+        double sum = r ? r[i] : 0, err = 0, p, pe, se;
+        for (sslong q = s->cp[i]; q < s->cp[i + 1]; q++) {
+            const double c = f->Cx[q];
+            const sslong j = s->ci[q];
+            two_prod(c, x[j], &p, &pe);
+            two_sum(sum, -p, &sum, &se);
+            err += se - pe;
+            if (z) {
+                two_prod(c, z[j], &p, &pe);
+                two_sum(sum, p, &sum, &se);
+                err += se + pe;
+            }
+            two_prod(c, yi, &p, &pe);
+            two_sum(d[j], p, &d[j], &se);
+            e[j] += se + pe;
+        }
+        g[i] = sum + err;
+    }
+    for (int j = 0; j < n; j++) d[j] += e[j];
 }
 
 /* Cx := A R^-1 for the slot's rows; f->cmax. Returns 0, or -1 on NaN/Inf. */
@@ -426,9 +543,13 @@ static void ss_destroy(void *state)
     free(s->wr);
     free(s->wr2);
     free(s->wr3);
+    free(s->wr4);
+    free(s->wr5);
     free(s->wn);
     free(s->wn2);
     free(s->wn3);
+    free(s->wn4);
+    free(s->wn5);
     free(s);
 }
 
@@ -771,7 +892,13 @@ static int ss_create(void **state, const braun_model *model)
     s->wn = xcalloc((size_t)n, sizeof *s->wn);
     s->wn2 = xcalloc((size_t)n, sizeof *s->wn2);
     s->wn3 = xcalloc((size_t)n, sizeof *s->wn3);
-    if (!s->wr || !s->wr2 || !s->wr3 || !s->wn || !s->wn2 || !s->wn3) goto fail;
+    s->wr4 = xcalloc((size_t)rows, sizeof *s->wr4);
+    s->wr5 = xcalloc((size_t)rows, sizeof *s->wr5);
+    s->wn4 = xcalloc((size_t)n, sizeof *s->wn4);
+    s->wn5 = xcalloc((size_t)n, sizeof *s->wn5);
+    if (!s->wr || !s->wr2 || !s->wr3 || !s->wr4 || !s->wr5 || !s->wn || !s->wn2 || !s->wn3 ||
+        !s->wn4 || !s->wn5)
+        goto fail;
 
     if (!cholmod_l_start(&s->cc)) goto fail;
     s->cc_started = 1;
@@ -952,6 +1079,19 @@ static int qr_try(ss_state *s, ss_slot *f, double tol)
     qr_free(&f->qr2, cc);
     sslong k = qr_factor(&f->qr, &Ct, tol * f->cmax, 0, cc);
     if (k < 0) return (int)k;
+    f->qr_refine = 0;
+    if (k == f->rows) {
+        /* min/max |R_jj| >= 1/cond(C), as the Cholesky's L-diagonal ratio */
+        const sslong *Rp = f->qr.R->p;
+        const double *Rx = f->qr.R->x;
+        double dmin = DBL_MAX, dmax = 0;
+        for (sslong j = 0; j < k; j++) {
+            const double d = fabs(Rx[Rp[j + 1] - 1]);
+            if (d < dmin) dmin = d;
+            if (d > dmax) dmax = d;
+        }
+        f->qr_refine = !(dmin >= QR_REFINE_RATIO * dmax);
+    }
     if (k > 0 && k < f->rows) {
         cholmod_sparse *S = cholmod_l_transpose(f->qr.R, 1, cc); /* rows x k (R has k rows) */
         if (!S) return cc_fail(cc);
@@ -1079,6 +1219,53 @@ static int g_solve(ss_state *s, ss_slot *f, const double *b, double *out)
     return 0;
 }
 
+/* With a full-rank QR factor (rank = rows: C = E R^T Q1^T exactly, up to
+ * rounding): dx := Q1 w and, when dy is given, dy := E R^-1 w, for
+ * w = R^-T E^T b; so dx = C^T dy = C^+ b. dy may be b. */
+static void qr_full_solve(ss_state *s, const ss_slot *f, const double *b, double *dx, double *dy)
+{
+    const ss_qr *q = &f->qr;
+    const int n = s->n, k = f->rows;
+    double *bt = s->wr, *w = s->wr2, *t = s->wn3;
+    for (int j = 0; j < k; j++) bt[j] = b[q->E ? q->E[j] : j]; /* E^T b */
+    r_solve_t(q->R, k, bt, w);
+    if (dy) {
+        memcpy(bt, w, (size_t)k * sizeof *bt);
+        r_solve(q->R, k, bt);
+        for (int j = 0; j < k; j++) dy[q->E ? q->E[j] : j] = bt[j];
+    }
+    memcpy(t, w, (size_t)k * sizeof *t);
+    for (int j = k; j < n; j++) t[j] = 0;
+    q_apply(q, t, dx);
+}
+
+/* Refinement of x = C^+ b on the full-rank QR path, b = r (z NULL) or
+ * b = C z (r NULL), as the augmented system x - C^T y = 0, C x = b
+ * (Björck): residuals d = C^T y - x and g = b - C x in doubled precision
+ * (aug_resid), correction dy = G^-1 (g - C d) = E R^-1 w,
+ * dx = d + C^T dy = d + Q1 w with w = R^-T E^T (g - C d). x and y (rows,
+ * with x = C^T y on entry up to rounding) are updated in place. Stops when
+ * the correction is at rounding level of x. */
+static void qr_refine(ss_state *s, const ss_slot *f, const double *r, const double *z, double *x,
+                      double *y)
+{
+    const int n = s->n, rows = f->rows;
+    double *g = s->wr5, *d = s->wn4, *dx = s->wn5;
+    for (int it = 0; it < QR_REFINE_MAX; it++) {
+        aug_resid(s, f, x, y, r, z, g, d, dx); /* g = b - C x, d = C^T y - x */
+        c_mul(s, f, d, g, g, NULL);            /* g := g - C d */
+        qr_full_solve(s, f, g, dx, g); /* dx := Q1 w, g := dy */
+        for (int j = 0; j < n; j++) dx[j] += d[j];
+        /* A non-finite correction (overflow in the residuals of a huge x)
+         * leaves the last iterate. */
+        const double dmax = inf_norm(n, dx);
+        if (!(dmax <= DBL_MAX)) break;
+        for (int i = 0; i < rows; i++) y[i] += g[i];
+        for (int j = 0; j < n; j++) x[j] += dx[j];
+        if (dmax <= REFINE_TOL * DBL_EPSILON * inf_norm(n, x)) break;
+    }
+}
+
 /* x := C^+ r (doubles; x has n entries, r rows). 0 or -1. */
 static int pinv_d(ss_state *s, ss_slot *f, const double *r, double *x)
 {
@@ -1099,13 +1286,17 @@ static int pinv_d(ss_state *s, ss_slot *f, const double *r, double *x)
         return 0;
     }
     if (f->path != PATH_QR) return -1;
+    if (f->rank == rows) {
+        double *y = s->wr4;
+        qr_full_solve(s, f, r, x, f->qr_refine ? y : NULL); /* S = R11^T */
+        if (f->qr_refine) qr_refine(s, f, r, NULL, x, y);
+        return 0;
+    }
     const ss_qr *q = &f->qr;
     const sslong k = f->rank;
     double *b = s->wr, *w = s->wr2, *t = s->wn3;
     for (int j = 0; j < rows; j++) b[j] = r[q->E ? q->E[j] : j]; /* E^T r */
-    if (k == rows) {
-        r_solve_t(q->R, k, b, w); /* S = R11^T */
-    } else {
+    {
         /* S^+ b = E2 R2^-1 (Q2^T b)[0..k) */
         const ss_qr *q2 = &f->qr2;
         double *u = w; /* rows entries */
@@ -1182,6 +1373,19 @@ static void ss_null_project(void *state, int slot, braun_real *z)
             for (int i = 0; i < rows; i++) y[i] = -y[i];
             ct_mul_add(s, f, y, zd);
         }
+    } else if (f->path == PATH_QR && f->rank == rows && f->qr_refine) {
+        /* z := z - x, x = C^+ C z = Q1 w, w = (Q^T z)(0..k), refined with
+         * y = E R^-1 w (C^T y = x). */
+        const ss_qr *q = &f->qr;
+        double *x = s->wn2, *y = s->wr4, *bt = s->wr;
+        q_t(q, zd, t);
+        memcpy(bt, t, (size_t)rows * sizeof *bt);
+        r_solve(q->R, rows, bt);
+        for (int j = 0; j < rows; j++) y[q->E ? q->E[j] : j] = bt[j];
+        for (int j = rows; j < n; j++) t[j] = 0;
+        q_apply(q, t, x);
+        qr_refine(s, f, NULL, zd, x, y);
+        for (int j = 0; j < n; j++) zd[j] -= x[j];
     } else if (f->path == PATH_QR) {
         /* z := Q [0; (Q^T z)(k..n)] */
         q_t(&f->qr, zd, t);
@@ -1208,6 +1412,9 @@ static const braun_linsolver ss_table = {
     ss_pinv,
     ss_lsq,
     ss_null_project,
+    NULL, /* state_bytes: created, not in the data block */
+    NULL, /* bind */
+    NULL, /* mass_buffer: the core keeps M */
 };
 
 const braun_linsolver *braun_linsolver_suitesparse(void) { return &ss_table; }
