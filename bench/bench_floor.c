@@ -12,7 +12,7 @@ void bench_floor_rhs(const braun_builtin *b, double t, const double *y, double *
 
 void bench_floor_step(const braun_builtin *b, double t, double h, double *y)
 {
-    /* The same tableau as libbraun's RK4 (src/braun_tableau.c), written out. */
+    /* The same tableau as libbraun's RK4 (src/core/braun_tableau.c), written out. */
     const braun_link_params *prm = (const braun_link_params *)b->sys.user;
     const int d = braun_minimal_find(b->name)->dim;
     double k1[4], k2[4], k3[4], k4[4], w[4];

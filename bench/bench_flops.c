@@ -1,5 +1,6 @@
 /* Floating-point operations of one step, derived from the code of the core
- * (src/braun_eval.c, braun_step.c, braun_chol.c, braun_qrcp.c). One flop is
+ * (src/core/braun_forward.c, braun_corrections.c, braun_step.c, braun_chol.c,
+ * braun_qrcp.c). One flop is
  * one IEEE add, subtract, multiply, divide or square root; sign flips,
  * fabs, comparisons, copies and conversions are not flops. The finiteness
  * checks (braun_all_finite: s += x·0) are flops of their own component,
@@ -116,11 +117,11 @@ static int shape_of(const bench_target *tg, shape *s)
     s->st = 2 * e + n;
     s->sr = 2 * ep + n;
     s->mulr = 2 * ep + 2 * n;
-    /* One factorization (src/braun_chol.c braun_chol_factor): symmetry
+    /* One factorization (src/core/braun_chol.c braun_chol_factor): symmetry
      * n(n-1)/2 subtractions (the tolerance product is loop invariant, 1);
      * per pivot 2i, the SPD test's product, sqrt, reciprocal; per
      * off-diagonal entry 2i + 1. The finite scan of M (2n², in
-     * src/braun_workspace.c) is counted with the checks. */
+     * src/core/braun_forward.c) is counted with the checks. */
     long chol = n * (n - 1) / 2 + 1;
     for (long i = 0; i < n; i++) chol += 2 * i + 3 + (n - 1 - i) * (2 * i + 1);
     s->chol = chol;
@@ -199,7 +200,7 @@ static const char *const cname[C_COUNT] = {
     "chol_solve_rt", "chol_solve_r", "chol_mul_r", "chol_factor", "qrcp_factor",
     "pinv_apply", "null_project", "dots_axpys", "rk_combination", "scalars", "checks"};
 
-/* braun__eval_ideal at one state; wphi: Φ, b_q and the velocity error too. */
+/* The forward pass (braun__forward) at one state; wphi: Φ, b_q and the velocity error too. */
 static void eval_ideal(const shape *s, int wphi, long *c)
 {
     const long n = s->n, m = s->m, r = s->r;
@@ -236,7 +237,7 @@ static void power(const shape *s, long *c)
     }
 }
 
-/* braun__eval_corrections with the given bits. */
+/* The corrections (braun__corrections) with the given bits. */
 static void corrections(const shape *s, unsigned corr, long *c)
 {
     const long n = s->n, m = s->m, r = s->r;

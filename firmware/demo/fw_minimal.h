@@ -2,7 +2,7 @@
  * Classic RK4 on the minimal-coordinate equation of a built-in model, in
  * braun_real (float in float builds): the baseline of the issue's float
  * criterion ("trajectory error within 2x that of float RK4 on the
- * minimal-coordinate equation"). The models' own minimal_rhs is double
+ * minimal-coordinate equation"). The host's oracles (braun_reference.h) are double
  * only; this is the same equation evaluated in working precision.
  *   slider-crank (Eq. 24): θ'' = -3 (sin 2θ θ'² + (g/l) cos θ) / (5 - 3 cos 2θ)
  *   four-bar (Fig. 6):     θ'' = -(7g / 6l) cos θ
@@ -20,7 +20,7 @@ typedef struct fw_minimal {
     braun_real y[2];   /* θ, θ' */
 } fw_minimal;
 
-/* Start at the model's minimal_y0; returns 0, or -1 for an unknown model. */
+/* Start at the model's minimal initial state; returns 0, or -1 for an unknown model. */
 int fw_minimal_init(fw_minimal *s, const braun_builtin *b);
 /* One RK4 step of size h. */
 void fw_minimal_step(fw_minimal *s, braun_real h);

@@ -279,7 +279,7 @@ typedef struct braun_data {
     int has_E0;
     braun_stats stats;
     braun_error_info error;
-    /* Private scratch (see src/braun_workspace.c). */
+    /* Private scratch (src/core/braun_internal.h, braun_layout.c). */
     void *priv;
 } braun_data;
 

@@ -2,9 +2,8 @@
  * libbraun host helpers: conveniences for programs running on an operating
  * system (the CLI, tests, desktop tools). They use the C library's stdio.
  *
- * Firmware builds compile the core (src and src/models) only and leave
- * src/host out, so the core never calls anything declared here; the host
- * Makefile puts the files of src/host into libbraun.a.
+ * Host tier (libbraun_host.a): firmware builds compile the core tier
+ * (src/core) only, which never calls anything declared here.
  */
 #ifndef BRAUN_HOST_H
 #define BRAUN_HOST_H

@@ -1,4 +1,4 @@
-/* Butcher tableaus of the explicit Runge–Kutta methods (src/braun_tableau.c). */
+/* Butcher tableaus of the explicit Runge–Kutta methods (braun_tableau.c). */
 #ifndef BRAUN_TABLEAU_H
 #define BRAUN_TABLEAU_H
 

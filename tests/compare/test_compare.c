@@ -1,6 +1,7 @@
 /* Tests of the comparison harness (compare/): the IDA residuals, the
  * Baumgarte wrapper, the metrics, the references and the failure path.
  * Linked with the harness objects, SUNDIALS and GSL (mk/compare.mk). */
+#define _POSIX_C_SOURCE 200809L /* mkstemp, fdopen */
 #include "test_util.h"
 
 #include <gsl/gsl_errno.h>
@@ -335,8 +336,11 @@ static void test_singularity_scan(void **state)
 static void test_csv_reader(void **state)
 {
     (void)state;
-    const char *path = "build/tests/compare/csv-reader-test.csv";
-    FILE *f = fopen(path, "w");
+    /* A scratch file of its own, wherever the build directory is. */
+    char path[] = "/tmp/braun-csv-reader-XXXXXX";
+    const int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
     assert_non_null(f);
     fputs("a,b,c\n1,x,2.5\nbad,row\n3,y,nan\n", f);
     fclose(f);

@@ -1,7 +1,7 @@
 /*
  * LAPACK backend of the linear-solver table (braun_linsolver.h): the same
- * operations as libbraun's dense kernels (src/braun_chol.c,
- * src/braun_qrcp.c), with LAPACK's blocked factorizations.
+ * operations as libbraun's dense kernels (src/core/braun_chol.c,
+ * src/core/braun_qrcp.c), with LAPACK's blocked factorizations.
  *
  *   M = R^T R          xPOTRF. The row-major M is read as a column-major
  *                      matrix whose lower triangle is M's upper triangle

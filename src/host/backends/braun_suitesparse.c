@@ -81,7 +81,7 @@
  *   factorization of S (no rank detection; S E2 = Q2 [R2; 0]):
  *       S^+ b = E2 R2^-1 (Q2^T b)[0..k).
  *   Together this is a complete orthogonal decomposition (as LAPACK's
- *   xGELSY and the core's src/braun_qrcp.c): C^+ r is the minimum-norm
+ *   xGELSY and the core's src/core/braun_qrcp.c): C^+ r is the minimum-norm
  *   least-squares solution also for r outside range(C), not only the basic
  *   solution of the k rows SPQR kept. Q, Q2 are applied by the loops below
  *   from the Householder form (H(h) = I - tau_h v_h v_h^T, Q^T = H(nh-1) ...
