@@ -94,8 +94,8 @@ xargs -P "$JOBS" -L 1 sh "$0" --cg-one "$CG" "$STATIC" "$STEPS" < "$CG/jobs.txt"
         ops=$(sed -n 's/^ops=\([0-9]*\).*/\1/p' "$CG/$safe.$item.txt")
         awk -F, -v t="$t" -v it="$item" -v ops="$ops" '{
             g = "libc/libm"
-            if ($2 ~ /\/src\/braun_/) g = "core"
-            else if ($2 ~ /\/src\/(models|scene)\//) g = "model"
+            if ($2 ~ /\/src\/core\/(models|scene)\//) g = "model"
+            else if ($2 ~ /\/src\/core\//) g = "core"
             else if ($2 ~ /\/bench\//) g = "bench"
             printf "%s,%s,%s,%s,%.0f,%.0f,%.0f,%.0f\n", t, it, $1, g, ops, $3, $4, $5
         }' "$CG/$safe.$item.fn.csv" | sort -t, -k6,6nr
