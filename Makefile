@@ -174,4 +174,4 @@ clean:
 -include $(sort $(wildcard mk/*.mk))
 
 # The headers each object read, recorded by -MMD.
--include $(shell find $(BUILD)/obj $(BUILD)/tests -name '*.d' 2>/dev/null)
+-include $(shell find $(BUILD) -name '*.d' -not -path '$(BUILD)/sanitize/*' 2>/dev/null)

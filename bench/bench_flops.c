@@ -74,7 +74,7 @@ static int shape_of(const bench_target *tg, shape *s)
     s->n = n, s->m = m, s->p = p, s->r = r;
     s->mass_constant = (sys->flags & BRAUN_MASS_CONSTANT) != 0;
     s->energy_input = (sys->flags & BRAUN_ENERGY_INPUT) != 0;
-    s->constraint_work = (sys->flags & BRAUN_CONSTRAINT_WORK) != 0 && r > 0;
+    s->constraint_work = !(sys->flags & BRAUN_SCLERONOMIC) && sys->energy && r > 0;
     s->need_fq = m > 0 && p > 0;
     s->energy = sys->energy != NULL;
     braun_real *M = calloc((size_t)(n * n), sizeof *M);

@@ -44,7 +44,8 @@ bench_run *bench_run_new(const bench_target *tg, long steps, char *err, size_t e
     r->free_sys.m = r->free_sys.p = 0;
     r->free_sys.holonomic = NULL;
     r->free_sys.nonholonomic = NULL;
-    r->free_sys.flags &= ~(unsigned)BRAUN_CONSTRAINT_WORK;
+    /* no rows: no constraint work */
+    r->free_sys.flags = (r->free_sys.flags & ~(unsigned)BRAUN_CONSTRAINT_WORK) | BRAUN_SCLERONOMIC;
     for (int i = 0; i < BENCH_ITEMS; i++) {
         bench_item it = (bench_item)i;
         r->has[i] = uses_data(it) || tg->minimal != NULL;

@@ -46,7 +46,9 @@ int cmp_metrics_compute(const cmp_target *tg, const cmp_traj *tr, cmp_ref *ref,
      * With input, every method is measured against the same work integral:
      * the trajectory reference's (libbraun's, constraint work included),
      * else the trapezoidal rule of Ė on the samples. */
-    const unsigned input = tg->sys.flags & (BRAUN_ENERGY_INPUT | BRAUN_CONSTRAINT_WORK);
+    /* Moving constraints do work unless the system is scleronomic. */
+    const int constraint_work = !(tg->sys.flags & BRAUN_SCLERONOMIC) && tg->sys.m + tg->sys.p > 0;
+    const unsigned input = (tg->sys.flags & BRAUN_ENERGY_INPUT) || constraint_work;
     const int power = (tg->sys.flags & BRAUN_ENERGY_INPUT) && tg->sys.power;
     double work = 0, p_prev = 0, p_prev2 = 0, t_prev = 0, dt_prev = 0;
     long nref = 0; /* samples the reference knows */
@@ -59,7 +61,7 @@ int cmp_metrics_compute(const cmp_target *tg, const cmp_traj *tr, cmp_ref *ref,
             double W;
             if (cmp_ref_work(ref, t, &W) == 0) {
                 d.work_in = W;
-            } else if (power && !(tg->sys.flags & BRAUN_CONSTRAINT_WORK)) {
+            } else if (power && !constraint_work) {
                 braun_real P = 0;
                 if (tg->sys.power(t, q, v, &P, tg->sys.user)) P = NAN;
                 const double dt = t - t_prev;

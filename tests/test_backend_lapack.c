@@ -883,8 +883,6 @@ static void test_end_to_end_test_systems(void **state)
     /* Rheonomic bead whose constraint power the core computes (mul_r). */
     double w = 1.3;
     braun_system bs = bead_system(&w);
-    bs.flags = BRAUN_MASS_CONSTANT | BRAUN_CONSTRAINT_WORK;
-    bs.power = NULL;
     const braun_real bq0[2] = {1, 0}, bv0[2] = {0, 1.3};
     compare_runs("bead, constraint work", &bs, bq0, bv0, 1e-3, 1000);
 }

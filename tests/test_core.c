@@ -325,15 +325,38 @@ static void test_rheonomic_bead_exact(void **state)
     test_sim_close(&sim);
 }
 
-/* The same bead without a power callback: BRAUN_CONSTRAINT_WORK makes the
- * library add the power of the ideal constraint force, Q_c·v, to Ė. */
-static void test_constraint_work_flag(void **state)
+/* The work of a moving constraint needs no flag: the same bead with the
+ * old BRAUN_CONSTRAINT_WORK flag gives the same run bit for bit; declared
+ * scleronomic (a false claim: b_q != 0) it is refused at the first step,
+ * never run with the drive's work missing. */
+static void test_constraint_work_automatic(void **state)
 {
     (void)state;
     double w = 1.3;
     braun_system s = bead_system(&w);
+    s.flags = BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC;
+    {
+        test_sim lie;
+        assert_int_equal(test_sim_open(&lie, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+        const double q0[2] = {1, 0}, v0[2] = {0, w};
+        assert_int_equal(braun_set_state(&lie.data, 0, q0, v0), BRAUN_OK);
+        assert_int_equal(braun_step(&lie.data, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT);
+        assert_non_null(strstr(lie.data.error.where, "scleronomic"));
+        assert_true(lie.data.t == 0);
+        test_sim_close(&lie);
+    }
+    braun_system plain = bead_system(&w);
     s.flags = BRAUN_MASS_CONSTANT | BRAUN_CONSTRAINT_WORK;
-    s.power = NULL;
+    /* contradictory flags */
+    braun_system both = s;
+    both.flags |= BRAUN_SCLERONOMIC;
+    braun_model bm;
+    assert_int_equal(braun_model_init(&bm, &both), BRAUN_ERR_ARGUMENT);
+    test_sim ref;
+    assert_int_equal(test_sim_open(&ref, &plain, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double rq0[2] = {1, 0}, rv0[2] = {0, w};
+    assert_int_equal(braun_set_state(&ref.data, 0, rq0, rv0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&ref.data, BRAUN_RK4, 1e-3, 2.0, 0, NULL, NULL), BRAUN_OK);
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
     const double q0[2] = {1, 0}, v0[2] = {0, w};
@@ -344,6 +367,9 @@ static void test_constraint_work_flag(void **state)
     assert_near(sim.data.work_in, w * w * (r * r - 1), 1e-8 * r * r);
     assert_near(sim.data.q[0], r * cos(w * T), 1e-8 * r);
     assert_le(tr.maxE, 1e-9 * r * r);
+    assert_true(sim.data.q[0] == ref.data.q[0] && sim.data.q[1] == ref.data.q[1]);
+    assert_true(sim.data.work_in == ref.data.work_in);
+    test_sim_close(&ref);
     test_sim_close(&sim);
 }
 
@@ -394,7 +420,7 @@ int main(void)
         cmocka_unit_test(test_inconsistent_start_is_pulled_back),
         cmocka_unit_test(test_knife_edge_exact),
         cmocka_unit_test(test_rheonomic_bead_exact),
-        cmocka_unit_test(test_constraint_work_flag),
+        cmocka_unit_test(test_constraint_work_automatic),
         cmocka_unit_test(test_deterministic),
         cmocka_unit_test(test_adaptive_knife),
     };

@@ -246,7 +246,10 @@ static void test_only_what_is_asked_for(void **state)
     run_counted("data/driven-crank.json", BRAUN_CORRECT_ALL, 1000, &c);
     assert_int_equal(c.energy, 1);
     assert_int_equal(c.power, 0);
-    assert_true(c.inner.flags & BRAUN_CONSTRAINT_WORK);
+    assert_false(c.inner.flags & BRAUN_SCLERONOMIC);
+    /* Without a drive the scene is scleronomic: no constraint power at all. */
+    run_counted("data/slider-crank.json", BRAUN_CORRECT_ALL, 10, &c);
+    assert_true(c.inner.flags & BRAUN_SCLERONOMIC);
 }
 
 int main(void)

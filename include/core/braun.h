@@ -69,6 +69,9 @@ typedef enum braun_status {
     BRAUN_ERR_MISSING_CALLBACK = -14, /* m > 0 without holonomic(), ... */
     BRAUN_ERR_NO_ENERGY_LAW = -15,    /* energy correction asked, system has none */
     BRAUN_ERR_INCONSISTENT = -16,     /* dependent constraint rows disagree: no solution */
+    BRAUN_ERR_TIME_RESOLUTION = -17,  /* t + h is not t + h in this precision: the step
+                                         cannot advance time as asked (float horizon) */
+    BRAUN_ERR_ACCURACY = -18,         /* residuals beyond the accuracy guard (braun_guard) */
     BRAUN_STOPPED = 1             /* the output callback asked to stop */
 } braun_status;
 
@@ -118,19 +121,31 @@ typedef int (*braun_energy_fn)(braun_real t, const braun_real *q,
                                braun_real *dE_dq, braun_real *dE_dv,
                                braun_real *dE_dt, void *user);
 
-/* Energy input rate Ė(t,q,v) (power of dampers, motors, applied forces).
- * Only called when the system sets BRAUN_ENERGY_INPUT; then ∫Ė dτ is part
- * of the integrated state. */
+/* Energy input rate Ė(t,q,v) of the applied forces: dampers, motors,
+ * external forces and torques, and the explicit time dependence of a
+ * potential that is not in E (a potential V(t, q) that is in E belongs in
+ * dE_dt instead). Never the power of the constraint forces: the library
+ * adds that itself (see BRAUN_SCLERONOMIC). Only called when the system
+ * sets BRAUN_ENERGY_INPUT; ∫Ė dτ is part of the integrated state. */
 typedef int (*braun_power_fn)(braun_real t, const braun_real *q,
                               const braun_real *v, braun_real *Edot, void *user);
 
 enum braun_system_flags {
     BRAUN_MASS_CONSTANT = 1u << 0, /* M called and factored once */
     BRAUN_ENERGY_INPUT = 1u << 1,  /* Ė not identically zero: power() used */
-    /* The ideal constraint forces do work (rheonomic constraints: a driven
-     * joint): their power Q_c·v = (R v)·C_v^+(b_v - A_v a) is added to Ė,
-     * so the energy law stays right without a power callback for it. */
-    BRAUN_CONSTRAINT_WORK = 1u << 2
+    /* Kept for old code: the constraint work below is always accounted for
+     * now, with or without this flag (it may not be set with SCLERONOMIC). */
+    BRAUN_CONSTRAINT_WORK = 1u << 2,
+    /* No constraint depends on time: the ideal constraint forces do no work.
+     * Without it, a system with an energy law has the power of its ideal
+     * constraint forces, Q_c·v = (R v)·C_v⁺(b_v − A_v a), added to Ė at every
+     * stage, so a driven (rheonomic) mechanism keeps its energy law without
+     * any flag or power term for its drives; for a scleronomic one that power
+     * is 0 up to the residuals, so the result is right either way. With it
+     * the library skips that work, and checks the claim: a holonomic row
+     * with b_q ≠ 0 (∂Φ_q/∂t ≠ 0) at the start of a step stops the run with
+     * BRAUN_ERR_ARGUMENT ("system declared scleronomic"). */
+    BRAUN_SCLERONOMIC = 1u << 3
 };
 
 /* Sparse structure of a large mechanism (optional; NULL: dense callbacks).
@@ -226,6 +241,20 @@ typedef struct braun_options {
      * cannot be removed by any motion: above this (absolute, constraint
      * units) the step fails with BRAUN_ERR_INCONSISTENT. <= 0: sqrt(ε). */
     braun_real inconsistency_tol;
+    /* Accuracy guard (docs/robustness.md, "The accuracy guard"): a step
+     * whose start finds a residual above its bound stops the run with
+     * BRAUN_ERR_ACCURACY, the state back at the last step that passed and
+     * d->error naming the residual, its value, the bound and the time. The
+     * bounds are this relative value times the system's scales, measured by
+     * braun_set_state (braun_data.guard): ‖Φ_q‖ <= guard·S_pos,
+     * ‖[Φ̇_q; Φ_v]‖ <= guard·S_vel, |Φ_e| <= guard·S_energy; a residual no
+     * larger than it was at braun_set_state (an inconsistent start the
+     * corrections are still removing) passes. Each is checked where the
+     * corrections compute it, at no extra evaluation: position with the
+     * position correction on, velocity with the velocity correction,
+     * energy with the energy correction. 0 selects the default 1e-3; < 0
+     * turns the guard off. */
+    braun_real guard;
     /* Linear algebra (braun_linsolver.h): NULL is libbraun's own dense
      * kernels (allocation-free); LAPACK and SuiteSparse come from
      * braun_backends.h. Set before braun_data_init. */
@@ -279,6 +308,21 @@ typedef struct braun_data {
     int has_E0;
     braun_stats stats;
     braun_error_info error;
+    /* The accuracy guard's scales (options.guard), measured by
+     * braun_set_state at the initial state, in the residuals' own units:
+     *   pos    = Σ_i Σ_j |A_ij| s_q,j over the holonomic rows, s_q,j =
+     *            max(|q_j|, L) with L = max(‖q‖_∞, 1e-6): the size of Φ_q a
+     *            displacement of the whole mechanism's size would make;
+     *   vel    = the same with s_v,j = max(|v_j|, V), over all rows, V =
+     *            max(‖v‖_∞, sqrt(L·‖M⁻¹Q‖_∞)): the speed of the motion or
+     *            of a fall over L;
+     *   energy = max(|E0|, ½ Σ_j M_jj s_v,j², 1e-300);
+     * and the residuals at the initial state (pos0, vel0, energy0). A
+     * program may set its own scales after braun_set_state. */
+    struct {
+        braun_real pos, vel, energy;
+        braun_real pos0, vel0, energy0;
+    } guard;
     /* Private scratch (src/core/braun_internal.h, braun_layout.c). */
     void *priv;
 } braun_data;

@@ -1,33 +1,38 @@
 /* Adaptive driver: Dormand–Prince 5(4) with a standard step-size controller.
- * The embedded estimate measures the ideal flow's local error; the
- * corrections (applied once per accepted step, whatever the model's
- * discretization option) are not part of it. */
+ * The corrections are applied once per accepted step, whatever the model's
+ * discretization option.
+ *
+ * The error of a step has two parts, measured separately:
+ *  - along the constraint manifold: the embedded estimate of the ideal
+ *    flow, projected on the tangent space. Its normal part is not used:
+ *    near a singular configuration the ideal flow's normal sensitivity grows
+ *    like the inverse of the small pivot, and measuring it that way shrank
+ *    h without end (measured: the four-bar at rtol 1e-10 stopped with
+ *    BRAUN_ERR_STEP_TOO_SMALL at t = 102.2 s).
+ *  - across it: what the corrections will leave. They remove the first-order
+ *    prediction Φ + hΦ̇ of the step's start, so after the step
+ *        e_q = Φ(y1) − Φ(y0) − h Φ̇(y0),   e_v = Φ̇(y1) − Φ̇(y0)
+ *    remain (y1 the end of the ideal flow, the last DOPRI5 stage), as the
+ *    displacements R⁻¹C⁺e_q and R⁻¹C⁺e_v in q and v units. This is the
+ *    error of the constrained directions themselves: without it a mechanism
+ *    with no free motion (every coordinate driven: an empty tangent space)
+ *    had no error at all and its step grew without bound.
+ * Both are scaled by atol + rtol·|y| and combined in one RMS norm. */
 #include <math.h>
 
 #include "braun_tableau.h"
 
-static double error_norm(int count, const braun_real *y0, const braun_real *y1,
-                         const braun_real *yerr, braun_real rtol, braun_real atol)
+static double scaled(double e, double y0, double y1, braun_real rtol, braun_real atol)
 {
-    double sum = 0;
-    for (int i = 0; i < count; i++) {
-        double a = fabs((double)y0[i]), b = fabs((double)y1[i]);
-        double sc = (double)atol + (double)rtol * (a > b ? a : b);
-        double e = (double)yerr[i] / sc;
-        sum += e * e;
-    }
-    return sqrt(sum / count);
+    const double a = fabs(y0), b = fabs(y1);
+    const double sc = (double)atol + (double)rtol * (a > b ? a : b);
+    return e / sc;
 }
 
-/* Error control sees only the error along the constraint manifold. The
- * normal part is what the position and velocity corrections remove at the
- * next step; near a singular configuration the ideal flow's normal
- * sensitivity grows like the inverse of the small pivot, and measuring it
- * would shrink h without end (measured: the four-bar at rtol 1e-10 stopped
- * with BRAUN_ERR_STEP_TOO_SMALL at t = 102.2 s). The last DOPRI5 stage was
- * evaluated at the end of the step, so pv->fv holds C_v there: in weighted
- * coordinates the tangent space is null(C), projected by N. Position errors
- * are projected only when all rows are holonomic (then C_q = C_v). */
+/* The tangential error of the embedded estimate: in weighted coordinates
+ * the tangent space is null(C), projected by N (pv's factorization is the
+ * last stage's, at the end of the step). Position errors are projected only
+ * when all rows are holonomic (then C_q = C_v). */
 static void project_error_tangent(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
@@ -43,6 +48,49 @@ static void project_error_tangent(braun_data *d)
     }
 }
 
+/* Sum of squares of the scaled normal error (see the top of this file),
+ * from the residuals the attempt kept: pv->phi0/ev0 (start), pv->phi/ev
+ * (end of the ideal flow). */
+static double normal_error2(braun_data *d, braun_real h, braun_real rtol, braun_real atol)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n, m = pv->m, rows = pv->rows;
+    const braun_real *y0 = pv->y0, *y1 = pv->y1;
+    double sum = 0;
+    if (rows == 0) return 0;
+    if (m > 0) {
+        for (int i = 0; i < m; i++) pv->enorm[i] = pv->phi[i] - pv->phi0[i] - h * pv->ev0[i];
+        braun__pinv(pv, pv->need_fq ? 1 : 0, pv->enorm, pv->tmp);
+        braun__solve_r(pv, pv->tmp, pv->tmp);
+        for (int i = 0; i < n; i++) {
+            const double e = scaled((double)pv->tmp[i], (double)y0[i], (double)y1[i], rtol, atol);
+            sum += e * e;
+        }
+    }
+    for (int i = 0; i < rows; i++) pv->enorm[i] = pv->ev[i] - pv->ev0[i];
+    braun__pinv(pv, 0, pv->enorm, pv->tmp);
+    braun__solve_r(pv, pv->tmp, pv->tmp);
+    for (int i = 0; i < n; i++) {
+        const double e = scaled((double)pv->tmp[i], (double)y0[n + i], (double)y1[n + i], rtol, atol);
+        sum += e * e;
+    }
+    return sum;
+}
+
+static double error_norm(braun_data *d, braun_real h, braun_real rtol, braun_real atol)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n;
+    const double normal = normal_error2(d, h, rtol, atol);
+    project_error_tangent(d);
+    double sum = normal;
+    for (int i = 0; i < 2 * n; i++) {
+        const double e = scaled((double)pv->yerr[i], (double)pv->y0[i], (double)pv->y1[i], rtol, atol);
+        sum += e * e;
+    }
+    return sqrt(sum / (2 * n));
+}
+
 int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
                              braun_real t_end, long every, braun_output_fn out,
                              void *out_user)
@@ -51,13 +99,14 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
     int st = braun__check_ready(d, "braun_integrate_adaptive");
     if (st) return st;
     if (!ctl) return braun__fail(d, BRAUN_ERR_ARGUMENT, "adaptive control (NULL)", -1, -1, 0, (double)d->t);
-    if (!(ctl->rtol >= 0) || !(ctl->atol >= 0) || (ctl->rtol == 0 && ctl->atol == 0))
+    /* rtol >= 1 asks for no digit at all; NaN and Inf for nothing. */
+    if (!(ctl->rtol >= 0) || !(ctl->rtol < 1) || !(ctl->atol >= 0) || !braun_is_finite(ctl->atol) ||
+        (ctl->rtol == 0 && ctl->atol == 0))
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "tolerances", -1, -1, (double)ctl->rtol, (double)d->t);
     if (!braun_is_finite(t_end) || !(t_end > d->t))
         return braun__fail(d, BRAUN_ERR_TIME, "t_end", -1, -1, (double)t_end, (double)d->t);
     const braun_tableau *tb = braun__tableau(BRAUN_DOPRI5);
     braun_priv *pv = braun__priv(d);
-    const int n = pv->n;
     const double span = (double)(t_end - d->t);
     double h = ctl->h0 > 0 ? (double)ctl->h0 : 1e-3 * span;
     const double hmin = ctl->h_min > 0 ? (double)ctl->h_min : 1e-12 * span;
@@ -76,22 +125,29 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
         }
         if (accepted + rejected >= max_steps)
             return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "adaptive", -1, -1, (double)max_steps, (double)d->t);
+        /* The step in working precision, and the time it lands on: a step
+         * that cannot advance t (or not by about h) is a status, not a loop
+         * of rejections. */
+        const braun_real t_new = last ? t_end : (braun_real)((double)d->t + h);
+        st = braun__time_step_ok(d, d->t, t_new, (braun_real)h, last);
+        if (st) return st;
+        const braun_real hr = t_new - d->t;
         braun__load_state(d);
         /* Always per step: with a varying h the literal Δ = Φ/h changes
          * meaning from one trial step to the next and the error test, which
          * would see the 1/h terms, rejects without end. */
-        st = braun__rk_attempt(d, tb, (braun_real)h, 0, pv->y1, pv->yerr);
+        st = braun__rk_attempt(d, tb, hr, 0, pv->y1, pv->yerr);
         double err;
         if (st == BRAUN_ERR_CALLBACK_RECOVERABLE || st == BRAUN_ERR_DIVERGED) {
             err = 1e10; /* retry smaller, as SUNDIALS does for recoverable failures */
         } else if (st) {
+            if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
             return st;
         } else {
-            project_error_tangent(d);
-            err = error_norm(2 * n, pv->y0, pv->y1, pv->yerr, ctl->rtol, ctl->atol);
+            err = error_norm(d, hr, ctl->rtol, ctl->atol);
         }
         if (err <= 1) {
-            braun__commit(d, pv->y1, last ? t_end : (braun_real)((double)d->t + h));
+            braun__commit(d, pv->y1, t_new);
             d->error.status = BRAUN_OK;
             accepted++;
             if (out && ((every > 0 && accepted % every == 0) || d->t >= t_end) &&

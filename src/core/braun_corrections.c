@@ -6,6 +6,34 @@
 #include "braun_internal.h"
 
 /* ================================================================ */
+/* The accuracy guard (braun.h, options.guard) on the residuals this step's
+ * start has computed: the state the last step left. A residual above both
+ * its bound and its size at braun_set_state stops the run. */
+static int guard_fails(braun_data *d, braun_real r2, braun_real scale, braun_real r0,
+                       const char *what)
+{
+    const braun_real g = d->model->opt.guard > 0 ? d->model->opt.guard : BRAUN_R(1e-3);
+    braun_real bound = g * scale;
+    if (r0 > bound) bound = r0;
+    if (r2 <= bound * bound) return BRAUN_OK;
+    return braun__fail(d, BRAUN_ERR_ACCURACY, what, -1, -1, (double)braun_sqrt(r2),
+                       (double)braun__priv(d)->at.t);
+}
+
+static int guard_rows(braun_data *d, unsigned corr)
+{
+    braun_priv *pv = braun__priv(d);
+    int st = BRAUN_OK;
+    if ((corr & BRAUN_CORRECT_POSITION) && pv->m > 0)
+        st = guard_fails(d, braun_dot(pv->m, pv->phi, pv->phi), d->guard.pos, d->guard.pos0,
+                         "accuracy guard: position residual |Phi_q|");
+    if (!st && (corr & BRAUN_CORRECT_VELOCITY) && pv->rows > 0)
+        st = guard_fails(d, braun_dot(pv->rows, pv->ev, pv->ev), d->guard.vel, d->guard.vel0,
+                         "accuracy guard: velocity residual |[dPhi_q; Phi_v]|");
+    return st;
+}
+
+/* ================================================================ */
 /* Stage position: the ideal impulse of Eq. 16, scaled by h. With
  * Δ_q = Φ_q/h the position correction of one step is
  *   dq = h(q' − v) = R⁻¹C_q⁺(h(b_q − A_q v) − Φ_q) = −R⁻¹C_q⁺(Φ_q + hΦ̇_q),
@@ -90,6 +118,20 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
 
     /* Eq. 18 and Eq. 19. */
     const braun_real phi_e = E - d->E0 - pv->at.W;
+    if (pv->guard_on && pv->guard_first) {
+        /* An inconsistent start: the first corrections change the energy
+         * by about (∂E/∂q)·dq + (∂E/∂v)·dv + ½|R dv|², which the energy law
+         * (E0 taken at the start) then sees as its error: allowed, twice. */
+        braun__mul_r(pv, pv->dv, pv->tmp);
+        const braun_real e0 = braun_fabs(braun_dot(n, pv->dEdq, pv->dq)) +
+                              braun_fabs(braun_dot(n, pv->dEdv, pv->dv)) +
+                              BRAUN_R(0.5) * braun_dot(n, pv->tmp, pv->tmp);
+        d->guard.energy0 = 2 * e0;
+    } else if (pv->guard_on) {
+        st = guard_fails(d, phi_e * phi_e, d->guard.energy, d->guard.energy0,
+                         "accuracy guard: energy residual |Phi_e|");
+        if (st) return st;
+    }
     const braun_real b_e = -dEdt - braun_dot(n, pv->dEdq, v) + pv->Edot;
     /* h·(b_ev − A_ev a − Δ_ev) of Eq. 20, written with the ideal
      * acceleration and the velocity correction dv of this step (0 when off):
@@ -118,18 +160,80 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
 
 /* ================================================================ */
 /* Composition. */
-int braun__corrections(braun_data *d, const braun_real *vdot)
+/* Row i of the Jacobian, in absolute value, times s (compressed or dense). */
+static braun_real row_abs_dot(const braun_priv *pv, int i, const braun_real *s)
+{
+    braun_real sum = 0;
+    if (pv->sp) {
+        for (int k = pv->sp->row_ptr[i]; k < pv->sp->row_ptr[i + 1]; k++)
+            sum += braun_fabs(pv->Avals[k]) * s[pv->sp->col[k]];
+        return sum;
+    }
+    const braun_real *a = pv->A + (size_t)i * (size_t)pv->n;
+    for (int j = 0; j < pv->n; j++) sum += braun_fabs(a[j]) * s[j];
+    return sum;
+}
+
+/* The accuracy guard's scales (braun.h, braun_data.guard), from the forward
+ * pass at the state braun_set_state gave: A, the residuals, ã. */
+void braun__guard_scales(braun_data *d, const braun_real *vdot)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n, m = pv->m, rows = pv->rows;
+    const braun_real *q = pv->at.q, *v = pv->at.v;
+    braun_real *sq = pv->ce, *sv = pv->tmp, *a = pv->dEdq;
+    braun_real L = BRAUN_R(1e-6), V = 0, amax = 0;
+    (void)vdot;
+    for (int j = 0; j < n; j++) {
+        if (braun_fabs(q[j]) > L) L = braun_fabs(q[j]);
+        if (braun_fabs(v[j]) > V) V = braun_fabs(v[j]);
+    }
+    /* a = M⁻¹Q = R⁻¹ã: the unconstrained acceleration (gravity, springs). */
+    braun__solve_r(pv, pv->atil, a);
+    for (int j = 0; j < n; j++)
+        if (braun_fabs(a[j]) > amax) amax = braun_fabs(a[j]);
+    if (braun_sqrt(L * amax) > V) V = braun_sqrt(L * amax);
+    for (int j = 0; j < n; j++) {
+        sq[j] = braun_fabs(q[j]) > L ? braun_fabs(q[j]) : L;
+        sv[j] = braun_fabs(v[j]) > V ? braun_fabs(v[j]) : V;
+    }
+    braun_real pos = 0, vel = 0;
+    for (int i = 0; i < m; i++) pos += row_abs_dot(pv, i, sq);
+    for (int i = 0; i < rows; i++) vel += row_abs_dot(pv, i, sv);
+    /* ½ s_vᵀ M s_v = ½ ‖R s_v‖². */
+    braun__mul_r(pv, sv, a);
+    const braun_real T = BRAUN_R(0.5) * braun_dot(n, a, a);
+    d->guard.pos = pos;
+    d->guard.vel = vel;
+    d->guard.energy = braun_fabs(d->E0) > T ? braun_fabs(d->E0) : T;
+    if (!(d->guard.energy > 0)) d->guard.energy = BRAUN_R(1e-30);
+    d->guard.pos0 = braun_sqrt(braun_dot(m, pv->phi, pv->phi));
+    d->guard.vel0 = braun_sqrt(braun_dot(rows, pv->ev, pv->ev));
+    d->guard.energy0 = 0; /* Φ_e = 0 where E0 was taken; see stage_energy */
+    pv->guard_pending = 0;
+    pv->guard_first = 1;
+}
+
+int braun__corrections(braun_data *d, const braun_real *vdot, int guard_run)
 {
     braun_priv *pv = braun__priv(d);
     const unsigned corr = d->model->opt.corrections;
     const int n = BRAUN_N(pv->n);
     const int energy = (corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0;
+    const int guard = guard_run && d->model->opt.guard >= 0;
+    pv->guard_on = guard;
     /* The forward pass at this point with the residuals (and Ė for the
      * energy force) is what the corrections work on. */
     int st = braun__need(d, BRAUN_DONE_IDEAL | BRAUN_DONE_RESIDUALS |
                                 (energy ? BRAUN_DONE_POWER : 0u),
                          "corrections before a forward pass with residuals at the point");
     if (st) return st;
+    if (guard) {
+        /* The state braun_set_state gave defines the scales and passes. */
+        if (pv->guard_pending) braun__guard_scales(d, vdot);
+        else st = guard_rows(d, corr);
+        if (st) return st;
+    }
     /* A stage that runs writes all of its increment; one that is off leaves
      * it zero. */
     if (pv->rows > 0 && pv->m > 0 && (corr & BRAUN_CORRECT_POSITION)) st = stage_position(d);
@@ -137,5 +241,6 @@ int braun__corrections(braun_data *d, const braun_real *vdot)
     if (!st && pv->rows > 0 && (corr & BRAUN_CORRECT_VELOCITY)) st = stage_velocity(d);
     else for (int i = 0; i < n; i++) pv->dv[i] = 0;
     if (!st && energy) st = stage_energy(d, vdot);
+    if (guard) pv->guard_first = 0;
     return st;
 }

@@ -65,6 +65,7 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->R_is_constant = 0;
     pv->state_integrated = 0;
     pv->state_set = 0;
+    pv->has_prev = 0;
     pv->done = 0;
     pv->rank[0] = pv->rows;
     pv->rank[1] = s->m;
@@ -125,8 +126,12 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     braun_priv *pv = braun__priv(d);
     d->t = t;
     d->work_in = 0;
+    /* A new run: its statistics start from zero (the constant M's one
+     * factorization, made at braun_data_init, stays counted). */
+    d->stats = (braun_stats){0, 0, 0, pv->R_is_constant ? 1 : 0, 0, 0, 0};
     pv->state_integrated = 0;
     pv->state_set = 1;
+    pv->has_prev = 0;
     d->has_E0 = 0;
     d->E0 = 0;
     if (d->model->sys.energy) {
@@ -136,5 +141,8 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
         d->E0 = E;
         d->has_E0 = 1;
     }
+    /* The guard's scales come from the first step's start (its forward pass
+     * is at this state): no evaluation here. */
+    pv->guard_pending = 1;
     return BRAUN_OK;
 }

@@ -6,6 +6,8 @@
  * Each stage reads the evaluation point pv->at and what the stages before it
  * left, under the names of braun_internal.h. One file, so the compiler sees
  * the whole pass (the stages are called once per evaluation). */
+#include <stdint.h>
+
 #include "braun_internal.h"
 
 /* ================================================================ */
@@ -105,6 +107,14 @@ static int stage_constraints(braun_data *d, int with_residuals)
     if (with_residuals) {
         for (int i = 0; i < m; i++) pv->ev[i] = braun__row_dot(pv, i, v) - pv->b[i];
         for (int i = m; i < rows; i++) pv->ev[i] = pv->phi[i];
+        /* A system declared scleronomic has b_q = -∂Φ_q/∂t = 0: checked
+         * here, where b_q is computed anyway (the power stage relies on it). */
+        if (s->flags & BRAUN_SCLERONOMIC)
+            for (int i = 0; i < m; i++)
+                if (pv->b[i] != 0)
+                    return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                                       "system declared scleronomic (BRAUN_SCLERONOMIC) but b_q != 0",
+                                       i, -1, (double)pv->b[i], (double)t);
     }
     return BRAUN_OK;
 }
@@ -213,8 +223,10 @@ static int stage_ideal(braun_data *d, int with_residuals, braun_real *vdot)
 /* ================================================================ */
 /* Stage power: the energy input rate Ė of Eq. 18 at the point — the
  * system's power() (dampers, motors, applied forces; BRAUN_ENERGY_INPUT)
- * plus, for rheonomic constraints (BRAUN_CONSTRAINT_WORK), the power of the
- * ideal constraint force Q_c⊥ = Rᵀu: Q_c·v = u·(R v). */
+ * plus the power of the ideal constraint force Q_c⊥ = Rᵀu, Q_c·v = u·(R v),
+ * unless the system is declared scleronomic (its constraints then do no
+ * work). Moving (rheonomic) constraints are accounted for without any
+ * flag: docs/method.md, "Work of moving constraints". */
 
 static int stage_power(braun_data *d)
 {
@@ -227,7 +239,7 @@ static int stage_power(braun_data *d)
         if (!st) st = braun__check_finite(d, 1, &Edot, "power", 0, t);
         if (st) return st;
     }
-    if ((s->flags & BRAUN_CONSTRAINT_WORK) && pv->rows > 0) {
+    if (!(s->flags & BRAUN_SCLERONOMIC) && pv->rows > 0) {
         braun__mul_r(pv, pv->at.v, pv->tmp);
         Edot += braun_dot(pv->n, pv->u, pv->tmp);
     }
@@ -252,8 +264,11 @@ int braun__forward(braun_data *d, unsigned with, braun_real *vdot)
     if (!st) st = stage_ideal(d, res, vdot);
     /* Without energy input and constraint work Ė is 0: no stage to run. */
     if (!st && (with & BRAUN_WITH_POWER)) {
-        if (d->model->sys.flags & (BRAUN_ENERGY_INPUT | BRAUN_CONSTRAINT_WORK)) st = stage_power(d);
-        else pv->Edot = 0;
+        const braun_system *s = &d->model->sys;
+        if ((s->flags & BRAUN_ENERGY_INPUT) || (s->energy && !(s->flags & BRAUN_SCLERONOMIC)))
+            st = stage_power(d);
+        else
+            pv->Edot = 0;
     }
     if (st) return st;
     /* What the corrections may now use at this point. */
@@ -290,6 +305,20 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
     int st = check_call(d, q, v, "braun_eval");
     if (st) return st;
     if (!qdot || !vdot) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_eval (NULL output)", -1, -1, 0, (double)t);
+    /* The stages read q and v to the end while they write vdot, and qdot is
+     * written last from v: outputs that share memory with the inputs (or
+     * each other) are refused rather than computed wrong. */
+    {
+        const uintptr_t bytes = (uintptr_t)d->model->sys.n * sizeof(braun_real);
+        const uintptr_t in[2] = {(uintptr_t)q, (uintptr_t)v};
+        const uintptr_t out[2] = {(uintptr_t)qdot, (uintptr_t)vdot};
+        int overlap = out[0] < out[1] + bytes && out[1] < out[0] + bytes;
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) overlap |= out[i] < in[j] + bytes && in[j] < out[i] + bytes;
+        if (overlap)
+            return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_eval (outputs overlap the inputs)", -1,
+                               -1, 0, (double)t);
+    }
     st = braun__check_options(d);
     if (st) return st;
     const unsigned corr = d->model->opt.corrections;
@@ -306,7 +335,7 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
     if (st) return st;
     for (int i = 0; i < n; i++) qdot[i] = v[i];
     if (!corr) return BRAUN_OK;
-    st = braun__corrections(d, vdot);
+    st = braun__corrections(d, vdot, 0);
     if (st) return st;
     /* Continuous form: the increments are h times the correction terms. */
     for (int i = 0; i < n; i++) {

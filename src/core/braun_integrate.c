@@ -23,7 +23,10 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
     if (ratio > 9.0e18) return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "step count", -1, -1, ratio, t0);
     /* A span that is a whole number of steps up to round-off takes exactly
      * that many; otherwise the last step is shortened to land on t_end. */
-    long steps = (long)ceil(ratio - 1e-9 * ratio);
+    /* (h itself carries the working precision's rounding: a float h makes
+     * the ratio off by ~1e-7 relative) */
+    const double slack = 8.0 * (double)BRAUN_EPS > 1e-9 ? 8.0 * (double)BRAUN_EPS : 1e-9;
+    long steps = (long)ceil(ratio - slack * ratio);
     if (steps < 1) steps = 1;
 
     if (out && out(d, out_user)) return BRAUN_STOPPED;
@@ -31,8 +34,11 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
         /* t_i = t0 + i·h, not a running sum: no drift in t over 10^6 steps. */
         const braun_real t_new = i == steps ? t_end : (braun_real)(t0 + (double)i * (double)h);
         const braun_real hi = t_new - d->t;
+        st = braun__time_step_ok(d, d->t, t_new, h, i == steps);
+        if (st) return st;
         braun__load_state(d);
         st = braun__rk_attempt(d, tb, hi, per_stage, pv->y1, NULL);
+        if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
         if (st) return st;
         braun__commit(d, pv->y1, t_new);
         if (out && every > 0 && (i % every == 0 || i == steps) && out(d, out_user))

@@ -104,6 +104,16 @@ typedef struct braun_priv {
     braun_real *ep;       /* m: −(Φ_q + h Φ̇_q), the position target of Eq. 16 */
     braun_real *dEdq, *dEdv, *ce, *tmp; /* n each: energy stage scratch */
     braun_real *dq, *dv;  /* n each: h × the correction terms (Eqs. 16, 17, 20) */
+    braun_real *phi0, *ev0; /* rows each: Φ and [Φ̇_q; Φ_v] at the step's start (adaptive) */
+    /* The last state before the current one ([q; v; ∫Ė] and t), for the
+     * accuracy guard: a run it stops goes back to the last state that passed. */
+    braun_real *yprev;
+    braun_real tprev;
+    int has_prev;
+    int guard_pending;    /* the guard's scales are still to be measured */
+    int guard_first;      /* this step measured them (its own residuals pass) */
+    int guard_on;         /* the corrections being computed belong to a run */
+    braun_real *enorm;    /* rows: the normal error of an adaptive step */
     /* Integrator scratch: states of length N = 2n + 1 ([q; v; ∫Ė]). */
     braun_real *y0, *ys, *y1, *yerr;
     braun_real *k[BRAUN_MAX_STAGES];
@@ -127,6 +137,19 @@ static inline int braun__callback(braun_data *d, int rc, const char *where, brau
 /* Check n outputs of a callback for NaN/Inf. */
 int braun__check_finite(braun_data *d, int n, const braun_real *x,
                         const char *where, int cols, braun_real t);
+/* A step from t to t_new was asked as h: refuse one that does not advance
+ * time, or advances it by more than 10 % off h (the precision cannot
+ * resolve t + h: the float horizon, docs/robustness.md). `last`: the final
+ * step of a driver, which may be shorter. */
+static inline int braun__time_step_ok(braun_data *d, braun_real t, braun_real t_new, braun_real h,
+                                      int last)
+{
+    const braun_real adv = t_new - t;
+    if (adv > 0 && (last ? adv <= h + h / 10 : (adv - h <= h / 10 && h - adv <= h / 10)))
+        return BRAUN_OK;
+    return braun__fail(d, BRAUN_ERR_TIME_RESOLUTION, "time (t + h)", -1, -1, (double)h, (double)t);
+}
+
 /* The options of d's model are valid (braun_options.c). */
 int braun__check_options(braun_data *d);
 /* The data block is usable (initialised, state set): BRAUN_OK or an error
@@ -151,6 +174,13 @@ static inline void braun__at(braun_priv *pv, braun_real t, const braun_real *q,
  * (position, velocity, energy) — so the compiler sees each pass whole.
  * Each returns BRAUN_OK or an error recorded in d->error. */
 
+/* The accuracy guard's scales from a forward pass with residuals at the
+ * state braun_set_state gave (the first step's start); vdot its output. */
+void braun__guard_scales(braun_data *d, const braun_real *vdot);
+/* A driver's step failed with BRAUN_ERR_ACCURACY: back to the last state
+ * that passed (one step back), statistics with it. */
+void braun__guard_rollback(braun_data *d);
+
 /* Stage mass alone (braun_data_init factors a constant M with it). */
 int braun__stage_mass(braun_data *d);
 
@@ -165,7 +195,7 @@ int braun__forward(braun_data *d, unsigned with, braun_real *vdot);
 /* h × the correction terms at pv->at into pv->dq, pv->dv (zero for the
  * corrections that are off): position → velocity → energy. After
  * braun__forward(d, BRAUN_WITH_RESIDUALS | BRAUN_WITH_POWER, vdot). */
-int braun__corrections(braun_data *d, const braun_real *vdot);
+int braun__corrections(braun_data *d, const braun_real *vdot, int guard);
 
 /* A stage's inputs are done at this point, else BRAUN_ERR_ARGUMENT. */
 static inline int braun__need(braun_data *d, unsigned bits, const char *stage)

@@ -55,7 +55,11 @@ typedef struct shape {
     X(y1, (s).N)                                                                     \
     X(yerr, (s).N)                                                                   \
     X(dq, (s).n)                                                                     \
-    X(dv, (s).n)
+    X(dv, (s).n)                                                                     \
+    X(phi0, (s).rows)                                                                \
+    X(ev0, (s).rows)                                                                 \
+    X(enorm, (s).rows)                                                               \
+    X(yprev, (s).N)
 
 static shape shape_of(const braun_model *model, const braun_linsolver *ls)
 {

@@ -54,7 +54,11 @@ int braun_model_init(braun_model *model, const braun_system *sys)
     if (sys->p > 0 && !sys->nonholonomic) return BRAUN_ERR_MISSING_CALLBACK;
     if ((sys->flags & BRAUN_ENERGY_INPUT) && !sys->power)
         return BRAUN_ERR_MISSING_CALLBACK;
-    if (sys->flags & ~(unsigned)(BRAUN_MASS_CONSTANT | BRAUN_ENERGY_INPUT | BRAUN_CONSTRAINT_WORK))
+    if (sys->flags & ~(unsigned)(BRAUN_MASS_CONSTANT | BRAUN_ENERGY_INPUT | BRAUN_CONSTRAINT_WORK |
+                                 BRAUN_SCLERONOMIC))
+        return BRAUN_ERR_ARGUMENT;
+    /* Contradictory: constraints that do work and do none. */
+    if ((sys->flags & BRAUN_CONSTRAINT_WORK) && (sys->flags & BRAUN_SCLERONOMIC))
         return BRAUN_ERR_ARGUMENT;
     model->sys = *sys;
     model->opt.corrections = BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY |
@@ -64,6 +68,7 @@ int braun_model_init(braun_model *model, const braun_system *sys)
     model->opt.energy_max_rel = 0;
     model->opt.symmetry_tol = 0;
     model->opt.inconsistency_tol = 0;
+    model->opt.guard = 0;
     model->opt.linsolver = NULL;
     return BRAUN_OK;
 }

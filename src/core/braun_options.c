@@ -31,6 +31,8 @@ int braun__check_options(braun_data *d)
     if (bad_real(o->inconsistency_tol))
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.inconsistency_tol", -1, -1,
                            (double)o->inconsistency_tol, t);
+    if (bad_real(o->guard))
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.guard", -1, -1, (double)o->guard, t);
     if ((o->corrections & BRAUN_CORRECT_ENERGY) && !d->model->sys.energy)
         return braun__fail(d, BRAUN_ERR_NO_ENERGY_LAW, "options", -1, -1, 0, t);
 #ifdef BRAUN_NO_LINSOLVER

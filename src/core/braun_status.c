@@ -21,6 +21,8 @@ const char *braun_status_str(int status)
     case BRAUN_ERR_TOO_MANY_STEPS: return "BRAUN_ERR_TOO_MANY_STEPS: step limit reached before t_end";
     case BRAUN_ERR_MISSING_CALLBACK: return "BRAUN_ERR_MISSING_CALLBACK: a callback the sizes require is NULL";
     case BRAUN_ERR_INCONSISTENT: return "BRAUN_ERR_INCONSISTENT: dependent constraint rows disagree: the constraints have no solution here";
+    case BRAUN_ERR_TIME_RESOLUTION: return "BRAUN_ERR_TIME_RESOLUTION: the step cannot advance time in this precision (t + h rounds to t or far from it)";
+    case BRAUN_ERR_ACCURACY: return "BRAUN_ERR_ACCURACY: the residuals exceed the accuracy guard";
     case BRAUN_ERR_NO_ENERGY_LAW: return "BRAUN_ERR_NO_ENERGY_LAW: energy correction requested but the system has no energy law";
     default: return "BRAUN_UNKNOWN: unknown status code";
     }

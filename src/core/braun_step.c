@@ -55,17 +55,25 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         const braun_real ts = d->t + (braun_real)tb->c[s] * h;
         braun_real *k = pv->k[s];
         const int wants_corr = corr && (per_stage || s == 0);
+        /* An adaptive step measures its normal error from the residuals at
+         * its start and at its last stage (the end of the ideal flow). */
+        const int wants_res = wants_corr || (yerr && (s == 0 || s == tb->stages - 1));
         /* Stage s of the method: the ideal flow at (ts, ys), its energy input,
          * and — at the step's start, or at every stage per stage — the
          * corrections, at the same point. */
         braun__at(pv, ts, ys, ys + n, ys[2 * n], h);
         st = diverged_if_integrated(
-            d, s, braun__forward(d, BRAUN_WITH_POWER | (wants_corr ? BRAUN_WITH_RESIDUALS : 0u), k + n));
+            d, s, braun__forward(d, BRAUN_WITH_POWER | (wants_res ? BRAUN_WITH_RESIDUALS : 0u), k + n));
         if (st) return st;
+        if (yerr && s == 0)
+            for (int i = 0; i < pv->rows; i++) {
+                pv->phi0[i] = pv->phi[i];
+                pv->ev0[i] = pv->ev[i];
+            }
         for (int i = 0; i < n; i++) k[i] = ys[n + i];
         k[2 * n] = pv->Edot;
         if (wants_corr) {
-            st = diverged_if_integrated(d, s, braun__corrections(d, k + n));
+            st = diverged_if_integrated(d, s, braun__corrections(d, k + n, s == 0));
             if (st) return st;
             if (per_stage) /* the literal Eqs. 16-17 with Δ = Φ/h */
                 for (int i = 0; i < n; i++) {
@@ -102,6 +110,21 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     return BRAUN_OK;
 }
 
+void braun__guard_rollback(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = BRAUN_N(pv->n);
+    if (!pv->has_prev) return;
+    for (int i = 0; i < n; i++) {
+        d->q[i] = pv->yprev[i];
+        d->v[i] = pv->yprev[n + i];
+    }
+    d->work_in = pv->yprev[2 * n];
+    d->t = pv->tprev;
+    d->stats.steps--;
+    pv->has_prev = 0;
+}
+
 void braun__load_state(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
@@ -115,7 +138,14 @@ void braun__load_state(braun_data *d)
 
 void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new)
 {
-    const int n = BRAUN_N(braun__priv(d)->n);
+    braun_priv *pv = braun__priv(d);
+    const int n = BRAUN_N(pv->n);
+    /* The state being left stays as the guard's way back: y0 holds it. */
+    braun_real *keep = pv->y0;
+    pv->y0 = pv->yprev;
+    pv->yprev = keep;
+    pv->tprev = d->t;
+    pv->has_prev = 1;
     for (int i = 0; i < n; i++) {
         d->q[i] = y1[i];
         d->v[i] = y1[n + i];
@@ -136,10 +166,14 @@ int braun_step(braun_data *d, braun_method method, braun_real h)
     if (!(h > 0) || !braun_is_finite(h))
         return braun__fail(d, BRAUN_ERR_STEP, "step size", -1, -1, (double)h, (double)d->t);
     braun_priv *pv = braun__priv(d);
-    braun__load_state(d);
-    st = braun__rk_attempt(d, tb, h, d->model->opt.discretization == BRAUN_PER_STAGE, pv->y1,
-                           NULL);
+    const braun_real t_new = d->t + h;
+    st = braun__time_step_ok(d, d->t, t_new, h, 0);
     if (st) return st;
-    braun__commit(d, pv->y1, d->t + h);
+    braun__load_state(d);
+    st = braun__rk_attempt(d, tb, t_new - d->t, d->model->opt.discretization == BRAUN_PER_STAGE,
+                           pv->y1, NULL);
+    if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
+    if (st) return st;
+    braun__commit(d, pv->y1, t_new);
     return BRAUN_OK;
 }

@@ -19,8 +19,9 @@ typedef struct braun_tableau {
 const braun_tableau *braun__tableau(braun_method method);
 
 /* Compute one step of size h from the start vector pv->y0 = [q; v; ∫Ė] at
- * d->t into y1 (and the embedded error estimate into yerr when non-NULL),
- * without changing the state. per_stage: corrections at every stage with
+ * d->t into y1 (and the embedded error estimate into yerr when non-NULL:
+ * then the residuals at the start are kept in pv->phi0, pv->ev0 and those
+ * at the last stage are left in pv->phi, pv->ev), without changing the state. per_stage: corrections at every stage with
  * Δ = Φ/h (BRAUN_PER_STAGE) instead of once per step. (src/braun_step.c) */
 int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
                       int per_stage, braun_real *y1, braun_real *yerr);

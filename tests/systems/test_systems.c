@@ -167,19 +167,12 @@ static int bead_energy(braun_real t, const braun_real *q, const braun_real *v, b
     return 0;
 }
 
-/* Power of the rod's (Coriolis) force: 2 ω² r ṙ. */
-static int bead_power(braun_real t, const braun_real *q, const braun_real *v,
-                      braun_real *Edot, void *u)
-{
-    const double w = *(const double *)u, s = sin(w * t), c = cos(w * t);
-    *Edot = 2 * w * w * (c * q[0] + s * q[1]) * (c * v[0] + s * v[1]);
-    return 0;
-}
-
+/* No power callback: the rod's force is the constraint force, whose power
+ * (2 ω² r ṙ) the core adds to Ė itself. */
 braun_system bead_system(double *omega)
 {
-    braun_system s = {2, 1, 0, BRAUN_MASS_CONSTANT | BRAUN_ENERGY_INPUT, unit_mass2,
-                      zero_forces2, bead_hol, NULL, bead_energy, bead_power, omega, NULL};
+    braun_system s = {2, 1, 0, BRAUN_MASS_CONSTANT, unit_mass2,
+                      zero_forces2, bead_hol, NULL, bead_energy, NULL, omega, NULL};
     return s;
 }
 

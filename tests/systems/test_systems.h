@@ -4,7 +4,8 @@
  *   knife     — knife edge / sleigh at its centre of mass (nonholonomic);
  *               exact: constant turn rate and speed along a circle;
  *   bead      — bead on a rod spinning at ω (rheonomic); exact:
- *               r = r0 cosh ωt; the rod does work Ė = 2 ω² r ṙ;
+ *               r = r0 cosh ωt; the rod does work Ė = 2 ω² r ṙ, which the
+ *               core accounts for (no power callback);
  *   generic   — 4 coordinates, full constant M, 2 holonomic + 1 nonholonomic
  *               rows: for the geometric invariants. */
 #ifndef TEST_SYSTEMS_H

@@ -202,7 +202,7 @@ static int power(braun_real t, const braun_real *q, const braun_real *v, braun_r
     return 0;
 }
 
-const braun_system braun_andrews_system = {7,      6,         0,    BRAUN_ENERGY_INPUT, mass,
+const braun_system braun_andrews_system = {7, 6, 0, BRAUN_ENERGY_INPUT | BRAUN_SCLERONOMIC, mass,
                                            forces, holonomic, NULL, energy,             power,
                                            NULL,   NULL};
 

@@ -148,7 +148,7 @@ static const braun_real v0[6] = {BRAUN_R(1.0), BRAUN_R(0.0), BRAUN_R(1.0),
 const braun_builtin braun_builtin_four_bar = {
     "four-bar",
     "double four-bar linkage of Sec. 4.2: 6 joint coordinates, 5 constraints",
-    {6, 5, 0, BRAUN_MASS_CONSTANT, mass, forces, holonomic, NULL, energy, NULL,
+    {6, 5, 0, BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC, mass, forces, holonomic, NULL, energy, NULL,
      /* Callbacks only read the parameters; void * has no const. */
      (void *)&params, NULL},
     q0,

@@ -82,7 +82,7 @@ static const braun_real v0[2] = {BRAUN_R(0.0), BRAUN_R(0.0)};
 const braun_builtin braun_builtin_pendulum = {
     "pendulum",
     "point mass on a rigid massless rod: 2 coordinates, 1 constraint",
-    {2, 1, 0, BRAUN_MASS_CONSTANT, mass, forces, holonomic, NULL, energy, NULL,
+    {2, 1, 0, BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC, mass, forces, holonomic, NULL, energy, NULL,
      /* Callbacks only read the parameters; void * has no const. */
      (void *)&params, NULL},
     q0,

@@ -146,7 +146,7 @@ static const braun_real v0[6] = {0};
 const braun_builtin braun_builtin_slider_crank = {
     "slider-crank",
     "slider-crank of Sec. 4.1: 6 absolute coordinates, 5 constraints (Eq. 22)",
-    {6, 5, 0, BRAUN_MASS_CONSTANT, mass, forces, holonomic, NULL, energy, NULL,
+    {6, 5, 0, BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC, mass, forces, holonomic, NULL, energy, NULL,
      /* Callbacks only read the parameters; void * has no const. */
      (void *)&params, NULL},
     q0,

@@ -281,10 +281,11 @@ void braun_scene__system(braun_scene *s, braun_system *sys)
     sys->n = s->n;
     sys->m = s->m;
     sys->p = s->p;
-    /* Driven joints do work through their ideal constraint forces: the core
-     * adds that power to Ė (BRAUN_CONSTRAINT_WORK), so the energy law holds. */
+    /* Driven joints do work through their ideal constraint forces, which the
+     * core adds to Ė unless a system is scleronomic: a scene without drives
+     * says so (the core then skips that work and checks b_q = 0). */
     sys->flags = BRAUN_MASS_CONSTANT | (s->energy_input ? BRAUN_ENERGY_INPUT : 0u) |
-                 (s->driven ? BRAUN_CONSTRAINT_WORK : 0u);
+                 (s->driven ? 0u : BRAUN_SCLERONOMIC);
     sys->mass = braun_scene__mass;
     sys->forces = braun_scene__forces;
     sys->holonomic = s->m > 0 ? braun_scene__holonomic : NULL;

@@ -157,6 +157,28 @@ static void describe(msg *w, const braun_data *d)
     case BRAUN_ERR_NO_ENERGY_LAW:
         put(w, "energy correction requested but the system has no energy law");
         return;
+    case BRAUN_ERR_TIME_RESOLUTION:
+        put(w, "the step h = %.6g cannot advance time here in this precision (t + h rounds to t, "
+               "or more than 10%% away from it: the float horizon)", e->value);
+        break;
+    case BRAUN_ERR_ACCURACY: {
+        /* The bound the guard used (braun.h: options.guard, braun_data.guard). */
+        const double g = d->model && d->model->opt.guard > 0 ? (double)d->model->opt.guard : 1e-3;
+        double scale = 0, r0 = 0;
+        const char *what = "residual";
+        if (where && strstr(where, "position")) {
+            scale = (double)d->guard.pos; r0 = (double)d->guard.pos0; what = "position residual ||Phi_q||";
+        } else if (where && strstr(where, "velocity")) {
+            scale = (double)d->guard.vel; r0 = (double)d->guard.vel0;
+            what = "velocity residual ||[dPhi_q/dt; Phi_v]||";
+        } else if (where && strstr(where, "energy")) {
+            scale = (double)d->guard.energy; r0 = (double)d->guard.energy0; what = "energy residual |Phi_e|";
+        }
+        const double bound = g * scale > r0 ? g * scale : r0;
+        put(w, "%s = %.3g exceeds the accuracy guard %.3g (guard %.3g x scale %.3g); the state is "
+               "the last step that passed", what, e->value, bound, g, scale);
+        break;
+    }
     case BRAUN_ERR_INCONSISTENT:
         put(w, "dependent %s disagree by %.3g: the constraints have no solution here",
             where ? where : "constraints", e->value);

@@ -632,7 +632,8 @@ static int read_effect(sj_reader *r, json_t *obj, int k)
 static int read_corrections(sj_reader *r, json_t *root)
 {
     /* Every scene has an energy law: driven joints add the work of their
-     * constraint forces through BRAUN_CONSTRAINT_WORK. */
+     * constraint forces, which the core adds to Ė (a scene without drives
+     * is declared scleronomic). */
     const unsigned all = BRAUN_CORRECT_ALL;
     json_t *v = json_object_get(root, "corrections");
     r->out->corrections = all;
