@@ -81,11 +81,38 @@ void braun_scene_free(braun_scene_file *f);
  * (c_name "&symbol") is declared extern in the file, and the program links
  * its definition. Returns -1 for an element whose class has no c_name.
  */
+/* Everything gen-c writes from the scene file — names, the description,
+ * the source path — goes into comments as printable ASCII that cannot end
+ * or nest a comment, form a trigraph or splice a line (other bytes as
+ * \xNN, UTF-8 as \uXXXX; "*\/", "/\*", "?\?"; at most 160 bytes of each
+ * text, then "..."). The only identifiers it writes are the symbol's
+ * (checked here) and the classes' c_names (a C identifier or
+ * "&identifier", checked before anything is written). It writes no string
+ * literals. */
+#define BRAUN_GEN_C_SYMBOL_MAX 48 /* + "_corrections": within C99's 63 */
+#define BRAUN_GEN_C_SYMBOL_MAX_STR "48"
+
+/* 0 if symbol can prefix the generated names: an ASCII C identifier of at
+ * most BRAUN_GEN_C_SYMBOL_MAX characters, not starting with '_' or
+ * 'braun_' (any case). Else -1 and why ("the symbol must ...") in why. */
+int braun_gen_c_check_symbol(const char *symbol, char *why, size_t size);
+
+/* braun_gen_c_write_ex's failures. */
+enum {
+    BRAUN_GEN_C_INVALID = -1, /* the symbol or a class's c_name; nothing written */
+    BRAUN_GEN_C_WRITE = -2    /* the stream failed (errno from the stream) */
+};
+
 /* Write the C source of a loaded scene. symbol: a C identifier prefix;
  * source: the file it came from (for the header comment). Returns 0, or -1
- * if the symbol is not an identifier or writing failed. */
+ * if the symbol or a class cannot be written or writing failed. */
 int braun_gen_c_write(FILE *out, const braun_scene_file *sf, const char *symbol,
                       const char *source);
+
+/* The same with the reason of a failure in err (one line): 0,
+ * BRAUN_GEN_C_INVALID (nothing was written) or BRAUN_GEN_C_WRITE. */
+int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *symbol,
+                         const char *source, char *err, size_t err_size);
 
 #ifdef __cplusplus
 }

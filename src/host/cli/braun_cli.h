@@ -19,6 +19,44 @@ int braun_cli_error(const char *fmt, ...)
 #endif
     ;
 
+/* ---------------------------------------------------------- files (cli_files.c) */
+/* A file's identity (device, inode) when it is a regular file. */
+typedef struct braun_cli_id {
+    int valid;                    /* a regular file */
+    unsigned long long dev, ino;
+} braun_cli_id;
+
+/* Identity of the file at path (stat), invalid if none or not regular. */
+void braun_cli_path_id(const char *path, braun_cli_id *id);
+/* Both regular and the same file. */
+int braun_cli_same_file(const braun_cli_id *a, const braun_cli_id *b);
+/* "a directory", "a FIFO", ... for an st_mode. */
+const char *braun_cli_file_kind(unsigned long mode);
+
+/* An output of a command: "-" is stdout; otherwise a regular file (made if
+ * missing) or a character device (/dev/null). Opened without blocking and
+ * without truncating; FIFOs, sockets, directories and block devices are
+ * refused. what names the option in messages ("--out"). */
+typedef struct braun_cli_output {
+    FILE *f;
+    const char *path, *what;
+    int created;                  /* made by this command: removed if abandoned */
+    braun_cli_id id;
+} braun_cli_output;
+
+/* 0, or BRAUN_CLI_USAGE after one message. */
+int braun_cli_output_open(braun_cli_output *o, const char *path, const char *what);
+/* Refuse (BRAUN_CLI_USAGE, one message) two outputs that are one file, or
+ * an output that is the input (either output may be NULL or unopened). */
+int braun_cli_output_distinct(braun_cli_output *a, braun_cli_output *b,
+                              const braun_cli_id *input, const char *input_path);
+/* After the checks: truncate a regular file. 0 or BRAUN_CLI_USAGE. */
+int braun_cli_output_begin(braun_cli_output *o);
+/* Flush and close; 1 after "error writing 'FILE': reason", else 0. */
+int braun_cli_output_close(braun_cli_output *o);
+/* Close without writing; remove the file if this command made it. */
+void braun_cli_output_abandon(braun_cli_output *o);
+
 /* ---------------------------------------------------------- usage (cli_usage.c) */
 void braun_cli_usage(FILE *f);
 
@@ -68,6 +106,7 @@ typedef struct braun_cli_target {
     const braun_builtin *reference; /* minimal-coordinate reference (same q), or NULL */
     unsigned corrections;         /* declared default corrections */
     braun_scene_file *scene;      /* owned when loaded from a file */
+    braun_cli_id id;              /* the scene file's identity (outputs must differ) */
 } braun_cli_target;
 
 /* The one place that maps MODEL to a target: a built-in name (braun list)

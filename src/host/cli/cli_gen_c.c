@@ -2,22 +2,24 @@
  * that defines it statically (braun_gen_c_write, braun_scene.h) — for
  * firmware: no parser, no file, no allocation on the target. The symbol
  * defaults to the file's base name with '-' and '.' turned into '_'. */
-#include <ctype.h>
 #include <errno.h>
 #include <string.h>
 
 #include "braun_cli.h"
 #include "braun_scene_file.h"
 
+static int ascii_alpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+
+/* At most size - 1 characters: a long file name gives a truncated symbol. */
 static void symbol_from_path(const char *path, char *buf, size_t size)
 {
     const char *base = strrchr(path, '/');
     base = base ? base + 1 : path;
     size_t k = 0;
-    if (!isalpha((unsigned char)base[0]) && size > 1) buf[k++] = 's';
+    if (!ascii_alpha(base[0]) && size > 1) buf[k++] = 's';
     for (const char *c = base; *c && k + 1 < size; c++) {
         if (strcmp(c, ".json") == 0) break;
-        buf[k++] = isalnum((unsigned char)*c) ? *c : '_';
+        buf[k++] = ascii_alpha(*c) || (*c >= '0' && *c <= '9') ? *c : '_';
     }
     buf[k] = '\0';
 }
@@ -41,23 +43,44 @@ int braun_cli_gen_c(int argc, char **argv)
         }
     }
     if (!scene) return braun_cli_error("gen-c needs a scene file");
-    char sym[128];
+    char sym[BRAUN_GEN_C_SYMBOL_MAX + 1], why[256];
     if (!symbol) {
         symbol_from_path(scene, sym, sizeof sym);
         symbol = sym;
+        if (braun_gen_c_check_symbol(symbol, why, sizeof why))
+            return braun_cli_error("gen-c: no symbol from the file name '%s' (%s): give --symbol "
+                                   "NAME", scene, why);
+    } else if (braun_gen_c_check_symbol(symbol, why, sizeof why)) {
+        return braun_cli_error("gen-c --symbol: %s", why);
     }
     char err[512];
     braun_scene_file *sf = braun_scene_load(scene, err, sizeof err);
     if (!sf) return braun_cli_error("%s", err);
-    FILE *f = stdout;
-    if (out && strcmp(out, "-") != 0 && !(f = fopen(out, "w"))) {
+    braun_cli_id input;
+    braun_cli_path_id(scene, &input);
+    braun_cli_output o;
+    int rc = braun_cli_output_open(&o, out ? out : "-", "gen-c -o");
+    if (!rc && (rc = braun_cli_output_distinct(&o, NULL, &input, scene)) == 0)
+        rc = braun_cli_output_begin(&o);
+    if (rc) {
+        braun_cli_output_abandon(&o);
         braun_scene_free(sf);
-        return braun_cli_error("cannot open '%s' for writing: %s", out, strerror(errno));
+        return rc;
     }
-    int rc = braun_gen_c_write(f, sf, symbol, scene);
-    if (fflush(f) != 0 || ferror(f)) rc = -1;
-    if (f != stdout && fclose(f) != 0) rc = -1;
+    errno = 0;
+    const int st = braun_gen_c_write_ex(o.f, sf, symbol, scene, err, sizeof err);
     braun_scene_free(sf);
-    if (rc) return braun_cli_error("cannot write C for '%s' (is '%s' a C identifier?)", scene, symbol);
-    return 0;
+    if (st == BRAUN_GEN_C_INVALID) {
+        braun_cli_output_abandon(&o);
+        return braun_cli_error("gen-c: '%s': %s", scene, err);
+    }
+    /* A write error shows up here (or in the close: a full disk). */
+    if (st) {
+        const int e = errno;
+        braun_cli_output_abandon(&o);
+        braun_cli_error("error writing '%s'%s%s", out && strcmp(out, "-") ? out : "stdout",
+                        e ? ": " : "", e ? strerror(e) : "");
+        return BRAUN_CLI_FAILED;
+    }
+    return braun_cli_output_close(&o) ? BRAUN_CLI_FAILED : 0;
 }

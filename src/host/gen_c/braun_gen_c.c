@@ -92,10 +92,72 @@ static int open_array(FILE *f, const char *type, const char *sym, const char *na
     return 1;
 }
 
+/* Text from the scene file (names, the description, the source path) in a
+ * comment: printable ASCII only, and nothing that could end the comment,
+ * open a nested one, form a trigraph or splice a line. Other bytes become
+ * \xNN, valid UTF-8 sequences \uXXXX or \UXXXXXXXX; a '*' before '/', a
+ * '/' before '*' and a '?' before '?' are followed by a backslash ("*\/",
+ * "/\*", "?\?"); a backslash is \x5c. At most GEN_C_TEXT_MAX bytes of
+ * the text are written (then "..."), so a line stays well under C99's
+ * 4095 characters (each byte gives at most 10). */
+#define GEN_C_TEXT_MAX 160
+
+/* Length of the valid UTF-8 sequence at s (2..4) and its code point, or 0. */
+static int utf8_seq(const unsigned char *s, unsigned long *cp)
+{
+    int len;
+    unsigned long c;
+    if (s[0] >= 0xC2 && s[0] <= 0xDF) len = 2, c = s[0] & 0x1Fu;
+    else if (s[0] >= 0xE0 && s[0] <= 0xEF) len = 3, c = s[0] & 0x0Fu;
+    else if (s[0] >= 0xF0 && s[0] <= 0xF4) len = 4, c = s[0] & 0x07u;
+    else return 0;
+    for (int i = 1; i < len; i++) {
+        if ((s[i] & 0xC0) != 0x80) return 0;
+        c = (c << 6) | (s[i] & 0x3Fu);
+    }
+    /* Overlong forms, surrogates and code points past U+10FFFF are invalid. */
+    if ((len == 3 && c < 0x800) || (len == 4 && (c < 0x10000 || c > 0x10FFFF)) ||
+        (c >= 0xD800 && c <= 0xDFFF))
+        return 0;
+    *cp = c;
+    return len;
+}
+
+static void comment_text(FILE *f, const char *text)
+{
+    const unsigned char *s = (const unsigned char *)(text ? text : "");
+    size_t i = 0;
+    while (s[i] && i < GEN_C_TEXT_MAX) {
+        const unsigned char c = s[i];
+        unsigned long cp;
+        int len;
+        if (c >= 0x20 && c < 0x7F && c != '\\') {
+            fputc(c, f);
+            if ((c == '*' && s[i + 1] == '/') || (c == '/' && s[i + 1] == '*') ||
+                (c == '?' && s[i + 1] == '?'))
+                fputc('\\', f);
+            i++;
+        } else if (c >= 0x80 && (len = utf8_seq(s + i, &cp)) > 0) {
+            if (i + (size_t)len > GEN_C_TEXT_MAX) break;
+            if (cp > 0xFFFF) fprintf(f, "\\U%08lX", cp);
+            else fprintf(f, "\\u%04lX", cp);
+            i += (size_t)len;
+        } else {
+            fprintf(f, "\\x%02X", (unsigned)c);
+            i++;
+        }
+    }
+    if (s[i]) fputs("...", f);
+}
+
 static void item_end(FILE *f, const char *const *names, int i)
 {
     fputs("},", f);
-    if (names && names[i] && names[i][0]) fprintf(f, " /* %s */", names[i]);
+    if (names && names[i] && names[i][0]) {
+        fputs(" /* ", f);
+        comment_text(f, names[i]);
+        fputs(" */", f);
+    }
     fputc('\n', f);
 }
 
@@ -116,24 +178,115 @@ static int identifier(const char *s)
     return 1;
 }
 
-int braun_gen_c_write(FILE *out, const braun_scene_file *sf, const char *sym, const char *source)
+/* Plain ASCII letters and digits: isalpha may accept more in other locales. */
+static int ascii_identifier(const char *s)
+{
+    for (const char *c = s; *c; c++)
+        if ((unsigned char)*c >= 0x80) return 0;
+    return identifier(s);
+}
+
+int braun_gen_c_check_symbol(const char *symbol, char *why, size_t size)
+{
+    const char *problem = NULL;
+    if (!symbol || !ascii_identifier(symbol))
+        problem = "must be a C identifier (ASCII letters, digits and '_', not starting with a "
+                  "digit)";
+    else if (strlen(symbol) > BRAUN_GEN_C_SYMBOL_MAX)
+        problem = "is longer than " BRAUN_GEN_C_SYMBOL_MAX_STR " characters (C99 guarantees 63 "
+                  "significant ones, and '_corrections' is appended)";
+    else if (symbol[0] == '_')
+        problem = "must not start with '_' (reserved for the implementation)";
+    else if ((symbol[0] | 0x20) == 'b' && (symbol[1] | 0x20) == 'r' &&
+             (symbol[2] | 0x20) == 'a' && (symbol[3] | 0x20) == 'u' &&
+             (symbol[4] | 0x20) == 'n' && (symbol[5] == '\0' || symbol[5] == '_'))
+        problem = "must not start with 'braun_' (libbraun's own names: SYMBOL_build could be "
+                  "one of them)";
+    if (why && size) {
+        why[0] = '\0';
+        if (problem) snprintf(why, size, "the symbol %s", problem);
+    }
+    return problem ? -1 : 0;
+}
+
+/* What gen-c writes for a class: a C identifier (a macro of braun_scene.h)
+ * or "&identifier" (the program's own class, declared extern). */
+static int c_name_ok(const char *c_name)
+{
+    if (!c_name) return 0;
+    const char *id = c_name[0] == '&' ? c_name + 1 : c_name;
+    return ascii_identifier(id) && strlen(id) <= 63;
+}
+
+/* The class of every element has a c_name gen-c can write. */
+static int check_classes(const braun_scene_file *sf, char *err, size_t size)
 {
     const braun_scene *s = &sf->scene;
-    char upper[128];
-    if (!identifier(sym) || strlen(sym) >= sizeof upper) return -1;
-    for (size_t i = 0; i <= strlen(sym); i++) upper[i] = (char)toupper((unsigned char)sym[i]);
-    /* Every element must name its class, and every class what to write. */
-    for (int i = 0; i < s->nbodies; i++)
-        if (!s->bodies[i].kind || !s->bodies[i].kind->c_name) return -1;
-    for (int i = 0; i < s->njoints; i++)
-        if (!s->joints[i].type || !s->joints[i].type->c_name) return -1;
-    for (int i = 0; i < s->neffects; i++)
-        if (!s->effects[i].type || !s->effects[i].type->c_name) return -1;
+    static const char *const kinds[] = {"body", "joint", "effect"};
+    const int counts[] = {s->nbodies, s->njoints, s->neffects};
+    const char *const *names[] = {sf->body_names, sf->joint_names, sf->effect_names};
+    for (int k = 0; k < 3; k++)
+        for (int i = 0; i < counts[k]; i++) {
+            const char *type = NULL, *c_name = NULL;
+            int have = 0;
+            if (k == 0 && s->bodies[i].kind)
+                have = 1, type = s->bodies[i].kind->name, c_name = s->bodies[i].kind->c_name;
+            if (k == 1 && s->joints[i].type)
+                have = 1, type = s->joints[i].type->name, c_name = s->joints[i].type->c_name;
+            if (k == 2 && s->effects[i].type)
+                have = 1, type = s->effects[i].type->name, c_name = s->effects[i].type->c_name;
+            if (have && c_name_ok(c_name)) continue;
+            if (err && size) {
+                char who[96];
+                const char *name = names[k] ? names[k][i] : NULL;
+                if (name) snprintf(who, sizeof who, "%s '%.60s'", kinds[k], name);
+                else snprintf(who, sizeof who, "%s #%d", kinds[k], i + 1);
+                if (!have) snprintf(err, size, "%s has no class", who);
+                else if (!c_name) snprintf(err, size, "%s: its class '%.60s' has no c_name", who,
+                                           type ? type : "?");
+                else snprintf(err, size, "%s: the c_name of its class '%.60s' is not a C "
+                                         "identifier or '&identifier'", who, type ? type : "?");
+                for (char *c = err; *c; c++)
+                    if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+            }
+            return -1;
+        }
+    return 0;
+}
 
-    fprintf(out, "/* Generated by braun gen-c from %s (scene \"%s\"): do not edit.\n",
-            source ? source : "?", sf->name ? sf->name : "");
-    fprintf(out, " * %s\n", sf->description && sf->description[0] ? sf->description : "(no description)");
-    fputs(" * The scene as static data; SYMBOL_build() calls braun_scene_build() once\n"
+int braun_gen_c_write(FILE *out, const braun_scene_file *sf, const char *sym, const char *source)
+{
+    return braun_gen_c_write_ex(out, sf, sym, source, NULL, 0) ? -1 : 0;
+}
+
+int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
+                         const char *source, char *err, size_t err_size)
+{
+    if (err && err_size) err[0] = '\0';
+    if (!out || !sf) {
+        if (err && err_size) snprintf(err, err_size, "no output or no scene");
+        return BRAUN_GEN_C_INVALID;
+    }
+    const braun_scene *s = &sf->scene;
+    char upper[BRAUN_GEN_C_SYMBOL_MAX + 1];
+    /* Everything is checked before the first byte is written. */
+    if (braun_gen_c_check_symbol(sym, err, err_size) || check_classes(sf, err, err_size))
+        return BRAUN_GEN_C_INVALID;
+    for (size_t i = 0; i <= strlen(sym); i++) upper[i] = (char)toupper((unsigned char)sym[i]);
+    const void **seen = malloc(((size_t)s->nbodies + s->njoints + s->neffects + 1) * sizeof *seen);
+    if (!seen) {
+        if (err && err_size) snprintf(err, err_size, "out of memory");
+        return BRAUN_GEN_C_WRITE;
+    }
+
+    fputs("/* Generated by braun gen-c from ", out);
+    comment_text(out, source ? source : "?");
+    fputs(" (scene \"", out);
+    comment_text(out, sf->name ? sf->name : "");
+    fputs("\"): do not edit.\n * ", out);
+    if (sf->description && sf->description[0]) comment_text(out, sf->description);
+    else fputs("(no description)", out);
+    fputs("\n * The scene as static data; SYMBOL_build() calls braun_scene_build() once\n"
           " * at start-up: no parser, no allocation. Compiles in double and float. */\n", out);
     fputs("#include <stddef.h>\n\n#include \"braun_scene.h\"\n\n", out);
     fputs("/* The exact double of the scene file, rounded once to braun_real. */\n", out);
@@ -144,10 +297,7 @@ int braun_gen_c_write(FILE *out, const braun_scene_file *sf, const char *sym, co
     /* Classes defined by the program (not libbraun's): declared here, the
      * program links their definitions. */
     {
-        const void **seen = malloc(((size_t)s->nbodies + s->njoints + s->neffects + 1) *
-                                   sizeof *seen);
         int nseen = 0;
-        if (!seen) return -1;
         for (int i = 0; i < s->nbodies; i++)
             declare(out, s->bodies[i].kind, "braun_scene_body_class", s->bodies[i].kind->c_name,
                     seen, &nseen);
@@ -273,5 +423,9 @@ int braun_gen_c_write(FILE *out, const braun_scene_file *sf, const char *sym, co
     fprintf(out, "    if (st) return st;\n");
     fprintf(out, "    if (q0 && v0) braun_scene_initial_state(&%s_scene, q0, v0);\n", sym);
     fputs("    return 0;\n}\n", out);
-    return ferror(out) ? -1 : 0;
+    if (ferror(out)) {
+        if (err && err_size) snprintf(err, err_size, "write error");
+        return BRAUN_GEN_C_WRITE;
+    }
+    return 0;
 }

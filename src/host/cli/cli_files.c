@@ -1,0 +1,144 @@
+/* The files the tool writes (--out, --summary, gen -o, gen-c -o). An
+ * output is "-" (stdout), a regular file or a character device such as
+ * /dev/null; a FIFO, socket, directory or block device is refused without
+ * blocking: the file is opened with O_NONBLOCK (a FIFO without a reader
+ * fails at once instead of waiting for one) and checked with fstat on the
+ * descriptor itself, so nothing can be swapped in between the check and the
+ * writing. A regular file is truncated only after every check, and two
+ * outputs of one command, or an output and the command's input, must not
+ * be one file (the input would be destroyed before it was read, or two
+ * streams would interleave). The POSIX feature macro is confined to this
+ * file and cli_clock.c. */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
+#include <errno.h>
+#include <fcntl.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "braun_cli.h"
+
+static void set_id(braun_cli_id *id, const struct stat *st)
+{
+    id->valid = S_ISREG(st->st_mode);
+    id->dev = (unsigned long long)st->st_dev;
+    id->ino = (unsigned long long)st->st_ino;
+}
+
+void braun_cli_path_id(const char *path, braun_cli_id *id)
+{
+    struct stat st;
+    memset(id, 0, sizeof *id);
+    if (path && stat(path, &st) == 0) set_id(id, &st);
+}
+
+int braun_cli_same_file(const braun_cli_id *a, const braun_cli_id *b)
+{
+    return a->valid && b->valid && a->dev == b->dev && a->ino == b->ino;
+}
+
+const char *braun_cli_file_kind(unsigned long mode)
+{
+    const mode_t m = (mode_t)mode;
+    if (S_ISDIR(m)) return "a directory";
+    if (S_ISFIFO(m)) return "a FIFO";
+    if (S_ISSOCK(m)) return "a socket";
+    if (S_ISBLK(m)) return "a block device";
+    if (S_ISCHR(m)) return "a character device";
+    if (S_ISLNK(m)) return "a symbolic link";
+    return "not a regular file";
+}
+
+int braun_cli_output_open(braun_cli_output *o, const char *path, const char *what)
+{
+    struct stat st;
+    memset(o, 0, sizeof *o);
+    o->path = path;
+    o->what = what;
+    if (strcmp(path, "-") == 0) {
+        o->f = stdout;
+        if (fstat(STDOUT_FILENO, &st) == 0) set_id(&o->id, &st);
+        return 0;
+    }
+    const int flags = O_WRONLY | O_NOCTTY | O_NONBLOCK;
+    int fd = open(path, flags | O_CREAT | O_EXCL, 0666);
+    if (fd >= 0) o->created = 1;
+    else if (errno == EEXIST) fd = open(path, flags);
+    if (fd < 0) {
+        const int e = errno;
+        if (e == ENXIO) /* O_NONBLOCK on a FIFO that nobody reads */
+            return braun_cli_error("%s '%s' is a FIFO (not a regular file): refused", what, path);
+        return braun_cli_error("%s: cannot open '%s' for writing: %s", what, path, strerror(e));
+    }
+    if (fstat(fd, &st) != 0) {
+        const int e = errno;
+        close(fd);
+        return braun_cli_error("%s: cannot open '%s' for writing: %s", what, path, strerror(e));
+    }
+    if (!S_ISREG(st.st_mode) && !S_ISCHR(st.st_mode)) {
+        close(fd);
+        return braun_cli_error("%s '%s' is %s (not a regular file): refused", what, path,
+                               braun_cli_file_kind((unsigned long)st.st_mode));
+    }
+    set_id(&o->id, &st);
+    /* Blocking writes from here on: a full disk is an error, not EAGAIN. */
+    const int fl = fcntl(fd, F_GETFL);
+    if (fl == -1 || fcntl(fd, F_SETFL, fl & ~O_NONBLOCK) == -1 || !(o->f = fdopen(fd, "w"))) {
+        const int e = errno;
+        close(fd);
+        if (o->created) unlink(path);
+        return braun_cli_error("%s: cannot open '%s' for writing: %s", what, path, strerror(e));
+    }
+    return 0;
+}
+
+int braun_cli_output_distinct(braun_cli_output *a, braun_cli_output *b, const braun_cli_id *input,
+                              const char *input_path)
+{
+    braun_cli_output *outs[2] = {a, b};
+    for (int i = 0; i < 2; i++)
+        if (outs[i] && outs[i]->f && input && braun_cli_same_file(&outs[i]->id, input))
+            return braun_cli_error("%s '%s' is the input '%s': refused (it would be "
+                                   "overwritten)", outs[i]->what, outs[i]->path, input_path);
+    if (a && b && a->f && b->f && braun_cli_same_file(&a->id, &b->id))
+        return braun_cli_error("%s '%s' and %s '%s' are the same file: give two files",
+                               a->what, a->path, b->what, b->path);
+    return 0;
+}
+
+int braun_cli_output_begin(braun_cli_output *o)
+{
+    if (!o->f || o->f == stdout || !o->id.valid) return 0;
+    if (ftruncate(fileno(o->f), 0) != 0)
+        return braun_cli_error("%s: cannot truncate '%s': %s", o->what, o->path, strerror(errno));
+    return 0;
+}
+
+int braun_cli_output_close(braun_cli_output *o)
+{
+    if (!o->f) return 0;
+    errno = 0;
+    int bad = fflush(o->f) != 0 || ferror(o->f);
+    int e = errno;
+    if (o->f != stdout && fclose(o->f) != 0) {
+        if (!bad) e = errno;
+        bad = 1;
+    }
+    o->f = NULL;
+    if (bad)
+        braun_cli_error("error writing '%s'%s%s", strcmp(o->path, "-") == 0 ? "stdout" : o->path,
+                        e ? ": " : "", e ? strerror(e) : "");
+    return bad;
+}
+
+void braun_cli_output_abandon(braun_cli_output *o)
+{
+    if (!o->f) return;
+    if (o->f != stdout) {
+        fclose(o->f);
+        if (o->created) unlink(o->path);
+    }
+    o->f = NULL;
+}
