@@ -15,6 +15,20 @@
 extern "C" {
 #endif
 
+/* Numbers a scene file may hold besides |x| <= BRAUN_SCENE_MAX_ABS
+ * (docs/scene-format.md, "Limits"): nonzero numbers at least the smallest
+ * normal braun_real; parameters with a domain (> 0, >= 0, != 0: masses,
+ * inertias, lengths, axes, stiffnesses, speeds), when not 0, at least
+ * BRAUN_SCENE_MIN_SCALE in magnitude (a vector in length): their squares
+ * are then normal numbers. */
+#ifdef BRAUN_SINGLE
+#define BRAUN_SCENE_MIN_NORMAL 1.1754943508222875e-38 /* FLT_MIN */
+#define BRAUN_SCENE_MIN_SCALE 1e-18
+#else
+#define BRAUN_SCENE_MIN_NORMAL 2.2250738585072014e-308 /* DBL_MIN */
+#define BRAUN_SCENE_MIN_SCALE 1e-150
+#endif
+
 /* A scene read from a JSON file (docs/scene-format.md) with everything
  * the file says beyond the mechanism. */
 typedef struct braun_scene_file {

@@ -38,6 +38,13 @@ void sj_locate(const char *text, size_t len, const sj_seg *path, int depth, int 
 void sj_context(const char *text, size_t len, size_t pos, char *path, size_t size,
                 size_t *token_start);
 
+/* A name and what it names, for the sorted indexes (scene_json_index.c). */
+typedef struct sj_name {
+    const char *s;
+    size_t len;
+    int index;
+} sj_name;
+
 /* The reader's state: the text, the path being read, the scene being
  * filled, and the first error. */
 typedef struct sj_reader {
@@ -53,6 +60,12 @@ typedef struct sj_reader {
     int npoints, cap_points;
     const char **point_names;   /* name within its body ("" for implicit ones) */
     const char **rod_names;
+    /* Indexes (scene_json_index.c): bodies by name; per body slot (0 the
+     * ground, k + 1 body k) its centre point and the range of its named
+     * points in point_sorted, sorted by name there. */
+    sj_name *body_index, *point_sorted;
+    int nbody_index, nslots;
+    int *centre, *pt_first, *pt_count;
     /* The program's own classes, besides the built-in ones (lists NULL or
      * NULL-terminated). */
     braun_scene_classes extra;
@@ -70,6 +83,19 @@ int sj_fail(sj_reader *r, int at, const char *fmt, ...)
 void sj_push_key(sj_reader *r, const char *key);
 void sj_push_index(sj_reader *r, int index);
 void sj_pop(sj_reader *r);
+
+/* Name lookups in O(log n) (scene_json_index.c). sj_index_bodies sorts the
+ * names of the bodies array before any is read (-1: out of memory);
+ * sj_find_body finds a body already read (-2 if none); sj_index_points
+ * indexes the named points body (or the ground) got from point `first` up
+ * to the last one added; sj_find_point finds a named point of a body, or
+ * with name "" its centre (sj_set_centre), -1 if none. */
+int sj_index_bodies(sj_reader *r, json_t *bodies);
+int sj_find_body(const sj_reader *r, const char *name, size_t len);
+void sj_index_points(sj_reader *r, int body, int first);
+int sj_find_point(const sj_reader *r, int body, const char *name);
+void sj_set_centre(sj_reader *r, int body, int point);
+void sj_index_free(sj_reader *r);
 
 /* Read every element of the root object into r->out (scene_json_read.c). */
 int sj_read_scene(sj_reader *r, json_t *root);

@@ -1,11 +1,17 @@
 /* Loading a scene file: read the text, let jansson parse it (duplicate
  * keys refused), read the scene, build it — and hand out nothing unless all
  * of it succeeded. Every message is one line "FILE:LINE:COLUMN: ...". */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L /* open, fstat, read: the file is checked without blocking */
+#endif
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "scene_json_internal.h"
 
@@ -141,6 +147,7 @@ static braun_scene_file *load_owned(const char *path, char *text, size_t len,
     if (extra) r.extra = *extra;
     int st = sj_read_scene(&r, root);
     free(r.point_names);
+    sj_index_free(&r);
     free((void *)r.rod_names);
     if (st) {
         braun_scene_free(&o->file);
@@ -174,6 +181,82 @@ braun_scene_file *braun_scene_load_text(const char *path, const char *text, size
     return braun_scene_load_text_ex(path, text, len, NULL, err, err_size);
 }
 
+/* The whole of a regular file, NUL-terminated, into *text (malloc'd).
+ * Opened with O_NONBLOCK so that a FIFO, a terminal or a device never
+ * blocks the open; the descriptor itself is then checked with fstat (no
+ * window between a check and the read) and anything but a regular file is
+ * refused. 0, or -1 with one line in err. */
+static int read_regular(const char *path, char **text, size_t *len, char *err, size_t size)
+{
+    *text = NULL;
+    *len = 0;
+    const int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY);
+    if (fd < 0) {
+        if (err && size) snprintf(err, size, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    struct stat st;
+    if (fstat(fd, &st) != 0) {
+        if (err && size) snprintf(err, size, "%s: cannot open: %s", path, strerror(errno));
+        close(fd);
+        return -1;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        const char *kind = S_ISDIR(st.st_mode)    ? "a directory"
+                           : S_ISFIFO(st.st_mode) ? "a FIFO"
+                           : S_ISCHR(st.st_mode)  ? "a character device"
+                           : S_ISBLK(st.st_mode)  ? "a block device"
+                           : S_ISSOCK(st.st_mode) ? "a socket"
+                                                  : "not a regular file";
+        if (err && size) snprintf(err, size, "%s: is %s, not a scene file (a regular file)", path, kind);
+        close(fd);
+        return -1;
+    }
+    if (st.st_size > MAX_FILE_BYTES) {
+        if (err && size) snprintf(err, size, "%s: larger than 64 MiB", path);
+        close(fd);
+        return -1;
+    }
+    /* A regular file never blocks; read until EOF (it may have grown). */
+    size_t cap = (size_t)st.st_size + 1, used = 0;
+    char *buf = malloc(cap + 1);
+    for (;;) {
+        if (!buf) {
+            if (err && size) snprintf(err, size, "%s: out of memory", path);
+            close(fd);
+            return -1;
+        }
+        if (used == cap) {
+            if (cap >= (size_t)MAX_FILE_BYTES) {
+                if (err && size) snprintf(err, size, "%s: larger than 64 MiB", path);
+                free(buf);
+                close(fd);
+                return -1;
+            }
+            char *bigger = realloc(buf, 2 * cap + 1);
+            if (!bigger) free(buf);
+            buf = bigger;
+            cap *= 2;
+            continue;
+        }
+        const ssize_t got = read(fd, buf + used, cap - used);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) {
+            if (err && size) snprintf(err, size, "%s: cannot read: %s", path, strerror(errno));
+            free(buf);
+            close(fd);
+            return -1;
+        }
+        if (got == 0) break;
+        used += (size_t)got;
+    }
+    close(fd);
+    buf[used] = '\0';
+    *text = buf;
+    *len = used;
+    return 0;
+}
+
 braun_scene_file *braun_scene_load_ex(const char *path, const braun_scene_classes *extra,
                                       char *err, size_t err_size)
 {
@@ -182,37 +265,12 @@ braun_scene_file *braun_scene_load_ex(const char *path, const braun_scene_classe
         set_err(err, err_size, "(null)", 1, 1, "no file name");
         return NULL;
     }
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (err && err_size) snprintf(err, err_size, "%s: cannot open: %s", path, strerror(errno));
+    char *text;
+    size_t len;
+    if (read_regular(path, &text, &len, err, err_size)) {
+        if (err && err_size) one_line(err);
         return NULL;
     }
-    size_t cap = 4096, len = 0;
-    char *text = malloc(cap + 1);
-    while (text) {
-        const size_t got = fread(text + len, 1, cap - len, f);
-        len += got;
-        if (len < cap) break;
-        if ((long)cap >= MAX_FILE_BYTES) {
-            free(text);
-            text = NULL;
-            fclose(f);
-            if (err && err_size) snprintf(err, err_size, "%s: larger than 64 MiB", path);
-            return NULL;
-        }
-        char *bigger = realloc(text, 2 * cap + 1);
-        if (!bigger) free(text);
-        text = bigger;
-        cap *= 2;
-    }
-    const int bad = ferror(f);
-    fclose(f);
-    if (!text || bad) {
-        free(text);
-        if (err && err_size) snprintf(err, err_size, "%s: cannot read", path);
-        return NULL;
-    }
-    text[len] = '\0';
     return load_owned(path, text, len, extra, err, err_size);
 }
 

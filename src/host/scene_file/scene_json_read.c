@@ -51,7 +51,9 @@ static int missing(sj_reader *r, const char *key)
     return sj_fail(r, SJ_AT_VALUE, "%s: missing field '%s'", r->who, key);
 }
 
-/* A number in range; the path is at the value. */
+/* A number in range; the path is at the value. Nonzero numbers below the
+ * smallest normal braun_real are refused with the too large ones: they
+ * carry a few bits at most, and arithmetic on them is slow. */
 static int number_value(sj_reader *r, json_t *v, const char *field, double *x)
 {
     if (!json_is_number(v)) return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be a number", r->who, field);
@@ -59,7 +61,26 @@ static int number_value(sj_reader *r, json_t *v, const char *field, double *x)
     if (!isfinite(*x) || fabs(*x) > BRAUN_SCENE_MAX_ABS)
         return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' is out of range (%g; the limit is |x| <= %g)",
                        r->who, field, *x, BRAUN_SCENE_MAX_ABS);
+    if (*x != 0 && fabs(*x) < BRAUN_SCENE_MIN_NORMAL)
+        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' is out of range (%g is below the smallest "
+                                       "normal number %g: write 0 or a larger value)",
+                       r->who, field, *x, BRAUN_SCENE_MIN_NORMAL);
     return 0;
+}
+
+/* A parameter with a domain (a mass, a length, an axis, a stiffness, a
+ * speed: a POSITIVE, NONNEG or NONZERO field), when not 0: at least
+ * BRAUN_SCENE_MIN_SCALE in magnitude (a vector: in length), so that its
+ * square, which the kinematics forms, is a normal number. */
+static int scale_value(sj_reader *r, const char *field, const double *x, int count, int derived)
+{
+    double len = 0;
+    for (int i = 0; i < count; i++) len = hypot(len, x[i]);
+    if (len == 0 || len >= BRAUN_SCENE_MIN_SCALE) return 0;
+    return sj_fail(r, SJ_AT_VALUE, "%s: field '%s'%s is too small (%s%g; the limit is %g, whose "
+                                   "square is still a normal number)",
+                   r->who, field, derived ? " (left out: taken from the initial state)" : "",
+                   count > 1 ? "length " : "", len, BRAUN_SCENE_MIN_SCALE);
 }
 
 /* Member key as a number: 0 read, 1 absent and optional, -1 error. */
@@ -84,7 +105,10 @@ static int num_field_min(sj_reader *r, json_t *obj, const char *key, int require
         return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be %s 0 (got %g)", r->who, key,
                        strict ? ">" : ">=", *x);
     }
-    return 0;
+    sj_push_key(r, key);
+    st = scale_value(r, key, x, 1, 0);
+    sj_pop(r);
+    return st;
 }
 
 /* An array of count numbers in range; the path is at the value. */
@@ -223,11 +247,7 @@ static int fn_object(sj_reader *r, json_t *v, braun_scene_fn *f)
 /* ------------------------------------------------------ bodies, points */
 static int find_body(const sj_reader *r, const char *name, size_t len)
 {
-    const braun_scene *s = &r->out->scene;
-    for (int k = 0; k < s->nbodies; k++)
-        if (strlen(r->out->body_names[k]) == len && strncmp(r->out->body_names[k], name, len) == 0)
-            return k;
-    return -2;
+    return sj_find_body(r, name, len);
 }
 
 /* Index of a new point. The table is sized for every point the file can
@@ -248,9 +268,7 @@ static int add_point(sj_reader *r, int body, const double *xyz, const char *name
 
 static int find_point(const sj_reader *r, int body, const char *name)
 {
-    for (int i = 0; i < r->npoints; i++)
-        if (r->out->scene.points[i].body == body && strcmp(r->point_names[i], name) == 0) return i;
-    return -1;
+    return sj_find_point(r, body, name);
 }
 
 /* A point reference: "body.point", "body" (a rigid body's centre or the
@@ -294,7 +312,10 @@ static int point_ref(sj_reader *r, json_t *obj, const char *key, int *point)
             /* The centre: one implicit point per body, made on first use. */
             static const double origin[3] = {0, 0, 0};
             *point = find_point(r, body, "");
-            if (*point < 0) *point = add_point(r, body, origin, "");
+            if (*point < 0) {
+                *point = add_point(r, body, origin, "");
+                sj_set_centre(r, body, *point);
+            }
         }
     } else {
         st = sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be a point: \"body.point\", \"body\" "
@@ -340,6 +361,7 @@ static int read_points(sj_reader *r, json_t *obj, int body, int count)
     }
     const char *key;
     json_t *val;
+    const int first = r->npoints;
     json_object_foreach(pts, key, val) {
         double xyz[3] = {0, 0, 0};
         sj_push_key(r, key);
@@ -353,6 +375,7 @@ static int read_points(sj_reader *r, json_t *obj, int body, int count)
         add_point(r, body, xyz, key);
         sj_pop(r);
     }
+    sj_index_points(r, body, first);
     sj_pop(r);
     return 0;
 }
@@ -423,6 +446,9 @@ static int real_value(sj_reader *r, json_t *v, const braun_scene_field *f, braun
     if ((f->flags & BRAUN_FIELD_NONZERO) && zero)
         return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must not be %s", r->who, f->key,
                        count == 1 ? "0" : "the zero vector");
+    if ((f->flags & (BRAUN_FIELD_POSITIVE | BRAUN_FIELD_NONNEG | BRAUN_FIELD_NONZERO)) &&
+        scale_value(r, f->key, x, count, 0))
+        return -1;
     for (int i = 0; i < count; i++) out[i] = (braun_real)x[i];
     return 0;
 }
@@ -519,6 +545,28 @@ static int read_fields(sj_reader *r, json_t *obj, const braun_scene_field *field
     return 0;
 }
 
+/* Values a class's defaults hook derived from the initial state for fields
+ * left out (a distance's length, a spring's rest length) meet the limits
+ * of given ones. A field whose alternative is given (a length beside a
+ * drive) is unused and not checked. */
+static int derived_values(sj_reader *r, json_t *obj, const braun_scene_field *fields,
+                          const void *elem, unsigned given)
+{
+    int i = 0;
+    for (const braun_scene_field *f = fields; f && f->key; f++, i++) {
+        if (f->kind != BRAUN_FIELD_REAL || i >= 32 || BRAUN_FIELD_GIVEN(given, i)) continue;
+        if (!(f->flags & (BRAUN_FIELD_POSITIVE | BRAUN_FIELD_NONNEG | BRAUN_FIELD_NONZERO)))
+            continue;
+        if (f->excludes && json_object_get(obj, f->excludes)) continue;
+        const braun_real *v = (const braun_real *)(const void *)((const char *)elem + f->offset);
+        const int count = f->count > 0 && f->count <= 8 ? f->count : 1;
+        double x[8];
+        for (int k = 0; k < count; k++) x[k] = (double)v[k];
+        if (scale_value(r, f->key, x, count, 1)) return -1;
+    }
+    return 0;
+}
+
 /* ------------------------------------------------------------- bodies */
 static int read_body(sj_reader *r, json_t *obj, int k)
 {
@@ -573,6 +621,10 @@ static int read_rod(sj_reader *r, json_t *obj, int k)
     if (st < 0) return -1;
     rod->length = st == 1 ? braun_scene_initial_distance(&r->out->scene, rod->a, rod->b)
                           : (braun_real)x;
+    if (st == 1) {
+        x = (double)rod->length;
+        return scale_value(r, "length", &x, 1, 1);
+    }
     return 0;
 }
 
@@ -598,6 +650,7 @@ static int read_joint(sj_reader *r, json_t *obj, int k)
     if (check_class_fields(r, obj, c->fields, 1) || read_fields(r, obj, c->fields, j, k, &given))
         return -1;
     if (c->defaults) c->defaults(s, j, given);
+    if (derived_values(r, obj, c->fields, j, given)) return -1;
     s->njoints = k + 1;
     return 0;
 }
@@ -624,6 +677,7 @@ static int read_effect(sj_reader *r, json_t *obj, int k)
     if (check_class_fields(r, obj, c->fields, 1) || read_fields(r, obj, c->fields, e, k, &given))
         return -1;
     if (c->defaults) c->defaults(s, e, given);
+    if (derived_values(r, obj, c->fields, e, given)) return -1;
     s->neffects = k + 1;
     return 0;
 }
@@ -761,11 +815,13 @@ int sj_read_scene(sj_reader *r, json_t *root)
     s->joints = calloc((size_t)nj + 1, sizeof *s->joints);
     s->effects = calloc((size_t)ne + 1, sizeof *s->effects);
     r->point_names = calloc((size_t)np, sizeof *r->point_names);
+    r->point_sorted = calloc((size_t)np, sizeof *r->point_sorted);
     r->rod_names = calloc((size_t)nr + 1, sizeof *r->rod_names);
     out->body_names = calloc((size_t)nb + 1, sizeof *out->body_names);
     out->joint_names = calloc((size_t)nj + 1, sizeof *out->joint_names);
     out->effect_names = calloc((size_t)ne + 1, sizeof *out->effect_names);
     if (!s->bodies || !s->points || !s->rods || !s->joints || !s->effects || !r->point_names ||
+        !r->point_sorted || sj_index_bodies(r, bodies) ||
         !r->rod_names || !out->body_names || !out->joint_names || !out->effect_names)
         return sj_fail(r, SJ_AT_VALUE, "out of memory");
 
