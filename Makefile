@@ -121,10 +121,10 @@ $(BUILD)/tests/%: tests/%.c $(TEST_SUPPORT) $(BUILD)/libbraun_host.a $(BUILD)/li
 	    $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a -lcmocka $(LDLIBS_ALL) -ljansson $(LDFLAGS_$*) -o $@
 
 # Suites added by other parts of the project (mk/*.mk append to TEST_SUITES
-# the command of a suite that ends with "N passed, M failed", and to
-# TEST_PREREQS what must be built first).
+# the command of a suite that ends with "N passed, M failed" or "N passed,
+# M failed, K skipped", and to TEST_PREREQS what must be built first).
 CORE_SUITES = "tools/run-tests $(TEST_BIN)" "sh tests/cli/run.sh $(BUILD)/bin/braun"
-TEST_SUITES = $(CORE_SUITES) "sh tests/cli/install.sh" "$(MAKE) -s --no-print-directory test-sanitize"
+TEST_SUITES = $(CORE_SUITES) "BUILD=$(BUILD) sh tests/cli/install.sh" "$(MAKE) -s --no-print-directory test-sanitize"
 TEST_PREREQS = $(TEST_BIN) $(BUILD)/bin/braun
 
 # The unit and CLI tests again under AddressSanitizer + UBSan (own build dir).
@@ -142,7 +142,7 @@ test: deps-test
 	@$(MAKE) --no-print-directory $(TEST_PREREQS)
 	@tools/run-suites $(TEST_SUITES)
 
-# Runs every unit test binary; prints one closing line "N passed, N failed".
+# Runs every unit test binary; prints one closing line "N passed, M failed, K skipped".
 test-unit: $(TEST_BIN)
 	@tools/run-tests $(TEST_BIN)
 
