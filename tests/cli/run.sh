@@ -1,14 +1,17 @@
 #!/bin/sh
 # Tests of the braun command-line tool: sh tests/cli/run.sh path/to/braun
-# Prints "ok - NAME" / "not ok - NAME" per check and a closing line
-# "N passed, M failed"; exit status 1 if anything failed.
+# Prints "ok - NAME" / "not ok - NAME" per check ("ok - NAME # SKIP WHY" for
+# one that cannot run here) and a closing line "N passed, M failed, K
+# skipped"; exit status 1 if anything failed.
 BRAUN=${1:?usage: sh tests/cli/run.sh path/to/braun}
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/braun-cli.XXXXXX") || exit 1
 trap 'rm -rf "$TMP"' EXIT INT TERM
 passed=0
 failed=0
+skipped=0
 
 ok() { passed=$((passed + 1)); echo "ok - $1"; }
+skip() { skipped=$((skipped + 1)); echo "ok - $1 # SKIP $2"; }
 not_ok() { failed=$((failed + 1)); echo "not ok - $1"; [ -z "$2" ] || echo "#   $2"; }
 check() { # check NAME COMMAND...: passes when COMMAND succeeds
     name=$1; shift
@@ -102,7 +105,7 @@ check "a successful run prints nothing on stderr" [ ! -s "$TMP/short.err" ]
 if [ "$HAVE_PY" -eq 1 ]; then
     check "summary is valid JSON" json_parses "$TMP/short.json"
 else
-    echo "ok - summary is valid JSON # SKIP python3 not found"
+    skip "summary is valid JSON" "python3 not found"
 fi
 missing=""
 for key in scene method corrections discretization integrator dt t_end steps rhs_evals \
@@ -155,12 +158,15 @@ check "--every 10: 17 columns, traj_err filled" \
 "$BRAUN" run slider-crank --dt 1e-3 --t-end 100 --integrator rk4 --discretization per-step \
     --summary "$TMP/long.json"; rc=$?
 check "slider-crank RK4 dt 1e-3 to t = 100 exits 0" [ "$rc" -eq 0 ]
+# Bounds a small factor above the measured values (x86-64, gcc 12, -O2):
+# |Phi_q| 2.92e-12, trajectory 3.54e-9 (the issue's acceptance figures were
+# 1e-9 and 1e-6: 300x slack, which an order-3 RK4 passed).
 v=$(json_value max_position_constraint_error "$TMP/long.json")
-if num_le "$v" 1e-9; then ok "max_position_constraint_error <= 1e-9 ($v)"
-else not_ok "max_position_constraint_error <= 1e-9" "got $v"; fi
+if num_le "$v" 1e-11; then ok "max_position_constraint_error <= 1e-11 ($v)"
+else not_ok "max_position_constraint_error <= 1e-11" "got $v"; fi
 v=$(json_value max_trajectory_error "$TMP/long.json")
-if num_le "$v" 1e-6; then ok "max_trajectory_error <= 1e-6 ($v)"
-else not_ok "max_trajectory_error <= 1e-6" "got $v"; fi
+if num_le "$v" 1e-8; then ok "max_trajectory_error <= 1e-8 ($v)"
+else not_ok "max_trajectory_error <= 1e-8" "got $v"; fi
 
 # --------------------------------------------------------------- runtime failure
 # Without corrections the slider-crank drifts off its constraints and the step
@@ -182,18 +188,27 @@ if num_lt "$ft" 100 && num_eq "$last" "$ft"; then ok "failure: CSV ends at final
 else not_ok "failure: CSV ends at final_t < 100" "final_t $ft, last CSV t $last"; fi
 if [ "$HAVE_PY" -eq 1 ]; then
     check "failure: summary is valid JSON" json_parses "$TMP/none.json"
+else
+    skip "failure: summary is valid JSON" "python3 not found"
 fi
 
 # --------------------------------------------------------------- other integrators
+# Adaptive dopri5 (default tolerances): point error measured 8.97e-9.
 "$BRAUN" run four-bar --dt 1e-2 --t-end 2 --integrator dopri5 --summary "$TMP/dp.json"; rc=$?
-check "four-bar dopri5 exits 0 with a point error" sh -c '
+v=$(json_value max_point_error "$TMP/dp.json")
+check "four-bar dopri5 exits 0 with a point error <= 3e-8 ($v)" sh -c '
     [ "$1" -eq 0 ] && grep -q "^  \"integrator\": \"dopri5\",$" "$2" &&
-    grep -q "^  \"max_point_error\": [0-9]" "$2"' sh "$rc" "$TMP/dp.json"
-for m in euler heun; do
+    awk -v a="$3" "BEGIN { exit !(a != \"\" && a != \"null\" && a + 0 <= 3e-8) }"' sh "$rc" "$TMP/dp.json" "$v"
+# Trajectory error at h = 1e-3 over 1 s, measured: euler 1.11e-2, heun 8.0e-6.
+for m in euler:3e-2 heun:2e-5; do
+    bound=${m#*:} m=${m%%:*}
     "$BRAUN" run pendulum --dt 1e-3 --t-end 1 --integrator $m --summary "$TMP/$m.json"; rc=$?
-    check "pendulum $m exits 0" sh -c '[ "$1" -eq 0 ] && grep -q "\"status\": \"BRAUN_OK\"" "$2"' \
-        sh "$rc" "$TMP/$m.json"
+    v=$(json_value max_trajectory_error "$TMP/$m.json")
+    check "pendulum $m exits 0, BRAUN_OK, trajectory error <= $bound ($v)" sh -c '
+        [ "$1" -eq 0 ] && grep -q "\"status\": \"BRAUN_OK\"" "$2" &&
+        awk -v a="$3" -v b="$4" "BEGIN { exit !(a != \"\" && a != \"null\" && a + 0 <= b + 0) }"' \
+        sh "$rc" "$TMP/$m.json" "$v" "$bound"
 done
 
-echo "$passed passed, $failed failed"
+echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

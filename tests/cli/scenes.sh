@@ -3,15 +3,19 @@
 # (run from the top of the tree). braun run / check on every shipped scene,
 # the reader's error messages through the tool, corrections declared by a
 # scene and overridden on the command line, braun gen, Andrews at t = 0.03.
-# Prints "ok - NAME" / "not ok - NAME" and a closing "N passed, M failed".
+# Prints "ok - NAME" / "not ok - NAME" ("ok - NAME # SKIP WHY" for a check
+# of a backend this build does not have) and a closing "N passed, M failed,
+# K skipped".
 BRAUN=${1:?usage: sh tests/cli/scenes.sh path/to/braun}
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/braun-scenes.XXXXXX") || exit 1
 trap 'rm -rf "$TMP"' EXIT INT TERM
 passed=0
 failed=0
+skipped=0
 
 ok() { passed=$((passed + 1)); echo "ok - $1"; }
 not_ok() { failed=$((failed + 1)); echo "not ok - $1"; [ -z "$2" ] || echo "#   $2"; }
+skip() { skipped=$((skipped + 1)); echo "ok - $1 # SKIP $2"; }
 check() { # check NAME COMMAND...: passes when COMMAND succeeds
     name=$1; shift
     if "$@"; then ok "$name"; else not_ok "$name"; fi
@@ -21,6 +25,23 @@ key_value() { sed -n "s/^$1: //p" "$2"; }
 num_le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a != "null" && a + 0 <= b + 0) }'; }
 
 # ------------------------------------------------- every shipped scene runs
+# max |Phi_q| over 1 s at h = 1e-3, a small factor above the value measured
+# for each scene (x86-64, gcc 12, -O2; floor 1e-14 for round-off-level
+# values); a scene not listed here gets 1e-10 (5x the largest measured).
+phi_bound() {
+    case $1 in
+    data/chain-5.json) echo 5e-11 ;;                 # measured 1.90e-11
+    data/damped-motor.json) echo 5e-11 ;;            # 1.84e-11
+    data/double-pendulum.json) echo 1e-12 ;;         # 4.28e-13
+    data/driven-crank.json) echo 5e-14 ;;            # 1.43e-14
+    data/four-bar.json) echo 3e-13 ;;                # 1.03e-13
+    data/parallelogram-redundant.json) echo 2e-12 ;; # 8.81e-13
+    data/pendulum.json) echo 1e-14 ;;                # 5.55e-16
+    data/sleigh.json) echo 1e-14 ;;                  # 0 (no holonomic rows)
+    data/slider-crank.json) echo 5e-13 ;;            # 2.37e-13
+    *) echo 1e-10 ;;
+    esac
+}
 for f in data/*.json; do
     # (not "name": check() sets that one)
     scene=$(sed -n 's/^  "name": "\(.*\)",$/\1/p' "$f")
@@ -30,11 +51,12 @@ for f in data/*.json; do
         "$TMP/check.err" "$scene" "$TMP/check.out"
     "$BRAUN" run "$f" --dt 1e-3 --t-end 1 > "$TMP/run.json" 2> "$TMP/run.err"; rc=$?
     v=$(json_value max_position_constraint_error "$TMP/run.json")
+    bound=$(phi_bound "$f")
     if [ "$rc" -eq 0 ] && [ ! -s "$TMP/run.err" ] && [ "$(json_value status "$TMP/run.json")" = BRAUN_OK ] &&
-        [ "$(json_value scene "$TMP/run.json")" = "$scene" ] && num_le "$v" 1e-8; then
-        ok "run $f: BRAUN_OK, max |Phi_q| = $v"
+        [ "$(json_value scene "$TMP/run.json")" = "$scene" ] && num_le "$v" "$bound"; then
+        ok "run $f: BRAUN_OK, max |Phi_q| = $v <= $bound"
     else
-        not_ok "run $f" "exit $rc, status $(json_value status "$TMP/run.json"), |Phi_q| $v, $(head -c 200 "$TMP/run.err")"
+        not_ok "run $f" "exit $rc, status $(json_value status "$TMP/run.json"), |Phi_q| $v (bound $bound), $(head -c 200 "$TMP/run.err")"
     fi
 done
 
@@ -103,14 +125,16 @@ check "sleigh: p 1 in the summary, all corrections" sh -c '
     sh "$TMP/sl2.json"
 
 # ------------------------------------------------- references of paper scenes
+# RK4 h = 1e-3 over 2 s, measured: slider-crank trajectory error 8.10e-11,
+# four-bar point error 5.24e-11.
 "$BRAUN" run data/slider-crank.json --dt 1e-3 --t-end 2 > "$TMP/scr.json"
 v=$(json_value max_trajectory_error "$TMP/scr.json")
-if num_le "$v" 1e-8; then ok "slider-crank.json against Eq. 24: max trajectory error $v"
-else not_ok "slider-crank.json against Eq. 24" "got $v"; fi
+if num_le "$v" 2e-10; then ok "slider-crank.json against Eq. 24: max trajectory error $v <= 2e-10"
+else not_ok "slider-crank.json against Eq. 24: max trajectory error <= 2e-10" "got $v"; fi
 "$BRAUN" run data/four-bar.json --dt 1e-3 --t-end 2 > "$TMP/fbr.json"
 v=$(json_value max_point_error "$TMP/fbr.json")
-if num_le "$v" 1e-8; then ok "four-bar.json against the closed form: max point error $v"
-else not_ok "four-bar.json against the closed form" "got $v"; fi
+if num_le "$v" 2e-10; then ok "four-bar.json against the closed form: max point error $v <= 2e-10"
+else not_ok "four-bar.json against the closed form: max point error <= 2e-10" "got $v"; fi
 "$BRAUN" run slider-crank --dt 1e-3 --t-end 2 > "$TMP/scb.json"
 check "slider-crank.json and the built-in model: the same final state to 1e-10" \
     awk -v a="$(json_value final_q "$TMP/scr.json")" -v b="$(json_value final_q "$TMP/scb.json")" 'BEGIN {
@@ -122,20 +146,24 @@ check "slider-crank.json and the built-in model: the same final state to 1e-10" 
 "$BRAUN" gen chain 5 > "$TMP/chain5.json"; rc=$?
 check "gen chain 5 reproduces data/chain-5.json" sh -c '[ "$1" -eq 0 ] && cmp -s "$2" data/chain-5.json' \
     sh "$rc" "$TMP/chain5.json"
-"$BRAUN" gen chain 12 --rods -o "$TMP/rods12.json"; rc=$?
-check "gen chain 12 --rods -o FILE: n 24, m 12" sh -c '[ "$1" -eq 0 ]' sh "$rc"
-check "gen chain 12 --rods: sizes" sizes "$TMP/rods12.json" "24 12 0 12 0 12"
+"$BRAUN" gen chain 12 --rods -o "$TMP/rods12.json" > "$TMP/rods12.out"; rc=$?
+check "gen chain 12 --rods -o FILE: exit 0, nothing on stdout" sh -c '[ "$1" -eq 0 ] && [ ! -s "$2" ]' \
+    sh "$rc" "$TMP/rods12.out"
+check "gen chain 12 --rods: n 24, m 12, rank 12, 12 dof" sizes "$TMP/rods12.json" "24 12 0 12 0 12"
 "$BRAUN" gen chain 30 -o "$TMP/chain30.json"
 "$BRAUN" run "$TMP/chain30.json" --dt 1e-3 --t-end 0.2 > "$TMP/c30.json"; rc=$?
 v=$(json_value max_position_constraint_error "$TMP/c30.json")
-check "gen chain 30 runs: n 90, BRAUN_OK, |Phi_q| $v" sh -c '
-    [ "$1" -eq 0 ] && grep -q "^  \"n\": 90,$" "$2" && grep -q "\"status\": \"BRAUN_OK\"" "$2"' \
-    sh "$rc" "$TMP/c30.json"
+# |Phi_q| measured 4.39e-14.
+check "gen chain 30 runs: n 90, BRAUN_OK, |Phi_q| $v <= 2e-13" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^  \"n\": 90,$" "$2" && grep -q "\"status\": \"BRAUN_OK\"" "$2" &&
+    awk -v a="$3" "BEGIN { exit !(a != \"\" && a + 0 <= 2e-13) }"' \
+    sh "$rc" "$TMP/c30.json" "$v"
 "$BRAUN" gen chain 5 --angle 0 > "$TMP/chain5a.json"
 check "gen chain 5 --angle 0 is the default (data/chain-5.json)" cmp -s "$TMP/chain5a.json" data/chain-5.json
-"$BRAUN" gen chain 4 --angle 60 -o "$TMP/chain4-60.json"; rc=$?
-check "gen chain 4 --angle 60: n 12 m 8, rank 8, 4 dof" sh -c '[ "$1" -eq 0 ]' sh "$rc"
-check "gen chain 4 --angle 60: sizes" sizes "$TMP/chain4-60.json" "12 8 0 8 0 4"
+"$BRAUN" gen chain 4 --angle 60 -o "$TMP/chain4-60.json" > "$TMP/chain4-60.out"; rc=$?
+check "gen chain 4 --angle 60 -o FILE: exit 0, nothing on stdout" sh -c '[ "$1" -eq 0 ] && [ ! -s "$2" ]' \
+    sh "$rc" "$TMP/chain4-60.out"
+check "gen chain 4 --angle 60: n 12 m 8, rank 8, 4 dof" sizes "$TMP/chain4-60.json" "12 8 0 8 0 4"
 "$BRAUN" check "$TMP/chain4-60.json" > "$TMP/c460.out"
 v=$(key_value position_residual "$TMP/c460.out")
 check "gen chain 4 --angle 60: on its constraints ($v), hangs at -60 degrees" sh -c '
@@ -144,7 +172,8 @@ check "gen chain 4 --angle 60: on its constraints ($v), hangs at -60 degrees" sh
 "$BRAUN" gen chain 6 --rods --angle 30 -o "$TMP/rods6.json"
 check "gen chain 6 --rods --angle 30: sizes" sizes "$TMP/rods6.json" "12 6 0 6 0 6"
 "$BRAUN" gen chain 2000 -o "$TMP/chain2000.json"; rc=$?
-check "gen chain 2000 (the new limit) exits 0" [ "$rc" -eq 0 ]
+check "gen chain 2000 (the new limit) exits 0 and writes scene chain-2000" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^  \"name\": \"chain-2000\",$" "$2"' sh "$rc" "$TMP/chain2000.json"
 for bad in "chain 0" "chain 2001" "chain x" "chain" "ring 5" "chain 5 -o" "chain 5 6" "chain 5 --bogus" \
     "chain 5 --angle" "chain 5 --angle x" "chain 5 --angle 181" "chain 5 --angle nan" \
     "ladder" "ladder 0" "ladder 2001" "ladder 2.5" "ladder 3 --rods" "ladder 3 --angle -200" \
@@ -158,8 +187,9 @@ done
 # ------------------------------------------------------------- braun gen ladder
 # Three rails of N links and N rungs pinned at both ends and the middle: every
 # cell a double parallelogram, one redundant row each (rank 11N of 12N).
-"$BRAUN" gen ladder 4 -o "$TMP/ladder4.json"; rc=$?
-check "gen ladder 4: exit 0" [ "$rc" -eq 0 ]
+"$BRAUN" gen ladder 4 -o "$TMP/ladder4.json" > "$TMP/ladder4.out"; rc=$?
+check "gen ladder 4 -o FILE: exit 0, nothing on stdout" sh -c '[ "$1" -eq 0 ] && [ ! -s "$2" ]' \
+    sh "$rc" "$TMP/ladder4.out"
 check "gen ladder 4: n 48 m 48, rank 44, 4 redundant, 4 dof" sizes "$TMP/ladder4.json" "48 48 0 44 4 4"
 "$BRAUN" gen ladder 3 --angle 60 -o "$TMP/ladder3.json"
 check "gen ladder 3 --angle 60: rank 33 of 36" sizes "$TMP/ladder3.json" "36 36 0 33 3 3"
@@ -203,24 +233,38 @@ check "run ladder 4 --backend auto: uses the sparsity, BRAUN_OK" sh -c '
 "$BRAUN" run data/four-bar.json --dt 1e-3 --t-end 0.5 --backend auto > "$TMP/fba.json"; rc=$?
 check "run four-bar.json --backend auto: rods, dense system, BRAUN_OK" sh -c '
     [ "$1" -eq 0 ] && grep -q "^  \"sparse\": false,$" "$2"' sh "$rc" "$TMP/fba.json"
+# A backend counts as absent only when the tool says exactly that (exit 2,
+# one line "braun: --backend NAME: backend 'NAME' not built ..."): then its
+# checks are counted as skipped. Any other failure of a run with it (a
+# backend built but failing) is a failure.
+# Final q against the dense kernels after 500 steps of the redundant ladder:
+# measured 6.2e-15 (lapack), 2.9e-15 (suitesparse) with the reference BLAS;
+# the bound leaves room for another BLAS's summation order.
+not_built() { # not_built BACKEND ERRFILE RC
+    [ "$3" -eq 2 ] && [ "$(wc -l < "$2")" -eq 1 ] && grep -q "^braun: --backend $1: backend '$1' not built" "$2"
+}
+ss_built=0
 for be in lapack suitesparse; do
     "$BRAUN" run "$TMP/ladder4.json" --dt 1e-3 --t-end 0.5 --backend $be > "$TMP/l4b.json" 2> "$TMP/l4b.err"; rc=$?
-    if [ "$rc" -eq 2 ] && grep -q "^braun: --backend $be: backend '$be' not built" "$TMP/l4b.err"; then
-        ok "run ladder 4 --backend $be # SKIP not built: $(cat "$TMP/l4b.err")"
+    if not_built "$be" "$TMP/l4b.err" "$rc"; then
+        skip "run ladder 4 --backend $be: BRAUN_OK, named in the summary" "$be not built: $(cat "$TMP/l4b.err")"
+        skip "run ladder 4 --backend $be: final q within 5e-14 of dense" "$be not built"
+        [ "$be" = suitesparse ] && ss_built=0
     else
         check "run ladder 4 --backend $be: BRAUN_OK, named in the summary" sh -c '
             [ "$1" -eq 0 ] && grep -q "^  \"backend\": \"$3\",$" "$2" &&
             grep -q "\"status\": \"BRAUN_OK\"" "$2"' sh "$rc" "$TMP/l4b.json" "$be"
-        check "run ladder 4 --backend $be: final q within 1e-9 of dense" same_final "$TMP/l4.json" "$TMP/l4b.json" 1e-9
+        check "run ladder 4 --backend $be: final q within 5e-14 of dense" same_final "$TMP/l4.json" "$TMP/l4b.json" 5e-14
+        [ "$be" = suitesparse ] && ss_built=1
     fi
 done
-if "$BRAUN" run "$TMP/ladder1.json" --dt 1e-3 --t-end 0.01 --backend suitesparse > /dev/null 2>&1; then
+if [ "$ss_built" -eq 1 ]; then
     "$BRAUN" run "$TMP/chain2000.json" --dt 1e-3 --t-end 0.005 --backend suitesparse > "$TMP/c2000.json"; rc=$?
     check "run chain 2000 (n 6000) --backend suitesparse: BRAUN_OK, sparse" sh -c '
         [ "$1" -eq 0 ] && grep -q "^  \"n\": 6000,$" "$2" && grep -q "^  \"sparse\": true,$" "$2" &&
         grep -q "\"status\": \"BRAUN_OK\"" "$2"' sh "$rc" "$TMP/c2000.json"
 else
-    ok "run chain 2000 --backend suitesparse # SKIP suitesparse not built"
+    skip "run chain 2000 (n 6000) --backend suitesparse: BRAUN_OK, sparse" "suitesparse not built"
 fi
 # Each must exit 2 with exactly this one line (and nothing on stdout).
 refused() { # refused NAME EXPECTED ARGS...
@@ -239,15 +283,23 @@ refused "--sparse on a built-in model" \
     "braun: --sparse: 'slider-crank': a built-in model has no sparsity (scene files without rods have one)" \
     run slider-crank --dt 1e-3 --t-end 0.01 --sparse
 "$BRAUN" run data/four-bar.json --dt 1e-3 --t-end 0.01 --backend suitesparse > "$TMP/r.out" 2> "$TMP/r.err"; rc=$?
-check "--backend suitesparse on four-bar.json (rods): exit 2, one line naming why" sh -c '
-    [ "$1" -eq 2 ] && [ ! -s "$2" ] && [ "$(wc -l < "$3")" -eq 1 ] &&
-    { grep -q "not built" "$3" || grep -q "needs a system with a sparsity pattern.*rods" "$3"; }' \
-    sh "$rc" "$TMP/r.out" "$TMP/r.err"
+if [ "$ss_built" -eq 1 ]; then
+    check "--backend suitesparse on four-bar.json (rods): exit 2, one line naming why" sh -c '
+        [ "$1" -eq 2 ] && [ ! -s "$2" ] && [ "$(wc -l < "$3")" -eq 1 ] &&
+        grep -q "needs a system with a sparsity pattern.*rods" "$3"' sh "$rc" "$TMP/r.out" "$TMP/r.err"
+else
+    check "--backend suitesparse on four-bar.json (not built): exit 2, says not built" sh -c '
+        [ "$1" -eq 2 ] && [ ! -s "$2" ] && [ "$(wc -l < "$3")" -eq 1 ] &&
+        grep -q "^braun: --backend suitesparse: backend .suitesparse. not built" "$3"' \
+        sh "$rc" "$TMP/r.out" "$TMP/r.err"
+fi
 
 # ---------------------------------------------------------------- Andrews
+# Measured: 3.5e-7 relative (the largest of the seven angles).
 "$BRAUN" run andrews --dt 1e-4 --t-end 0.03 > "$TMP/andrews.json"; rc=$?
 check "andrews at t = 0.03 within 1e-6 relative of the test set (h = 1e-4)" \
-    awk -v a="$(json_value final_q "$TMP/andrews.json")" 'BEGIN {
+    awk -v rc="$rc" -v a="$(json_value final_q "$TMP/andrews.json")" 'BEGIN {
+        if (rc != 0) exit 1
         split("15.81077119629904 -15.75637105984298 0.04082224013073101 -0.5347301163226948 " \
               "0.5244099658805304 0.5347301163226948 1.048080741042263", r, " ")
         gsub(/[][ ]/, "", a); n = split(a, x, ",")
@@ -266,5 +318,5 @@ check "gen-c --symbol 9bad: exit 2, one line" sh -c '[ "$1" -eq 2 ] && [ "$(wc -
 "$BRAUN" gen-c data/no-such.json > /dev/null 2> "$TMP/gce"; rc=$?
 check "gen-c of a missing file: exit 2, names the file" sh -c '[ "$1" -eq 2 ] && grep -q "no-such.json" "$2"' sh "$rc" "$TMP/gce"
 
-echo "$passed passed, $failed failed"
+echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]
