@@ -212,7 +212,8 @@ static void test_metrics_hand_made(void **state)
     cmp_target_free(&tg);
 }
 
-/* The references agree with each other where they overlap. */
+/* The references agree with each other where they overlap: the closed form
+ * and GSL's rk8pd on the minimal equation (an integrator of its own). */
 static void test_references_agree(void **state)
 {
     (void)state;
@@ -222,12 +223,20 @@ static void test_references_agree(void **state)
     cmp_ref *a = cmp_ref_new(&tg, CMP_REF_CLOSED, 0), *b = cmp_ref_new(&tg, CMP_REF_RK8PD, 1e-13);
     assert_non_null(a);
     assert_non_null(b);
-    double qa[6], va[6], qb[6], vb[6];
+    double qa[6], va[6], qb[6], vb[6], worst = 0, worst_v = 0;
     for (int k = 0; k <= 100; k++) {
         assert_int_equal(cmp_ref_eval(a, 0.1 * k, qa, va), 0);
         assert_int_equal(cmp_ref_eval(b, 0.1 * k, qb, vb), 0);
-        for (int i = 0; i < 6; i++) assert_near(qa[i], qb[i], 1e-10);
+        for (int i = 0; i < 6; i++) {
+            worst = fmax(worst, fabs(qa[i] - qb[i]));
+            worst_v = fmax(worst_v, fabs(va[i] - vb[i]));
+        }
     }
+    print_message("four-bar over 10 s: closed form vs rk8pd (1e-13): max |dq| %.3g, |dv| %.3g\n",
+                  worst, worst_v);
+    /* Measured 1.72e-11 and 1.14e-10: rk8pd's tolerance, not the closed form. */
+    assert_le(worst, 5e-11);
+    assert_le(worst_v, 3e-10);
     /* rk8pd goes forward only. */
     assert_int_not_equal(cmp_ref_eval(b, 1.0, qb, vb), 0);
     cmp_ref_free(a);
