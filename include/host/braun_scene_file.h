@@ -76,6 +76,18 @@ braun_scene_file *braun_scene_load_text_ex(const char *path, const char *text, s
 
 void braun_scene_free(braun_scene_file *f);
 
+/* Which element makes the scene's callbacks fail at (t, q, v): evaluates
+ * every joint's rows and every effect's forces, potential and power there,
+ * in file order, and describes the first that fails (returns non-zero, or
+ * gives a non-finite value) in msg, one line: "effect 'sp' (spring): its
+ * forces return 1 at t = 0.5, where its points 'a' and 'b' coincide".
+ * Returns 1 if one failed, 0 if none does, -1 out of memory. v may be NULL.
+ * For messages after a callback failed (the core's error record names the
+ * callback, not the element); the loader makes the same check at the
+ * initial state, so a scene that loads evaluates there. */
+int braun_scene_file_diagnose(const braun_scene_file *sf, braun_real t, const braun_real *q,
+                              const braun_real *v, char *msg, size_t size);
+
 /* Scene to C (`braun gen-c`): write a C99 source that defines a
  * scene statically — its element arrays as initialised data and a function
  * that builds the braun_system at start-up with braun_scene_build() — so

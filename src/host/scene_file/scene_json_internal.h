@@ -97,6 +97,12 @@ int sj_find_point(const sj_reader *r, int body, const char *name);
 void sj_set_centre(sj_reader *r, int body, int point);
 void sj_index_free(sj_reader *r);
 
+/* After the build (scene_json_check.c): the mass matrix's pivots, and
+ * every joint and effect evaluated at the initial state (q0, v0 set);
+ * 0, or -1 after a message at the element. */
+int sj_check_mass(sj_reader *r);
+int sj_check_initial(sj_reader *r);
+
 /* Read every element of the root object into r->out (scene_json_read.c). */
 int sj_read_scene(sj_reader *r, json_t *root);
 

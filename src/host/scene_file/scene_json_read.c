@@ -894,5 +894,8 @@ int sj_read_scene(sj_reader *r, json_t *root)
     if (!out->q0 || !out->v0) return sj_fail(r, SJ_AT_VALUE, "out of memory");
     braun_scene_initial_state(s, out->q0, out->v0);
     out->sys.user = s;
+    /* What the reader accepted must also compute: M factors, and every
+     * element evaluates at the initial state. */
+    if (sj_check_mass(r) || sj_check_initial(r)) return -1;
     return 0;
 }

@@ -1,0 +1,251 @@
+/* What a built scene must be able to compute, checked when it is loaded so
+ * that a value the reader accepts either works or is refused at its
+ * element with FILE:LINE:COLUMN:
+ *
+ *  - the mass matrix: every pivot of its Cholesky factorization must
+ *    exceed n·ε·max|M_ii|, the rule of libbraun's kernels and of both
+ *    backends. Without rods M is block diagonal (one block per body) and
+ *    the pivots are the blocks' own, exactly as the core computes them; a
+ *    rod couples its ends' blocks, and then each diagonal entry is checked
+ *    (a pivot is never larger than its diagonal entry);
+ *  - every joint's rows and every effect's forces, potential and power at
+ *    the initial state: a class hook that fails there (a spring whose two
+ *    points coincide has no direction) or gives a non-finite value would
+ *    stop the first step.
+ *
+ * sj_diagnose also names the element that makes a callback fail at any
+ * state, for the messages of a run (braun_scene_file_diagnose). */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_json_internal.h"
+
+#ifdef BRAUN_SINGLE
+#define SJ_EPS FLT_EPSILON
+#else
+#define SJ_EPS DBL_EPSILON
+#endif
+
+/* The key of the descriptor that stores at offset, or fallback. */
+static const char *field_key(const braun_scene_field *f, size_t offset, const char *fallback)
+{
+    for (; f && f->key; f++)
+        if (f->offset == offset && f->kind == BRAUN_FIELD_REAL) return f->key;
+    return fallback;
+}
+
+static void push_element(sj_reader *r, const char *array, int index)
+{
+    r->depth = 0;
+    sj_push_key(r, array);
+    sj_push_index(r, index);
+}
+
+static void who(sj_reader *r, const char *kind, const char *name, int index)
+{
+    if (name) snprintf(r->who, sizeof r->who, "%s '%s'", kind, name);
+    else snprintf(r->who, sizeof r->who, "%s #%d", kind, index + 1);
+}
+
+int sj_check_mass(sj_reader *r)
+{
+    const braun_scene *s = &r->out->scene;
+    const int n = s->n;
+    double *rod = calloc((size_t)s->nbodies + 1, sizeof *rod);
+    double *piv = malloc(((size_t)n + 1) * sizeof *piv);
+    if (!rod || !piv) {
+        free(rod);
+        free(piv);
+        return sj_fail(r, SJ_AT_VALUE, "out of memory");
+    }
+    /* A rod adds m/3 to the diagonal of each end's block. */
+    for (int k = 0; k < s->nrods; k++)
+        for (int e = 0; e < 2; e++) {
+            const int p = e ? s->rods[k].b : s->rods[k].a;
+            const int b = p >= 0 && p < s->npoints ? s->points[p].body : -1;
+            if (b >= 0 && b < s->nbodies) rod[b] += (double)s->rods[k].mass / 3;
+        }
+    double dmax = 0;
+    for (int k = 0; k < s->nbodies; k++) {
+        const braun_scene_body *b = &s->bodies[k];
+        const int dof = b->kind->dof;
+        braun_real M[BRAUN_SCENE_MAX_DOF * BRAUN_SCENE_MAX_DOF];
+        double R[BRAUN_SCENE_MAX_DOF * BRAUN_SCENE_MAX_DOF];
+        memset(M, 0, sizeof M);
+        b->kind->mass(b, M, dof);
+        /* Cholesky of the body's block, as braun_chol_factor computes it
+         * (coupling to other blocks is zero without rods). */
+        for (int i = 0; i < dof; i++) {
+            double d = (double)M[i * dof + i] + rod[k];
+            if (fabs(d) > dmax) dmax = fabs(d);
+            for (int j = 0; j < i; j++) d -= R[j * dof + i] * R[j * dof + i];
+            piv[b->iq + i] = d;
+            const double rii = d > 0 ? sqrt(d) : 0;
+            R[i * dof + i] = rii;
+            for (int j = i + 1; j < dof; j++) {
+                double t = (double)M[i * dof + j];
+                for (int l = 0; l < i; l++) t -= R[l * dof + i] * R[l * dof + j];
+                R[i * dof + j] = rii > 0 ? t / rii : 0;
+            }
+        }
+    }
+    const double tiny = (double)n * (double)SJ_EPS * dmax;
+    int st = 0;
+    for (int k = 0; k < s->nbodies && !st; k++) {
+        const braun_scene_body *b = &s->bodies[k];
+        for (int i = 0; i < b->kind->dof; i++) {
+            const double p = piv[b->iq + i];
+            if (p > tiny) continue;
+            const int rot = i == b->kind->angle;
+            const char *key = rot ? field_key(b->kind->fields, offsetof(braun_scene_body, inertia),
+                                              "inertia")
+                                  : field_key(b->kind->fields, offsetof(braun_scene_body, mass),
+                                              "mass");
+            push_element(r, "bodies", k);
+            who(r, "body", r->out->body_names[k], k);
+            st = sj_fail(r, SJ_AT_VALUE,
+                         "%s: its %s gives the mass matrix a pivot of %g, not above "
+                         "n*eps*max|M_ii| = %g (n = %d, largest entry %g): M would be singular "
+                         "to working precision",
+                         r->who, key, p, tiny, n, dmax);
+            break;
+        }
+    }
+    free(rod);
+    free(piv);
+    return st;
+}
+
+/* The two first point fields of a class's descriptors (-1: none). */
+static void two_points(const braun_scene_field *f, size_t *oa, size_t *ob, const char **ka,
+                       const char **kb, int *count)
+{
+    *count = 0;
+    for (; f && f->key && *count < 2; f++) {
+        if (f->kind != BRAUN_FIELD_POINT) continue;
+        if ((*count)++ == 0) *oa = f->offset, *ka = f->key;
+        else *ob = f->offset, *kb = f->key;
+    }
+}
+
+/* ", where its points 'a' and 'b' coincide" when the element's first two
+ * point fields are at one place at q. */
+static void coincide(const braun_scene *s, const braun_scene_field *fields, const void *elem,
+                     const braun_real *q, char *out, size_t size)
+{
+    size_t oa = 0, ob = 0;
+    const char *ka = NULL, *kb = NULL;
+    int count;
+    out[0] = '\0';
+    two_points(fields, &oa, &ob, &ka, &kb, &count);
+    if (count < 2) return;
+    const int a = *(const int *)(const void *)((const char *)elem + oa);
+    const int b = *(const int *)(const void *)((const char *)elem + ob);
+    if (a < 0 || b < 0 || a >= s->npoints || b >= s->npoints) return;
+    braun_scene_pt Pa, Pb;
+    braun_scene_pt_eval(s, a, q, NULL, &Pa);
+    braun_scene_pt_eval(s, b, q, NULL, &Pb);
+    if (Pa.pos[0] == Pb.pos[0] && Pa.pos[1] == Pb.pos[1] && Pa.pos[2] == Pb.pos[2])
+        snprintf(out, size, ", where its points '%s' and '%s' coincide", ka, kb);
+}
+
+static int finite_all(const braun_real *x, int count)
+{
+    for (int i = 0; i < count; i++)
+        if (!isfinite((double)x[i])) return 0;
+    return 1;
+}
+
+/* The first joint or effect that fails at (t, q, v), in file order: kind
+ * (BRAUN_SCENE_ELEM_JOINT, _EFFECT), index and a sentence without the
+ * element's name ("its forces return 1 ..."). Q: n entries of scratch
+ * (added into, never read). Returns 1 if one failed. */
+static int first_failure(const braun_scene *s, braun_real t, const braun_real *q,
+                         const braun_real *v, braun_real *Q, int *element, int *index, char *what,
+                         size_t size)
+{
+    char where[128];
+    for (int k = 0; k < s->njoints; k++) {
+        const braun_scene_joint *j = &s->joints[k];
+        const braun_scene_joint_class *c = j->type;
+        const int rows = c->rows(j);
+        braun_real phi[16], b[16], bv[16];
+        if (rows < 1 || rows > 16) continue;
+        const int rc = c->eval(s, j, t, q, v, phi, NULL, c->nonholonomic ? NULL : b, bv);
+        const int bad = rc != 0 || !finite_all(phi, rows) || !finite_all(bv, rows) ||
+                        (!c->nonholonomic && !finite_all(b, rows));
+        if (!bad) continue;
+        coincide(s, c->fields, j, q, where, sizeof where);
+        *element = BRAUN_SCENE_ELEM_JOINT;
+        *index = k;
+        if (rc) snprintf(what, size, "its rows (eval hook) return %d at t = %g%s", rc, (double)t, where);
+        else snprintf(what, size, "its rows are not finite at t = %g%s", (double)t, where);
+        return 1;
+    }
+    for (int k = 0; k < s->neffects; k++) {
+        const braun_scene_effect *e = &s->effects[k];
+        const braun_scene_effect_class *c = e->type;
+        const char *hook = NULL;
+        int rc = 0;
+        braun_real V = 0, P = 0;
+        if (c->forces && (rc = c->forces(s, e, t, q, v, Q)) != 0) hook = "forces";
+        else if (c->potential && ((rc = c->potential(s, e, q, &V, NULL)) != 0 || !isfinite((double)V)))
+            hook = "potential";
+        else if (c->power && (!c->inputs || c->inputs(e)) &&
+                 ((rc = c->power(s, e, t, q, v, &P)) != 0 || !isfinite((double)P)))
+            hook = "power";
+        if (!hook) continue;
+        coincide(s, c->fields, e, q, where, sizeof where);
+        *element = BRAUN_SCENE_ELEM_EFFECT;
+        *index = k;
+        if (rc) snprintf(what, size, "its %s hook returns %d at t = %g%s", hook, rc, (double)t, where);
+        else snprintf(what, size, "its %s hook is not finite at t = %g%s", hook, (double)t, where);
+        return 1;
+    }
+    return 0;
+}
+
+int sj_check_initial(sj_reader *r)
+{
+    const braun_scene *s = &r->out->scene;
+    braun_real *Q = calloc((size_t)s->n + 1, sizeof *Q);
+    if (!Q) return sj_fail(r, SJ_AT_VALUE, "out of memory");
+    int element = 0, index = 0;
+    char what[256];
+    const int failed = first_failure(s, 0, r->out->q0, r->out->v0, Q, &element, &index, what,
+                                     sizeof what);
+    free(Q);
+    if (!failed) return 0;
+    const int joint = element == BRAUN_SCENE_ELEM_JOINT;
+    push_element(r, joint ? "joints" : "effects", index);
+    who(r, joint ? "joint" : "effect", joint ? r->out->joint_names[index] : r->out->effect_names[index],
+        index);
+    return sj_fail(r, SJ_AT_VALUE, "%s (%s) cannot be evaluated at the initial state: %s", r->who,
+                   joint ? s->joints[index].type->name : s->effects[index].type->name, what);
+}
+
+int braun_scene_file_diagnose(const braun_scene_file *sf, braun_real t, const braun_real *q,
+                              const braun_real *v, char *msg, size_t size)
+{
+    if (msg && size) msg[0] = '\0';
+    if (!sf || !q) return 0;
+    const braun_scene *s = &sf->scene;
+    braun_real *Q = calloc((size_t)s->n + 1, sizeof *Q);
+    if (!Q) return -1;
+    int element = 0, index = 0;
+    char what[256];
+    const int failed = first_failure(s, t, q, v, Q, &element, &index, what, sizeof what);
+    free(Q);
+    if (!failed || !msg || !size) return failed;
+    const int joint = element == BRAUN_SCENE_ELEM_JOINT;
+    const char *name = joint ? sf->joint_names[index] : sf->effect_names[index];
+    const char *type = joint ? s->joints[index].type->name : s->effects[index].type->name;
+    if (name) snprintf(msg, size, "%s '%s' (%s): %s", joint ? "joint" : "effect", name, type, what);
+    else snprintf(msg, size, "%s #%d (%s): %s", joint ? "joint" : "effect", index + 1, type, what);
+    for (char *c = msg; *c; c++)
+        if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+    return 1;
+}
