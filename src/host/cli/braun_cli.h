@@ -41,6 +41,7 @@ typedef struct braun_cli_output {
     FILE *f;
     const char *path, *what;
     int created;                  /* made by this command: removed if abandoned */
+    int err;                      /* errno of the first failed write, 0 if none seen */
     braun_cli_id id;
 } braun_cli_output;
 
@@ -52,6 +53,8 @@ int braun_cli_output_distinct(braun_cli_output *a, braun_cli_output *b,
                               const braun_cli_id *input, const char *input_path);
 /* After the checks: truncate a regular file. 0 or BRAUN_CLI_USAGE. */
 int braun_cli_output_begin(braun_cli_output *o);
+/* After a write that returned an error: keep errno for the message. */
+void braun_cli_output_failed(braun_cli_output *o);
 /* Flush and close; 1 after "error writing 'FILE': reason", else 0. */
 int braun_cli_output_close(braun_cli_output *o);
 /* Close without writing; remove the file if this command made it. */
@@ -74,6 +77,7 @@ typedef struct braun_cli_run_args {
     double ref_h;               /* 0: reference default */
     const char *out_path;       /* CSV trajectory, NULL for none; "-" stdout */
     long every;                 /* CSV row every K steps */
+    int every_given;            /* --every was given (it needs --out) */
     const char *summary_path;   /* "-" for stdout */
     const char *backend;        /* --backend: dense | lapack | suitesparse | auto */
     int sparse;                 /* --sparse: the scene's sparsity (braun_scene_build_sparse) */
@@ -86,12 +90,36 @@ enum {
     BRAUN_CLI_CORR_LIST = 2    /* --corrections LIST or none */
 };
 
+/* --ref-h: the integrated references may take at most this many substeps
+ * (t_end / ref_h). */
+#define BRAUN_CLI_MAX_REF_STEPS 1e9
+
 /* Parse the arguments after "run". Returns 0 to run, -1 when --help was
  * asked (usage already printed), else BRAUN_CLI_USAGE after one message. */
 int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a);
 
 /* Comma list of the correction names in bits ("none" for 0); buf >= 32. */
 const char *braun_cli_corrections_str(unsigned bits, char *buf, size_t size);
+
+/* ---------------------------------------------------- guard (cli_guard.c) */
+/* A scene's callbacks wrapped so that a failure can be traced to its
+ * element: every call passes through; a failed one (non-zero, or a
+ * non-finite output at a finite state) records which joint or effect
+ * fails there (braun_scene_file_diagnose) and when. */
+typedef struct braun_cli_guard {
+    braun_system inner;             /* the scene's own callbacks */
+    const braun_scene_file *scene;
+    int have;                       /* what and t are set */
+    double t;                       /* time of the failed call */
+    char what[320];                 /* "effect 'sp' (spring): its forces hook returns 1 ..." */
+} braun_cli_guard;
+
+/* *out: sys with every callback through g (sys itself when scene is NULL).
+ * g must outlive out. */
+void braun_cli_guard_wrap(braun_cli_guard *g, const braun_system *sys,
+                          const braun_scene_file *scene, braun_system *out);
+/* The element that failed at time t (the core's d->error.t), or NULL. */
+const char *braun_cli_guard_element(const braun_cli_guard *g, double t);
 
 /* ------------------------------------------------------ models (cli_model.c) */
 /* What a run simulates: a system with its initial state, a name, an

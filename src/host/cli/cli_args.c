@@ -1,6 +1,7 @@
 /* Option parsing of `braun run`: every mistake is one "braun: ..." line and
  * exit status 2, before anything is computed. */
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -34,15 +35,22 @@ const char *braun_cli_corrections_str(unsigned bits, char *buf, size_t size)
     return buf;
 }
 
-/* A real number filling the whole argument; NaN and Inf are never
- * meaningful here, so they are refused with the other non-numbers. */
+/* A real number filling the whole argument. NaN and Inf are never
+ * meaningful here; nor are numbers a double cannot hold: beyond its range,
+ * or nonzero below its smallest normal value (strtod's ERANGE). Each is
+ * refused with what is wrong with it. */
 static int parse_real(const char *opt, const char *s, double *out)
 {
     char *end;
     errno = 0;
     double x = strtod(s, &end);
-    if (end == s || *end != '\0' || !isfinite(x) || errno == ERANGE)
-        return braun_cli_error("%s: '%s' is not a finite number", opt, s);
+    if (end == s || *end != '\0') return braun_cli_error("%s: '%s' is not a number", opt, s);
+    if (!isfinite(x) && errno != ERANGE) return braun_cli_error("%s: '%s' is not finite", opt, s);
+    if (errno == ERANGE && (isinf(x) || fabs(x) > 1))
+        return braun_cli_error("%s: '%s' is out of range (beyond %g)", opt, s, DBL_MAX);
+    if (errno == ERANGE || (x != 0 && fabs(x) < DBL_MIN))
+        return braun_cli_error("%s: '%s' is too small (below the smallest normal double, %g; "
+                               "write 0 or a larger value)", opt, s, DBL_MIN);
     *out = x;
     return 0;
 }
@@ -123,12 +131,22 @@ static int apply(const char *opt, const char *val, braun_cli_run_args *a)
     }
     if (strcmp(opt, "--corrections") == 0) return parse_corrections(val, a);
     if (strcmp(opt, "--discretization") == 0) return parse_discretization(val, &a->discretization);
-    if (strcmp(opt, "--rank-tol") == 0) return parse_nonnegative(opt, val, &a->rank_tol);
+    if (strcmp(opt, "--rank-tol") == 0) {
+        /* The core refuses rank_tol >= 1 (every pivot would count as 0). */
+        const int rc = parse_nonnegative(opt, val, &a->rank_tol);
+        if (!rc && !(a->rank_tol < 1))
+            return braun_cli_error("--rank-tol must be < 1 (got %s): a relative tolerance of 1 "
+                                   "or more counts every pivot as zero", val);
+        return rc;
+    }
     if (strcmp(opt, "--energy-max-rel") == 0) return parse_nonnegative(opt, val, &a->energy_max_rel);
     if (strcmp(opt, "--rtol") == 0) return parse_nonnegative(opt, val, &a->rtol);
     if (strcmp(opt, "--atol") == 0) return parse_nonnegative(opt, val, &a->atol);
     if (strcmp(opt, "--ref-h") == 0) return parse_positive(opt, val, &a->ref_h);
-    if (strcmp(opt, "--every") == 0) return parse_every(val, &a->every);
+    if (strcmp(opt, "--every") == 0) {
+        a->every_given = 1;
+        return parse_every(val, &a->every);
+    }
     if (strcmp(opt, "--out") == 0) {
         a->out_path = val;
         return 0;
@@ -229,5 +247,19 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
         return braun_cli_error("--rtol and --atol cannot both be 0");
     if (a->out_path && strcmp(a->out_path, "-") == 0 && strcmp(a->summary_path, "-") == 0)
         return braun_cli_error("--out - and the summary both write to stdout; give --summary FILE");
+    if (a->every_given && !a->out_path)
+        return braun_cli_error("--every %ld without --out: it sets the rows of the trajectory "
+                               "CSV, which only --out FILE writes", a->every);
+    /* Step times t0 + i·h must differ: below a few ulps of t_end they
+     * repeat (and t_end/h steps would never end). */
+    if (a->dt < 4 * DBL_EPSILON * a->t_end)
+        return braun_cli_error("--dt %g is below the time resolution at --t-end %g (%g): the "
+                               "steps' times would not advance", a->dt, a->t_end,
+                               4 * DBL_EPSILON * a->t_end);
+    /* The integrated references take t_end / ref_h substeps. */
+    if (a->ref_h > 0 && a->t_end / a->ref_h > BRAUN_CLI_MAX_REF_STEPS)
+        return braun_cli_error("--ref-h %g: the reference would take %g substeps to --t-end %g "
+                               "(at most %g)", a->ref_h, a->t_end / a->ref_h, a->t_end,
+                               BRAUN_CLI_MAX_REF_STEPS);
     return 0;
 }

@@ -116,12 +116,18 @@ int braun_cli_output_begin(braun_cli_output *o)
     return 0;
 }
 
+void braun_cli_output_failed(braun_cli_output *o)
+{
+    if (!o->err) o->err = errno;
+}
+
 int braun_cli_output_close(braun_cli_output *o)
 {
     if (!o->f) return 0;
     errno = 0;
-    int bad = fflush(o->f) != 0 || ferror(o->f);
-    int e = errno;
+    int bad = ferror(o->f) != 0;
+    if (fflush(o->f) != 0) bad = 1;
+    int e = o->err ? o->err : errno;
     if (o->f != stdout && fclose(o->f) != 0) {
         if (!bad) e = errno;
         bad = 1;

@@ -61,6 +61,7 @@ int braun_cli_target_open(const char *arg, braun_cli_target *t)
         t->reference = f->reference ? braun_builtin_find(f->reference) : NULL;
         t->corrections = f->corrections;
         t->scene = f;
+        braun_cli_path_id(arg, &t->id);
         return 0;
     }
     const braun_builtin *b = braun_builtin_find(arg);

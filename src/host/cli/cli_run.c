@@ -16,6 +16,7 @@
 typedef struct run_ctx {
     braun_cli_monitor *mon;
     FILE *csv;
+    braun_cli_output *csv_out; /* its file, for the errno of a failed write */
     long every;
     int n;
     braun_real t_end;
@@ -41,7 +42,8 @@ static int on_step(const braun_data *d, void *user)
     /* Every K-th state, and the last one so the file ends where the run did. */
     c->last_written = 0;
     if (c->csv && (c->calls % c->every == 0 || d->t >= c->t_end)) {
-        braun_cli_csv_row(c->csv, c->n, c->t, c->q, c->v, &c->mon->cur, c->mon->has_ref);
+        if (braun_cli_csv_row(c->csv, c->n, c->t, c->q, c->v, &c->mon->cur, c->mon->has_ref))
+            braun_cli_output_failed(c->csv_out);
         c->last_written = 1;
     }
     c->calls++;
@@ -68,14 +70,27 @@ static int integrate(braun_data *d, const braun_cli_run_args *a, braun_output_fn
                            user);
 }
 
-/* "braun: <sentence> (<STATUS: meaning>)"; the sentence only when d->error
- * belongs to this failure (early argument checks record nothing). */
-static void report_failure(const braun_data *d, int st)
+/* "braun: [<element>: ]<sentence> (<STATUS: meaning>)"; the sentence only
+ * when d->error belongs to this failure (early argument checks record
+ * nothing); the element of a scene when the guard saw the failing call;
+ * for dependent rows that disagree under a --rank-tol, what the tolerance
+ * does. */
+static void report_failure(const braun_data *d, int st, const braun_cli_guard *guard,
+                           const braun_cli_run_args *a)
 {
     if (d->error.status == st) {
         char what[256];
+        const char *element = guard ? braun_cli_guard_element(guard, d->error.t) : NULL;
         braun_error_format(d, what, sizeof what);
-        braun_cli_error("%s (%s)", what, braun_status_str(st));
+        if (st == BRAUN_ERR_INCONSISTENT && a && a->rank_tol > 0)
+            braun_cli_error("%s (%s); with --rank-tol %g, rows whose pivot is below %g times "
+                            "the largest count as dependent: a smaller tolerance (or the "
+                            "default, 0) may keep them", what, braun_status_str(st),
+                            a->rank_tol, a->rank_tol);
+        else if (element)
+            braun_cli_error("%s: %s (%s)", element, what, braun_status_str(st));
+        else
+            braun_cli_error("%s (%s)", what, braun_status_str(st));
     } else {
         braun_cli_error("%s", braun_status_str(st));
     }
@@ -87,23 +102,6 @@ static const char *method_name(unsigned used, unsigned supported)
     if (used == supported) return "braun";
     if ((used & pv) == pv && !(used & BRAUN_CORRECT_ENERGY)) return "braun-noenergy";
     return "braun-custom";
-}
-
-static FILE *open_output(const char *path)
-{
-    if (strcmp(path, "-") == 0) return stdout;
-    FILE *f = fopen(path, "w");
-    if (!f) braun_cli_error("cannot open '%s' for writing: %s", path, strerror(errno));
-    return f;
-}
-
-/* Flush and close; a full disk shows up here rather than in fprintf. */
-static int close_output(FILE *f, const char *path)
-{
-    int bad = fflush(f) != 0 || ferror(f);
-    if (f != stdout && fclose(f) != 0) bad = 1;
-    if (bad) braun_cli_error("error writing '%s'", path);
-    return bad;
 }
 
 /* The system a run integrates: the target's own (dense), or its scene's
@@ -230,19 +228,27 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
     unsigned char *buf_run = (unsigned char *)(block + 2 * n);
     unsigned char *buf_mon = buf_run + bytes;
 
-    FILE *csv = NULL, *summary = open_output(a->summary_path);
-    if (!summary) {
+    /* Both outputs opened (without blocking, nothing truncated yet), then
+     * checked against each other and the scene file, then truncated. */
+    braun_cli_output out_summary, out_csv;
+    memset(&out_csv, 0, sizeof out_csv);
+    int rc = braun_cli_output_open(&out_summary, a->summary_path, "--summary");
+    if (!rc && a->out_path) rc = braun_cli_output_open(&out_csv, a->out_path, "--out");
+    if (!rc) rc = braun_cli_output_distinct(&out_summary, &out_csv, &tg->id, tg->source);
+    if (!rc) rc = braun_cli_output_begin(&out_summary);
+    if (!rc) rc = braun_cli_output_begin(&out_csv);
+    if (rc) {
+        braun_cli_output_abandon(&out_csv);
+        braun_cli_output_abandon(&out_summary);
         free(block);
-        return BRAUN_CLI_USAGE;
+        return rc;
     }
-    if (a->out_path && !(csv = open_output(a->out_path))) {
-        if (summary != stdout) fclose(summary);
-        free(block);
-        return BRAUN_CLI_USAGE;
-    }
+    FILE *csv = out_csv.f, *summary = out_summary.f;
 
     braun_data d;
     braun_cli_monitor mon;
+    braun_cli_guard guard;
+    braun_model model2;
     run_ctx ctx;
     const braun_data *failed = &d; /* whose error to report if a start fails */
     int exit_status = 0, st_timed;
@@ -252,6 +258,7 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
      * kernels): zeroed so that releasing one never initialised is a no-op. */
     memset(&d, 0, sizeof d);
     memset(&mon, 0, sizeof mon);
+    memset(&guard, 0, sizeof guard);
 
     /* Run 1: timed, no callback. */
     st = start(&d, &model, tg, buf_run, bytes);
@@ -261,15 +268,19 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
     cpu_s = braun_cli_cpu_seconds() - c0;
     timed_stats = d.stats;
 
-    /* Run 2: the same steps, monitored (a fresh backend state, too). */
+    /* Run 2: the same steps, monitored (a fresh backend state, too), a
+     * scene's callbacks through the guard that names a failing element. */
     braun_data_release(&d);
-    st = start(&d, &model, tg, buf_run, bytes);
+    braun_cli_guard_wrap(&guard, &model.sys, tg->scene, &model2.sys);
+    model2.opt = model.opt;
+    st = start(&d, &model2, tg, buf_run, bytes);
     if (st) goto init_failed;
     failed = &mon.scratch;
-    st = braun_cli_monitor_init(&mon, &model, tg->reference, a->ref_h, buf_mon, bytes);
+    st = braun_cli_monitor_init(&mon, &model2, tg->reference, a->ref_h, buf_mon, bytes);
     if (st) goto init_failed;
     ctx.mon = &mon;
     ctx.csv = csv;
+    ctx.csv_out = &out_csv;
     ctx.every = a->every;
     ctx.n = n;
     ctx.t_end = (braun_real)a->t_end;
@@ -296,7 +307,7 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
         braun_cli_error("monitoring failed after t = %.10g: %s", ctx.t, what);
         exit_status = BRAUN_CLI_FAILED;
     } else if (st) {
-        report_failure(&d, st);
+        report_failure(&d, st, &guard, a);
         exit_status = BRAUN_CLI_FAILED;
     }
     if (!ctx.monitor_status &&
@@ -320,9 +331,9 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
     r.final_q = ctx.q;
     r.final_v = ctx.v;
     r.status = st;
-    braun_cli_write_summary(summary, &r);
-    if (close_output(summary, a->summary_path)) exit_status = BRAUN_CLI_FAILED;
-    if (csv && close_output(csv, a->out_path)) exit_status = BRAUN_CLI_FAILED;
+    if (braun_cli_write_summary(summary, &r)) braun_cli_output_failed(&out_summary);
+    if (braun_cli_output_close(&out_summary)) exit_status = BRAUN_CLI_FAILED;
+    if (braun_cli_output_close(&out_csv)) exit_status = BRAUN_CLI_FAILED;
     braun_data_release(&mon.scratch);
     braun_data_release(&d);
     free(block);
@@ -330,11 +341,11 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
 
 init_failed:
     /* Nothing was integrated: no summary to speak of. */
-    report_failure(failed, st);
+    report_failure(failed, st, NULL, a);
     braun_data_release(&mon.scratch);
     braun_data_release(&d);
-    if (csv && csv != stdout) fclose(csv);
-    if (summary != stdout) fclose(summary);
+    braun_cli_output_close(&out_csv);
+    braun_cli_output_close(&out_summary);
     free(block);
     return BRAUN_CLI_FAILED;
 }
