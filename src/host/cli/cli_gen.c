@@ -196,18 +196,18 @@ int braun_cli_gen(int argc, char **argv)
     if (end == count || *end != '\0' || errno == ERANGE || N < 1 || N > GEN_MAX_LINKS)
         return braun_cli_error("N must be an integer in [1, %d] (got '%s')", GEN_MAX_LINKS, count);
 
-    FILE *f = stdout;
-    if (out && strcmp(out, "-") != 0 && !(f = fopen(out, "w")))
-        return braun_cli_error("cannot open '%s' for writing: %s", out, strerror(errno));
+    /* Opened without blocking (a FIFO is refused), truncated after the check. */
+    braun_cli_output o;
+    if ((rc = braun_cli_output_open(&o, out ? out : "-", "gen -o")) != 0 ||
+        (rc = braun_cli_output_begin(&o)) != 0) {
+        braun_cli_output_abandon(&o);
+        return rc;
+    }
+    FILE *f = o.f;
     if (ladder) write_ladder(f, N, deg);
     else if (rods) write_rods(f, N, deg);
     else write_rigid(f, N, deg);
     fputs("  \"effects\": [\n    {\"type\": \"gravity\", \"g\": [0, -9.81]}\n  ]\n}\n", f);
-    int bad = fflush(f) != 0 || ferror(f);
-    if (f != stdout && fclose(f) != 0) bad = 1;
-    if (bad) {
-        braun_cli_error("error writing '%s'", out ? out : "stdout");
-        return BRAUN_CLI_FAILED;
-    }
-    return 0;
+    if (ferror(f)) braun_cli_output_failed(&o);
+    return braun_cli_output_close(&o) ? BRAUN_CLI_FAILED : 0;
 }
