@@ -1,6 +1,8 @@
-/* The paper's mechanisms (Sec. 4) against their exact solutions, with the
- * acceptance figures of the core issue, and the observed order of RK4
- * under both discretisations of the 1/h terms. */
+/* The paper's mechanisms (Sec. 4) against their exact solutions, and the
+ * observed order of RK4 under both discretisations of the 1/h terms. The
+ * bounds are a small factor (2-4) above the values measured on x86-64, gcc
+ * 12, -O2 (beside each): the core issue's acceptance figures (1e-9, 1e-6,
+ * 1e-2, ...) had up to 300x slack, enough for an order-3 RK4 to pass. */
 #include "test_util.h"
 #include "braun_reference.h"
 
@@ -59,8 +61,9 @@ static void test_slider_crank_accuracy(void **state)
                      BRAUN_OK);
     print_message("slider-crank h=1e-3 100 s: max|Phi_q| %.3g  max traj %.3g  max|Phi_e| %.3g\n",
                   mo.maxpos, mo.maxtraj, mo.maxE);
-    assert_le(mo.maxpos, 1e-9);
-    assert_le(mo.maxtraj, 1e-6);
+    assert_le(mo.maxpos, 1e-11);  /* measured 2.92e-12 (issue: 1e-9) */
+    assert_le(mo.maxtraj, 1e-8);  /* 3.54e-9 (issue: 1e-6) */
+    assert_le(mo.maxE, 1e-10);    /* 2.71e-11 */
 }
 
 /* Core issue: four-bar, RK4, h = 1e-2, 1000 s through its singular
@@ -79,10 +82,12 @@ static void test_four_bar_long_run(void **state)
     print_message("four-bar h=1e-2 1000 s: with energy eps3 %.3g |Phi_e| %.3g |Phi_q| %.3g;"
                   " without eps3 %.3g |Phi_e| %.3g\n",
                   with.maxpoint, with.maxE, with.maxpos, without.maxpoint, without.maxE);
-    assert_le(with.maxpoint, 1e-2);
-    assert_le(with.maxE, 1e-5);
-    assert_le(with.maxpos, 1e-6);
-    assert_true(without.maxpoint > 10 * with.maxpoint);
+    assert_le(with.maxpoint, 1e-3); /* measured 3.16e-4 (issue: 1e-2) */
+    assert_le(with.maxE, 3e-6);     /* 1.01e-6 (issue: 1e-5) */
+    assert_le(with.maxpos, 4e-7);   /* 1.28e-7 */
+    /* without: eps3 1.29, |Phi_e| 4.0e-3 */
+    assert_true(without.maxpoint > 1000 * with.maxpoint);
+    assert_true(without.maxE > 1000 * with.maxE);
 }
 
 /* Observed order p = log(e(h1)/e(h2)) / log(h1/h2) over 100 s. RK4 keeps
@@ -109,9 +114,11 @@ static void test_rk4_order(void **state)
         double p2 = log(e_stage[i - 1] / e_stage[i]) / log(hs[i - 1] / hs[i]);
         print_message("h %.0e -> %.0e: per-step error %.3g order %.2f | per-stage error %.3g order %.2f\n",
                       hs[i - 1], hs[i], e_step[i], p1, e_stage[i], p2);
-        assert_true(p1 > 3.6 && p1 < 4.4);
-        assert_true(p2 < 1.5);
+        /* measured 4.09, 4.04, 3.99 and 1.15, 1.04, 0.99 */
+        assert_true(p1 > 3.9 && p1 < 4.2);
+        assert_true(p2 > 0.8 && p2 < 1.3);
     }
+    assert_le(e_step[3], 1.5e-7); /* measured 5.67e-8 at h = 2e-3 */
 }
 
 /* Euler: the per-step scheme is the paper's equation itself, so both
@@ -130,7 +137,10 @@ static void test_euler_schemes_coincide(void **state)
         for (int i = 0; i < 6; i++) qf[disc][i] = sim.data.q[i];
         test_sim_close(&sim);
     }
-    for (int i = 0; i < 6; i++) assert_near(qf[0][i], qf[1][i], 1e-12);
+    double dmax = 0;
+    for (int i = 0; i < 6; i++) dmax = fmax(dmax, fabs(qf[0][i] - qf[1][i]));
+    print_message("euler per-step vs per-stage, 2 s: max |dq| %.3g\n", dmax);
+    for (int i = 0; i < 6; i++) assert_near(qf[0][i], qf[1][i], 2e-14); /* measured 6e-15 */
 }
 
 /* Heun is second order, Euler first, on the same problem (per-step). */
@@ -142,18 +152,20 @@ static void test_low_order_methods(void **state)
     assert_int_equal(run_model("pendulum", BRAUN_CORRECT_ALL, BRAUN_PER_STEP, BRAUN_HEUN, 1e-3, 5.0, &b), BRAUN_OK);
     double p = log(a.maxtraj / b.maxtraj) / log(2.0);
     print_message("heun order %.2f (errors %.3g, %.3g)\n", p, a.maxtraj, b.maxtraj);
-    assert_true(p > 1.7 && p < 2.3);
+    assert_true(p > 1.9 && p < 2.1);   /* measured 2.00 */
+    assert_le(b.maxtraj, 1e-4);         /* 4.17e-5 at h = 1e-3 */
     assert_int_equal(run_model("pendulum", BRAUN_CORRECT_ALL, BRAUN_PER_STEP, BRAUN_EULER, 2e-3, 5.0, &a), BRAUN_OK);
     assert_int_equal(run_model("pendulum", BRAUN_CORRECT_ALL, BRAUN_PER_STEP, BRAUN_EULER, 1e-3, 5.0, &b), BRAUN_OK);
     p = log(a.maxtraj / b.maxtraj) / log(2.0);
     print_message("euler order %.2f (errors %.3g, %.3g)\n", p, a.maxtraj, b.maxtraj);
-    assert_true(p > 0.7 && p < 1.3);
+    assert_true(p > 0.75 && p < 1.25); /* measured 0.85 (not yet asymptotic) */
+    assert_le(b.maxtraj, 4e-2);         /* 1.6e-2 at h = 1e-3 */
     /* Euler's constraint error is its local error, O(h^2): halving h
      * divides it by about 4 (no accumulation). */
     double ratio = a.maxpos / b.maxpos;
     print_message("euler max|Phi_q| %.3g (h=2e-3), %.3g (h=1e-3): ratio %.2f\n", a.maxpos,
                   b.maxpos, ratio);
-    assert_true(ratio > 3.0 && ratio < 5.0);
+    assert_true(ratio > 3.8 && ratio < 4.2); /* measured 4.00 */
 }
 
 /* The four-bar started exactly at a singular configuration (all links
@@ -176,12 +188,15 @@ static void test_four_bar_from_singularity(void **state)
     double phi, dphi, w2 = 7 * 9.81 / 6;
     assert_int_equal(braun_pendulum_exact(w2, 3.14159265358979324 / 2, 1.0, 20.0, &phi, &dphi), 0);
     const double th = phi - 3.14159265358979324 / 2;
-    assert_near(sim.data.q[4], 2 + cos(th), 1e-4);
-    assert_near(sim.data.q[5], sin(th), 1e-4);
     braun_real p, v, e;
     braun_residuals(&sim.data, sim.data.t, sim.data.q, sim.data.v, &p, &v, &e);
-    assert_le(p, 1e-8);
-    assert_le(e, 1e-6);
+    print_message("four-bar from y = 0, 20 s: |x3 - exact| %.3g |y3 - exact| %.3g |Phi_q| %.3g |Phi_e| %.3g\n",
+                  fabs(sim.data.q[4] - (2 + cos(th))), fabs(sim.data.q[5] - sin(th)), p, e);
+    /* measured 2.7e-9, 6.4e-8, 2.7e-11, 8.7e-9 */
+    assert_near(sim.data.q[4], 2 + cos(th), 2e-7);
+    assert_near(sim.data.q[5], sin(th), 2e-7);
+    assert_le(p, 1e-10);
+    assert_le(e, 3e-8);
     test_sim_close(&sim);
 }
 
@@ -194,6 +209,8 @@ static void test_adaptive_through_singularities(void **state)
 {
     (void)state;
     const char *names[2] = {"four-bar", "slider-crank"};
+    /* measured max traj 4.87e-8, 7.16e-9; max |Phi_q| 1.58e-11, 1.03e-11 */
+    const double traj_bound[2] = {1.5e-7, 2.5e-8}, pos_bound[2] = {4e-11, 4e-11};
     for (int i = 0; i < 2; i++) {
         const braun_builtin *b = braun_builtin_find(names[i]);
         test_sim sim;
@@ -205,10 +222,10 @@ static void test_adaptive_through_singularities(void **state)
         assert_int_equal(braun_reference_init(&mo.ref, b, 1e-4), 0);
         braun_adaptive ctl = {1e-10, 1e-10, 1e-2, 0, 0, 0};
         assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 200.0, 1, monitor_out, &mo), BRAUN_OK);
-        print_message("%s dopri5 rtol 1e-10, 200 s: %ld steps, %ld rejected, max traj %.3g\n", names[i],
-                      sim.data.stats.steps, sim.data.stats.rejected_steps, mo.maxtraj);
-        assert_le(mo.maxtraj, 1e-6);
-        assert_le(mo.maxpos, 1e-8);
+        print_message("%s dopri5 rtol 1e-10, 200 s: %ld steps, %ld rejected, max traj %.3g, max|Phi_q| %.3g\n",
+                      names[i], sim.data.stats.steps, sim.data.stats.rejected_steps, mo.maxtraj, mo.maxpos);
+        assert_le(mo.maxtraj, traj_bound[i]);
+        assert_le(mo.maxpos, pos_bound[i]);
         test_sim_close(&sim);
     }
 }
