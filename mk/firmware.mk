@@ -218,7 +218,7 @@ FW_TEST_PREREQS := $(FW_ALL) $(FW_DIR)/host-double/fw_host $(FW_DIR)/host-float/
 firmware: $(FW_ALL)
 
 FW_ENV = QEMU="$(QEMU)" FW_NM="$(FW_NM)" FW_CC="$(FW_CC)" FW_QEMU_FLAGS="$(FW_QEMU_FLAGS)" \
-         FW_CONFIGS="$(FW_CONFIGS)"
+         FW_CONFIGS="$(FW_CONFIGS)" BRAUN="$(BUILD)/bin/braun"
 
 firmware-test: $(FW_TEST_PREREQS)
 	@$(FW_ENV) sh tests/firmware/run.sh $(FW_DIR)
