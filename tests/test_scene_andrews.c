@@ -72,12 +72,15 @@ static void test_reference_solution(void **state)
 {
     (void)state;
     const double steps[] = {1e-4, 1e-5};
+    /* measured 3.5e-7, 3.2e-10 (the issue's 1e-6 for h = 1e-4) and |Phi_q|
+     * 3.7e-9, 3.7e-14 */
+    const double rel_bound[] = {1e-6, 1e-9}, pos_bound[] = {1e-8, 1.5e-13};
     for (int k = 0; k < 2; k++) {
         double pos, rel = run_to_reference(steps[k], &pos);
         print_message("andrews RK4 h = %g (%g steps): max relative error at t = 0.03 %.3g, "
                       "|Phi_q| %.3g\n", steps[k], 0.03 / steps[k], rel, pos);
-        assert_le(rel, 1e-6);
-        assert_le(pos, 1e-8);
+        assert_le(rel, rel_bound[k]);
+        assert_le(pos, pos_bound[k]);
     }
 }
 
