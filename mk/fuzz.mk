@@ -1,10 +1,14 @@
-# Coverage-guided fuzzing with libFuzzer (clang): the scene reader/builder
-# and the CLI's option parsing, under AddressSanitizer and UBSan.
+# Coverage-guided fuzzing with libFuzzer (clang), under AddressSanitizer and
+# UBSan: the scene reader/builder (fuzz_scene), the CLI's option parsing
+# (fuzz_args), the C generator (fuzz_gen_c: texts never leave their
+# comments) and the adaptive driver's options (fuzz_adaptive: bounded by
+# max_steps, BRAUN_OK only with a finite state at t_end).
 #   make fuzz            each target for FUZZ_SECONDS (default 30) from its
 #                        seed corpus in tests/fuzz/corpus_*; part of make test
 #   make fuzz-regress    replay the corpora and tests/fuzz/regressions/ only
 # A crash leaves its input in $(BUILD)/fuzz/; copy it to
-# tests/fuzz/regressions/scene/ or .../args/ so it is replayed from then on.
+# tests/fuzz/regressions/TARGET/ (scene, args, gen_c, adaptive) so it is
+# replayed from then on.
 FUZZ_SECONDS ?= 30
 FUZZ_CC := clang
 FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
@@ -19,10 +23,18 @@ $(BUILD)/fuzz/fuzz_args: tests/fuzz/fuzz_args.c $(FUZZ_CLI_SRC) $(CORE_SRC) | de
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_FLAGS) tests/fuzz/fuzz_args.c $(FUZZ_CLI_SRC) $(CORE_SRC) -lm -o $@
 
+$(BUILD)/fuzz/fuzz_gen_c: tests/fuzz/fuzz_gen_c.c $(FUZZ_LIB_SRC) | deps-fuzz
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_FLAGS) tests/fuzz/fuzz_gen_c.c $(FUZZ_LIB_SRC) -ljansson -lm -o $@
+$(BUILD)/fuzz/fuzz_adaptive: tests/fuzz/fuzz_adaptive.c $(CORE_SRC) | deps-fuzz
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_FLAGS) tests/fuzz/fuzz_adaptive.c $(CORE_SRC) -lm -o $@
+
 deps-fuzz:
 	@tools/ensure-deps clang libclang-rt-14-dev libjansson-dev
 
-FUZZ_BIN := $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_args
+FUZZ_BIN := $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_args $(BUILD)/fuzz/fuzz_gen_c \
+            $(BUILD)/fuzz/fuzz_adaptive
 .PHONY: fuzz fuzz-regress deps-fuzz
 fuzz: $(FUZZ_BIN)
 	@sh tools/fuzz-run $(BUILD)/fuzz $(FUZZ_SECONDS)

@@ -1,0 +1,240 @@
+#!/bin/sh
+# Input hygiene (issue 12, item 7): sh tests/cli/hygiene.sh path/to/braun
+# (run from the top of the tree). Hostile names and paths in gen-c's output,
+# the loader's time against the scene's size, FIFOs and other special files,
+# numbers the simulation cannot work with, messages that name what failed,
+# outputs that would overwrite each other or the input. Every case here
+# failed before the fix. Prints "ok - NAME" / "not ok - NAME" and a closing
+# "N passed, M failed".
+BRAUN=${1:?usage: sh tests/cli/hygiene.sh path/to/braun}
+CC=${CC:-cc}
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/braun-hygiene.XXXXXX") || exit 1
+trap 'rm -rf "$TMP"' EXIT INT TERM
+passed=0
+failed=0
+
+ok() { passed=$((passed + 1)); echo "ok - $1"; }
+not_ok() { failed=$((failed + 1)); echo "not ok - $1"; [ -z "$2" ] || echo "#   $2"; }
+check() { # check NAME COMMAND...: passes when COMMAND succeeds
+    name=$1; shift
+    if "$@"; then ok "$name"; else not_ok "$name"; fi
+}
+# expect NAME RC PATTERN ARGS...: braun ARGS exits RC within 20 s, prints
+# nothing on stdout (unless RC is 0) and one stderr line matching PATTERN
+# (grep -E; empty: nothing on stderr).
+expect() {
+    name=$1 want=$2 pattern=$3; shift 3
+    timeout 20 "$BRAUN" "$@" > "$TMP/x.out" 2> "$TMP/x.err" < /dev/null; rc=$?
+    lines=$(wc -l < "$TMP/x.err" | tr -d ' ')
+    if [ "$rc" -ne "$want" ]; then
+        not_ok "$name" "exit $rc (want $want), stderr: $(head -c 300 "$TMP/x.err")"
+    elif [ -n "$pattern" ] && { [ "$lines" -ne 1 ] || ! grep -Eq -- "$pattern" "$TMP/x.err"; }; then
+        not_ok "$name" "stderr ($lines lines): $(head -c 300 "$TMP/x.err")"
+    elif [ -z "$pattern" ] && [ -s "$TMP/x.err" ]; then
+        not_ok "$name" "stderr: $(head -c 300 "$TMP/x.err")"
+    elif [ "$want" -ne 0 ] && [ -s "$TMP/x.out" ]; then
+        not_ok "$name" "stdout not empty"
+    else
+        ok "$name"
+    fi
+}
+now_ms() { date +%s%N | cut -c1-13; } # milliseconds (GNU date)
+
+# ------------------------------------------------------------ gen-c: texts
+# Every text of the scene lands inside a comment: the output compiles with
+# -Werror (trigraphs on) under gcc and clang, defines nothing but the
+# scene's own symbols, and is printable ASCII with lines < 4096 characters.
+cat > "$TMP/hostile.json" <<'EOF'
+{"name": "x*/ int evil_name; /*",
+ "description": "a */ int evil_desc; /* ??/ ??= \\ /* \n*/ int evil_nl; /* caf\u00e9 \u202e\u2028 \u0001 \\",
+ "bodies": [{"name": "b*/ int evil_body; /*", "type": "particle", "mass": 1, "position": [1, 0]},
+            {"name": "??/", "type": "particle", "mass": 1, "position": [2, 0]}],
+ "joints": [{"name": "j\\", "type": "distance", "a": [0, 0], "b": "b*/ int evil_body; /*"},
+            {"name": "\n*/ int evil_joint; //", "type": "distance", "a": "b*/ int evil_body; /*", "b": "??/"}],
+ "effects": [{"name": "g\u00fc\u00df */ int evil_effect; /* \ud83d\ude00", "type": "gravity", "g": [0, -9.81]}]}
+EOF
+mkdir -p "$TMP/src*" && cp "$TMP/hostile.json" "$TMP/src*/h.json"
+"$BRAUN" gen-c "$TMP/src*/h.json" --symbol hostile -o "$TMP/hostile.c" 2> "$TMP/gc.err" || rm -f "$TMP/hostile.c"
+for cc in gcc clang; do
+    command -v $cc > /dev/null 2>&1 || continue
+    tri=; [ $cc = gcc ] && tri=-trigraphs
+    check "gen-c hostile output compiles with $cc -std=c99 -Wall -Wextra -Wpedantic -Werror $tri" \
+        $cc -std=c99 $tri -Wall -Wextra -Wpedantic -Werror -Iinclude/core -c "$TMP/hostile.c" -o "$TMP/hostile-$cc.o"
+done
+[ -f "$TMP/hostile-gcc.o" ] || $CC -std=c99 -Iinclude/core -c "$TMP/hostile.c" -o "$TMP/hostile-gcc.o" 2> /dev/null
+check "gen-c hostile output: no injected definition (nm shows no evil_*)" sh -c '
+    [ -f "$1" ] && ! nm "$1" | grep -q evil_' sh "$TMP/hostile-gcc.o"
+check "gen-c hostile output: printable ASCII only" sh -c '! LC_ALL=C grep -q "[^ -~]" "$1"' sh "$TMP/hostile.c"
+check "gen-c hostile output: no trigraph, no line splice" sh -c '
+    ! grep -q "??" "$1" && ! grep -q "\\\\$" "$1"' sh "$TMP/hostile.c"
+# The same scene with plain names: with the comments stripped (the
+# preprocessor's -fpreprocessed), the two outputs are the same code.
+cat > "$TMP/plain.json" <<'EOF'
+{"name": "x", "description": "d",
+ "bodies": [{"name": "b1", "type": "particle", "mass": 1, "position": [1, 0]},
+            {"name": "b2", "type": "particle", "mass": 1, "position": [2, 0]}],
+ "joints": [{"name": "j1", "type": "distance", "a": [0, 0], "b": "b1"},
+            {"name": "j2", "type": "distance", "a": "b1", "b": "b2"}],
+ "effects": [{"name": "g", "type": "gravity", "g": [0, -9.81]}]}
+EOF
+"$BRAUN" gen-c "$TMP/plain.json" --symbol hostile -o "$TMP/plain.c"
+strip_comments() { $CC -std=c99 -fpreprocessed -dD -E -P "$1" 2> /dev/null | grep -v '^ *$'; }
+strip_comments "$TMP/hostile.c" > "$TMP/hostile.code"
+strip_comments "$TMP/plain.c" > "$TMP/plain.code"
+check "gen-c hostile output: the same code as for plain names, once comments are stripped" sh -c '
+    [ -s "$1" ] && cmp -s "$1" "$2"' sh "$TMP/hostile.code" "$TMP/plain.code"
+
+# A name of 100 000 characters: lines stay within C99's 4095.
+awk 'BEGIN { s = ""; for (i = 0; i < 100000; i++) s = s "n";
+    printf "{\"name\": \"long\", \"description\": \"%s\", \"bodies\": [{\"name\": \"%s\", \"type\": \"particle\", \"mass\": 1, \"position\": [1, 0]}], \"joints\": [{\"type\": \"distance\", \"a\": [0, 0], \"b\": \"%s\"}]}\n", s, s, s }' > "$TMP/long.json"
+"$BRAUN" gen-c "$TMP/long.json" --symbol longname -o "$TMP/long.c"; rc=$?
+check "gen-c of 100 000-character names: every line < 4096 characters, compiles" sh -c '
+    [ "$1" -eq 0 ] && awk "length(\$0) > 4095 { bad = 1 } END { exit bad }" "$2" &&
+    $3 -std=c99 -Wall -Wextra -Wpedantic -Werror -Iinclude/core -c "$2" -o "$2.o"' \
+    sh "$rc" "$TMP/long.c" "$CC"
+
+# ------------------------------------------------------- gen-c: symbols, files
+expect "gen-c --symbol braun_scene refused (braun_scene_build is libbraun's)" 2 \
+    "symbol must not start with 'braun_'" gen-c data/pendulum.json --symbol braun_scene
+expect "gen-c --symbol of 49 characters refused" 2 "longer than 48" \
+    gen-c data/pendulum.json --symbol aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa
+expect "gen-c --symbol _x refused (reserved)" 2 "must not start with '_'" \
+    gen-c data/pendulum.json --symbol _x
+expect "gen-c --symbol with a non-ASCII letter refused" 2 "must be a C identifier" \
+    gen-c data/pendulum.json --symbol "$(printf 'caf\303\251')"
+expect "gen-c -o /dev/full: exit 1, names the I/O error (not 'a C identifier?')" 1 \
+    "^braun: error writing '/dev/full': No space left on device$" gen-c data/pendulum.json -o /dev/full
+cp data/pendulum.json "$TMP/in.json"
+expect "gen-c -o onto its input scene: refused" 2 "is the input" gen-c "$TMP/in.json" -o "$TMP/./in.json"
+check "gen-c -o onto its input scene: the scene is unchanged" cmp -s data/pendulum.json "$TMP/in.json"
+mkfifo "$TMP/fifo"
+expect "gen-c -o FIFO: refused at once (no reader needed)" 2 "is a FIFO" gen-c data/pendulum.json -o "$TMP/fifo"
+expect "gen -o FIFO: refused at once" 2 "is a FIFO" gen chain 3 -o "$TMP/fifo"
+
+# --------------------------------------------------------- special files in
+expect "run FIFO: refused at once (never waits for a writer)" 2 "is a FIFO" \
+    run "$TMP/fifo" --dt 1e-3 --t-end 1
+expect "check FIFO: refused at once" 2 "is a FIFO" check "$TMP/fifo"
+expect "gen-c FIFO: refused at once" 2 "is a FIFO" gen-c "$TMP/fifo"
+expect "check a directory: refused as a directory" 2 "is a directory" check "$TMP/"
+expect "check /dev/zero: refused as a character device (never read)" 2 "is a character device" check /dev/zero
+
+# ---------------------------------------------------- loading time vs size
+# A chain of N rigid links whose last joint names an unknown body: the
+# message comes in O(N log N) (it took O(N^2): 63 s at N = 200 000).
+chain() { # chain N BAD FILE: BAD body | point
+    awk -v N="$1" -v BAD="$2" 'BEGIN {
+        print "{\"name\": \"big\", \"bodies\": ["
+        for (i = 1; i <= N; i++)
+            printf "{\"name\": \"link%d\", \"type\": \"rigid\", \"mass\": 1, \"inertia\": 0.08, \"position\": [%d.5, 0], \"points\": {\"a\": [-0.5, 0], \"b\": [0.5, 0]}}%s\n", i, i - 1, (i < N ? "," : "")
+        print "], \"joints\": [{\"type\": \"revolute\", \"a\": \"link1.a\", \"b\": [0, 0]},"
+        for (i = 2; i <= N; i++) printf "{\"type\": \"revolute\", \"a\": \"link%d.b\", \"b\": \"link%d.a\"},\n", i - 1, i
+        printf "{\"name\": \"last\", \"type\": \"revolute\", \"a\": \"link%d.b\", \"b\": \"%s\"}]}\n", N, BAD == "body" ? "nosuch.a" : "link1.nosuch" }' > "$3"
+}
+chain 20000 body "$TMP/c20k.json"
+chain 200000 body "$TMP/c200k.json"
+chain 200000 point "$TMP/p200k.json"
+t0=$(now_ms); timeout 60 "$BRAUN" check "$TMP/c20k.json" > /dev/null 2> "$TMP/c20k.err"
+t1=$(now_ms); expect "200 000 links, unknown body at the end: exit 2 within 20 s, named" 2 \
+    "c200k.json:400002:[0-9]+: joint 'last' refers to unknown body 'nosuch'" check "$TMP/c200k.json"
+t2=$(now_ms); expect "200 000 links, unknown point at the end: exit 2 within 20 s, named" 2 \
+    "joint 'last' refers to unknown point 'link1.nosuch'" check "$TMP/p200k.json"
+small=$((t1 - t0)) large=$((t2 - t1))
+check "loading is O(N log N): 200 000 links ${large} ms, 20 000 ${small} ms (ratio < 20, < 19.5 s)" sh -c '
+    grep -q "c20k.json:40002:[0-9]*: joint .last. refers to unknown body .nosuch.$" "$3" &&
+    awk -v a="$1" -v b="$2" "BEGIN { exit !(a < 19500 && a < 20 * (b > 100 ? b : 100)) }"' \
+    sh "$large" "$small" "$TMP/c20k.err"
+rm -f "$TMP/c20k.json" "$TMP/c200k.json" "$TMP/p200k.json"
+
+# ---------------------------------------------------- numbers the reader takes
+scene() { # scene FILE BODY [JOINT]: one particle body on an optional joint
+    printf '{"name": "s", "bodies": [%s], "joints": [%s], "effects": [{"type": "gravity", "g": [0, -9.81]}]}\n' "$2" "$3" > "$1"
+}
+scene "$TMP/m320.json" '{"name": "b", "type": "particle", "mass": 1e-320, "position": [1, 0]}' \
+    '{"type": "distance", "a": [0, 0], "b": "b"}'
+expect "mass 1e-320 (subnormal): refused at load, names the field" 2 \
+    "m320.json:1:[0-9]+: body 'b': field 'mass' is out of range \(1e-320 is below the smallest normal" \
+    run "$TMP/m320.json" --dt 1e-3 --t-end 1
+scene "$TMP/axis.json" '{"name": "b", "type": "particle", "mass": 1, "position": [0, 0]}' \
+    '{"type": "slider", "point": "b", "line": [0, 0], "axis": [1e-300, 0]}'
+expect "slider axis of length 1e-300: refused at load (its square underflows)" 2 \
+    "axis.json:1:[0-9]+: joint #1: field 'axis' is too small \(length 1e-300; the limit is 1e-150" \
+    run "$TMP/axis.json" --dt 1e-3 --t-end 1
+scene "$TMP/len.json" '{"name": "b", "type": "particle", "mass": 1, "position": [1e-200, 0]}' \
+    '{"type": "distance", "a": [0, 0], "b": "b"}'
+expect "distance of 1e-200 taken from the initial state: refused at load" 2 \
+    "joint #1: field 'length' \(left out: taken from the initial state\) is too small" \
+    check "$TMP/len.json"
+scene "$TMP/step.json" '{"name": "b", "type": "particle", "mass": 1, "position": [1, 0]}' \
+    '{"type": "distance", "a": [0, 0], "b": "b", "drive": {"type": "sine", "amplitude": 1, "omega": 1e-310}}'
+expect "a drive's omega of 1e-310 (subnormal): refused at load" 2 "field 'omega' is out of range \(1e-310" \
+    check "$TMP/step.json"
+printf '{"name": "s", "bodies": [{"name": "b", "type": "rigid", "mass": 1, "inertia": 1e-20, "position": [0.5, 0], "points": {"o": [-0.5, 0]}}], "joints": [{"type": "revolute", "a": "b.o", "b": [0, 0]}]}\n' > "$TMP/inertia.json"
+expect "inertia 1e-20 beside mass 1: refused at load (M singular to working precision)" 2 \
+    "inertia.json:1:[0-9]+: body 'b': its inertia gives the mass matrix a pivot of 1e-20" \
+    run "$TMP/inertia.json" --dt 1e-3 --t-end 1
+printf '{"name": "s", "bodies": [{"name": "b1", "type": "particle", "mass": 1, "position": [1, 0]}, {"name": "b2", "type": "particle", "mass": 1e-20, "position": [2, 0]}], "joints": [{"type": "distance", "a": [0, 0], "b": "b1"}, {"type": "distance", "a": "b1", "b": "b2"}]}\n' > "$TMP/ratio.json"
+expect "masses 1 and 1e-20 in one scene: refused at load, names the light body" 2 \
+    "body 'b2': its mass gives the mass matrix a pivot of 1e-20" check "$TMP/ratio.json"
+printf '{"name": "s", "bodies": [{"name": "b", "type": "rigid", "mass": 1, "inertia": 1, "position": [0, 0]}], "joints": [{"type": "knife", "body": "b", "direction": [1, 0]}, {"type": "revolute", "a": "b..", "b": [0, 0]}]}\n' > "$TMP/own.json"
+expect "a reference 'b..' does not reach a knife edge's own contact point" 2 \
+    "refers to unknown point 'b..'" check "$TMP/own.json"
+
+# ------------------------------------------------- zero-length spring, named
+printf '{"name": "zs", "bodies": [{"name": "b", "type": "particle", "mass": 1, "position": [0, 0]}],\n "effects": [{"name": "sp", "type": "spring", "a": [0, 0], "b": "b", "stiffness": 10}]}\n' > "$TMP/zs.json"
+expect "spring of length 0 at the initial state: refused at load, names the spring" 2 \
+    "zs.json:2:14: effect 'sp' \(spring\) cannot be evaluated at the initial state: its forces hook returns 1 at t = 0, where its points 'a' and 'b' coincide" \
+    run "$TMP/zs.json" --dt 1e-3 --t-end 1
+printf '{"name": "zs2", "bodies": [{"name": "b", "type": "particle", "mass": 1, "position": [1, 0], "velocity": [-1, 0]}],\n "effects": [{"name": "sp", "type": "spring", "a": [0, 0], "b": "b", "stiffness": 0, "rest_length": 0}]}\n' > "$TMP/zs2.json"
+"$BRAUN" run "$TMP/zs2.json" --dt 0.5 --t-end 2 > "$TMP/zs2.out" 2> "$TMP/zs2.err"; rc=$?
+check "spring reaching length 0 at t = 1: exit 1, the message names effect 'sp'" sh -c '
+    [ "$1" -eq 1 ] && [ "$(wc -l < "$2")" -eq 1 ] &&
+    grep -q "^braun: effect '\''sp'\'' (spring): its forces hook returns 1 at t = 1, where its points '\''a'\'' and '\''b'\'' coincide: callback '\''forces'\''" "$2"' \
+    sh "$rc" "$TMP/zs2.err"
+
+# ------------------------------------------------------ options of braun run
+expect "--rank-tol 1: refused as an argument (exit 2), not run" 2 "^braun: --rank-tol must be < 1 \(got 1\)" \
+    run four-bar --dt 1e-2 --t-end 1 --rank-tol 1
+expect "--rank-tol 0.5: the message says what the tolerance did" 1 \
+    "constraints disagree.*with --rank-tol 0.5, rows whose pivot is below 0.5 times the largest count as dependent" \
+    run data/four-bar.json --dt 1e-2 --t-end 1 --rank-tol 0.5 --summary /dev/null
+expect "--dt 1e-310: too small, not 'not a finite number'" 2 "^braun: --dt: '1e-310' is too small" \
+    run four-bar --dt 1e-310 --t-end 1
+expect "--dt 1e999: out of range, not 'not a finite number'" 2 "^braun: --dt: '1e999' is out of range" \
+    run four-bar --dt 1e999 --t-end 1
+expect "--dt 1e-17 with --t-end 1: below the time resolution" 2 "below the time resolution" \
+    run four-bar --dt 1e-17 --t-end 1
+expect "--ref-h 1e-300: refused (1e300 reference substeps)" 2 "^braun: --ref-h 1e-300: the reference would take" \
+    run slider-crank --dt 1e-2 --t-end 1 --ref-h 1e-300
+expect "--every without --out: an error" 2 "^braun: --every 10 without --out" \
+    run four-bar --dt 1e-2 --t-end 1 --every 10
+
+# ---------------------------------------------------------- outputs of run
+expect "--out and --summary one file: refused" 2 "are the same file" \
+    run four-bar --dt 1e-2 --t-end 1 --out "$TMP/one" --summary "$TMP/./one"
+check "--out and --summary one file: nothing left behind" [ ! -e "$TMP/one" ]
+cp data/pendulum.json "$TMP/p.json"
+expect "--out onto the input scene: refused" 2 "^braun: --out '.*p.json' is the input" \
+    run "$TMP/p.json" --dt 1e-2 --t-end 1 --out "$TMP/p.json"
+expect "--summary onto the input scene (another spelling): refused" 2 "is the input" \
+    run "$TMP/p.json" --dt 1e-2 --t-end 1 --summary "$TMP/../$(basename "$TMP")/p.json"
+ln -s "$TMP/p.json" "$TMP/link.csv"
+expect "--out through a symbolic link to the input scene: refused" 2 "is the input" \
+    run "$TMP/p.json" --dt 1e-2 --t-end 1 --out "$TMP/link.csv"
+check "the input scene is unchanged" cmp -s data/pendulum.json "$TMP/p.json"
+"$BRAUN" run four-bar --dt 1e-2 --t-end 1 --out "$TMP/same.csv" > "$TMP/same.csv" 2> "$TMP/same.err"; rc=$?
+check "--out FILE with stdout (the summary) redirected to FILE: refused" sh -c '
+    [ "$1" -eq 2 ] && grep -q "are the same file" "$2"' sh "$rc" "$TMP/same.err"
+expect "--out FIFO: refused at once" 2 "^braun: --out '.*fifo' is a FIFO" \
+    run four-bar --dt 1e-2 --t-end 1 --out "$TMP/fifo"
+expect "--summary FIFO: refused at once" 2 "^braun: --summary '.*fifo' is a FIFO" \
+    run four-bar --dt 1e-2 --t-end 1 --summary "$TMP/fifo"
+expect "--summary /dev/full: exit 1, names the I/O error" 1 \
+    "^braun: error writing '/dev/full': No space left on device$" \
+    run four-bar --dt 1e-2 --t-end 1 --summary /dev/full
+expect "--out /dev/full: exit 1, names the I/O error" 1 \
+    "^braun: error writing '/dev/full': No space left on device$" \
+    run four-bar --dt 1e-2 --t-end 1 --out /dev/full --summary /dev/null
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
