@@ -78,7 +78,7 @@ int braun_cli_gen_c(int argc, char **argv)
     if (st) {
         const int e = errno;
         braun_cli_output_abandon(&o);
-        braun_cli_error("error writing '%s'%s%s", out && strcmp(out, "-") ? out : "stdout",
+        braun_cli_error("error writing '%s'%s%s", out && strcmp(out, "-") != 0 ? out : "stdout",
                         e ? ": " : "", e ? strerror(e) : "");
         return BRAUN_CLI_FAILED;
     }

@@ -125,9 +125,10 @@ static int utf8_seq(const unsigned char *s, unsigned long *cp)
 
 static void comment_text(FILE *f, const char *text)
 {
-    const unsigned char *s = (const unsigned char *)(text ? text : "");
+    if (!text) return;
+    const unsigned char *s = (const unsigned char *)text;
     size_t i = 0;
-    while (s[i] && i < GEN_C_TEXT_MAX) {
+    while (i < GEN_C_TEXT_MAX && s[i]) {
         const unsigned char c = s[i];
         unsigned long cp;
         int len;
