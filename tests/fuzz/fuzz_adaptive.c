@@ -1,7 +1,7 @@
 /* libFuzzer target: the adaptive driver's options. rtol, atol, h0, h_min,
  * h_max and t_end are read as raw doubles from the input (any bit pattern:
  * NaN, ±Inf, subnormals, huge), max_steps as an integer bounded to
- * [1, 2000] (the limit of the attempts is what keeps a run finite; <= 0
+ * [1, 500] (the limit of the attempts is what keeps a run finite; <= 0
  * would mean 10^8), then a byte each for the corrections and `every`.
  * braun_integrate_adaptive on the built-in pendulum and on the four-bar
  * (singular configurations) must never crash or hang, and BRAUN_OK must
@@ -59,7 +59,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         p += sizeof steps;
         left -= sizeof steps;
     }
-    ctl.max_steps = 1 + (long)(steps % 2000u);
+    ctl.max_steps = 1 + (long)(steps % 500u);
     const unsigned corr = left > 0 ? p[0] & BRAUN_CORRECT_ALL : BRAUN_CORRECT_ALL;
     const long every = left > 1 ? (long)p[1] - 8 : 1; /* 0 and negative too */
     const braun_builtin *b = braun_builtin_find(left > 2 && (p[2] & 1) ? "four-bar" : "pendulum");
