@@ -192,6 +192,16 @@ check "spring reaching length 0 at t = 1: exit 1, the message names effect 'sp'"
     grep -q "^braun: effect '\''sp'\'' (spring): its forces hook returns 1 at t = 1, where its points '\''a'\'' and '\''b'\'' coincide: callback '\''forces'\''" "$2"' \
     sh "$rc" "$TMP/zs2.err"
 
+# --------------------------------------------------- texts in the tool's output
+printf '{"name": "a\\nn: 7", "description": "x\\nn: 999", "bodies": [{"name": "b", "type": "particle", "mass": 1, "position": [1, 0]}], "joints": [{"type": "distance", "a": [0, 0], "b": "b"}]}\n' > "$TMP/forge.json"
+"$BRAUN" check "$TMP/forge.json" > "$TMP/forge.out" 2>&1
+check "check: a name or description with a newline cannot forge a 'key: value' line" sh -c '
+    [ "$(grep -c "^n: " "$1")" -eq 1 ] && grep -q "^n: 2$" "$1" &&
+    grep -q "^description: x\\\\x0An: 999$" "$1"' sh "$TMP/forge.out"
+expect "an error message naming a path with a newline stays one line" 2 "cannot open '.*nl\?x/y' for writing" \
+    gen chain 3 -o "$TMP/nl
+x/y"
+
 # ------------------------------------------------------ options of braun run
 expect "--rank-tol 1: refused as an argument (exit 2), not run" 2 "^braun: --rank-tol must be < 1 \(got 1\)" \
     run four-bar --dt 1e-2 --t-end 1 --rank-tol 1

@@ -97,6 +97,20 @@ static int weight_rows(int rows, int n, const double *M, double *A)
     return 0;
 }
 
+/* A text of the scene on one "key: value" line: control bytes as \xNN and
+ * a backslash as \\, so a name or description with a newline cannot add
+ * a line (a forged "n: 999") to what scripts read. */
+static void text_value(const char *key, const char *s)
+{
+    printf("%s: ", key);
+    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
+        if (*p < 0x20 || *p == 0x7f) printf("\\x%02X", *p);
+        else if (*p == '\\') fputs("\\\\", stdout);
+        else putchar(*p);
+    }
+    putchar('\n');
+}
+
 static int report(const braun_cli_target *tg)
 {
     const braun_system *s = &tg->sys;
@@ -166,9 +180,9 @@ static int report(const braun_cli_target *tg)
     }
     char corr[64];
     const unsigned supported = model.opt.corrections;
-    printf("scene: %s\n", tg->name);
-    printf("file: %s\n", tg->source ? tg->source : "(built-in)");
-    printf("description: %s\n", tg->description ? tg->description : "");
+    text_value("scene", tg->name);
+    text_value("file", tg->source ? tg->source : "(built-in)");
+    text_value("description", tg->description ? tg->description : "");
     printf("n: %d\nm: %d\np: %d\n", n, m, p);
     printf("rank: %d\nredundant: %d\ndof: %d\n", rank, rows - rank, n - rank);
     printf("position_residual: %.3g\nvelocity_residual: %.3g\n", (double)pos, (double)vel);
