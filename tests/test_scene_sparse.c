@@ -18,6 +18,8 @@
 
 /* ------------------------------------------ the generator of `braun gen` */
 #include "../src/host/cli/cli_gen.c"
+/* ... which writes its file through cli_files.c (braun gen -o). */
+#include "../src/host/cli/cli_files.c"
 
 /* What cli_gen.c needs from the rest of the tool. */
 int braun_cli_error(const char *fmt, ...)
