@@ -79,6 +79,17 @@ struct braun_linsolver {
     /* Optional: where the mass callback may write M (dense format) for
      * factor_mass to factor in place; NULL: the core keeps its own copy. */
     braun_real *(*mass_buffer)(void *state);
+    /* Optional: the rank rule of the next factor_c of a slot (docs/method.md,
+     * "Rank decisions near singular configurations"): beyond its first
+     * `keep` pivots a factorization counts a direction only when its pivot
+     * (or singular-value estimate) also exceeds tol_new times the largest,
+     * and it counts at most `cap` (keep = cap = rows: the plain tolerance).
+     * The core keeps a rank across a step's stages (cap) and lets it rise
+     * from one step to the next only on clear evidence (keep, tol_new), so
+     * that rows that are exactly dependent on the constraint manifold, but
+     * not quite at states the stages reach off it, keep being dropped.
+     * NULL: the backend decides by tol alone. */
+    void (*rank_rule)(void *state, int slot, int keep, int cap, braun_real tol_new);
 };
 
 #ifdef __cplusplus

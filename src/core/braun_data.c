@@ -69,6 +69,9 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->done = 0;
     pv->rank[0] = pv->rows;
     pv->rank[1] = s->m;
+    pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
+    pv->rule_keep[1] = pv->rule_cap[1] = s->m;
+    pv->step_rank[0] = pv->step_rank[1] = 0;
     pv->Edot = 0;
     braun__layout(model, base, pv, &d->q, &d->v);
     for (int i = 0; i < s->n; i++) d->q[i] = d->v[i] = 0;
@@ -132,6 +135,7 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     pv->state_integrated = 0;
     pv->state_set = 1;
     pv->has_prev = 0;
+    pv->step_rank[0] = pv->step_rank[1] = 0; /* a new run decides its rank afresh */
     d->has_E0 = 0;
     d->E0 = 0;
     if (d->model->sys.energy) {

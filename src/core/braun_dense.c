@@ -38,6 +38,10 @@ static int dense_bind(void **state, void *memory, const braun_model *model)
     int *ints = (int *)(void *)(base + round_up(sizeof *s) +
                                 round_up(dense_reals(model) * sizeof(braun_real)));
     s->n = n;
+    for (int k = 0; k < 2; k++) {
+        s->keep[k] = s->cap[k] = k ? m : rows; /* the plain tolerance */
+        s->tol_new[k] = 0;
+    }
     braun_chol_bind(&s->chol, n, r, ints);
     r += BRAUN_CHOL_REALS(n);
     ints += BRAUN_CHOL_INTS(n);
@@ -64,4 +68,5 @@ const braun_linsolver braun__dense_linsolver = {
     dense_state_bytes,
     dense_bind,
     braun__dense_mass_buffer,
+    braun__dense_rank_rule,
 };

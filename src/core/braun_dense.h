@@ -17,6 +17,9 @@ typedef struct braun_dense {
     braun_chol chol; /* M = R^T R */
     braun_qrcp fv;   /* slot 0: C_v = A_v R^-1, all rows */
     braun_qrcp fq;   /* slot 1: C_q = A_q R^-1 when m > 0 and p > 0 */
+    /* The rank rule of each slot's next factorization (rank_rule). */
+    int keep[2], cap[2];
+    braun_real tol_new[2];
 } braun_dense;
 
 static inline braun_dense *braun__dense(void *state) { return (braun_dense *)state; }
@@ -62,7 +65,17 @@ static inline int braun__dense_factor_c(void *state, int slot, int rows, const b
         braun_chol_solve_rt_to(&s->chol, A + (size_t)i * (size_t)n, ci);
         if (resid) resid[i] -= braun_dot(n, ci, atil);
     }
-    return braun_qrcp_factor(f, tol);
+    return braun_qrcp_factor_rule(f, tol, s->tol_new[slot] > tol ? s->tol_new[slot] : tol,
+                                  s->keep[slot], s->cap[slot]);
+}
+
+static inline void braun__dense_rank_rule(void *state, int slot, int keep, int cap,
+                                          braun_real tol_new)
+{
+    braun_dense *s = braun__dense(state);
+    s->keep[slot] = keep;
+    s->cap[slot] = cap;
+    s->tol_new[slot] = tol_new;
 }
 
 static inline void braun__dense_pinv(void *state, int slot, const braun_real *r, braun_real *x)

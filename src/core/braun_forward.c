@@ -152,6 +152,19 @@ static int stage_factor(braun_data *d, int with_residuals)
     const int m = pv->m, rows = BRAUN_ROWS(pv->rows);
     if (pv->sp && pv->dense_A) scatter_A(pv);
     const braun_real *A = pv->dense_A ? pv->A : pv->Avals;
+    /* A rank rises only on clear evidence: past sqrt(ε) of the largest
+     * pivot (the float default tolerance is above that already). */
+#ifdef BRAUN_NO_LINSOLVER
+    const int has_rule = 1;
+#else
+    const int has_rule = pv->ls->rank_rule != NULL;
+#endif
+    if (has_rule) {
+        const braun_real tol_new = braun_sqrt(BRAUN_EPS);
+        BRAUN_LS_CALL(pv, rank_rule, pv->ls_state, 0, pv->rule_keep[0], pv->rule_cap[0], tol_new);
+        if (pv->need_fq)
+            BRAUN_LS_CALL(pv, rank_rule, pv->ls_state, 1, pv->rule_keep[1], pv->rule_cap[1], tol_new);
+    }
     if (pv->need_fq && with_residuals) {
         const int rq = BRAUN_LS_CALL(pv, factor_c, pv->ls_state, 1, m, A, braun__rank_tol(d, m), NULL,
                                               NULL);
@@ -329,6 +342,9 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
         return braun__fail(d, BRAUN_ERR_STEP, "braun_eval h", -1, -1, (double)h, (double)t);
     braun_priv *pv = braun__priv(d);
     braun__at(pv, t, q, v, d->work_in, h);
+    /* An evaluation on its own: the plain rank tolerance. */
+    pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
+    pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
     st = braun__forward(d, (corr ? BRAUN_WITH_RESIDUALS : 0u) |
                                (corr & BRAUN_CORRECT_ENERGY ? BRAUN_WITH_POWER : 0u),
                         vdot);

@@ -89,6 +89,13 @@ typedef struct braun_priv {
     braun_real *Mdense;   /* n*n: M of a sparse system for a dense solver (else NULL) */
     int dense_A;          /* A holds the dense rows x n Jacobian */
     int rank[2];          /* numerical rank of C_v (slot 0) and C_q (slot 1) */
+    /* The rank rule of the next factorizations (braun_linsolver.h,
+     * rank_rule): a run keeps the rank of a step's first stage over its
+     * other stages (cap) and raises it from one step to the next only past
+     * tol_new (keep = the last step's first-stage rank). Outside a step both
+     * are the row counts: the plain tolerance. */
+    int rule_keep[2], rule_cap[2];
+    int step_rank[2];     /* the last step's first-stage rank (0: none yet) */
     /* Stage outputs, one meaning each (see the table above). */
     braun_real *Q;        /* n: forces */
     braun_real *atil;     /* n: ã = R⁻ᵀQ, the weighted unconstrained acceleration */

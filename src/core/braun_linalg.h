@@ -90,6 +90,10 @@ void braun_qrcp_bind(braun_qrcp *f, int n, int rows, braun_real *reals,
 /* Factor the matrix stored in f->a (row i of C at f->a + i·n) with the
  * relative rank tolerance tol. Returns the rank. */
 int braun_qrcp_factor(braun_qrcp *f, braun_real tol);
+/* The same under a rank rule (braun_linsolver.h, rank_rule): a pivot beyond
+ * the first `keep` counts only above tol_new·|r_00| too, and at most `cap`
+ * pivots count. */
+int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, int keep, int cap);
 /* x[n] := C^+ r, r[rows] (r is not modified). */
 void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
                            braun_real *x);

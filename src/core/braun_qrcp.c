@@ -67,8 +67,14 @@ static braun_real sumsq(int len, const braun_real *x)
 
 int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
 {
+    return braun_qrcp_factor_rule(f, tol, tol, f->rows, f->rows);
+}
+
+int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, int keep, int cap)
+{
     const int n = BRAUN_N(f->n), rows = BRAUN_ROWS(f->rows);
-    const int kmax = n < rows ? n : rows;
+    int kmax = n < rows ? n : rows;
+    if (cap < kmax) kmax = cap;
     braun_real *a = f->a;
     /* Squared norms of the remaining column parts, downdated after each
      * reflection (LAPACK xLAQP2); `ref` holds the value at the last exact
@@ -105,8 +111,9 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
          * the same sum in the same order). */
         const braun_real pivot = braun_sqrt(k == 0 ? norm2[0] : sumsq(n - k, col));
         if (k == 0) r00 = pivot;
-        /* Rank decision relative to the largest pivot (≈ ||C||_2). */
-        if (pivot == 0 || pivot <= tol * r00) break;
+        /* Rank decision relative to the largest pivot (≈ ||C||_2); a pivot
+         * beyond the first `keep` must also clear tol_new. */
+        if (pivot == 0 || pivot <= tol * r00 || (k >= keep && pivot <= tol_new * r00)) break;
         f->tau[k] = house(n - k, col, pivot);
         for (int j = k + 1; j < rows; j++) {
             braun_real *cj = COL(a, f, j, n) + k;

@@ -27,6 +27,14 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     const braun_real *y0 = pv->y0;
     int st;
 
+    /* Rank decisions (braun_internal.h, rule_keep/rule_cap): the first
+     * stage keeps the last step's rank and raises it only on clear
+     * evidence; the later stages, off the manifold by the method's own
+     * error, keep the first stage's rank. */
+    pv->rule_keep[0] = pv->step_rank[0];
+    pv->rule_keep[1] = pv->step_rank[1];
+    pv->rule_cap[0] = pv->rows;
+    pv->rule_cap[1] = pv->m;
     for (int s = 0; s < tb->stages; s++) {
         const braun_real *ys = y0;
         if (s > 0) {
@@ -65,6 +73,10 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         st = diverged_if_integrated(
             d, s, braun__forward(d, BRAUN_WITH_POWER | (wants_res ? BRAUN_WITH_RESIDUALS : 0u), k + n));
         if (st) return st;
+        if (s == 0) {
+            pv->step_rank[0] = pv->rule_keep[0] = pv->rule_cap[0] = pv->rank[0];
+            pv->step_rank[1] = pv->rule_keep[1] = pv->rule_cap[1] = pv->rank[1];
+        }
         if (yerr && s == 0)
             for (int i = 0; i < pv->rows; i++) {
                 pv->phi0[i] = pv->phi[i];
@@ -82,6 +94,8 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
                 }
         }
     }
+    pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
+    pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
     for (int i = 0; i < N; i++) y1[i] = y0[i];
     for (int s = 0; s < tb->stages; s++) {
         const braun_real b = (braun_real)tb->b[s] * h;

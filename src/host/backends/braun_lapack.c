@@ -368,6 +368,7 @@ static const braun_linsolver lapack_table = {
     NULL, /* state_bytes: created, not in the data block */
     NULL, /* bind */
     NULL, /* mass_buffer: the core keeps M */
+    NULL, /* rank_rule: its own rank decision (tol) */
 };
 
 const braun_linsolver *braun_linsolver_lapack(void) { return &lapack_table; }

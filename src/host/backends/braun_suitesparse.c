@@ -1415,6 +1415,7 @@ static const braun_linsolver ss_table = {
     NULL, /* state_bytes: created, not in the data block */
     NULL, /* bind */
     NULL, /* mass_buffer: the core keeps M */
+    NULL, /* rank_rule: its own rank decision (tol) */
 };
 
 const braun_linsolver *braun_linsolver_suitesparse(void) { return &ss_table; }
