@@ -1,0 +1,241 @@
+/* No silent wrong answers (issue 12): the accuracy guard, time resolution,
+ * the adaptive driver on a mechanism without free motion, statistics per
+ * run, aliasing in braun_eval. Each test fails on the code before its fix. */
+#include "test_util.h"
+#include <float.h>
+
+#include "braun_models.h"
+#include "test_systems.h"
+
+static braun_real g_traj_last_t;
+static long g_outputs;
+static int count_out(const braun_data *d, void *u)
+{
+    (void)u;
+    g_traj_last_t = d->t;
+    g_outputs++;
+    return 0;
+}
+
+/* A step far too large: the pendulum at h = 1 used to end BRAUN_OK with
+ * ||Phi_q|| = 1.6e178. Now the guard stops it, the state at the last step
+ * that passed, and says which residual and how large. */
+static void test_guard_stops_garbage(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    g_outputs = 0;
+    int st = braun_integrate(&sim.data, BRAUN_RK4, 1.0, 50.0, 1, count_out, NULL);
+    assert_int_equal(st, BRAUN_ERR_ACCURACY);
+    assert_non_null(strstr(sim.data.error.where, "accuracy guard"));
+    assert_true(sim.data.error.value > 1e-3 * (double)sim.data.guard.pos);
+    /* back at a state that passed: residuals within the bound */
+    braun_real pos, vel, en;
+    assert_int_equal(braun_residuals(&sim.data, sim.data.t, sim.data.q, sim.data.v, &pos, &vel, &en),
+                     BRAUN_OK);
+    assert_true(sim.data.t < sim.data.error.t);
+    assert_le(pos, 1e-3 * (double)sim.data.guard.pos + (double)sim.data.guard.pos0);
+    test_sim_close(&sim);
+    /* off: the same run is the caller's responsibility and may end OK */
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    sim.model.opt.guard = -1;
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    st = braun_integrate(&sim.data, BRAUN_RK4, 1.0, 50.0, 0, NULL, NULL);
+    assert_true(st == BRAUN_OK || st == BRAUN_ERR_DIVERGED);
+    test_sim_close(&sim);
+}
+
+/* Absurd adaptive tolerances (1e300) used to end BRAUN_OK with ||Phi_q|| of
+ * 1e25 .. 1e33: rtol >= 1 is refused, and a huge atol is stopped by the guard. */
+static void test_guard_adaptive_tolerances(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("four-bar");
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    braun_adaptive ctl = {1e300, 1e300, 0, 0, 0, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 50.0, 0, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    ctl.rtol = 0.5;
+    int st = braun_integrate_adaptive(&sim.data, &ctl, 50.0, 0, NULL, NULL);
+    assert_true(st == BRAUN_ERR_ACCURACY || st == BRAUN_ERR_DIVERGED);
+    braun_real pos;
+    assert_int_equal(braun_residuals(&sim.data, sim.data.t, sim.data.q, sim.data.v, &pos, NULL, NULL),
+                     BRAUN_OK);
+    assert_le(pos, 1e-3 * (double)sim.data.guard.pos);
+    test_sim_close(&sim);
+}
+
+/* An inconsistent start is not a guard failure: the corrections remove it. */
+static void test_guard_allows_inconsistent_start(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("four-bar");
+    braun_real q0[6], v0[6];
+    for (int i = 0; i < 6; i++) {
+        q0[i] = b->q0[i] + (braun_real)(i % 2 ? -1e-2 : 1e-2);
+        v0[i] = b->v0[i] + (braun_real)(i % 3 ? 1e-1 : -1e-1);
+    }
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 10.0, 0, NULL, NULL), BRAUN_OK);
+    test_sim_close(&sim);
+}
+
+/* A step that cannot advance time: h below the resolution of t. */
+#ifdef BRAUN_SINGLE
+#define BRAUN_EPS FLT_EPSILON
+#else
+#define BRAUN_EPS DBL_EPSILON
+#endif
+static void test_time_resolution(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const braun_real t0 = (braun_real)1e6;
+    assert_int_equal(braun_set_state(&sim.data, t0, b->q0, b->v0), BRAUN_OK);
+    /* t + h == t: used to return OK and move q without moving t */
+    const braun_real h = t0 * BRAUN_EPS / 4;
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, h), BRAUN_ERR_TIME_RESOLUTION);
+    assert_true(sim.data.t == t0);
+    assert_true(sim.data.q[0] == b->q0[0] && sim.data.q[1] == b->q0[1]);
+    /* more than 10 % off h: t + h is rounded to the grid of t */
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, t0 * BRAUN_EPS * (braun_real)0.7),
+                     BRAUN_ERR_TIME_RESOLUTION);
+    /* the adaptive driver: a minimum step below the resolution is a status
+     * at once (it used to spin through 10^8 rejected steps) */
+    braun_adaptive ctl = {1e-12, 1e-14, t0 * BRAUN_EPS / 8, t0 * BRAUN_EPS / 16, 0, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, t0 + 1, 0, NULL, NULL),
+                     BRAUN_ERR_TIME_RESOLUTION);
+    assert_true(sim.data.stats.rejected_steps < 10);
+    test_sim_close(&sim);
+}
+
+/* A mechanism with no free motion (every coordinate driven): the adaptive
+ * error test used to see an empty tangent space and let h grow without
+ * bound (driven-crank: BRAUN_ERR_DIVERGED at t = 0.81 at every tolerance).
+ * The crank driven at ω: one particle on a circle, x = r cos ωt. */
+typedef struct { double w, r; } driven_prm;
+static int d_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t; (void)q; (void)u;
+    M[0] = M[3] = 2; M[1] = M[2] = 0;
+    return 0;
+}
+static int d_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q, void *u)
+{
+    (void)t; (void)q; (void)v; (void)u;
+    Q[0] = 0; Q[1] = -2 * 9.81;
+    return 0;
+}
+/* x - r cos ωt = 0, y - r sin ωt = 0 */
+static int d_hol(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                 braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    const driven_prm *p = u;
+    const double c = cos(p->w * t), s = sin(p->w * t);
+    (void)v;
+    if (phi) { phi[0] = q[0] - p->r * c; phi[1] = q[1] - p->r * s; }
+    if (A) { A[0] = 1; A[1] = 0; A[2] = 0; A[3] = 1; }
+    if (b) { b[0] = -p->r * p->w * s; b[1] = p->r * p->w * c; }
+    if (bv) { bv[0] = -p->r * p->w * p->w * c; bv[1] = -p->r * p->w * p->w * s; }
+    return 0;
+}
+static int d_energy(braun_real t, const braun_real *q, const braun_real *v, braun_real *E,
+                    braun_real *dq, braun_real *dv, braun_real *dt, void *u)
+{
+    (void)t; (void)u;
+    if (E) *E = (v[0] * v[0] + v[1] * v[1]) + 2 * 9.81 * q[1];
+    if (dq) { dq[0] = 0; dq[1] = 2 * 9.81; }
+    if (dv) { dv[0] = 2 * v[0]; dv[1] = 2 * v[1]; }
+    if (dt) *dt = 0;
+    return 0;
+}
+
+static void test_adaptive_no_free_motion(void **state)
+{
+    (void)state;
+    driven_prm p = {3.0, 0.5};
+    braun_system s = {2, 2, 0, BRAUN_MASS_CONSTANT, d_mass, d_forces, d_hol, NULL, d_energy, NULL, &p, NULL};
+    const double rtols[3] = {1e-6, 1e-8, 1e-10};
+    double prev = 1;
+    for (int k = 0; k < 3; k++) {
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+        const double q0[2] = {p.r, 0}, v0[2] = {0, p.r * p.w};
+        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+        braun_adaptive ctl = {rtols[k], rtols[k] * 1e-2, 0, 0, 0, 0};
+        assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 10.0, 0, NULL, NULL), BRAUN_OK);
+        const double T = 10.0, ex = p.r * cos(p.w * T), ey = p.r * sin(p.w * T);
+        const double err = hypot(sim.data.q[0] - ex, sim.data.q[1] - ey);
+        print_message("driven particle, rtol %.0e: error %.3g in %ld steps (%ld rejected)\n",
+                      rtols[k], err, sim.data.stats.steps, sim.data.stats.rejected_steps);
+        assert_le(err, 1e3 * rtols[k]);
+        assert_true(err < prev);
+        prev = err;
+        test_sim_close(&sim);
+    }
+}
+
+/* braun_set_state starts a new run: statistics from zero. */
+static void test_set_state_resets_statistics(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 0, NULL, NULL), BRAUN_OK);
+    assert_int_equal(sim.data.stats.steps, 100);
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    assert_int_equal(sim.data.stats.steps, 0);
+    assert_int_equal(sim.data.stats.rhs_evals, 0);
+    assert_int_equal(sim.data.stats.mass_factorizations, 1); /* the constant M, at init */
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 0, NULL, NULL), BRAUN_OK);
+    assert_int_equal(sim.data.stats.steps, 100);
+    assert_int_equal(sim.data.stats.rhs_evals, 400);
+    test_sim_close(&sim);
+}
+
+/* braun_eval's outputs may not share memory with its inputs. */
+static void test_eval_aliasing_refused(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("four-bar");
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    braun_real q[6], v[6], qd[6], vd[6], both[12];
+    memcpy(q, b->q0, sizeof q);
+    memcpy(v, b->v0, sizeof v);
+    assert_int_equal(braun_eval(&sim.data, 0, q, v, 1e-2, qd, vd), BRAUN_OK);
+    assert_int_equal(braun_eval(&sim.data, 0, q, v, 1e-2, qd, v), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_eval(&sim.data, 0, q, v, 1e-2, q, vd), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_eval(&sim.data, 0, q, v, 1e-2, qd, qd), BRAUN_ERR_ARGUMENT);
+    /* overlapping, not equal */
+    memcpy(both, q, sizeof q);
+    memcpy(both + 6, v, sizeof v);
+    assert_int_equal(braun_eval(&sim.data, 0, both, both + 6, 1e-2, both + 3, vd), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(sim.data.error.where, "overlap"));
+    test_sim_close(&sim);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_guard_stops_garbage),
+        cmocka_unit_test(test_guard_adaptive_tolerances),
+        cmocka_unit_test(test_guard_allows_inconsistent_start),
+        cmocka_unit_test(test_time_resolution),
+        cmocka_unit_test(test_adaptive_no_free_motion),
+        cmocka_unit_test(test_set_state_resets_statistics),
+        cmocka_unit_test(test_eval_aliasing_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
