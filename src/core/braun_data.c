@@ -71,7 +71,8 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->rank[1] = s->m;
     pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
     pv->rule_keep[1] = pv->rule_cap[1] = s->m;
-    pv->step_rank[0] = pv->step_rank[1] = 0;
+    pv->step_rank[0] = pv->rows;
+    pv->step_rank[1] = s->m;
     pv->Edot = 0;
     braun__layout(model, base, pv, &d->q, &d->v);
     for (int i = 0; i < s->n; i++) d->q[i] = d->v[i] = 0;
@@ -135,7 +136,9 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     pv->state_integrated = 0;
     pv->state_set = 1;
     pv->has_prev = 0;
-    pv->step_rank[0] = pv->step_rank[1] = 0; /* a new run decides its rank afresh */
+    /* A new run decides its first rank by the plain tolerance. */
+    pv->step_rank[0] = pv->rows;
+    pv->step_rank[1] = pv->m;
     d->has_E0 = 0;
     d->E0 = 0;
     if (d->model->sys.energy) {

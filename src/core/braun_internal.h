@@ -95,7 +95,7 @@ typedef struct braun_priv {
      * tol_new (keep = the last step's first-stage rank). Outside a step both
      * are the row counts: the plain tolerance. */
     int rule_keep[2], rule_cap[2];
-    int step_rank[2];     /* the last step's first-stage rank (0: none yet) */
+    int step_rank[2];     /* the last step's first-stage rank (the rows: none yet) */
     /* Stage outputs, one meaning each (see the table above). */
     braun_real *Q;        /* n: forces */
     braun_real *atil;     /* n: ã = R⁻ᵀQ, the weighted unconstrained acceleration */

@@ -86,6 +86,9 @@ typedef struct lapack_slot {
     braun_real *tau;  /* min(n, cap): reflectors of Q */
     braun_real *ztau; /* cap: reflectors of Z */
     int *jpvt;        /* cap: column j of the factor is row jpvt[j] - 1 of C */
+    /* The rank rule of the next factorization (braun_linsolver.h). */
+    int rule_keep, rule_cap;
+    braun_real rule_tol_new;
 } lapack_slot;
 
 typedef struct lapack_state {
@@ -152,6 +155,10 @@ static int ls_create(void **state, const braun_model *model)
     s->n = n;
     s->slot[0].cap = rows;
     s->slot[1].cap = (m > 0 && p > 0) ? m : 0;
+    for (int k = 0; k < 2; k++) { /* no rule yet: the plain tolerance */
+        s->slot[k].rule_keep = s->slot[k].rule_cap = s->slot[k].cap;
+        s->slot[k].rule_tol_new = 0;
+    }
 
     int ok = (s->R = malloc((size_t)n * (size_t)n * sizeof *s->R)) != NULL;
     s->lwork = imax(n, rows) + 1;
@@ -284,13 +291,14 @@ static int ls_factor_c(void *state, int slot, int rows, const braun_real *A,
 
     /* Rank relative to the largest pivot, as braun_qrcp_factor (the same
      * comparisons: NaN pivots count, so NaN reaches the results). */
-    const int kmax = imin(n, rows);
+    const int kmax = imin(imin(n, rows), f->rule_cap);
     braun_real r00 = f->ct[0] < 0 ? -f->ct[0] : f->ct[0];
+    const braun_real tol_new = f->rule_tol_new > tol ? f->rule_tol_new : tol;
     int k = 0;
     for (; k < kmax; k++) {
         braun_real piv = f->ct[(size_t)k * (size_t)n + (size_t)k];
         if (piv < 0) piv = -piv;
-        if (piv == 0 || piv <= tol * r00) break;
+        if (piv == 0 || piv <= tol * r00 || (k >= f->rule_keep && piv <= tol_new * r00)) break;
     }
     f->rank = k;
     /* Dependent rows: [R11 R12] = [T 0] Z (R22 dropped). xTZRZF leaves the
@@ -352,6 +360,17 @@ static void ls_null_project(void *state, int slot, braun_real *z)
     LA(orm2r)("L", "N", &n, &ONE, &k, f->ct, &n, f->tau, z, &n, s->work, &info, 1, 1);
 }
 
+/* The rank rule of the slot's next factorization, as the built-in kernels'
+ * (the same comparisons on the same pivots). */
+static void ls_rank_rule(void *state, int slot, int keep, int cap, braun_real tol_new)
+{
+    lapack_state *s = state;
+    if (!s || slot < 0 || slot > 1) return;
+    s->slot[slot].rule_keep = keep;
+    s->slot[slot].rule_cap = cap;
+    s->slot[slot].rule_tol_new = tol_new;
+}
+
 static const braun_linsolver lapack_table = {
     "lapack",
     BRAUN_LS_DENSE,
@@ -368,7 +387,7 @@ static const braun_linsolver lapack_table = {
     NULL, /* state_bytes: created, not in the data block */
     NULL, /* bind */
     NULL, /* mass_buffer: the core keeps M */
-    NULL, /* rank_rule: its own rank decision (tol) */
+    ls_rank_rule,
 };
 
 const braun_linsolver *braun_linsolver_lapack(void) { return &lapack_table; }
