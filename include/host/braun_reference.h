@@ -52,7 +52,9 @@ int braun_reference_init(braun_reference *ref, const braun_builtin *model,
 int braun_reference_init_minimal(braun_reference *ref, const braun_builtin *model,
                                  const braun_minimal *minimal, double ref_h);
 /* Absolute coordinates of the reference at time t (t must not decrease
- * between calls for integrated references). q, v: n entries each. */
+ * between calls for integrated references). q, v: n entries each.
+ * BRAUN_ERR_TOO_MANY_STEPS when an integrated reference would need more
+ * than 1e15 substeps to reach t. */
 int braun_reference_eval(braun_reference *ref, double t, double *q, double *v);
 
 /* Pendulum phi'' = -w2·sin(phi), closed form via Jacobi elliptic functions

@@ -72,7 +72,11 @@ int braun_reference_eval(braun_reference *ref, double t, double *q, double *v)
     } else {
         if (t < ref->t) return BRAUN_ERR_TIME;
         double span = t - ref->t;
-        long steps = (long)ceil(span / ref->ref_h);
+        /* A count a long holds (and a run could finish): beyond it the
+         * conversion would be undefined. */
+        const double want = ceil(span / ref->ref_h);
+        if (!(want <= 1e15)) return BRAUN_ERR_TOO_MANY_STEPS;
+        long steps = (long)want;
         /* Equal substeps landing exactly on t; each substep's start is
          * t0 + i·h, never an accumulated sum. */
         double t0 = ref->t, h = steps > 0 ? span / (double)steps : 0.0;
