@@ -62,7 +62,7 @@ static int number_value(sj_reader *r, json_t *v, const char *field, double *x)
         return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' is out of range (%g; the limit is |x| <= %g)",
                        r->who, field, *x, BRAUN_SCENE_MAX_ABS);
     if (*x != 0 && fabs(*x) < BRAUN_SCENE_MIN_NORMAL)
-        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' is out of range (%g is below the smallest "
+        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' is out of range (%.3g is below the smallest "
                                        "normal number %g: write 0 or a larger value)",
                        r->who, field, *x, BRAUN_SCENE_MIN_NORMAL);
     return 0;
