@@ -152,15 +152,16 @@ static int stage_factor(braun_data *d, int with_residuals)
     const int m = pv->m, rows = BRAUN_ROWS(pv->rows);
     if (pv->sp && pv->dense_A) scatter_A(pv);
     const braun_real *A = pv->dense_A ? pv->A : pv->Avals;
-    /* A rank rises only on clear evidence: past sqrt(ε) of the largest
-     * pivot (the float default tolerance is above that already). */
+    /* A rank rises only on clear evidence: from one step to the next past
+     * sqrt(ε) of the largest pivot (the float default tolerance is above
+     * that already), within a step past BRAUN_RANK_TOL_STAGE. */
 #ifdef BRAUN_NO_LINSOLVER
     const int has_rule = 1;
 #else
     const int has_rule = pv->ls->rank_rule != NULL;
 #endif
     if (has_rule) {
-        const braun_real tol_new = braun_sqrt(BRAUN_EPS);
+        const braun_real tol_new = pv->rule_stage ? BRAUN_RANK_TOL_STAGE : braun_sqrt(BRAUN_EPS);
         BRAUN_LS_CALL(pv, rank_rule, pv->ls_state, 0, pv->rule_keep[0], pv->rule_cap[0], tol_new);
         if (pv->need_fq)
             BRAUN_LS_CALL(pv, rank_rule, pv->ls_state, 1, pv->rule_keep[1], pv->rule_cap[1], tol_new);

@@ -45,6 +45,16 @@
 
 #define BRAUN_MAX_STAGES 7
 
+/* Within a step a rank rises only from a pivot of this fraction of the
+ * largest (docs/method.md, "Rank decisions near singular configurations"):
+ * the later stages are off the manifold by the method's own error, where
+ * rows exactly dependent on it are not quite (measured: the redundant
+ * parallelogram's dependent pivot reaches 3.4e-5 at the stages of an RK4 step
+ * of 1e-2), while a direction a mechanism gains on leaving a singular
+ * configuration is clear at once (the four-bar started flat: ~1e-2 at the
+ * first step's last stage). */
+#define BRAUN_RANK_TOL_STAGE BRAUN_R(1e-3)
+
 /* The evaluation point every stage reads (set by braun__at). */
 typedef struct braun_point {
     braun_real t;
@@ -95,6 +105,7 @@ typedef struct braun_priv {
      * tol_new (keep = the last step's first-stage rank). Outside a step both
      * are the row counts: the plain tolerance. */
     int rule_keep[2], rule_cap[2];
+    int rule_stage;       /* a step's later stages: a rank rises only past BRAUN_RANK_TOL_STAGE */
     int step_rank[2];     /* the last step's first-stage rank (the rows: none yet) */
     /* Stage outputs, one meaning each (see the table above). */
     braun_real *Q;        /* n: forces */

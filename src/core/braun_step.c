@@ -35,6 +35,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     pv->rule_keep[1] = pv->step_rank[1];
     pv->rule_cap[0] = pv->rows;
     pv->rule_cap[1] = pv->m;
+    pv->rule_stage = 0;
     for (int s = 0; s < tb->stages; s++) {
         const braun_real *ys = y0;
         if (s > 0) {
@@ -74,8 +75,9 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
             d, s, braun__forward(d, BRAUN_WITH_POWER | (wants_res ? BRAUN_WITH_RESIDUALS : 0u), k + n));
         if (st) return st;
         if (s == 0) {
-            pv->step_rank[0] = pv->rule_keep[0] = pv->rule_cap[0] = pv->rank[0];
-            pv->step_rank[1] = pv->rule_keep[1] = pv->rule_cap[1] = pv->rank[1];
+            pv->step_rank[0] = pv->rule_keep[0] = pv->rank[0];
+            pv->step_rank[1] = pv->rule_keep[1] = pv->rank[1];
+            pv->rule_stage = 1;
         }
         if (yerr && s == 0)
             for (int i = 0; i < pv->rows; i++) {
@@ -96,6 +98,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     }
     pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
     pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
+    pv->rule_stage = 0;
     for (int i = 0; i < N; i++) y1[i] = y0[i];
     for (int s = 0; s < tb->stages; s++) {
         const braun_real b = (braun_real)tb->b[s] * h;
