@@ -116,7 +116,7 @@ $(FW_DIR)/$(1)/libbraun.a: $$(FW_LIB_OBJ_$(1))
 # Bootstrap image without the size table: it prints the table.
 $(FW_DIR)/$(1)/obj/bootstrap/demo_main.o: firmware/board/demo_main.c | firmware-deps
 	@mkdir -p $$(dir $$@)
-	$$(FW_CC) $$(FW_CFLAGS) $$(FW_COPT_$(1)) $$(FW_DEF_$(1)) $$(FW_INC) -c $$< -o $$@
+	$$(FW_CC) $$(FW_CFLAGS) $$(FW_COPT_$(1)) $$(FW_DEF_$(1)) $$(FW_INC) -MMD -MP -c $$< -o $$@
 
 $(FW_DIR)/$(1)/sizes.elf: $(FW_DIR)/$(1)/obj/startup.o $(FW_DIR)/$(1)/obj/bootstrap/demo_main.o \
         $$(FW_DEMO_OBJ_$(1)) $(FW_DIR)/$(1)/libbraun.a $(FW_LD_SCRIPT)
@@ -170,7 +170,7 @@ $(FW_DIR)/$(1)/obj/gc/gc_%.o: firmware/gc/gc_main.c | firmware-deps
 	@mkdir -p $$(dir $$@)
 	$$(FW_SAY) "FW_CC($(1)) $$< ($$*)"
 	@$$(FW_CC) $$(FW_CFLAGS) $$(FW_COPT_$(1)) $$(FW_DEF_$(1)) -DFW_GC_CORRECTIONS=$$(FW_GC_CORR_$$*) \
-	    $$(FW_INC) -c $$< -o $$@ 2> $$@.log; st=$$$$?; cat $$@.log >&2; exit $$$$st
+	    $$(FW_INC) -MMD -MP -c $$< -o $$@ 2> $$@.log; st=$$$$?; cat $$@.log >&2; exit $$$$st
 $(FW_DIR)/$(1)/gc-%.elf: $(FW_DIR)/$(1)/obj/startup.o $(FW_DIR)/$(1)/obj/gc/gc_%.o \
         $(FW_DIR)/$(1)/obj/firmware/board/semihost.o $(FW_DIR)/$(1)/obj/firmware/board/board.o \
         $(FW_DIR)/$(1)/libbraun.a $(FW_LD_SCRIPT)

@@ -147,7 +147,7 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
             err = error_norm(d, hr, ctl->rtol, ctl->atol);
         }
         if (err <= 1) {
-            braun__commit(d, pv->y1, t_new);
+            braun__commit(d, pv->y1, t_new, 0);
             d->error.status = BRAUN_OK;
             accepted++;
             if (out && ((every > 0 && accepted % every == 0) || d->t >= t_end) &&

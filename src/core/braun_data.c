@@ -66,6 +66,7 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->state_integrated = 0;
     pv->state_set = 0;
     pv->has_prev = 0;
+    pv->t_lo = 0;
     pv->done = 0;
     pv->rank[0] = pv->rows;
     pv->rank[1] = s->m;
@@ -136,6 +137,7 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     pv->state_integrated = 0;
     pv->state_set = 1;
     pv->has_prev = 0;
+    pv->t_lo = 0;
     /* A new run decides its first rank by the plain tolerance. */
     pv->step_rank[0] = pv->rows;
     pv->step_rank[1] = pv->m;

@@ -31,16 +31,23 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
 
     if (out && out(d, out_user)) return BRAUN_STOPPED;
     for (long i = 1; i <= steps; i++) {
-        /* t_i = t0 + i·h, not a running sum: no drift in t over 10^6 steps. */
-        const braun_real t_new = i == steps ? t_end : (braun_real)(t0 + (double)i * (double)h);
-        const braun_real hi = t_new - d->t;
+        /* Each step integrates h (the last one lands on t_end); the clock is
+         * compensated, so t stays t0 + i·h to round-off over 10^6 steps
+         * without double arithmetic in a float build. */
+        braun_real t_lo = 0, hi = h, t_new;
+        if (i == steps) {
+            t_new = t_end;
+            hi = (t_end - d->t) - pv->t_lo;
+        } else {
+            t_new = braun__clock_advance(d, pv->t_lo, h, &t_lo);
+        }
         st = braun__time_step_ok(d, d->t, t_new, h, i == steps);
         if (st) return st;
         braun__load_state(d);
         st = braun__rk_attempt(d, tb, hi, per_stage, pv->y1, NULL);
         if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
         if (st) return st;
-        braun__commit(d, pv->y1, t_new);
+        braun__commit(d, pv->y1, t_new, t_lo);
         if (out && every > 0 && (i % every == 0 || i == steps) && out(d, out_user))
             return BRAUN_STOPPED;
         if (out && every <= 0 && i == steps && out(d, out_user)) return BRAUN_STOPPED;

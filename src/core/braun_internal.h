@@ -126,8 +126,12 @@ typedef struct braun_priv {
     /* The last state before the current one ([q; v; ∫Ė] and t), for the
      * accuracy guard: a run it stops goes back to the last state that passed. */
     braun_real *yprev;
-    braun_real tprev;
+    braun_real tprev, tprev_lo;
     int has_prev;
+    /* The clock is compensated (Kahan): d->t + t_lo is the sum of the steps
+     * to about eps^2, so a fixed step h integrates exactly h and d->t stays
+     * within half an ulp of t0 + i h, also in float. */
+    braun_real t_lo;
     int guard_pending;    /* the guard's scales are still to be measured */
     int guard_first;      /* this step measured them (its own residuals pass) */
     int guard_on;         /* the corrections being computed belong to a run */

@@ -138,6 +138,7 @@ void braun__guard_rollback(braun_data *d)
     }
     d->work_in = pv->yprev[2 * n];
     d->t = pv->tprev;
+    pv->t_lo = pv->tprev_lo;
     d->stats.steps--;
     pv->has_prev = 0;
 }
@@ -153,7 +154,7 @@ void braun__load_state(braun_data *d)
     pv->y0[2 * n] = d->work_in;
 }
 
-void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new)
+void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new, braun_real t_lo)
 {
     braun_priv *pv = braun__priv(d);
     const int n = BRAUN_N(pv->n);
@@ -162,6 +163,8 @@ void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new)
     pv->y0 = pv->yprev;
     pv->yprev = keep;
     pv->tprev = d->t;
+    pv->tprev_lo = pv->t_lo;
+    pv->t_lo = t_lo;
     pv->has_prev = 1;
     for (int i = 0; i < n; i++) {
         d->q[i] = y1[i];
@@ -183,14 +186,16 @@ int braun_step(braun_data *d, braun_method method, braun_real h)
     if (!(h > 0) || !braun_is_finite(h))
         return braun__fail(d, BRAUN_ERR_STEP, "step size", -1, -1, (double)h, (double)d->t);
     braun_priv *pv = braun__priv(d);
-    const braun_real t_new = d->t + h;
+    /* The step integrates h itself; the clock shows the nearest time it can
+     * (refused when that is more than 10 % off h: the float horizon). */
+    braun_real t_lo;
+    const braun_real t_new = braun__clock_advance(d, pv->t_lo, h, &t_lo);
     st = braun__time_step_ok(d, d->t, t_new, h, 0);
     if (st) return st;
     braun__load_state(d);
-    st = braun__rk_attempt(d, tb, t_new - d->t, d->model->opt.discretization == BRAUN_PER_STAGE,
-                           pv->y1, NULL);
+    st = braun__rk_attempt(d, tb, h, d->model->opt.discretization == BRAUN_PER_STAGE, pv->y1, NULL);
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
     if (st) return st;
-    braun__commit(d, pv->y1, t_new);
+    braun__commit(d, pv->y1, t_new, t_lo);
     return BRAUN_OK;
 }

@@ -28,6 +28,16 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
 /* pv->y0 := current state. */
 void braun__load_state(braun_data *d);
 /* Accept y1 as the state at t_new and count the step. */
-void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new);
+/* Accept y1 at t_new; t_lo is the clock's compensation (braun_internal.h). */
+void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new, braun_real t_lo);
+/* The clock advanced by h: the new d->t and its compensation. */
+static inline braun_real braun__clock_advance(const braun_data *d, braun_real t_lo, braun_real h,
+                                              braun_real *t_lo_new)
+{
+    const braun_real y = h + t_lo;
+    const braun_real t_new = d->t + y;
+    *t_lo_new = y - (t_new - d->t);
+    return t_new;
+}
 
 #endif
