@@ -43,7 +43,9 @@ check "list exits 0" [ "$rc" -eq 0 ]
 for model in slider-crank four-bar pendulum andrews; do
     check "list shows $model" grep -q "^$model " "$TMP/list"
 done
-check "list has one line per model" [ "$(lines "$TMP/list")" -eq 4 ]
+check "list has one line per model, then the shipped scenes" sh -c '
+    [ "$(sed -n "/^\$/q;p" "$1" | wc -l)" -eq 4 ] && grep -q "^shipped scenes (" "$1" &&
+    grep -q "^four-bar.json  *n=6 m=5 p=0" "$1" && grep -q "^damped-motor.json " "$1"' sh "$TMP/list"
 
 # ----------------------------------------------------------------- bad arguments
 # Each must exit 2, print nothing on stdout and exactly one "braun: " line on stderr.
@@ -140,7 +142,7 @@ check "--summary FILE: exit 0, stdout empty" sh -c '[ "$1" -eq 0 ] && [ ! -s "$2
 check "energy off: method braun-noenergy" [ "$(json_value method "$TMP/noen.json")" = braun-noenergy ]
 
 # ------------------------------------------------------------------ trajectory CSV
-header="t,q0,q1,q2,q3,q4,q5,v0,v1,v2,v3,v4,v5,pos_err,vel_err,energy_err,traj_err"
+header="t [s],crank.x [m],crank.y [m],crank.theta [rad],rod.x [m],rod.y [m],rod.theta [rad],crank.vx [m/s],crank.vy [m/s],crank.omega [rad/s],rod.vx [m/s],rod.vy [m/s],rod.omega [rad/s],pos_err [Phi_q],vel_err [Phi_q/s],energy_err [J],traj_err [q]"
 "$BRAUN" run slider-crank --dt 1e-3 --t-end 1 --out "$TMP/k1.csv" --summary "$TMP/k1.json"; rc=$?
 check "--out: exit 0" [ "$rc" -eq 0 ]
 check "--out: header" [ "$(head -n 1 "$TMP/k1.csv")" = "$header" ]

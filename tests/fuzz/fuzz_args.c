@@ -1,5 +1,5 @@
-/* libFuzzer target: `braun run` option parsing (the arguments after
- * "run"). The input is split at NUL and newline bytes into arguments; every
+/* libFuzzer target: `braun run` and `braun plot` option parsing (the
+ * arguments after "run" or "plot", each input parsed both ways). The input is split at NUL and newline bytes into arguments; every
  * argument vector must parse (0), ask for help (-1) or be refused with exit
  * status 2 (BRAUN_CLI_USAGE) — never crash or read past an argument. */
 #include <stdint.h>
@@ -30,8 +30,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     argv[argc] = NULL;
     braun_cli_run_args a;
-    int rc = braun_cli_parse_run(argc, argv, &a);
-    if (rc != 0 && rc != -1 && rc != BRAUN_CLI_USAGE) abort();
+    for (int plot = 0; plot < 2; plot++) {
+        int rc = braun_cli_parse_run(argc, argv, &a, plot);
+        if (rc != 0 && rc != -1 && rc != BRAUN_CLI_USAGE) abort();
+    }
     free(text);
     return 0;
 }

@@ -19,6 +19,14 @@ int braun_cli_error(const char *fmt, ...)
 #endif
     ;
 
+/* ------------------------------------------------------ numbers (cli_number.c) */
+/* The shortest decimal that reads back as the same double ("0.1", not
+ * "0.10000000000000001"); "nan", "inf", "-inf" for the others. buf:
+ * BRAUN_CLI_NUMBER_SIZE bytes. Returns buf. */
+#define BRAUN_CLI_NUMBER_SIZE 32
+const char *braun_cli_number(double x, char *buf);
+void braun_cli_put_number(FILE *f, double x);
+
 /* ---------------------------------------------------------- files (cli_files.c) */
 /* A file's identity (device, inode) when it is a regular file. */
 typedef struct braun_cli_id {
@@ -37,13 +45,14 @@ const char *braun_cli_file_kind(unsigned long mode);
  * missing) or a character device (/dev/null). Opened without blocking and
  * without truncating; FIFOs, sockets, directories and block devices are
  * refused. what names the option in messages ("--out"). */
-typedef struct braun_cli_output {
+typedef struct braun_cli_output braun_cli_output;
+struct braun_cli_output {
     FILE *f;
     const char *path, *what;
     int created;                  /* made by this command: removed if abandoned */
     int err;                      /* errno of the first failed write, 0 if none seen */
     braun_cli_id id;
-} braun_cli_output;
+};
 
 /* 0, or BRAUN_CLI_USAGE after one message. */
 int braun_cli_output_open(braun_cli_output *o, const char *path, const char *what);
@@ -81,6 +90,20 @@ typedef struct braun_cli_run_args {
     const char *summary_path;   /* "-" for stdout */
     const char *backend;        /* --backend: dense | lapack | suitesparse | auto */
     int sparse;                 /* --sparse: the scene's sparsity (braun_scene_build_sparse) */
+    double guard;               /* --guard: 0 library default (1e-3), < 0 off */
+    int progress;               /* -1: when stderr is a terminal; 0: --quiet; 1: --progress */
+    int timing;                 /* run the timed run (cpu_s); braun plot does not */
+    int run_given;              /* an option of the simulation was given (plot --traj refuses) */
+    struct braun_cli_output *plot_output; /* braun plot's -o, to keep outputs distinct */
+    /* braun plot only (cli_plot.c). */
+    const char *plot_path;      /* -o FILE: .svg, .html or .png */
+    const char *traj_path;      /* --traj CSV: draw this trajectory instead of running */
+    const char *points;         /* --points A,B: paths of these points */
+    const char *plot_columns;   /* --plot x,y: coordinates against time */
+    long frames;                /* --frames K: configurations of a stroboscopic view */
+    double from;                /* --from T: draw from this time on (NaN: the start) */
+    long samples;               /* --samples N: states kept for paths and animations */
+    const char *view;           /* --view PLANE: xy (default), xz, yz, ... */
 } braun_cli_run_args;
 
 /* Where the corrections of a run come from. */
@@ -94,9 +117,11 @@ enum {
  * (t_end / ref_h). */
 #define BRAUN_CLI_MAX_REF_STEPS 1e9
 
-/* Parse the arguments after "run". Returns 0 to run, -1 when --help was
- * asked (usage already printed), else BRAUN_CLI_USAGE after one message. */
-int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a);
+/* Parse the arguments after "run" (plot = 0) or "plot" (plot = 1: also
+ * the plot options; --dt and --t-end not needed with --traj). Returns 0 to
+ * run, -1 when --help was asked (usage already printed), else
+ * BRAUN_CLI_USAGE after one message. */
+int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot);
 
 /* Comma list of the correction names in bits ("none" for 0); buf >= 32. */
 const char *braun_cli_corrections_str(unsigned bits, char *buf, size_t size);
@@ -134,7 +159,13 @@ typedef struct braun_cli_target {
     const braun_builtin *reference; /* minimal-coordinate reference (same q), or NULL */
     unsigned corrections;         /* declared default corrections */
     braun_scene_file *scene;      /* owned when loaded from a file */
+    /* The scene that names and draws the coordinates: the scene itself, or
+     * the equivalent scene of a built-in model (slider-crank, four-bar,
+     * pendulum: braun_cli_builtin_scene), or NULL (q[i]). */
+    braun_scene_file *drawing;
+    const char *drawing_text;     /* a built-in's scene text (for its point names), or NULL */
     braun_cli_id id;              /* the scene file's identity (outputs must differ) */
+    char path_buf[4096];          /* a shipped scene found by name (braun_cli_data_file) */
 } braun_cli_target;
 
 /* The one place that maps MODEL to a target: a built-in name (braun list)
@@ -142,6 +173,18 @@ typedef struct braun_cli_target {
  * prints why ("braun: FILE:LINE:COL: ...") and returns BRAUN_CLI_USAGE. */
 int braun_cli_target_open(const char *arg, braun_cli_target *t);
 void braun_cli_target_close(braun_cli_target *t);
+
+/* The JSON text of a built-in model's equivalent scene, or NULL
+ * (cli_builtin_scenes.c). */
+const char *braun_cli_builtin_scene(const char *name);
+
+/* The shipped scenes' directory (cli_datadir.c): $BRAUN_DATA_DIR, else
+ * share/braun/data beside the executable's bin/; NULL if there is none. */
+const char *braun_cli_data_dir(void);
+/* 1 and its path when NAME (or NAME.json) is a shipped scene, else 0. */
+int braun_cli_data_file(const char *name, char *path, size_t size);
+/* Calls fn for each shipped scene, in name order; returns how many. */
+int braun_cli_data_each(void (*fn)(const char *path, void *user), void *user);
 
 /* Built-in models of this tool beyond braun_models.h (Andrews). */
 int braun_cli_extra_count(void);
@@ -185,38 +228,110 @@ typedef struct braun_cli_monitor {
 int braun_cli_monitor_init(braun_cli_monitor *mon, const braun_model *model,
                            const braun_builtin *builtin, double ref_h,
                            void *buffer, size_t bytes);
-/* Measure the state of d (the run's data); 0 or a braun status/-1. */
-int braun_cli_monitor_sample(braun_cli_monitor *mon, const braun_data *d);
+
+/* Residuals beside the monitored run: measure a state, then accept it (its
+ * errors join the maxima) once it is known to have passed the guard. */
+int braun_cli_monitor_measure(braun_cli_monitor *mon, const braun_data *d, braun_cli_errors *e);
+void braun_cli_monitor_accept(braun_cli_monitor *mon, const braun_cli_errors *e);
+
+/* ---------------------------------------------------- columns (cli_columns.c) */
+/* Name of coordinate i (velocity: its velocity) of a target: "crank.x",
+ * "crank.vx", "q[3]", with its unit ("m", "rad/s", NULL if unknown). */
+const char *braun_cli_coord_name(const braun_cli_target *t, int i, int velocity, char *name,
+                                 size_t size, const char **unit);
+/* Columns of the trajectory CSV: t, q (n), v (n), pos_err, vel_err,
+ * energy_err, traj_err. Name and unit of column j (NULL past the end). */
+int braun_cli_column_count(int n);
+const char *braun_cli_column_name(const braun_cli_target *t, int n, int j, char *name,
+                                  size_t size, const char **unit);
+/* Index of the column called want (its " [unit]" optional), or -1. */
+int braun_cli_column_find(const braun_cli_target *t, int n, const char *want);
 
 /* --------------------------------------------------------- CSV (cli_csv.c) */
-int braun_cli_csv_header(FILE *f, int n);
+int braun_cli_csv_header(FILE *f, const braun_cli_target *t, int n);
 int braun_cli_csv_row(FILE *f, int n, double t, const double *q,
                       const double *v, const braun_cli_errors *e, int has_ref);
+
+/* ------------------------------------------- accuracy guard (cli_accuracy.c) */
+/* The bounds the core's accuracy guard applied in a run (read after it):
+ * NaN where a residual is not checked (its correction off, or the guard). */
+typedef struct braun_cli_bounds {
+    int on;                            /* options.guard >= 0 */
+    double guard;                      /* the relative guard (default 1e-3) */
+    double pos, vel, energy;           /* bounds on the three residuals */
+    double pos_scale, vel_scale, energy_scale; /* braun_data.guard */
+} braun_cli_bounds;
+void braun_cli_guard_bounds(const braun_data *d, braun_cli_bounds *b);
+/* The residual of e above its bound ("position residual ||Phi_q||"), with
+ * its value and bound, or NULL. */
+const char *braun_cli_guard_exceeded(const braun_cli_bounds *b, const braun_cli_errors *e,
+                                     double *value, double *bound);
+
+/* How a monitored run ended, beyond its status. */
+typedef struct braun_cli_stop {
+    braun_cli_bounds bounds;
+    int dropped;              /* a reported state did not pass the guard ... */
+    double dropped_t;         /* ... at this time: not in the CSV, maxima or plot */
+    int final_check;          /* it was the final state, refused by the tool */
+} braun_cli_stop;
 
 /* ----------------------------------------------- summary JSON (cli_summary.c) */
 typedef struct braun_cli_result {
     const braun_cli_run_args *args;
+    const braun_cli_target *target;
     const braun_model *model;
     const char *scene;
     const char *method;        /* braun, braun-noenergy, braun-custom */
     braun_stats stats;
-    double cpu_s;
+    double cpu_s;              /* the timed run (no monitoring); NaN if not timed */
+    double cpu_monitored_s;    /* the monitored run, monitoring and output included */
     const braun_cli_monitor *mon;
     const char *backend;       /* linear solver used (braun_linsolver_name) */
     int sparse;                /* the system had a sparsity */
-    double final_t;
+    double final_t;            /* the last state that passed */
     const double *final_q, *final_v;
     int status;
+    double error_t;            /* time of the failing evaluation (d->error.t), or NaN */
+    braun_cli_stop stop;
 } braun_cli_result;
 
 /* Pretty JSON, one key per line; returns 0 or -1 on a write error. */
 int braun_cli_write_summary(FILE *f, const braun_cli_result *r);
+/* The one line for people (cli_human.c): status, time reached, steps, CPU
+ * time, the largest errors and the guard's bounds. */
+void braun_cli_write_human(FILE *f, const braun_cli_result *r);
+
+/* -------------------------------------------------- progress (cli_progress.c) */
+typedef struct braun_cli_progress {
+    int enabled, terminal, shown;
+    const char *name, *phase;
+    double t0, t_end, wall0, last;
+} braun_cli_progress;
+int braun_cli_stderr_is_terminal(void);
+void braun_cli_progress_begin(braun_cli_progress *p, int enabled, const char *name,
+                              const char *phase, double t0, double t_end);
+void braun_cli_progress_update(braun_cli_progress *p, double t, long steps);
+void braun_cli_progress_end(braun_cli_progress *p, double t, long steps);
 
 /* ------------------------------------------------------- timing (cli_clock.c) */
 /* CPU time of this process in seconds (CLOCK_PROCESS_CPUTIME_ID). */
 double braun_cli_cpu_seconds(void);
 
 /* ------------------------------------------------------------ run (cli_run.c) */
+/* What else sees a monitored run: every state that passed, in order, and
+ * the result at the end (non-zero return: the command fails). */
+typedef struct braun_cli_observer {
+    void (*state)(void *user, double t, const double *q, const double *v);
+    int (*done)(void *user, const braun_cli_result *r);
+    void *user;
+} braun_cli_observer;
+
 int braun_cli_run(const braun_cli_run_args *a);
+/* The run of an open target; obs may be NULL. */
+int braun_cli_run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
+                         const braun_cli_observer *obs);
+
+/* `braun plot` (cli_plot.c). */
+int braun_cli_plot(int argc, char **argv);
 
 #endif /* BRAUN_CLI_H */

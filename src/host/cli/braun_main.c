@@ -7,7 +7,7 @@
 int main(int argc, char **argv)
 {
     /* Usage errors are one line, so scripts can show them as they are. */
-    if (argc < 2) return braun_cli_error("missing command: run, check, gen, gen-c, list, --help or --version");
+    if (argc < 2) return braun_cli_error("missing command: run, plot, check, gen, gen-c, list, --help or --version");
     const char *cmd = argv[1];
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
         braun_cli_usage(stdout);
@@ -23,11 +23,12 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "run") == 0) {
         braun_cli_run_args a;
-        int rc = braun_cli_parse_run(argc - 2, argv + 2, &a);
+        int rc = braun_cli_parse_run(argc - 2, argv + 2, &a, 0);
         if (rc < 0) return 0; /* --help */
         if (rc) return rc;
         return braun_cli_run(&a);
     }
+    if (strcmp(cmd, "plot") == 0) return braun_cli_plot(argc - 2, argv + 2);
     if (strcmp(cmd, "check") == 0) return braun_cli_check(argc - 2, argv + 2);
     if (strcmp(cmd, "gen") == 0) return braun_cli_gen(argc - 2, argv + 2);
     if (strcmp(cmd, "gen-c") == 0) return braun_cli_gen_c(argc - 2, argv + 2);

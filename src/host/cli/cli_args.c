@@ -117,9 +117,43 @@ static int parse_discretization(const char *s, braun_discretization *out)
     return 0;
 }
 
-/* Apply one "--name value" pair. */
-static int apply(const char *opt, const char *val, braun_cli_run_args *a)
+static int parse_count(const char *opt, const char *s, long lo, long hi, long *out)
 {
+    char *end;
+    errno = 0;
+    long k = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno == ERANGE || k < lo || k > hi)
+        return braun_cli_error("%s must be an integer from %ld to %ld (got '%s')", opt, lo, hi, s);
+    *out = k;
+    return 0;
+}
+
+/* Options of braun plot (plot mode only). */
+static int apply_plot(const char *opt, const char *val, braun_cli_run_args *a)
+{
+    if (strcmp(opt, "-o") == 0) return a->plot_path = val, 0;
+    if (strcmp(opt, "--traj") == 0) return a->traj_path = val, 0;
+    if (strcmp(opt, "--points") == 0) return a->points = val, 0;
+    if (strcmp(opt, "--plot") == 0) return a->plot_columns = val, 0;
+    if (strcmp(opt, "--view") == 0) return a->view = val, 0;
+    if (strcmp(opt, "--frames") == 0) return parse_count(opt, val, 1, 1000, &a->frames);
+    if (strcmp(opt, "--samples") == 0) return parse_count(opt, val, 2, 100000, &a->samples);
+    if (strcmp(opt, "--from") == 0) {
+        const int rc = parse_real(opt, val, &a->from);
+        if (!rc && a->from < 0) return braun_cli_error("--from must be >= 0 (got %s)", val);
+        return rc;
+    }
+    return 1; /* not a plot option */
+}
+
+/* Apply one "--name value" pair. */
+static int apply(const char *opt, const char *val, braun_cli_run_args *a, int plot)
+{
+    if (plot) {
+        const int rc = apply_plot(opt, val, a);
+        if (rc != 1) return rc;
+    }
+    a->run_given = 1;
     if (strcmp(opt, "--dt") == 0) return parse_positive(opt, val, &a->dt);
     if (strcmp(opt, "--t-end") == 0) return parse_positive(opt, val, &a->t_end);
     if (strcmp(opt, "--integrator") == 0) {
@@ -140,6 +174,8 @@ static int apply(const char *opt, const char *val, braun_cli_run_args *a)
         return rc;
     }
     if (strcmp(opt, "--energy-max-rel") == 0) return parse_nonnegative(opt, val, &a->energy_max_rel);
+    /* 0 is the library's default, a negative value turns the guard off. */
+    if (strcmp(opt, "--guard") == 0) return parse_real(opt, val, &a->guard);
     if (strcmp(opt, "--rtol") == 0) return parse_nonnegative(opt, val, &a->rtol);
     if (strcmp(opt, "--atol") == 0) return parse_nonnegative(opt, val, &a->atol);
     if (strcmp(opt, "--ref-h") == 0) return parse_positive(opt, val, &a->ref_h);
@@ -169,18 +205,22 @@ static int apply(const char *opt, const char *val, braun_cli_run_args *a)
     return braun_cli_error("unknown option '%s' (see braun --help)", opt);
 }
 
-static int takes_value(const char *opt)
+static int takes_value(const char *opt, int plot)
 {
     static const char *const names[] = {
         "--dt", "--t-end", "--integrator", "--corrections", "--discretization",
-        "--rank-tol", "--energy-max-rel", "--rtol", "--atol", "--ref-h",
+        "--rank-tol", "--energy-max-rel", "--guard", "--rtol", "--atol", "--ref-h",
         "--every", "--out", "--summary", "--backend"};
+    static const char *const plot_names[] = {"-o", "--traj", "--points", "--plot", "--frames",
+                                             "--from", "--samples", "--view"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         if (strcmp(opt, names[i]) == 0) return 1;
+    for (size_t i = 0; plot && i < sizeof plot_names / sizeof plot_names[0]; i++)
+        if (strcmp(opt, plot_names[i]) == 0) return 1;
     return 0;
 }
 
-int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
+int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
 {
     memset(a, 0, sizeof *a);
     a->dt = a->t_end = NAN;
@@ -190,8 +230,12 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
     a->rtol = 1e-8;
     a->atol = 1e-10;
     a->every = 1;
-    a->summary_path = "-";
+    a->summary_path = plot ? NULL : "-";
     a->backend = "dense";
+    a->progress = -1;
+    a->timing = !plot;
+    a->from = NAN;
+    int quiet = 0, loud = 0;
 
     for (int i = 0; i < argc; i++) {
         const char *arg = argv[i];
@@ -205,7 +249,7 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
             a->model = arg;
             continue;
         }
-        if (strncmp(arg, "--", 2) != 0)
+        if (strncmp(arg, "--", 2) != 0 && !(plot && strcmp(arg, "-o") == 0))
             return braun_cli_error("unknown option '%s' (see braun --help)", arg);
         /* Both "--dt 1e-3" and "--dt=1e-3". */
         char name[32];
@@ -215,12 +259,16 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
         if (len >= sizeof name) return braun_cli_error("unknown option '%s' (see braun --help)", arg);
         memcpy(name, arg, len);
         name[len] = '\0';
-        if (strcmp(name, "--sparse") == 0) { /* the one flag */
-            if (eq) return braun_cli_error("option --sparse takes no value");
-            a->sparse = 1;
+        if (strcmp(name, "--sparse") == 0 || strcmp(name, "--progress") == 0 ||
+            strcmp(name, "--quiet") == 0) { /* the flags */
+            if (eq) return braun_cli_error("option %s takes no value", name);
+            if (name[2] == 's') a->sparse = 1, a->run_given = 1;
+            else if (name[2] == 'p') loud = 1;
+            else quiet = 1;
             continue;
         }
-        if (!takes_value(name)) return braun_cli_error("unknown option '%s' (see braun --help)", name);
+        if (!takes_value(name, plot))
+            return braun_cli_error("unknown option '%s' (see braun --help)", name);
         if (eq) {
             val = eq + 1;
         } else {
@@ -230,13 +278,27 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a)
             val = argv[++i];
         }
         if (*val == '\0') return braun_cli_error("option %s needs a value", name);
-        int rc = apply(name, val, a);
+        int rc = apply(name, val, a, plot);
         if (rc) return rc;
     }
 
-    if (!a->model) return braun_cli_error("run needs a MODEL (see braun list)");
-    if (isnan(a->dt)) return braun_cli_error("run needs --dt H");
-    if (isnan(a->t_end)) return braun_cli_error("run needs --t-end T");
+    const char *cmd = plot ? "plot" : "run";
+    if (quiet && loud) return braun_cli_error("--progress and --quiet contradict each other");
+    a->progress = quiet ? 0 : loud ? 1 : -1;
+    if (!a->model) return braun_cli_error("%s needs a MODEL (see braun list)", cmd);
+    if (plot) {
+        if (!a->plot_path)
+            return braun_cli_error("plot needs -o FILE (.svg drawing, .html animation, .png)");
+        if (a->traj_path) {
+            /* The trajectory is given: nothing is simulated. */
+            if (a->run_given)
+                return braun_cli_error("--traj draws a trajectory already computed: it takes "
+                                       "no simulation options (--dt, --t-end, ...)");
+            return 0;
+        }
+    }
+    if (isnan(a->dt)) return braun_cli_error("%s needs --dt H", cmd);
+    if (isnan(a->t_end)) return braun_cli_error("%s needs --t-end T", cmd);
     /* The adaptive driver corrects once per accepted step whatever the
      * option says (Δ = Φ/h is ill-posed with a varying h): refuse rather
      * than report a discretization that was not used. */

@@ -1,5 +1,30 @@
-/* braun list: the built-in models, one line each (name, n, m, p, description). */
+/* braun list: the built-in models, one line each (name, n, m, p,
+ * description), then the shipped scenes that run by their file name from
+ * any directory (name.json, n, m, p, description, path). */
+#include <string.h>
+
 #include "braun_cli.h"
+
+static void scene_line(const char *path, void *user)
+{
+    char err[512];
+    (void)user;
+    braun_scene_file *f = braun_scene_load(path, err, sizeof err);
+    const char *slash = strrchr(path, '/');
+    const char *file = slash ? slash + 1 : path;
+    if (!f) {
+        printf("%-22s (does not load: %s)\n", file, err);
+        return;
+    }
+    /* The scene's texts are data: control bytes shown as '?'. */
+    char desc[256];
+    size_t k = 0;
+    for (const char *p = f->description; p && *p && k + 1 < sizeof desc; p++)
+        desc[k++] = (unsigned char)*p < 0x20 || *p == 0x7f ? '?' : *p;
+    desc[k] = '\0';
+    printf("%-22s n=%d m=%d p=%d  %s\n", file, f->scene.n, f->scene.m, f->scene.p, desc);
+    braun_scene_free(f);
+}
 
 int braun_cli_list(void)
 {
@@ -11,5 +36,10 @@ int braun_cli_list(void)
     for (int i = 0; (t = braun_cli_extra_at(i)) != NULL; i++)
         printf("%-14s n=%d m=%d p=%d  %s\n", t->name, t->sys.n, t->sys.m, t->sys.p,
                t->description ? t->description : "");
+    const char *dir = braun_cli_data_dir();
+    if (dir) {
+        printf("\nshipped scenes (%s; run them by name from any directory):\n", dir);
+        braun_cli_data_each(scene_line, NULL);
+    }
     return fflush(stdout) == 0 ? 0 : BRAUN_CLI_FAILED;
 }

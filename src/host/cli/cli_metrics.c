@@ -35,7 +35,7 @@ int braun_cli_monitor_init(braun_cli_monitor *mon, const braun_model *model,
     return BRAUN_OK;
 }
 
-int braun_cli_monitor_sample(braun_cli_monitor *mon, const braun_data *d)
+int braun_cli_monitor_measure(braun_cli_monitor *mon, const braun_data *d, braun_cli_errors *e)
 {
     braun_data *s = &mon->scratch;
     const int n = d->model->sys.n;
@@ -46,31 +46,35 @@ int braun_cli_monitor_sample(braun_cli_monitor *mon, const braun_data *d)
     s->work_in = d->work_in;
     int st = braun_residuals(s, d->t, d->q, d->v, &pos, &vel, &energy);
     if (st) return st;
-    mon->cur.pos = (double)pos;
-    mon->cur.vel = (double)vel;
-    mon->cur.energy = (double)energy;
-
+    e->pos = (double)pos;
+    e->vel = (double)vel;
+    e->energy = (double)energy;
+    e->traj = e->point = NAN;
     if (mon->has_ref) {
         double qr[BRAUN_MODEL_MAX_N], vr[BRAUN_MODEL_MAX_N], sum = 0;
         /* The run's times never decrease, as braun_reference_eval requires. */
         st = braun_reference_eval(&mon->ref, (double)d->t, qr, vr);
         if (st) return st;
         for (int i = 0; i < n; i++) {
-            double e = (double)d->q[i] - qr[i];
-            sum += e * e;
+            double err = (double)d->q[i] - qr[i];
+            sum += err * err;
         }
-        mon->cur.traj = sqrt(sum);
+        e->traj = sqrt(sum);
         if (mon->has_point) {
             const int ix = mon->builtin->point_x, iy = mon->builtin->point_y;
-            mon->cur.point = hypot((double)d->q[ix] - qr[ix], (double)d->q[iy] - qr[iy]);
+            e->point = hypot((double)d->q[ix] - qr[ix], (double)d->q[iy] - qr[iy]);
         }
     }
+    return BRAUN_OK;
+}
 
+void braun_cli_monitor_accept(braun_cli_monitor *mon, const braun_cli_errors *e)
+{
+    mon->cur = *e;
     track_max(&mon->max.pos, mon->cur.pos);
     track_max(&mon->max.vel, mon->cur.vel);
     track_max(&mon->max.energy, mon->cur.energy);
     if (mon->has_ref) track_max(&mon->max.traj, mon->cur.traj);
     if (mon->has_point) track_max(&mon->max.point, mon->cur.point);
     mon->samples++;
-    return BRAUN_OK;
 }

@@ -1,8 +1,10 @@
 /* MODEL on the command line -> the target to simulate: a built-in model of
  * braun_models.h, one of this tool's extra models (Andrews' squeezing
- * mechanism), or a scene file. Nothing else in the tool knows how MODEL is
- * resolved. */
+ * mechanism), or a scene file — as given, or one of the shipped scenes
+ * (braun_cli_data_dir) by its file name. Nothing else in the tool knows how
+ * MODEL is resolved. */
 #include <string.h>
+#include <sys/stat.h>
 
 #include "braun_cli.h"
 #include "braun_scene_file.h"
@@ -45,10 +47,38 @@ static int is_scene_file(const char *arg)
     return (len >= 5 && strcmp(arg + len - 5, ".json") == 0) || strchr(arg, '/') != NULL;
 }
 
+/* The scene of a built-in model that has one (names, drawings), or NULL. */
+static braun_scene_file *builtin_drawing(const char *name, const char **text)
+{
+    char err[512];
+    *text = braun_cli_builtin_scene(name);
+    return *text ? braun_scene_load_text(name, *text, strlen(*text), err, sizeof err) : NULL;
+}
+
+static int exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* A built-in model's or an extra model's name. */
+static int is_model_name(const char *arg)
+{
+    if (braun_builtin_find(arg)) return 1;
+    for (int i = 0; i < braun_cli_extra_count(); i++)
+        if (strcmp(extras[i].name, arg) == 0) return 1;
+    return 0;
+}
+
 int braun_cli_target_open(const char *arg, braun_cli_target *t)
 {
     memset(t, 0, sizeof *t);
-    if (is_scene_file(arg)) {
+    /* Not a built-in name and not a file here: a shipped scene by name
+     * ("four-bar.json", or "damped-motor"). */
+    if (!is_model_name(arg) && !exists(arg) && !strchr(arg, '/') &&
+        braun_cli_data_file(arg, t->path_buf, sizeof t->path_buf))
+        arg = t->path_buf;
+    if (is_scene_file(arg) || (!is_model_name(arg) && exists(arg))) {
         char err[512];
         braun_scene_file *f = braun_scene_load(arg, err, sizeof err);
         if (!f) return braun_cli_error("%s", err);
@@ -61,6 +91,7 @@ int braun_cli_target_open(const char *arg, braun_cli_target *t)
         t->reference = f->reference ? braun_builtin_find(f->reference) : NULL;
         t->corrections = f->corrections;
         t->scene = f;
+        t->drawing = f;
         braun_cli_path_id(arg, &t->id);
         return 0;
     }
@@ -73,6 +104,12 @@ int braun_cli_target_open(const char *arg, braun_cli_target *t)
         t->v0 = b->v0;
         t->reference = b;
         t->corrections = BRAUN_CORRECT_ALL;
+        t->drawing = builtin_drawing(b->name, &t->drawing_text);
+        /* Only a scene with exactly the model's coordinates names them. */
+        if (t->drawing && t->drawing->scene.n != b->sys.n) {
+            braun_scene_free(t->drawing);
+            t->drawing = NULL;
+        }
         return 0;
     }
     for (int i = 0; i < braun_cli_extra_count(); i++)
@@ -80,11 +117,14 @@ int braun_cli_target_open(const char *arg, braun_cli_target *t)
             extra_target(i, t);
             return 0;
         }
-    return braun_cli_error("unknown model '%s' (see braun list, or give a scene file)", arg);
+    return braun_cli_error("unknown model '%s' (see braun list: built-in models and shipped "
+                           "scenes; or give a scene file)", arg);
 }
 
 void braun_cli_target_close(braun_cli_target *t)
 {
+    if (t->drawing != t->scene) braun_scene_free(t->drawing);
     braun_scene_free(t->scene);
     t->scene = NULL;
+    t->drawing = NULL;
 }

@@ -5,6 +5,7 @@
  * callback and is the only one timed: cpu_s is the integration alone.
  * Run 2 samples every step for the metrics and the CSV. */
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,41 +13,82 @@
 #include "braun_cli.h"
 #include "braun_host.h"
 
-/* What the output callback of run 2 needs. */
+/* One state of the monitored run with its errors; index: its place among
+ * the states the run reported (t0 is 0), for --every. */
+typedef struct run_state {
+    double t, *q, *v;
+    braun_cli_errors e;
+    long index;
+} run_state;
+
+/* What the output callback of the monitored run needs. A state the driver
+ * reports is only known to have passed the accuracy guard when the next
+ * step starts from it: it is held back (pending) until the next report,
+ * and dropped if the run stops with BRAUN_ERR_ACCURACY (the core then
+ * returns to the state before it). Only states that passed reach the CSV,
+ * the maxima of the summary and the plot. */
 typedef struct run_ctx {
     braun_cli_monitor *mon;
     FILE *csv;
     braun_cli_output *csv_out; /* its file, for the errno of a failed write */
     long every;
     int n;
-    braun_real t_end;
-    long calls;         /* states seen, t = 0 included */
-    int last_written;   /* the last stored state has its CSV row */
+    const braun_cli_observer *obs;
+    braun_cli_progress *progress;
+    long calls;         /* states reported, t = t0 included */
+    int have_pending, have_good;
+    run_state pending, good; /* last reported / last that passed */
+    int good_written;   /* good has its CSV row */
     int monitor_status; /* non-zero: sampling failed, run stopped */
-    double t, *q, *v;   /* last state sampled: the run's final state */
 } run_ctx;
+
+static void write_good(run_ctx *c)
+{
+    if (braun_cli_csv_row(c->csv, c->n, c->good.t, c->good.q, c->good.v, &c->good.e,
+                          c->mon->has_ref))
+        braun_cli_output_failed(c->csv_out);
+    c->good_written = 1;
+}
+
+/* The pending state passed: it becomes the last good one. */
+static void commit(run_ctx *c)
+{
+    run_state keep = c->good;
+    c->good = c->pending;
+    c->pending = keep;
+    c->have_pending = 0;
+    c->have_good = 1;
+    braun_cli_monitor_accept(c->mon, &c->good.e);
+    c->good_written = 0;
+    if (c->csv && c->good.index % c->every == 0) write_good(c);
+    if (c->obs && c->obs->state) c->obs->state(c->obs->user, c->good.t, c->good.q, c->good.v);
+}
 
 static int on_step(const braun_data *d, void *user)
 {
     run_ctx *c = (run_ctx *)user;
-    int st = braun_cli_monitor_sample(c->mon, d);
+    /* A new report: the step from the pending state passed its start. */
+    if (c->have_pending) commit(c);
+    int st = braun_cli_monitor_measure(c->mon, d, &c->pending.e);
     if (st) {
         c->monitor_status = st;
         return 1;
     }
-    c->t = (double)d->t;
+    c->pending.t = (double)d->t;
     for (int i = 0; i < c->n; i++) {
-        c->q[i] = (double)d->q[i];
-        c->v[i] = (double)d->v[i];
+        c->pending.q[i] = (double)d->q[i];
+        c->pending.v[i] = (double)d->v[i];
     }
-    /* Every K-th state, and the last one so the file ends where the run did. */
-    c->last_written = 0;
-    if (c->csv && (c->calls % c->every == 0 || d->t >= c->t_end)) {
-        if (braun_cli_csv_row(c->csv, c->n, c->t, c->q, c->v, &c->mon->cur, c->mon->has_ref))
-            braun_cli_output_failed(c->csv_out);
-        c->last_written = 1;
-    }
-    c->calls++;
+    c->pending.index = c->calls++;
+    c->have_pending = 1;
+    braun_cli_progress_update(c->progress, (double)d->t, d->stats.steps);
+    return 0;
+}
+
+/* The timed run's only callback, every few steps: the progress line. */
+static int on_timed(const braun_data *d, void *user)
+{
+    braun_cli_progress_update((braun_cli_progress *)user, (double)d->t, d->stats.steps);
     return 0;
 }
 
@@ -58,15 +100,15 @@ static int start(braun_data *d, const braun_model *model, const braun_cli_target
     return st;
 }
 
-static int integrate(braun_data *d, const braun_cli_run_args *a, braun_output_fn out,
-                     void *user)
+static int integrate(braun_data *d, const braun_cli_run_args *a, long every,
+                     braun_output_fn out, void *user)
 {
     if (a->method == BRAUN_DOPRI5) {
         braun_adaptive ctl = {(braun_real)a->rtol, (braun_real)a->atol, (braun_real)a->dt,
                               0, 0, 0};
-        return braun_integrate_adaptive(d, &ctl, (braun_real)a->t_end, 1, out, user);
+        return braun_integrate_adaptive(d, &ctl, (braun_real)a->t_end, every, out, user);
     }
-    return braun_integrate(d, a->method, (braun_real)a->dt, (braun_real)a->t_end, 1, out,
+    return braun_integrate(d, a->method, (braun_real)a->dt, (braun_real)a->t_end, every, out,
                            user);
 }
 
@@ -162,18 +204,16 @@ static int choose_backend(const braun_cli_run_args *a, const braun_cli_target *t
     return 0;
 }
 
-static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
-                      const braun_model *model);
+static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
+                     const braun_model *model, const braun_cli_observer *obs);
 
-int braun_cli_run(const braun_cli_run_args *a)
+int braun_cli_run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
+                         const braun_cli_observer *obs)
 {
-    braun_cli_target tg;
-    int rc = braun_cli_target_open(a->model, &tg);
-    if (rc) return rc;
     braun_system sys;
     void *store; /* the sparse system's pattern and scratch: outlives the run */
     const char *none;
-    rc = choose_system(a, &tg, &sys, &store, &none);
+    int rc = choose_system(a, tg, &sys, &store, &none);
     braun_model model;
     if (!rc) {
         /* A scene without rods may be larger than a dense system can be. */
@@ -182,23 +222,36 @@ int braun_cli_run(const braun_cli_run_args *a)
         int st = braun_model_init(&model, &sys);
         if (st && !sys.sparsity && big) {
             rc = braun_cli_error("'%s' has n = %d, m = %d, p = %d: more than a dense system "
-                                 "allows (%d); run it with --sparse", tg.name, sys.n, sys.m,
+                                 "allows (%d); run it with --sparse", tg->name, sys.n, sys.m,
                                  sys.p, BRAUN_MAX_DENSE);
         } else if (st) {
-            braun_cli_error("model '%s' is invalid: %s", tg.name, braun_status_str(st));
+            braun_cli_error("model '%s' is invalid: %s", tg->name, braun_status_str(st));
             rc = BRAUN_CLI_FAILED;
         } else {
-            rc = choose_backend(a, &tg, &model, none);
+            rc = choose_backend(a, tg, &model, none);
         }
     }
-    if (!rc) rc = run_target(a, &tg, &model);
+    if (!rc) rc = run_model(a, tg, &model, obs);
     free(store);
+    return rc;
+}
+
+int braun_cli_run(const braun_cli_run_args *a)
+{
+    braun_cli_target tg;
+    int rc = braun_cli_target_open(a->model, &tg);
+    if (rc) return rc;
+    rc = braun_cli_run_target(a, &tg, NULL);
     braun_cli_target_close(&tg);
     return rc;
 }
 
-static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
-                      const braun_model *model_in)
+/* Progress every this many steps of the timed run: a clock read per 64
+ * steps (each of at least a microsecond) costs well under 0.1 %. */
+#define TIMED_PROGRESS_EVERY 64
+
+static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
+                     const braun_model *model_in, const braun_cli_observer *obs)
 {
     braun_model model = *model_in;
     int st;
@@ -216,25 +269,31 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
     model.opt.discretization = a->discretization;
     model.opt.rank_tol = (braun_real)a->rank_tol;
     model.opt.energy_max_rel = (braun_real)a->energy_max_rel;
+    model.opt.guard = (braun_real)a->guard;
 
     const int n = model.sys.n;
     const size_t bytes = braun_data_size(&model);
-    /* One block: final state (2n doubles), the run's workspace, the monitor's. */
-    double *block = malloc(2 * (size_t)n * sizeof(double) + 2 * bytes);
+    /* One block: three states (pending, good, spare: 2n doubles each), the
+     * run's workspace, the monitor's. */
+    double *block = malloc(6 * (size_t)n * sizeof(double) + 2 * bytes);
     if (!block) {
         braun_cli_error("out of memory");
         return BRAUN_CLI_FAILED;
     }
-    unsigned char *buf_run = (unsigned char *)(block + 2 * n);
+    unsigned char *buf_run = (unsigned char *)(block + 6 * n);
     unsigned char *buf_mon = buf_run + bytes;
 
     /* Both outputs opened (without blocking, nothing truncated yet), then
      * checked against each other and the scene file, then truncated. */
     braun_cli_output out_summary, out_csv;
     memset(&out_csv, 0, sizeof out_csv);
-    int rc = braun_cli_output_open(&out_summary, a->summary_path, "--summary");
+    memset(&out_summary, 0, sizeof out_summary);
+    int rc = 0;
+    if (a->summary_path) rc = braun_cli_output_open(&out_summary, a->summary_path, "--summary");
     if (!rc && a->out_path) rc = braun_cli_output_open(&out_csv, a->out_path, "--out");
     if (!rc) rc = braun_cli_output_distinct(&out_summary, &out_csv, &tg->id, tg->source);
+    if (!rc) rc = braun_cli_output_distinct(&out_summary, a->plot_output, NULL, NULL);
+    if (!rc) rc = braun_cli_output_distinct(&out_csv, a->plot_output, NULL, NULL);
     if (!rc) rc = braun_cli_output_begin(&out_summary);
     if (!rc) rc = braun_cli_output_begin(&out_csv);
     if (rc) {
@@ -248,29 +307,39 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
     braun_data d;
     braun_cli_monitor mon;
     braun_cli_guard guard;
+    braun_cli_progress progress;
     braun_model model2;
     run_ctx ctx;
     const braun_data *failed = &d; /* whose error to report if a start fails */
-    int exit_status = 0, st_timed;
-    double c0, cpu_s;
+    int exit_status = 0, st_timed = BRAUN_OK, timed = a->timing;
+    double c0, cpu_s = NAN, cpu_monitored;
     braun_stats timed_stats;
+    memset(&timed_stats, 0, sizeof timed_stats);
     /* Released on every path (a backend's state; nothing for the built-in
      * kernels): zeroed so that releasing one never initialised is a no-op. */
     memset(&d, 0, sizeof d);
     memset(&mon, 0, sizeof mon);
     memset(&guard, 0, sizeof guard);
+    const int show = a->progress > 0 || (a->progress < 0 && braun_cli_stderr_is_terminal());
 
-    /* Run 1: timed, no callback. */
-    st = start(&d, &model, tg, buf_run, bytes);
-    if (st) goto init_failed;
-    c0 = braun_cli_cpu_seconds();
-    st_timed = integrate(&d, a, NULL, NULL);
-    cpu_s = braun_cli_cpu_seconds() - c0;
-    timed_stats = d.stats;
+    /* Run 1: timed, no monitoring (the progress line, when shown, reads the
+     * clock every 64 steps). */
+    if (timed) {
+        st = start(&d, &model, tg, buf_run, bytes);
+        if (st) goto init_failed;
+        braun_cli_progress_begin(&progress, show, tg->name, "run 1 of 2: timing, no monitoring",
+                                 (double)d.t, a->t_end);
+        c0 = braun_cli_cpu_seconds();
+        st_timed = show ? integrate(&d, a, TIMED_PROGRESS_EVERY, on_timed, &progress)
+                        : integrate(&d, a, 1, NULL, NULL);
+        cpu_s = braun_cli_cpu_seconds() - c0;
+        braun_cli_progress_end(&progress, (double)d.t, d.stats.steps);
+        timed_stats = d.stats;
+        braun_data_release(&d);
+    }
 
     /* Run 2: the same steps, monitored (a fresh backend state, too), a
      * scene's callbacks through the guard that names a failing element. */
-    braun_data_release(&d);
     braun_cli_guard_wrap(&guard, &model.sys, tg->scene, &model2.sys);
     model2.opt = model.opt;
     st = start(&d, &model2, tg, buf_run, bytes);
@@ -278,62 +347,114 @@ static int run_target(const braun_cli_run_args *a, const braun_cli_target *tg,
     failed = &mon.scratch;
     st = braun_cli_monitor_init(&mon, &model2, tg->reference, a->ref_h, buf_mon, bytes);
     if (st) goto init_failed;
+    memset(&ctx, 0, sizeof ctx);
     ctx.mon = &mon;
     ctx.csv = csv;
     ctx.csv_out = &out_csv;
     ctx.every = a->every;
     ctx.n = n;
-    ctx.t_end = (braun_real)a->t_end;
-    ctx.calls = 0;
-    ctx.last_written = 1;
-    ctx.monitor_status = 0;
-    ctx.q = block;
-    ctx.v = block + n;
-    ctx.t = (double)d.t;
-    for (int i = 0; i < n; i++) {
-        ctx.q[i] = (double)d.q[i];
-        ctx.v[i] = (double)d.v[i];
+    ctx.obs = obs;
+    ctx.progress = &progress;
+    ctx.pending.q = block;
+    ctx.pending.v = block + n;
+    ctx.good.q = block + 2 * n;
+    ctx.good.v = block + 3 * n;
+    if (csv && braun_cli_csv_header(csv, tg, n)) braun_cli_output_failed(&out_csv);
+    braun_cli_progress_begin(&progress, show, tg->name,
+                             timed ? "run 2 of 2: monitoring" : "monitoring", (double)d.t,
+                             a->t_end);
+    c0 = braun_cli_cpu_seconds();
+    st = integrate(&d, a, 1, on_step, &ctx);
+    const int st_core = st;
+    braun_cli_stop stop;
+    memset(&stop, 0, sizeof stop);
+    braun_cli_guard_bounds(&d, &stop.bounds);
+    if (ctx.have_pending) {
+        double value, bound;
+        const char *what;
+        if (ctx.pending.t != (double)d.t) {
+            /* The core went back to the state before it (BRAUN_ERR_ACCURACY). */
+            stop.dropped_t = ctx.pending.t;
+            stop.dropped = 1;
+        } else if (st == BRAUN_OK && d.stats.steps > 0 &&
+                   (what = braun_cli_guard_exceeded(&stop.bounds, &ctx.pending.e, &value,
+                                                    &bound)) != NULL) {
+            /* The final state: no step starts from it, so the tool checks it
+             * with the core's bounds, at no extra evaluation (the monitor
+             * computed its residuals). */
+            st = BRAUN_ERR_ACCURACY;
+            stop.dropped_t = ctx.pending.t;
+            stop.dropped = 1;
+            stop.final_check = 1;
+            braun_cli_error("%s = %.3g at the final state t = %.10g exceeds the accuracy guard "
+                            "%.3g (guard %.3g x its scale); the state is the last step that "
+                            "passed, t = %.10g (%s)", what, value, ctx.pending.t, bound,
+                            stop.bounds.guard, ctx.have_good ? ctx.good.t : ctx.pending.t,
+                            braun_status_str(st));
+        } else {
+            commit(&ctx);
+        }
     }
-    if (csv) braun_cli_csv_header(csv, n);
-    st = integrate(&d, a, on_step, &ctx);
-    /* A failed step leaves the last good state unwritten when K > 1. */
-    if (csv && !ctx.last_written)
-        braun_cli_csv_row(csv, n, ctx.t, ctx.q, ctx.v, &mon.cur, mon.has_ref);
+    cpu_monitored = braun_cli_cpu_seconds() - c0;
+    braun_cli_progress_end(&progress, ctx.have_good ? ctx.good.t : (double)d.t, d.stats.steps);
+    /* The file ends where the run did: the last state that passed. */
+    if (csv && ctx.have_good && !ctx.good_written) write_good(&ctx);
 
     if (ctx.monitor_status) {
         char what[256] = "reference evaluation failed";
         if (mon.scratch.error.status == ctx.monitor_status)
             braun_error_format(&mon.scratch, what, sizeof what);
-        braun_cli_error("monitoring failed after t = %.10g: %s", ctx.t, what);
+        braun_cli_error("monitoring failed after t = %.10g: %s",
+                        ctx.have_good ? ctx.good.t : (double)d.t, what);
         exit_status = BRAUN_CLI_FAILED;
     } else if (st) {
-        report_failure(&d, st, &guard, a);
+        if (!stop.final_check) report_failure(&d, st, &guard, a);
         exit_status = BRAUN_CLI_FAILED;
     }
-    if (!ctx.monitor_status &&
-        (st_timed != st || timed_stats.steps != d.stats.steps ||
+    if (timed && !ctx.monitor_status &&
+        (st_timed != st_core || timed_stats.steps != d.stats.steps ||
          timed_stats.rhs_evals != d.stats.rhs_evals))
         braun_cli_error("warning: the timed run (%s, %ld steps) differs from the monitored "
                         "run (%ld steps); cpu_s may not match", braun_status_str(st_timed),
                         timed_stats.steps, d.stats.steps);
 
     braun_cli_result r;
+    memset(&r, 0, sizeof r);
     r.args = a;
+    r.target = tg;
     r.model = &model;
     r.scene = tg->name;
     r.method = method_name(model.opt.corrections, supported);
     r.stats = d.stats;
+    /* A final state the tool refused is a step not taken, as the core
+     * counts the step it goes back over. */
+    if (stop.final_check && r.stats.steps > 0) r.stats.steps--;
     r.cpu_s = cpu_s;
+    r.cpu_monitored_s = cpu_monitored;
     r.mon = &mon;
     r.backend = braun_linsolver_name(model.opt.linsolver);
     r.sparse = model.sys.sparsity != NULL;
-    r.final_t = ctx.t;
-    r.final_q = ctx.q;
-    r.final_v = ctx.v;
-    r.status = st;
-    if (braun_cli_write_summary(summary, &r)) braun_cli_output_failed(&out_summary);
+    r.final_t = ctx.have_good ? ctx.good.t : (double)d.t;
+    if (ctx.have_good) {
+        r.final_q = ctx.good.q;
+        r.final_v = ctx.good.v;
+    } else {
+        /* No state passed the monitor (it failed at t0): the initial one. */
+        for (int i = 0; i < n; i++) {
+            ctx.good.q[i] = (double)tg->q0[i];
+            ctx.good.v[i] = (double)tg->v0[i];
+        }
+        r.final_q = ctx.good.q;
+        r.final_v = ctx.good.v;
+    }
+    r.status = ctx.monitor_status ? BRAUN_STOPPED : st;
+    r.stop = stop;
+    r.error_t = st && d.error.status == st ? d.error.t : NAN;
+    if (summary && braun_cli_write_summary(summary, &r)) braun_cli_output_failed(&out_summary);
+    if (show) braun_cli_write_human(stderr, &r);
     if (braun_cli_output_close(&out_summary)) exit_status = BRAUN_CLI_FAILED;
     if (braun_cli_output_close(&out_csv)) exit_status = BRAUN_CLI_FAILED;
+    if (obs && obs->done && obs->done(obs->user, &r)) exit_status = BRAUN_CLI_FAILED;
     braun_data_release(&mon.scratch);
     braun_data_release(&d);
     free(block);

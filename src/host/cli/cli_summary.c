@@ -1,10 +1,14 @@
-/* Summary of a run as pretty JSON, one key per line. Numbers are %.17g so
- * they read back exactly; NaN and Inf have no JSON spelling and become null
- * (also the value of quantities that do not exist, e.g. no reference). */
+/* Summary of a run as pretty JSON, one key per line. Numbers are the
+ * shortest decimals that read back as the same double (0.01, not
+ * 0.01000000000000000021); NaN and Inf have no JSON spelling and become
+ * null (also the value of quantities that do not exist, e.g. no
+ * reference). Options show the value the run used, defaults included, and
+ * "defaults" lists those the library chose. Units: docs/cli.md. */
 #include <math.h>
 #include <string.h>
 
 #include "braun_cli.h"
+#include "braun_math.h"
 
 typedef struct json {
     FILE *f;
@@ -18,7 +22,7 @@ static void key(json *j, const char *k)
 
 static void write_number(FILE *f, double x)
 {
-    if (isfinite(x)) fprintf(f, "%.17g", x);
+    if (isfinite(x)) braun_cli_put_number(f, x);
     else fputs("null", f);
 }
 
@@ -119,12 +123,64 @@ int braun_cli_write_summary(FILE *f, const braun_cli_result *r)
     key(&j, "sparse");
     fputs(r->sparse ? "true" : "false", f);
     /* Options as set; 0 means the library's default. */
-    num(&j, "rank_tol", (double)r->model->opt.rank_tol);
-    num(&j, "energy_max_rel", (double)r->model->opt.energy_max_rel);
+    /* Options as the run used them: a value the library chose (0 given)
+     * is shown with its effective value and listed in "defaults". */
+    const braun_options *o = &r->model->opt;
+    const char *defaulted[12];
+    int nd = 0;
+    const int rows = sys->m + sys->p;
+    if (!(o->rank_tol > 0)) defaulted[nd++] = "rank_tol";
+    num(&j, "rank_tol", o->rank_tol > 0 ? (double)o->rank_tol
+                                        : (double)braun_default_rank_tol(rows, sys->n));
+    if (!(o->energy_max_rel > 0)) defaulted[nd++] = "energy_max_rel";
+    num(&j, "energy_max_rel", o->energy_max_rel > 0 ? (double)o->energy_max_rel : 0.01);
     num(&j, "rtol", adaptive ? a->rtol : NAN);
     num(&j, "atol", adaptive ? a->atol : NAN);
     num(&j, "ref_h", mon->ref_h);
     str(&j, "libbraun_version", BRAUN_VERSION);
+    if (!(o->symmetry_tol > 0)) defaulted[nd++] = "symmetry_tol";
+    num(&j, "symmetry_tol", o->symmetry_tol > 0 ? (double)o->symmetry_tol
+                                                : 1e3 * (double)BRAUN_EPS);
+    if (!(o->inconsistency_tol > 0)) defaulted[nd++] = "inconsistency_tol";
+    num(&j, "inconsistency_tol", o->inconsistency_tol > 0 ? (double)o->inconsistency_tol
+                                                          : sqrt((double)BRAUN_EPS));
+    /* The accuracy guard: relative value, and the bounds it applied. */
+    const braun_cli_bounds *b = &r->stop.bounds;
+    if (o->guard == 0) defaulted[nd++] = "guard";
+    num(&j, "guard", b->on ? b->guard : NAN);
+    num(&j, "guard_position_bound", b->pos);
+    num(&j, "guard_velocity_bound", b->vel);
+    num(&j, "guard_energy_bound", b->energy);
+    num(&j, "guard_position_scale", b->pos_scale);
+    num(&j, "guard_velocity_scale", b->vel_scale);
+    num(&j, "guard_energy_scale", b->energy_scale);
+    /* A reported state the guard refused: not in the maxima, the CSV or a
+     * plot; the final state is the one before it. */
+    num(&j, "refused_state_t", r->stop.dropped ? r->stop.dropped_t : NAN);
+    key(&j, "final_state_refused_by_tool");
+    fputs(r->stop.final_check ? "true" : "false", f);
+    num(&j, "error_t", r->error_t);
+    /* The adaptive driver's limits as used (braun_adaptive: 0 selects). */
+    const double span = a->t_end;
+    if (adaptive) {
+        defaulted[nd++] = "h_min";
+        defaulted[nd++] = "h_max";
+        defaulted[nd++] = "max_steps";
+    }
+    if (!(a->ref_h > 0) && !isnan(mon->ref_h)) defaulted[nd++] = "ref_h";
+    num(&j, "h0", adaptive ? a->dt : NAN);
+    num(&j, "h_min", adaptive ? 1e-12 * span : NAN);
+    num(&j, "h_max", adaptive ? span : NAN);
+    num(&j, "max_steps", adaptive ? 1e8 : NAN);
+    integer(&j, "every", a->every);
+    num(&j, "cpu_s_monitored", r->cpu_monitored_s);
+    str(&j, "cpu_s_note", isnan(r->cpu_s) ? "not timed (braun plot): see cpu_s_monitored"
+                                          : "integration alone: a second run of the same steps "
+                                            "without monitoring or output");
+    key(&j, "defaults");
+    fputc('[', f);
+    for (int i = 0; i < nd; i++) fprintf(f, "%s\"%s\"", i ? ", " : "", defaulted[i]);
+    fputc(']', f);
     fputs("\n}\n", f);
     fflush(f);
     return ferror(f) ? -1 : 0;

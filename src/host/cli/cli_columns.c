@@ -1,0 +1,104 @@
+/* Names and units of a target's coordinates, for the CSV header, `braun
+ * plot --plot` and `--traj`: from its scene — body name and the body
+ * class's coordinate ("crank.x" m, "crank.theta" rad; velocities
+ * "crank.vx" m/s, "crank.omega" rad/s) — or q[i], v[i] for a system defined
+ * in C. A body class the tool does not know (a program's own, or a
+ * spatial one) names its coordinates body.q[k], body.v[k], without units. */
+#include <stdio.h>
+#include <string.h>
+
+#include "braun_cli.h"
+
+typedef struct coord_names {
+    const braun_scene_body_class *kind;
+    const char *q[3], *v[3], *q_unit[3], *v_unit[3];
+} coord_names;
+
+static const coord_names known[] = {
+    {&braun_scene_body_rigid, {"x", "y", "theta"}, {"vx", "vy", "omega"},
+     {"m", "m", "rad"}, {"m/s", "m/s", "rad/s"}},
+    {&braun_scene_body_particle, {"x", "y", NULL}, {"vx", "vy", NULL},
+     {"m", "m", NULL}, {"m/s", "m/s", NULL}},
+};
+
+/* The body whose coordinates hold coordinate i (bodies are numbered in
+ * order: iq increases), or -1. */
+static int body_of(const braun_scene *s, int i)
+{
+    int lo = 0, hi = s->nbodies - 1;
+    while (lo <= hi) {
+        const int mid = lo + (hi - lo) / 2;
+        const braun_scene_body *b = &s->bodies[mid];
+        if (i < b->iq) hi = mid - 1;
+        else if (i >= b->iq + b->kind->dof) lo = mid + 1;
+        else return mid;
+    }
+    return -1;
+}
+
+const char *braun_cli_coord_name(const braun_cli_target *t, int i, int velocity, char *name,
+                                 size_t size, const char **unit)
+{
+    const braun_scene_file *f = t->drawing;
+    const int b = f ? body_of(&f->scene, i) : -1;
+    *unit = NULL;
+    if (b < 0) {
+        snprintf(name, size, "%s[%d]", velocity ? "v" : "q", i);
+        return name;
+    }
+    const braun_scene_body *body = &f->scene.bodies[b];
+    const int k = i - body->iq;
+    char own[32];
+    const char *bn = f->body_names && f->body_names[b] ? f->body_names[b] : NULL;
+    if (!bn) {
+        snprintf(own, sizeof own, "body[%d]", b);
+        bn = own;
+    }
+    for (size_t c = 0; c < sizeof known / sizeof known[0]; c++)
+        if (known[c].kind == body->kind && k < 3 && known[c].q[k]) {
+            *unit = velocity ? known[c].v_unit[k] : known[c].q_unit[k];
+            snprintf(name, size, "%s.%s", bn, velocity ? known[c].v[k] : known[c].q[k]);
+            return name;
+        }
+    snprintf(name, size, "%s.%s[%d]", bn, velocity ? "v" : "q", k);
+    return name;
+}
+
+/* Column j of the trajectory CSV: t, the n coordinates, the n velocities,
+ * then the residuals. */
+const char *braun_cli_column_name(const braun_cli_target *t, int n, int j, char *name,
+                                  size_t size, const char **unit)
+{
+    static const char *const tail[] = {"pos_err", "vel_err", "energy_err", "traj_err"};
+    static const char *const tail_unit[] = {"Phi_q", "Phi_q/s", "E", "q"};
+    *unit = NULL;
+    if (j == 0) {
+        *unit = "s";
+        snprintf(name, size, "t");
+        return name;
+    }
+    if (j <= 2 * n) return braun_cli_coord_name(t, (j - 1) % n, j > n, name, size, unit);
+    j -= 2 * n + 1;
+    if (j < 0 || j >= 4) return NULL;
+    /* A scene's energy is in joules; a C system's in its own units. */
+    *unit = j == 2 && t->drawing ? "J" : tail_unit[j];
+    snprintf(name, size, "%s", tail[j]);
+    return name;
+}
+
+int braun_cli_column_count(int n) { return 1 + 2 * n + 4; }
+
+/* Column index of a name (with or without its " [unit]"), or -1. */
+int braun_cli_column_find(const braun_cli_target *t, int n, const char *want)
+{
+    char name[160];
+    const char *unit;
+    size_t len = strlen(want);
+    const char *br = strstr(want, " [");
+    if (br) len = (size_t)(br - want);
+    for (int j = 0; j < braun_cli_column_count(n); j++) {
+        braun_cli_column_name(t, n, j, name, sizeof name, &unit);
+        if (strlen(name) == len && strncmp(name, want, len) == 0) return j;
+    }
+    return -1;
+}

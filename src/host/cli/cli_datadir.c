@@ -1,0 +1,89 @@
+/* Where the shipped scenes are, so that `braun run four-bar.json` works
+ * from any directory: $BRAUN_DATA_DIR if set, else share/braun/data next
+ * to the executable's bin/ (PREFIX/bin/braun -> PREFIX/share/braun/data;
+ * the build tree's BUILD/bin/braun -> BUILD/share/braun/data, a link to
+ * the repository's data/ made by mk/cli.mk). POSIX (readlink of
+ * /proc/self/exe, Linux), confined to this file. */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
+#include <dirent.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "braun_cli.h"
+
+const char *braun_cli_data_dir(void)
+{
+    static char dir[4096];
+    const char *env = getenv("BRAUN_DATA_DIR");
+    if (env && *env) {
+        if (strlen(env) >= sizeof dir) return NULL;
+        strcpy(dir, env);
+        return dir;
+    }
+    ssize_t len = readlink("/proc/self/exe", dir, sizeof dir - 1);
+    if (len <= 0) return NULL;
+    dir[len] = '\0';
+    /* .../bin/braun -> .../share/braun/data */
+    for (int up = 0; up < 2; up++) {
+        char *slash = strrchr(dir, '/');
+        if (!slash) return NULL;
+        *slash = '\0';
+    }
+    static const char tail[] = "/share/braun/data";
+    if (strlen(dir) + sizeof tail > sizeof dir) return NULL;
+    strcat(dir, tail);
+    struct stat st;
+    return stat(dir, &st) == 0 && S_ISDIR(st.st_mode) ? dir : NULL;
+}
+
+/* DIR/NAME, or DIR/NAME.json, when it is a regular file there. */
+int braun_cli_data_file(const char *name, char *path, size_t size)
+{
+    const char *dir = braun_cli_data_dir();
+    struct stat st;
+    if (!dir || strchr(name, '/') || !*name) return 0;
+    const size_t len = strlen(name);
+    const int has_ext = len >= 5 && strcmp(name + len - 5, ".json") == 0;
+    for (int ext = 0; ext < 2; ext++) {
+        if (ext && has_ext) break;
+        const size_t need = strlen(dir) + 1 + len + (ext ? 5 : 0) + 1;
+        if (need > size) return 0;
+        strcpy(path, dir);
+        strcat(path, "/");
+        strcat(path, name);
+        if (ext) strcat(path, ".json");
+        if ((ext || has_ext) && stat(path, &st) == 0 && S_ISREG(st.st_mode)) return 1;
+    }
+    return 0;
+}
+
+static int json_entry(const struct dirent *e)
+{
+    const size_t len = strlen(e->d_name);
+    return e->d_name[0] != '.' && len > 5 && strcmp(e->d_name + len - 5, ".json") == 0;
+}
+
+int braun_cli_data_each(void (*fn)(const char *path, void *user), void *user)
+{
+    const char *dir = braun_cli_data_dir();
+    struct dirent **list;
+    char path[8192];
+    struct stat st;
+    if (!dir) return 0;
+    const int count = scandir(dir, &list, json_entry, alphasort);
+    int shown = 0;
+    for (int i = 0; i < count; i++) {
+        if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, list[i]->d_name) < sizeof path &&
+            stat(path, &st) == 0 && S_ISREG(st.st_mode)) {
+            fn(path, user);
+            shown++;
+        }
+        free(list[i]);
+    }
+    if (count >= 0) free(list);
+    return shown;
+}
