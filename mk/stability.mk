@@ -35,3 +35,19 @@ CORE_SUITES += "tools/run-tests $(STABILITY_BIN)"
 # Long forms: the four-bar over 10^4 s, in double and float.
 stress: $(STABILITY_BIN)
 	@BRAUN_STRESS=1 tools/run-tests $(STABILITY_BIN)
+
+# The long-run matrix (tests/stability/matrix.c): every built-in model and
+# shipped scene x RK4 h = 1e-3, 5e-3, 1e-2 and DOPRI5 rtol = 1e-6, 1e-8,
+# 1e-10. make stress runs it over 1000 s and writes the table of
+# docs/robustness.md; make test runs the same matrix over 20 s.
+MATRIX_BIN := $(BUILD)/tests/stability_matrix
+$(MATRIX_BIN): tests/stability/matrix.c $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a | deps-host
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) $(DEPFLAGS) -MF $@.d $< $(HOST_LDLIBS) -o $@
+TEST_PREREQS += $(MATRIX_BIN)
+TEST_SUITES += "$(MATRIX_BIN) --t-end 20 data"
+.PHONY: stress-matrix
+stress: stress-matrix
+stress-matrix: $(MATRIX_BIN)
+	@mkdir -p results/stability
+	$(MATRIX_BIN) --t-end $(or $(MATRIX_T),1000) --markdown results/stability/matrix.md data

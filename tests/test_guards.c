@@ -48,6 +48,68 @@ static void test_guard_stops_garbage(void **state)
     test_sim_close(&sim);
 }
 
+/* What the output callback saw: the largest residual of any state reported. */
+typedef struct seen {
+    braun_real pos, vel, en, last_t;
+    long n;
+} seen;
+static int seen_out(const braun_data *d, void *u)
+{
+    seen *w = u;
+    braun_real p, v, e;
+    assert_int_equal(braun_residuals((braun_data *)d, d->t, d->q, d->v, &p, &v, &e), BRAUN_OK);
+    if (p > w->pos) w->pos = p;
+    if (v > w->vel) w->vel = v;
+    if (e > w->en) w->en = e;
+    w->last_t = d->t;
+    w->n++;
+    return 0;
+}
+
+/* A run's last state is checked too (no next step's start does): one RK4
+ * step of 1 s on the pendulum used to end BRAUN_OK with ||Phi_q|| = 96.7.
+ * And no state the guard rejects is ever reported: the output callback of
+ * a run that stops has seen only states within the bounds, the last of
+ * them the one the run keeps (it used to see the rejected one). */
+static void test_guard_last_state_and_outputs(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1.0, 1.0, 1, NULL, NULL), BRAUN_ERR_ACCURACY);
+    assert_true(sim.data.t == 0);
+    assert_int_equal(sim.data.stats.steps, 0);
+    const double hs[3] = {0.15, 0.12, 0.1}; /* stop after 1, 3 and 6 steps */
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+        seen w = {0, 0, 0, -1, 0};
+        const int st = braun_integrate(&sim.data, BRAUN_RK4, hs[k], 50.0, 1, seen_out, &w);
+        const double bp = fmax(1e-3 * (double)sim.data.guard.pos, (double)sim.data.guard.pos0);
+        const double bv = fmax(1e-3 * (double)sim.data.guard.vel, (double)sim.data.guard.vel0);
+        const double be = fmax(1e-3 * (double)sim.data.guard.energy, (double)sim.data.guard.energy0);
+        print_message("pendulum RK4 h = %g: %s at t = %g after %ld outputs, largest reported "
+                      "|Phi_q| %.3g (bound %.3g), |dPhi| %.3g (%.3g), |Phi_e| %.3g (%.3g)\n",
+                      hs[k], braun_status_str(st), (double)sim.data.t, w.n, (double)w.pos, bp,
+                      (double)w.vel, bv, (double)w.en, be);
+        assert_int_equal(st, BRAUN_ERR_ACCURACY);
+        assert_true(w.pos <= bp && w.vel <= bv && w.en <= be);
+        assert_true(w.last_t == sim.data.t);
+    }
+    /* The adaptive driver likewise, with a tolerance the guard has to stop. */
+    braun_adaptive ctl = {0.5, 10, 0, 0, 0, 0};
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    seen w = {0, 0, 0, -1, 0};
+    const int st = braun_integrate_adaptive(&sim.data, &ctl, 50.0, 1, seen_out, &w);
+    print_message("pendulum DOPRI5 rtol 0.5, atol 10: %s at t = %g, largest reported |Phi_q| %.3g\n",
+                  braun_status_str(st), (double)sim.data.t, (double)w.pos);
+    assert_int_equal(st, BRAUN_ERR_ACCURACY);
+    assert_true(w.pos <= fmax(1e-3 * (double)sim.data.guard.pos, (double)sim.data.guard.pos0));
+    assert_true(w.last_t == sim.data.t);
+    test_sim_close(&sim);
+}
+
 /* Absurd adaptive tolerances (1e300) used to end BRAUN_OK with ||Phi_q|| of
  * 1e25 .. 1e33: rtol >= 1 is refused, and a huge atol is stopped by the guard. */
 static void test_guard_adaptive_tolerances(void **state)
@@ -230,6 +292,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_guard_stops_garbage),
+        cmocka_unit_test(test_guard_last_state_and_outputs),
         cmocka_unit_test(test_guard_adaptive_tolerances),
         cmocka_unit_test(test_guard_allows_inconsistent_start),
         cmocka_unit_test(test_time_resolution),

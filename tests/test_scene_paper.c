@@ -208,12 +208,13 @@ static braun_system wrap(counted *c, const braun_system *s)
     return w;
 }
 
-static void run_counted(const char *path, unsigned corr, long steps, counted *c)
+static void run_counted_guard(const char *path, unsigned corr, long steps, double guard, counted *c)
 {
     braun_scene_file *f = load(path);
     braun_system w = wrap(c, &f->sys);
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &w, corr & f->corrections), BRAUN_OK);
+    sim.model.opt.guard = guard;
     assert_int_equal(braun_set_state(&sim.data, 0, f->q0, f->v0), BRAUN_OK);
     assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, 1e-3 * (double)steps, 1, NULL,
                                      NULL),
@@ -223,10 +224,19 @@ static void run_counted(const char *path, unsigned corr, long steps, counted *c)
     braun_scene_free(f);
 }
 
+static void run_counted(const char *path, unsigned corr, long steps, counted *c)
+{
+    run_counted_guard(path, corr, steps, 0, c);
+}
+
 /* 1000 RK4 steps (4 stages each). A scene without knife edges has no
  * nonholonomic callback; without dampers, forces, torques or motors no
  * power callback; its constant M is built and factored once; with the
- * energy correction off the energy law is evaluated once (E0). */
+ * energy correction off the energy law is evaluated once (E0). The
+ * accuracy guard checks each step's start where the residuals are computed
+ * anyway, and the run's last state with one more evaluation of the
+ * constraints (and of the energy when it is corrected); with the guard off,
+ * not even that. */
 static void test_only_what_is_asked_for(void **state)
 {
     (void)state;
@@ -237,12 +247,16 @@ static void test_only_what_is_asked_for(void **state)
                   c.mass, c.forces, c.holonomic, c.nonholonomic, c.energy, c.power);
     assert_int_equal(c.mass, 1);
     assert_int_equal(c.forces, 4000);
-    assert_int_equal(c.holonomic, 4000);
+    assert_int_equal(c.holonomic, 4000 + 1);
     assert_int_equal(c.nonholonomic, 0);
     assert_int_equal(c.power, 0);
-    assert_int_equal(c.energy, 1 + 1000); /* E0, then once per step */
+    assert_int_equal(c.energy, 1 + 1000 + 1); /* E0, once per step, the last state */
     assert_null(c.inner.power);
     assert_null(c.inner.nonholonomic);
+    run_counted_guard("data/slider-crank.json", BRAUN_CORRECT_ALL, 1000, -1, &c);
+    assert_int_equal(c.forces, 4000);
+    assert_int_equal(c.holonomic, 4000);
+    assert_int_equal(c.energy, 1 + 1000);
 
     run_counted("data/slider-crank.json", BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY, 1000,
                 &c);
@@ -258,7 +272,7 @@ static void test_only_what_is_asked_for(void **state)
     assert_int_equal(c.mass, 1);
     assert_int_equal(c.nonholonomic, 0);
     run_counted("data/sleigh.json", BRAUN_CORRECT_ALL, 1000, &c);
-    assert_int_equal(c.nonholonomic, 4000);
+    assert_int_equal(c.nonholonomic, 4000 + 1);
     assert_int_equal(c.holonomic, 0);
     assert_int_equal(c.power, 0);
     /* A driven scene's drive does work: no power callback is made for it

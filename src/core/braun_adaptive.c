@@ -116,6 +116,11 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
     long accepted = 0, rejected = 0;
 
     if (out && out(d, out_user)) return BRAUN_STOPPED;
+    /* An accepted state is reported once the next attempt's start has
+     * passed the accuracy guard (or the final check has): a run the guard
+     * stops has reported only states that passed. */
+    int pending = 0;
+    st = BRAUN_OK;
     while (d->t < t_end) {
         if (h > hmax) h = hmax;
         int last = 0;
@@ -123,14 +128,16 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
             h = (double)(t_end - d->t);
             last = 1;
         }
-        if (accepted + rejected >= max_steps)
-            return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "adaptive", -1, -1, (double)max_steps, (double)d->t);
+        if (accepted + rejected >= max_steps) {
+            st = braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "adaptive", -1, -1, (double)max_steps, (double)d->t);
+            break;
+        }
         /* The step in working precision, and the time it lands on: a step
          * that cannot advance t (or not by about h) is a status, not a loop
          * of rejections. */
         const braun_real t_new = last ? t_end : (braun_real)((double)d->t + h);
         st = braun__time_step_ok(d, d->t, t_new, (braun_real)h, last);
-        if (st) return st;
+        if (st) break;
         const braun_real hr = t_new - d->t;
         braun__load_state(d);
         /* Always per step: with a varying h the literal Δ = Φ/h changes
@@ -141,18 +148,20 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
         if (st == BRAUN_ERR_CALLBACK_RECOVERABLE || st == BRAUN_ERR_DIVERGED) {
             err = 1e10; /* retry smaller, as SUNDIALS does for recoverable failures */
         } else if (st) {
-            if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
-            return st;
+            break;
         } else {
             err = error_norm(d, hr, ctl->rtol, ctl->atol);
+            if (pending) {
+                pending = 0;
+                if (out(d, out_user)) return BRAUN_STOPPED;
+            }
         }
         if (err <= 1) {
             braun__commit(d, pv->y1, t_new, 0);
             d->error.status = BRAUN_OK;
+            st = BRAUN_OK;
             accepted++;
-            if (out && ((every > 0 && accepted % every == 0) || d->t >= t_end) &&
-                out(d, out_user))
-                return BRAUN_STOPPED;
+            pending = out && every > 0 && accepted % every == 0;
             double fac = err > 0 ? 0.9 * pow(err, -0.2) : 5.0;
             h *= fac > 5.0 ? 5.0 : (fac < 0.2 ? 0.2 : fac);
         } else {
@@ -161,10 +170,23 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
             double fac = 0.9 * pow(err, -0.2);
             h *= fac < 0.1 ? 0.1 : (fac > 0.9 ? 0.9 : fac);
             if (h < hmin) {
-                if (st) return st;
-                return braun__fail(d, BRAUN_ERR_STEP_TOO_SMALL, "adaptive", -1, -1, h, (double)d->t);
+                if (!st) st = braun__fail(d, BRAUN_ERR_STEP_TOO_SMALL, "adaptive", -1, -1, h, (double)d->t);
+                break;
             }
         }
     }
-    return BRAUN_OK;
+    if (st == BRAUN_ERR_ACCURACY) {
+        braun__guard_rollback(d);
+        return st;
+    }
+    /* The state kept (t_end, or where another failure stopped the run) is
+     * checked, then reported if it has not been: the final output. */
+    const int failed = st;
+    const braun_error_info failure = d->error;
+    st = braun__guard_final(d);
+    if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
+    if (st) return st;
+    if (failed) d->error = failure;
+    if (out && (pending || !failed) && out(d, out_user)) return BRAUN_STOPPED;
+    return failed;
 }

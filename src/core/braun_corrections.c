@@ -33,6 +33,26 @@ static int guard_rows(braun_data *d, unsigned corr)
     return st;
 }
 
+/* A driver's last state: no next step starts there to check it, so one
+ * evaluation of the residuals does (constraints and energy; no
+ * factorization, no right-hand side). */
+int braun__guard_final(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    if (d->model->opt.guard < 0 || pv->guard_pending) return BRAUN_OK;
+    const unsigned corr = d->model->opt.corrections;
+    const int energy = (corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0;
+    braun_real p = 0, v = 0, e = 0;
+    int st = braun_residuals(d, d->t, d->q, d->v, &p, &v, energy ? &e : NULL);
+    if (st) return st;
+    pv->at.t = d->t;
+    st = guard_rows(d, corr);
+    if (!st && energy)
+        st = guard_fails(d, e * e, d->guard.energy, d->guard.energy0,
+                         "accuracy guard: energy residual |Phi_e|");
+    return st;
+}
+
 /* ================================================================ */
 /* Stage position: the ideal impulse of Eq. 16, scaled by h. With
  * Δ_q = Φ_q/h the position correction of one step is

@@ -3,6 +3,19 @@
 
 #include "braun_tableau.h"
 
+/* A step failed other than by the guard: the state kept (the last step's)
+ * is checked as a last state is, and reported if its output was due. */
+static int finish_failed(braun_data *d, int failed, int due, braun_output_fn out, void *out_user)
+{
+    const braun_error_info failure = d->error;
+    int st = braun__guard_final(d);
+    if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
+    if (st) return st;
+    d->error = failure;
+    if (due && out(d, out_user)) return BRAUN_STOPPED;
+    return failed;
+}
+
 int braun_integrate(braun_data *d, braun_method method, braun_real h,
                     braun_real t_end, long every, braun_output_fn out,
                     void *out_user)
@@ -42,15 +55,22 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
             t_new = braun__clock_advance(d, pv->t_lo, h, &t_lo);
         }
         st = braun__time_step_ok(d, d->t, t_new, h, i == steps);
-        if (st) return st;
+        if (st) return finish_failed(d, st, out && every > 0 && i > 1 && (i - 1) % every == 0, out, out_user);
         braun__load_state(d);
         st = braun__rk_attempt(d, tb, hi, per_stage, pv->y1, NULL);
         if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
-        if (st) return st;
-        braun__commit(d, pv->y1, t_new, t_lo);
-        if (out && every > 0 && (i % every == 0 || i == steps) && out(d, out_user))
+        if (st == BRAUN_ERR_ACCURACY) return st;
+        if (st) return finish_failed(d, st, out && every > 0 && i > 1 && (i - 1) % every == 0, out, out_user);
+        /* This step's start passed the guard: only now is the state the
+         * last step left reported, so a run the guard stops has reported
+         * only states that passed. */
+        if (out && every > 0 && i > 1 && (i - 1) % every == 0 && out(d, out_user))
             return BRAUN_STOPPED;
-        if (out && every <= 0 && i == steps && out(d, out_user)) return BRAUN_STOPPED;
+        braun__commit(d, pv->y1, t_new, t_lo);
     }
+    st = braun__guard_final(d);
+    if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
+    if (st) return st;
+    if (out && out(d, out_user)) return BRAUN_STOPPED;
     return BRAUN_OK;
 }

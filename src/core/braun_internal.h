@@ -202,6 +202,8 @@ void braun__guard_scales(braun_data *d, const braun_real *vdot);
 /* A driver's step failed with BRAUN_ERR_ACCURACY: back to the last state
  * that passed (one step back), statistics with it. */
 void braun__guard_rollback(braun_data *d);
+/* The guard on a driver's last state (one residual evaluation). */
+int braun__guard_final(braun_data *d);
 
 /* Stage mass alone (braun_data_init factors a constant M with it). */
 int braun__stage_mass(braun_data *d);

@@ -175,9 +175,12 @@ static void describe(msg *w, const braun_data *d)
             scale = (double)d->guard.energy; r0 = (double)d->guard.energy0; what = "energy residual |Phi_e|";
         }
         const double bound = g * scale > r0 ? g * scale : r0;
-        put(w, "%s = %.3g exceeds the accuracy guard %.3g (guard %.3g x scale %.3g); the state is "
-               "the last step that passed", what, e->value, bound, g, scale);
-        break;
+        /* e->t: the state whose residual failed; d->t: the one kept. */
+        put(w, "%s = %.3g exceeds the accuracy guard %.3g (guard %.3g x scale %.3g)", what, e->value,
+            bound, g, scale);
+        put_time(w, e->t);
+        put(w, "; the state kept is the last one that passed, at t = %.10g", (double)d->t);
+        return;
     }
     case BRAUN_ERR_INCONSISTENT:
         put(w, "dependent %s disagree by %.3g: the constraints have no solution here",
