@@ -69,6 +69,10 @@ int braun_cli_output_close(braun_cli_output *o);
 /* Close without writing; remove the file if this command made it. */
 void braun_cli_output_abandon(braun_cli_output *o);
 
+/* A regular file's text (NUL-terminated, *len bytes) of at most max
+ * bytes, opened without blocking; NULL with one line "FILE: why" in err. */
+char *braun_cli_read_file(const char *path, size_t max, size_t *len, char *err, size_t size);
+
 /* ---------------------------------------------------------- usage (cli_usage.c) */
 void braun_cli_usage(FILE *f);
 
@@ -262,17 +266,12 @@ typedef struct braun_cli_bounds {
     double pos_scale, vel_scale, energy_scale; /* braun_data.guard */
 } braun_cli_bounds;
 void braun_cli_guard_bounds(const braun_data *d, braun_cli_bounds *b);
-/* The residual of e above its bound ("position residual ||Phi_q||"), with
- * its value and bound, or NULL. */
-const char *braun_cli_guard_exceeded(const braun_cli_bounds *b, const braun_cli_errors *e,
-                                     double *value, double *bound);
 
 /* How a monitored run ended, beyond its status. */
 typedef struct braun_cli_stop {
     braun_cli_bounds bounds;
-    int dropped;              /* a reported state did not pass the guard ... */
-    double dropped_t;         /* ... at this time: not in the CSV, maxima or plot */
-    int final_check;          /* it was the final state, refused by the tool */
+    int dropped;              /* the guard refused a state (BRAUN_ERR_ACCURACY) ... */
+    double dropped_t;         /* ... at this time: never reported, not in the CSV */
 } braun_cli_stop;
 
 /* ----------------------------------------------- summary JSON (cli_summary.c) */
@@ -321,7 +320,8 @@ double braun_cli_cpu_seconds(void);
 /* What else sees a monitored run: every state that passed, in order, and
  * the result at the end (non-zero return: the command fails). */
 typedef struct braun_cli_observer {
-    void (*state)(void *user, double t, const double *q, const double *v);
+    void (*state)(void *user, double t, const double *q, const double *v,
+                  const braun_cli_errors *e);
     int (*done)(void *user, const braun_cli_result *r);
     void *user;
 } braun_cli_observer;

@@ -14,6 +14,7 @@
 #endif
 #include <errno.h>
 #include <fcntl.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -147,4 +148,46 @@ void braun_cli_output_abandon(braun_cli_output *o)
         if (o->created) unlink(o->path);
     }
     o->f = NULL;
+}
+
+/* An input of the tool beside the scene loader's own (a scene's text again
+ * for its point names, a --traj CSV): a regular file of at most max bytes,
+ * opened without blocking and checked on the descriptor. */
+char *braun_cli_read_file(const char *path, size_t max, size_t *len, char *err, size_t size)
+{
+    struct stat st;
+    const int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY);
+    if (fd < 0) {
+        snprintf(err, size, "%s: cannot open: %s", path, strerror(errno));
+        return NULL;
+    }
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        snprintf(err, size, "%s: is %s, not a regular file", path,
+                 fstat(fd, &st) == 0 ? braun_cli_file_kind((unsigned long)st.st_mode)
+                                     : "unreadable");
+        close(fd);
+        return NULL;
+    }
+    if ((unsigned long long)st.st_size > (unsigned long long)max) {
+        snprintf(err, size, "%s: larger than %zu bytes", path, max);
+        close(fd);
+        return NULL;
+    }
+    char *text = malloc((size_t)st.st_size + 1);
+    size_t got = 0;
+    if (!text) {
+        snprintf(err, size, "%s: out of memory", path);
+        close(fd);
+        return NULL;
+    }
+    while (got < (size_t)st.st_size) {
+        const ssize_t k = read(fd, text + got, (size_t)st.st_size - got);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) break;
+        got += (size_t)k;
+    }
+    close(fd);
+    text[got] = '\0';
+    *len = got;
+    return text;
 }

@@ -16,6 +16,13 @@
  * n = m = 12N, rank 11N, N degrees of freedom. The rails start tilted DEG
  * degrees from the vertical (default 30), at rest, on the constraints.
  *
+ * braun gen n-four-bar N [-o FILE]: the IFToMM benchmark problem A02
+ * (docs/iftomm.md): N four-bar windows of 2N + 1 uniform rods (1 m, 1 kg)
+ * in natural coordinates, cranks from the ground points A_i = (i, 0) up to
+ * the particles B_i = (i, 1), couplers B_(i-1) B_i; every B_i moves at
+ * (1, 0) m/s, gravity -y; B0 is reported. n = 2N + 2, m = 2N + 1: one
+ * degree of freedom, N + 1 whenever the links are horizontal.
+ *
  * Rigid chains and ladders have no rods: above n = 4096 they run only as
  * sparse systems (braun run --sparse). */
 #include <errno.h>
@@ -136,6 +143,30 @@ static void write_ladder(FILE *f, long N, double deg)
     fputs("  ],\n", f);
 }
 
+static void write_n_four_bar(FILE *f, long N)
+{
+    fprintf(f, "{\n  \"name\": \"a02-n-four-bar-%ld\",\n", N);
+    fprintf(f, "  \"description\": \"IFToMM benchmark A02 (docs/iftomm.md): %ld four-bar windows, "
+               "%ld uniform rods of 1 m and 1 kg, cranks vertical, every top point moving at 1 m/s "
+               "in +x, gravity -y; singular whenever the links are horizontal; 20 s for N = 40 "
+               "(10 s variant: N = 2); reported: B0, error max |B0 - B0_ref| over 400 "
+               "output steps <= 1e-3; written by braun gen n-four-bar %ld\",\n", N, 2 * N + 1, N);
+    fputs("  \"ground\": {\"points\": {", f);
+    for (long i = 0; i <= N; i++) fprintf(f, "%s\"A%ld\": [%ld, 0]", i ? ", " : "", i, i);
+    fputs("}},\n  \"bodies\": [\n", f);
+    for (long i = 0; i <= N; i++)
+        fprintf(f, "    {\"name\": \"B%ld\", \"type\": \"particle\", \"mass\": 0, "
+                   "\"position\": [%ld, 1], \"velocity\": [1, 0]}%s\n", i, i, i < N ? "," : "");
+    fputs("  ],\n  \"rods\": [\n", f);
+    for (long i = 0; i <= N; i++)
+        fprintf(f, "    {\"name\": \"crank%ld\", \"a\": \"ground.A%ld\", \"b\": \"B%ld\", "
+                   "\"mass\": 1, \"length\": 1},\n", i, i, i);
+    for (long i = 1; i <= N; i++)
+        fprintf(f, "    {\"name\": \"coupler%ld\", \"a\": \"B%ld\", \"b\": \"B%ld\", "
+                   "\"mass\": 1, \"length\": 1}%s\n", i, i - 1, i, i < N ? "," : "");
+    fputs("  ],\n  \"report\": {\"B0\": \"B0\"},\n", f);
+}
+
 static int parse_angle(const char *s, double *deg)
 {
     char *end;
@@ -149,12 +180,14 @@ static int parse_angle(const char *s, double *deg)
     return 0;
 }
 
-#define GEN_USAGE "braun gen chain N [--rods] [--angle DEG] [-o FILE] | ladder N [--angle DEG] [-o FILE]"
+#define GEN_USAGE                                                                             \
+    "braun gen chain N [--rods] [--angle DEG] [-o FILE] | ladder N [--angle DEG] [-o FILE] | " \
+    "n-four-bar N [-o FILE]"
 
 int braun_cli_gen(int argc, char **argv)
 {
     const char *out = NULL, *count = NULL;
-    int rods = 0, ladder, rc;
+    int rods = 0, ladder = 0, fourbar = 0, rc;
     double deg;
     if (argc < 1) return braun_cli_error("gen needs a kind: " GEN_USAGE);
     if (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0) {
@@ -163,15 +196,20 @@ int braun_cli_gen(int argc, char **argv)
     }
     if (strcmp(argv[0], "chain") == 0) ladder = 0;
     else if (strcmp(argv[0], "ladder") == 0) ladder = 1;
-    else return braun_cli_error("unknown scene kind '%s' (chain, ladder)", argv[0]);
+    else if (strcmp(argv[0], "n-four-bar") == 0) fourbar = 1;
+    else return braun_cli_error("unknown scene kind '%s' (chain, ladder, n-four-bar)", argv[0]);
     deg = ladder ? 30 : 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--rods") == 0) {
-            if (ladder)
-                return braun_cli_error("--rods applies to gen chain only (a ladder's rungs are "
-                                       "rigid)");
+            if (ladder || fourbar)
+                return braun_cli_error("--rods applies to gen chain only (%s)",
+                                       ladder ? "a ladder's rungs are rigid"
+                                              : "an n-four-bar is made of rods already");
             rods = 1;
         } else if (strcmp(argv[i], "--angle") == 0) {
+            if (fourbar)
+                return braun_cli_error("--angle does not apply to gen n-four-bar (it starts "
+                                       "with its cranks vertical, as the benchmark)");
             if (i + 1 >= argc || argv[i + 1][0] == '\0')
                 return braun_cli_error("option %s needs a value", argv[i]);
             if ((rc = parse_angle(argv[++i], &deg)) != 0) return rc;
@@ -189,7 +227,7 @@ int braun_cli_gen(int argc, char **argv)
     }
     if (!count)
         return braun_cli_error("gen %s needs the number of %s N", argv[0],
-                               ladder ? "cells" : "links");
+                               ladder ? "cells" : fourbar ? "four-bar windows" : "links");
     char *end;
     errno = 0;
     long N = strtol(count, &end, 10);
@@ -204,7 +242,8 @@ int braun_cli_gen(int argc, char **argv)
         return rc;
     }
     FILE *f = o.f;
-    if (ladder) write_ladder(f, N, deg);
+    if (fourbar) write_n_four_bar(f, N);
+    else if (ladder) write_ladder(f, N, deg);
     else if (rods) write_rods(f, N, deg);
     else write_rigid(f, N, deg);
     fputs("  \"effects\": [\n    {\"type\": \"gravity\", \"g\": [0, -9.81]}\n  ]\n}\n", f);

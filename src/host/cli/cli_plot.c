@@ -1,2 +1,232 @@
-#include "braun_cli.h"
-int braun_cli_plot(int argc, char **argv) { (void)argc; (void)argv; return braun_cli_error("plot: todo"); }
+/* braun plot MODEL [run options] -o FILE, or braun plot MODEL --traj CSV
+ * -o FILE: see the motion. The extension picks the picture:
+ *   .svg   a stroboscopic view (configurations over the window, earlier
+ *          ones fainter, the paths of --points; the paper's Fig. 1), or
+ *          with --plot the chosen coordinates against time;
+ *   .html  a self-contained animation page (play/pause, time slider);
+ *   .png   the same drawn by gnuplot.
+ * The run is `braun run`'s (same options, same monitored steps, the same
+ * guard); only the states that passed are drawn. */
+#include <ctype.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_plot.h"
+
+enum { FMT_SVG, FMT_HTML, FMT_PNG };
+
+static int format_of(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    char ext[8] = "";
+    if (dot && strlen(dot) < sizeof ext)
+        for (size_t i = 0; dot[i]; i++) ext[i] = (char)tolower((unsigned char)dot[i]);
+    if (strcmp(ext, ".svg") == 0) return FMT_SVG;
+    if (strcmp(ext, ".html") == 0 || strcmp(ext, ".htm") == 0) return FMT_HTML;
+    if (strcmp(ext, ".png") == 0) return FMT_PNG;
+    return -1;
+}
+
+typedef struct plot_run {
+    plot_samples *samples;
+    double *row;
+    int n;
+} plot_run;
+
+static void on_state(void *user, double t, const double *q, const double *v,
+                     const braun_cli_errors *e)
+{
+    plot_run *pr = (plot_run *)user;
+    const int n = pr->n;
+    pr->row[0] = t;
+    memcpy(pr->row + 1, q, (size_t)n * sizeof *q);
+    memcpy(pr->row + 1 + n, v, (size_t)n * sizeof *v);
+    pr->row[1 + 2 * n] = e->pos;
+    pr->row[2 + 2 * n] = e->vel;
+    pr->row[3 + 2 * n] = e->energy;
+    pr->row[4 + 2 * n] = e->traj;
+    plot_samples_add(pr->samples, pr->row);
+}
+
+/* --plot: columns ("crank.theta", "pos_err", "q[2]"), a point's coordinate
+ * ("rod.B.x"), or x, y, z of every --points point. */
+static int resolve_series(plot_job *job, plot_drawing *dr, const braun_cli_target *t,
+                          const char *list)
+{
+    const int n = t->sys.n;
+    const int most = (int)(sizeof job->series / sizeof job->series[0]);
+    for (const char *p = list; *p;) {
+        const char *comma = strchr(p, ',');
+        const size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        char item[128];
+        if (len == 0 || len >= sizeof item)
+            return braun_cli_error("--plot '%s': give names separated by commas "
+                                   "(crank.theta,rod.B.x; x,y with --points)", list);
+        memcpy(item, p, len);
+        item[len] = '\0';
+        p = comma ? comma + 1 : p + len;
+        const int col = braun_cli_column_find(t, n, item);
+        const int axis = len >= 1 && strchr("xyz", item[len - 1]) &&
+                                 (len == 1 || item[len - 2] == '.')
+                             ? item[len - 1] - 'x'
+                             : -1;
+        if (col > 0) {
+            if (job->nseries == most) return braun_cli_error("--plot: at most %d series", most);
+            plot_series *sr = &job->series[job->nseries++];
+            sr->column = col;
+            braun_cli_column_name(t, n, col, sr->label, sizeof sr->label, &sr->unit);
+        } else if (axis >= 0 && len == 1) {
+            if (!dr || dr->ntraces == 0)
+                return braun_cli_error("--plot %s: a coordinate of the --points points; give "
+                                       "--points A,B (or write A.%s)", item, item);
+            for (int i = 0; i < dr->ntraces; i++) {
+                if (job->nseries == most) return braun_cli_error("--plot: at most %d series", most);
+                plot_series *sr = &job->series[job->nseries++];
+                sr->column = -1;
+                sr->anchor = dr->traces[i].anchor;
+                sr->axis = axis;
+                sr->unit = "m";
+                snprintf(sr->label, sizeof sr->label, "%s.%c", dr->traces[i].name, item[0]);
+            }
+        } else if (axis >= 0 && dr) {
+            char ref[128];
+            memcpy(ref, item, len - 2);
+            ref[len - 2] = '\0';
+            const int a = plot_drawing_point(dr, t, ref);
+            if (a < 0) return BRAUN_CLI_USAGE;
+            if (job->nseries == most) return braun_cli_error("--plot: at most %d series", most);
+            plot_series *sr = &job->series[job->nseries++];
+            sr->column = -1;
+            sr->anchor = a;
+            sr->axis = axis;
+            sr->unit = "m";
+            snprintf(sr->label, sizeof sr->label, "%s", item);
+        } else {
+            return braun_cli_error("--plot: '%s' is not a column of '%s' (braun run %s --out "
+                                   "names them) nor POINT.x, POINT.y, POINT.z", item, t->name,
+                                   t->name);
+        }
+    }
+    return 0;
+}
+
+static int done(void *user, const braun_cli_result *r)
+{
+    (void)r;
+    plot_samples_finish(((plot_run *)user)->samples);
+    return 0;
+}
+
+int braun_cli_plot(int argc, char **argv)
+{
+    braun_cli_run_args a;
+    int rc = braun_cli_parse_run(argc, argv, &a, 1);
+    if (rc < 0) return 0;
+    if (rc) return rc;
+    const int fmt = format_of(a.plot_path);
+    if (fmt < 0)
+        return braun_cli_error("-o %s: the extension picks the picture: .svg (drawing), .html "
+                               "(animation) or .png (gnuplot)", a.plot_path);
+    braun_cli_target tg;
+    rc = braun_cli_target_open(a.model, &tg);
+    if (rc) return rc;
+
+    plot_drawing dr;
+    plot_samples samples;
+    plot_job job;
+    braun_cli_output out;
+    memset(&dr, 0, sizeof dr);
+    memset(&samples, 0, sizeof samples);
+    memset(&job, 0, sizeof job);
+    memset(&out, 0, sizeof out);
+    double *row = NULL;
+    char caption[512] = "";
+    /* The drawing: always, unless --plot names columns only of a system
+     * without a scene. */
+    const int want_drawing = tg.drawing || !a.plot_columns;
+    if (want_drawing) rc = plot_drawing_build(&dr, &tg, a.view);
+    if (!rc && a.points) {
+        if (!tg.drawing)
+            rc = braun_cli_error("--points: '%s' has no scene to name points in", tg.name);
+        else
+            rc = plot_drawing_trace(&dr, &tg, a.points);
+    }
+    job.target = &tg;
+    job.args = &a;
+    job.samples = &samples;
+    if (!rc && a.plot_columns) rc = resolve_series(&job, want_drawing ? &dr : NULL, &tg, a.plot_columns);
+    job.frames = a.frames > 0 ? a.frames : fmt == FMT_HTML ? 400 : 12;
+    const long cap = a.samples > 0 ? a.samples : (job.frames > 2000 ? job.frames : 2000);
+
+    if (!rc) rc = braun_cli_output_open(&out, a.plot_path, "-o");
+    if (!rc) rc = braun_cli_output_distinct(&out, NULL, &tg.id, tg.source);
+    if (!rc && a.traj_path) {
+        braun_cli_id traj_id;
+        braun_cli_path_id(a.traj_path, &traj_id);
+        if (braun_cli_same_file(&out.id, &traj_id))
+            rc = braun_cli_error("-o '%s' is the --traj input: refused (it would be overwritten)",
+                                 a.plot_path);
+    }
+    if (!rc && a.traj_path) {
+        samples.from = a.from;
+        samples.cap = cap;
+        rc = plot_traj_read(a.traj_path, &tg, &samples);
+        snprintf(caption, sizeof caption, "%s: %s, t = %g ... %g s", tg.name, a.traj_path,
+                 samples.count ? samples.rows[0] : 0,
+                 samples.count ? samples.rows[(size_t)(samples.count - 1) * (size_t)samples.cols] : 0);
+    } else if (!rc) {
+        const double from = isnan(a.from) ? 0 : a.from;
+        if (from >= a.t_end) rc = braun_cli_error("--from %g is not before --t-end %g", from, a.t_end);
+        if (!rc && plot_samples_init(&samples, tg.sys.n, cap, from, a.t_end))
+            rc = braun_cli_error("out of memory");
+        row = rc ? NULL : malloc((size_t)samples.cols * sizeof *row);
+        if (!rc && !row) rc = braun_cli_error("out of memory");
+        if (!rc) {
+            plot_run pr = {&samples, row, tg.sys.n};
+            braun_cli_observer obs = {on_state, done, &pr};
+            a.plot_output = &out;
+            /* A failed run still draws up to its last good state. */
+            rc = braun_cli_run_target(&a, &tg, &obs);
+            if (rc && samples.count == 0) goto finish;
+            if (a.method == BRAUN_DOPRI5)
+                snprintf(caption, sizeof caption, "%s: dopri5, rtol %g, t = %g ... %g s", tg.name,
+                         a.rtol, samples.count ? samples.rows[0] : from,
+                         samples.count ? samples.rows[(size_t)(samples.count - 1) * (size_t)samples.cols] : from);
+            else
+                snprintf(caption, sizeof caption, "%s: %s, h = %g s, t = %g ... %g s", tg.name,
+                         braun_method_name(a.method), a.dt, samples.count ? samples.rows[0] : from,
+                         samples.count ? samples.rows[(size_t)(samples.count - 1) * (size_t)samples.cols] : from);
+        }
+    }
+    if (!(rc == 0 || rc == BRAUN_CLI_FAILED) || samples.count == 0) {
+        if (!rc) rc = braun_cli_error("nothing to draw: no state in the window");
+        goto finish;
+    }
+    {
+        const long frames = job.frames < samples.count ? job.frames : samples.count;
+        size_t len = strlen(caption);
+        if (!a.plot_columns && fmt != FMT_HTML && len < sizeof caption)
+            snprintf(caption + len, sizeof caption - len, ", %ld configurations (earlier fainter)", frames);
+        job.caption = caption;
+        int wrc = braun_cli_output_begin(&out);
+        /* With --plot the job has series and the writers draw the chart;
+         * the drawing (if any) gives the points' coordinates. */
+        job.drawing = want_drawing ? &dr : NULL;
+        if (!wrc)
+            wrc = fmt == FMT_SVG ? plot_write_svg(out.f, &job)
+                  : fmt == FMT_HTML ? plot_write_html(out.f, &job)
+                                    : plot_write_png(out.f, &job);
+        if (braun_cli_output_close(&out) || wrc) rc = BRAUN_CLI_FAILED;
+        else if (a.progress > 0 || (a.progress < 0 && braun_cli_stderr_is_terminal()))
+            fprintf(stderr, "braun: wrote %s (%s)\n", a.plot_path,
+                    a.plot_columns ? "chart" : fmt == FMT_HTML ? "animation" : "stroboscopic view");
+    }
+finish:
+    if (out.f) braun_cli_output_abandon(&out);
+    free(row);
+    plot_samples_free(&samples);
+    plot_drawing_free(&dr);
+    braun_cli_target_close(&tg);
+    return rc;
+}

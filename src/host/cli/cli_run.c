@@ -21,12 +21,11 @@ typedef struct run_state {
     long index;
 } run_state;
 
-/* What the output callback of the monitored run needs. A state the driver
- * reports is only known to have passed the accuracy guard when the next
- * step starts from it: it is held back (pending) until the next report,
- * and dropped if the run stops with BRAUN_ERR_ACCURACY (the core then
- * returns to the state before it). Only states that passed reach the CSV,
- * the maxima of the summary and the plot. */
+/* What the output callback of the monitored run needs. The drivers report
+ * a state only once it has passed the accuracy guard (the next step's
+ * start, or the final check), so every state seen here is one the run
+ * keeps: the CSV, the maxima and a plot never see a state the guard
+ * refused, and the last one seen is the final state. */
 typedef struct run_ctx {
     braun_cli_monitor *mon;
     FILE *csv;
@@ -36,8 +35,8 @@ typedef struct run_ctx {
     const braun_cli_observer *obs;
     braun_cli_progress *progress;
     long calls;         /* states reported, t = t0 included */
-    int have_pending, have_good;
-    run_state pending, good; /* last reported / last that passed */
+    int have_good;
+    run_state good;     /* the last state reported */
     int good_written;   /* good has its CSV row */
     int monitor_status; /* non-zero: sampling failed, run stopped */
 } run_ctx;
@@ -50,37 +49,26 @@ static void write_good(run_ctx *c)
     c->good_written = 1;
 }
 
-/* The pending state passed: it becomes the last good one. */
-static void commit(run_ctx *c)
-{
-    run_state keep = c->good;
-    c->good = c->pending;
-    c->pending = keep;
-    c->have_pending = 0;
-    c->have_good = 1;
-    braun_cli_monitor_accept(c->mon, &c->good.e);
-    c->good_written = 0;
-    if (c->csv && c->good.index % c->every == 0) write_good(c);
-    if (c->obs && c->obs->state) c->obs->state(c->obs->user, c->good.t, c->good.q, c->good.v);
-}
-
 static int on_step(const braun_data *d, void *user)
 {
     run_ctx *c = (run_ctx *)user;
-    /* A new report: the step from the pending state passed its start. */
-    if (c->have_pending) commit(c);
-    int st = braun_cli_monitor_measure(c->mon, d, &c->pending.e);
+    int st = braun_cli_monitor_measure(c->mon, d, &c->good.e);
     if (st) {
         c->monitor_status = st;
         return 1;
     }
-    c->pending.t = (double)d->t;
+    c->good.t = (double)d->t;
     for (int i = 0; i < c->n; i++) {
-        c->pending.q[i] = (double)d->q[i];
-        c->pending.v[i] = (double)d->v[i];
+        c->good.q[i] = (double)d->q[i];
+        c->good.v[i] = (double)d->v[i];
     }
-    c->pending.index = c->calls++;
-    c->have_pending = 1;
+    c->good.index = c->calls++;
+    c->have_good = 1;
+    braun_cli_monitor_accept(c->mon, &c->good.e);
+    c->good_written = 0;
+    if (c->csv && c->good.index % c->every == 0) write_good(c);
+    if (c->obs && c->obs->state)
+        c->obs->state(c->obs->user, c->good.t, c->good.q, c->good.v, &c->good.e);
     braun_cli_progress_update(c->progress, (double)d->t, d->stats.steps);
     return 0;
 }
@@ -273,14 +261,14 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
 
     const int n = model.sys.n;
     const size_t bytes = braun_data_size(&model);
-    /* One block: three states (pending, good, spare: 2n doubles each), the
-     * run's workspace, the monitor's. */
-    double *block = malloc(6 * (size_t)n * sizeof(double) + 2 * bytes);
+    /* One block: the last state (2n doubles), the run's workspace, the
+     * monitor's. */
+    double *block = malloc(2 * (size_t)n * sizeof(double) + 2 * bytes);
     if (!block) {
         braun_cli_error("out of memory");
         return BRAUN_CLI_FAILED;
     }
-    unsigned char *buf_run = (unsigned char *)(block + 6 * n);
+    unsigned char *buf_run = (unsigned char *)(block + 2 * n);
     unsigned char *buf_mon = buf_run + bytes;
 
     /* Both outputs opened (without blocking, nothing truncated yet), then
@@ -355,45 +343,22 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
     ctx.n = n;
     ctx.obs = obs;
     ctx.progress = &progress;
-    ctx.pending.q = block;
-    ctx.pending.v = block + n;
-    ctx.good.q = block + 2 * n;
-    ctx.good.v = block + 3 * n;
+    ctx.good.q = block;
+    ctx.good.v = block + n;
     if (csv && braun_cli_csv_header(csv, tg, n)) braun_cli_output_failed(&out_csv);
     braun_cli_progress_begin(&progress, show, tg->name,
                              timed ? "run 2 of 2: monitoring" : "monitoring", (double)d.t,
                              a->t_end);
     c0 = braun_cli_cpu_seconds();
     st = integrate(&d, a, 1, on_step, &ctx);
-    const int st_core = st;
     braun_cli_stop stop;
     memset(&stop, 0, sizeof stop);
     braun_cli_guard_bounds(&d, &stop.bounds);
-    if (ctx.have_pending) {
-        double value, bound;
-        const char *what;
-        if (ctx.pending.t != (double)d.t) {
-            /* The core went back to the state before it (BRAUN_ERR_ACCURACY). */
-            stop.dropped_t = ctx.pending.t;
-            stop.dropped = 1;
-        } else if (st == BRAUN_OK && d.stats.steps > 0 &&
-                   (what = braun_cli_guard_exceeded(&stop.bounds, &ctx.pending.e, &value,
-                                                    &bound)) != NULL) {
-            /* The final state: no step starts from it, so the tool checks it
-             * with the core's bounds, at no extra evaluation (the monitor
-             * computed its residuals). */
-            st = BRAUN_ERR_ACCURACY;
-            stop.dropped_t = ctx.pending.t;
-            stop.dropped = 1;
-            stop.final_check = 1;
-            braun_cli_error("%s = %.3g at the final state t = %.10g exceeds the accuracy guard "
-                            "%.3g (guard %.3g x its scale); the state is the last step that "
-                            "passed, t = %.10g (%s)", what, value, ctx.pending.t, bound,
-                            stop.bounds.guard, ctx.have_good ? ctx.good.t : ctx.pending.t,
-                            braun_status_str(st));
-        } else {
-            commit(&ctx);
-        }
+    /* A state the guard refused was never reported: the run keeps the one
+     * before it. */
+    if (st == BRAUN_ERR_ACCURACY && d.error.status == st) {
+        stop.dropped = 1;
+        stop.dropped_t = d.error.t;
     }
     cpu_monitored = braun_cli_cpu_seconds() - c0;
     braun_cli_progress_end(&progress, ctx.have_good ? ctx.good.t : (double)d.t, d.stats.steps);
@@ -408,11 +373,11 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
                         ctx.have_good ? ctx.good.t : (double)d.t, what);
         exit_status = BRAUN_CLI_FAILED;
     } else if (st) {
-        if (!stop.final_check) report_failure(&d, st, &guard, a);
+        report_failure(&d, st, &guard, a);
         exit_status = BRAUN_CLI_FAILED;
     }
     if (timed && !ctx.monitor_status &&
-        (st_timed != st_core || timed_stats.steps != d.stats.steps ||
+        (st_timed != st || timed_stats.steps != d.stats.steps ||
          timed_stats.rhs_evals != d.stats.rhs_evals))
         braun_cli_error("warning: the timed run (%s, %ld steps) differs from the monitored "
                         "run (%ld steps); cpu_s may not match", braun_status_str(st_timed),
@@ -426,9 +391,6 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
     r.scene = tg->name;
     r.method = method_name(model.opt.corrections, supported);
     r.stats = d.stats;
-    /* A final state the tool refused is a step not taken, as the core
-     * counts the step it goes back over. */
-    if (stop.final_check && r.stats.steps > 0) r.stats.steps--;
     r.cpu_s = cpu_s;
     r.cpu_monitored_s = cpu_monitored;
     r.mon = &mon;

@@ -154,11 +154,9 @@ int braun_cli_write_summary(FILE *f, const braun_cli_result *r)
     num(&j, "guard_position_scale", b->pos_scale);
     num(&j, "guard_velocity_scale", b->vel_scale);
     num(&j, "guard_energy_scale", b->energy_scale);
-    /* A reported state the guard refused: not in the maxima, the CSV or a
-     * plot; the final state is the one before it. */
+    /* The state the guard refused (never reported: not in the maxima, the
+     * CSV or a plot); the final state is the one before it. */
     num(&j, "refused_state_t", r->stop.dropped ? r->stop.dropped_t : NAN);
-    key(&j, "final_state_refused_by_tool");
-    fputs(r->stop.final_check ? "true" : "false", f);
     num(&j, "error_t", r->error_t);
     /* The adaptive driver's limits as used (braun_adaptive: 0 selects). */
     const double span = a->t_end;

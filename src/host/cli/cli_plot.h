@@ -1,0 +1,158 @@
+/* Private to `braun plot` (cli_plot*.c): what a drawing is made of.
+ *
+ * A drawing is a list of items (a body's outline, a rod, a pin, a slider's
+ * guide and block, a spring, a ground mark, ...) whose geometry is given by
+ * anchors: points fixed on a body (or on the ground) whose world positions
+ * at a state come from the body class's own point kinematics — the same
+ * code the joints use. Positions are 3-D; a view projects them onto one of
+ * the coordinate planes (--view xy, the default, for planar scenes; xz or
+ * yz for spatial ones), so a spatial body class draws without new code
+ * here: its points and outline come from its class. */
+#ifndef BRAUN_CLI_PLOT_H
+#define BRAUN_CLI_PLOT_H
+
+#include "braun_cli.h"
+
+/* An anchor: a point of the scene (index), or a point of our own on a body
+ * or the ground (a guide's end, a blade's tip). */
+typedef struct plot_anchor {
+    int scene_point;          /* >= 0: point index of the scene; -1: own */
+    braun_scene_point own;    /* body (or BRAUN_SCENE_GROUND) and body-frame x, y */
+} plot_anchor;
+
+enum plot_item_kind {
+    PLOT_OUTLINE, /* a rigid body's outline: polygon through anchors a .. a + count - 1 */
+    PLOT_BAR,     /* a rigid body with two points, or a rod: a thick bar a-b */
+    PLOT_LINK,    /* a distance joint: a thin line a-b */
+    PLOT_MASS,    /* a particle with mass: a disc at a */
+    PLOT_PIN,     /* a joint (revolute, a particle carried by rods): a ring at a */
+    PLOT_GUIDE,   /* a slider's line: a dashed line a-b (long: not part of the extent) */
+    PLOT_BLOCK,   /* a slider's block at a, along the guide b-c */
+    PLOT_BLADE,   /* a knife edge: a short thick line a-b */
+    PLOT_SPRING,  /* a spring or damper: a zigzag a-b */
+    PLOT_ROTOR,   /* a motor, a torque or a driven angle: an arrowed arc about a */
+    PLOT_GROUND   /* a ground point: a hatched mark under a */
+};
+
+typedef struct plot_item {
+    int kind;          /* plot_item_kind */
+    int a, b, c;       /* anchors */
+    int count;         /* PLOT_OUTLINE: anchors a .. a + count - 1 */
+    int fixed;         /* every anchor on the ground: drawn once, not per frame */
+} plot_item;
+
+/* A traced point (--points): an anchor and its name. */
+typedef struct plot_trace {
+    int anchor;
+    char name[96];
+} plot_trace;
+
+typedef struct plot_drawing {
+    const braun_scene *scene;
+    int nanchors, cap_anchors;
+    plot_anchor *anchors;
+    int nitems, cap_items;
+    plot_item *items;
+    int ntraces;
+    plot_trace traces[16];
+    int axis_u, axis_v;       /* the view: world axes shown across and up (0 x, 1 y, 2 z) */
+    char view[4];             /* "xy" */
+} plot_drawing;
+
+/* The drawing of target t's scene (t->drawing must be set): 0, or an exit
+ * status after one message. */
+int plot_drawing_build(plot_drawing *dr, const braun_cli_target *t, const char *view);
+void plot_drawing_free(plot_drawing *dr);
+/* Add --points' references ("crank.A", "rod", "ground.O"): 0 or exit status. */
+int plot_drawing_trace(plot_drawing *dr, const braun_cli_target *t, const char *list);
+/* An anchor for one point reference, for --plot POINT.x: index, or -1
+ * after one message. */
+int plot_drawing_point(plot_drawing *dr, const braun_cli_target *t, const char *ref);
+/* World positions (3 each) of every anchor at q (n doubles). */
+void plot_drawing_eval(const plot_drawing *dr, const double *q, braun_real *qr, double *pos);
+
+/* The states a plot draws: rows of the trajectory CSV's columns (t, q, v,
+ * pos_err, vel_err, energy_err, traj_err), kept evenly in time. */
+typedef struct plot_samples {
+    int n, cols;              /* coordinates; columns per row */
+    long count, cap;
+    double *rows;             /* count x cols */
+    double from, to;          /* the time window kept */
+    double next, step;        /* next time to keep, spacing */
+    int have_last;            /* last: the latest state, kept at the end */
+    double *last;
+} plot_samples;
+
+int plot_samples_init(plot_samples *s, int n, long cap, double from, double to);
+void plot_samples_add(plot_samples *s, const double *row);
+/* After the last state: keep the latest one too. */
+void plot_samples_finish(plot_samples *s);
+void plot_samples_free(plot_samples *s);
+
+/* --traj FILE: read a CSV written by `braun run --out` (its header must be
+ * the target's columns) into s. 0, or an exit status after one message. */
+int plot_traj_read(const char *path, const braun_cli_target *t, plot_samples *s);
+
+/* What --plot asks for: columns of the rows or coordinates of points. */
+typedef struct plot_series {
+    int column;               /* >= 0: a column of the rows */
+    int anchor, axis;         /* else: anchor's world coordinate axis (0 x, 1 y, 2 z) */
+    char label[128];
+    const char *unit;
+} plot_series;
+
+/* Everything the writers need. */
+typedef struct plot_job {
+    const braun_cli_target *target;
+    const braun_cli_run_args *args;
+    plot_drawing *drawing;    /* NULL for --plot */
+    plot_samples *samples;
+    int nseries;
+    plot_series series[16];
+    long frames;              /* configurations drawn */
+    const char *caption;      /* one line under the picture */
+} plot_job;
+
+/* Writers: 0, or -1 after one message (cli_plot_svg.c, cli_plot_html.c,
+ * cli_plot_gnuplot.c). */
+int plot_write_svg(FILE *f, const plot_job *job);
+int plot_write_html(FILE *f, const plot_job *job);
+int plot_write_png(FILE *f, const plot_job *job);
+
+/* Shared by the writers (cli_plot_svg.c). */
+typedef struct plot_canvas {
+    double width, height, margin, bottom; /* px; bottom: room for the caption */
+    double scale;                         /* px per metre */
+    double u0, v0;                        /* world coordinates at the plot's lower left */
+} plot_canvas;
+/* The canvas fitting every frame's extent (guides and ground marks aside). */
+void plot_canvas_fit(plot_canvas *cv, const plot_job *job);
+/* Screen position of a world point. */
+void plot_canvas_xy(const plot_canvas *cv, const plot_drawing *dr, const double *pos,
+                    double *x, double *y);
+/* The rows drawn as configurations: indices into the samples. */
+long plot_frame_row(const plot_job *job, long k);
+/* One configuration's items of a layer as SVG elements; pos:
+ * plot_drawing_eval's output. */
+enum {
+    PLOT_LAYER_UNDER,       /* on the ground, drawn first: guides, springs to the ground */
+    PLOT_LAYER_MOVING,      /* moving items but motors and torques */
+    PLOT_LAYER_ALL_MOVING,  /* every moving item */
+    PLOT_LAYER_MARKS        /* the ground marks, drawn last */
+};
+void plot_svg_items(FILE *f, const plot_job *job, const plot_canvas *cv, const double *pos,
+                    int layer, const char *indent);
+/* XML text: &, <, >, " escaped, control bytes as '?'. */
+void plot_xml_text(FILE *f, const char *s);
+/* The paths of the traced points (polylines), the time chart of --plot. */
+void plot_svg_paths(FILE *f, const plot_job *job, const plot_canvas *cv, const char *style);
+int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, int inline_html);
+/* <svg ...><title/><rect/> (inline_html: without the namespace attribute). */
+void plot_svg_header(FILE *f, double width, double height, const char *title, int inline_html);
+/* The caption line, the traced points' names, the scale bar. */
+void plot_svg_caption(FILE *f, const plot_job *job, const plot_canvas *cv);
+void plot_svg_scale_bar(FILE *f, const plot_canvas *cv);
+/* Colour of trace or series i. */
+const char *plot_colour(int i);
+
+#endif /* BRAUN_CLI_PLOT_H */

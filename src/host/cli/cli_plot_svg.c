@@ -1,0 +1,486 @@
+/* SVG of `braun plot`: the stroboscopic view (configurations of the
+ * mechanism over the time window, earlier ones fainter, as the paper's
+ * Fig. 1, with the paths of the traced points) and the chart of --plot
+ * (coordinates against time). Plain SVG 1.1 with presentation attributes
+ * only — no CSS, script or external reference — so any viewer and
+ * rsvg-convert draw it the same. The animation page (cli_plot_html.c)
+ * reuses the configurations. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_plot.h"
+
+#define CANVAS_WIDTH 800.0
+#define CANVAS_MAX_PLOT_HEIGHT 560.0
+#define CANVAS_MARGIN 28.0
+#define CANVAS_BOTTOM 40.0
+
+const char *plot_colour(int i)
+{
+    static const char *const c[] = {"#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
+                                    "#17becf", "#8c564b", "#e377c2", "#7f7f7f"};
+    return c[(unsigned)i % (sizeof c / sizeof c[0])];
+}
+
+void plot_xml_text(FILE *f, const char *s)
+{
+    for (const unsigned char *p = (const unsigned char *)s; p && *p; p++) {
+        if (*p == '&') fputs("&amp;", f);
+        else if (*p == '<') fputs("&lt;", f);
+        else if (*p == '>') fputs("&gt;", f);
+        else if (*p == '"') fputs("&quot;", f);
+        else if (*p < 0x20 || *p == 0x7f) fputc('?', f);
+        else fputc(*p, f);
+    }
+}
+
+long plot_frame_row(const plot_job *job, long k)
+{
+    const plot_samples *s = job->samples;
+    const long frames = job->frames < s->count ? job->frames : s->count;
+    if (frames <= 1) return s->count - 1;
+    const double t0 = s->rows[0], t1 = s->rows[(size_t)(s->count - 1) * (size_t)s->cols];
+    const double want = t0 + (t1 - t0) * (double)k / (double)(frames - 1);
+    /* The first row at or after want (the last frame: the last row). */
+    long lo = 0, hi = s->count - 1;
+    if (k == frames - 1) return hi;
+    while (lo < hi) {
+        const long mid = lo + (hi - lo) / 2;
+        if (s->rows[(size_t)mid * (size_t)s->cols] < want) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo;
+}
+
+void plot_canvas_xy(const plot_canvas *cv, const plot_drawing *dr, const double *pos, double *x,
+                    double *y)
+{
+    *x = cv->margin + (pos[dr->axis_u] - cv->u0) * cv->scale;
+    *y = cv->height - cv->bottom - cv->margin - (pos[dr->axis_v] - cv->v0) * cv->scale;
+}
+
+/* Anchors that count for the extent: all but those of guides only. */
+static void extent_mask(const plot_drawing *dr, char *use)
+{
+    memset(use, 0, (size_t)dr->nanchors);
+    for (int i = 0; i < dr->nitems; i++) {
+        const plot_item *it = &dr->items[i];
+        if (it->kind == PLOT_GUIDE) continue;
+        if (it->kind == PLOT_OUTLINE) {
+            for (int k = 0; k < it->count; k++) use[it->a + k] = 1;
+        } else {
+            use[it->a] = 1;
+            if (it->kind == PLOT_BAR || it->kind == PLOT_LINK || it->kind == PLOT_SPRING ||
+                it->kind == PLOT_BLADE)
+                use[it->b] = 1;
+        }
+    }
+    for (int i = 0; i < dr->ntraces; i++) use[dr->traces[i].anchor] = 1;
+}
+
+void plot_canvas_fit(plot_canvas *cv, const plot_job *job)
+{
+    const plot_drawing *dr = job->drawing;
+    const plot_samples *s = job->samples;
+    double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL};
+    double pos_stack[3 * 256];
+    braun_real qr_stack[256];
+    double *pos = dr->nanchors <= 256 ? pos_stack : malloc((size_t)dr->nanchors * 3 * sizeof *pos);
+    braun_real *qr = s->n <= 256 ? qr_stack : malloc((size_t)s->n * sizeof *qr);
+    char use_stack[256];
+    char *use = dr->nanchors <= 256 ? use_stack : malloc((size_t)dr->nanchors);
+    cv->margin = CANVAS_MARGIN;
+    cv->bottom = CANVAS_BOTTOM;
+    cv->width = CANVAS_WIDTH;
+    if (pos && qr && use) {
+        extent_mask(dr, use);
+        for (long r = 0; r < s->count; r++) {
+            plot_drawing_eval(dr, s->rows + (size_t)r * (size_t)s->cols + 1, qr, pos);
+            for (int i = 0; i < dr->nanchors; i++) {
+                if (!use[i]) continue;
+                const double uv[2] = {pos[3 * i + dr->axis_u], pos[3 * i + dr->axis_v]};
+                for (int k = 0; k < 2; k++) {
+                    if (!isfinite(uv[k])) continue;
+                    if (uv[k] < lo[k]) lo[k] = uv[k];
+                    if (uv[k] > hi[k]) hi[k] = uv[k];
+                }
+            }
+        }
+    }
+    if (pos != pos_stack) free(pos);
+    if (qr != qr_stack) free(qr);
+    if (use != use_stack) free(use);
+    if (!(lo[0] <= hi[0])) lo[0] = hi[0] = 0;
+    if (!(lo[1] <= hi[1])) lo[1] = hi[1] = 0;
+    double du = hi[0] - lo[0], dv = hi[1] - lo[1];
+    const double size = du > dv ? du : dv;
+    /* Room for the marks drawn around points (rings, blocks, ground). */
+    const double pad = size > 0 ? 0.04 * size : 0.5;
+    lo[0] -= pad, hi[0] += pad, lo[1] -= pad, hi[1] += pad;
+    du = hi[0] - lo[0], dv = hi[1] - lo[1];
+    const double avail_w = cv->width - 2 * cv->margin;
+    cv->scale = avail_w / du;
+    if (dv * cv->scale > CANVAS_MAX_PLOT_HEIGHT) cv->scale = CANVAS_MAX_PLOT_HEIGHT / dv;
+    double plot_h = dv * cv->scale;
+    if (plot_h < 120) plot_h = 120;
+    cv->height = plot_h + 2 * cv->margin + cv->bottom;
+    cv->u0 = lo[0] - (avail_w / cv->scale - du) / 2;
+    cv->v0 = lo[1] - (plot_h / cv->scale - dv) / 2;
+}
+
+/* ------------------------------------------------------------ the items */
+static void xy_of(const plot_job *job, const plot_canvas *cv, const double *pos, int a, double *x,
+                  double *y)
+{
+    plot_canvas_xy(cv, job->drawing, pos + 3 * a, x, y);
+}
+
+static void line(FILE *f, const char *in, double x0, double y0, double x1, double y1,
+                 const char *style)
+{
+    fprintf(f, "%s<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" %s/>\n", in, x0, y0, x1,
+            y1, style);
+}
+
+static void spring(FILE *f, const char *in, double x0, double y0, double x1, double y1)
+{
+    const double dx = x1 - x0, dy = y1 - y0, len = hypot(dx, dy);
+    if (!(len > 0)) return;
+    const double ux = dx / len, uy = dy / len, nx = -uy, ny = ux;
+    const int coils = 8;
+    fprintf(f, "%s<polyline points=\"%.2f,%.2f", in, x0, y0);
+    for (int k = 0; k <= 2 * coils; k++) {
+        const double s = 0.15 + 0.7 * k / (2.0 * coils);
+        const double w = k == 0 || k == 2 * coils ? 0 : (k % 2 ? 5 : -5);
+        fprintf(f, " %.2f,%.2f", x0 + s * dx + w * nx, y0 + s * dy + w * ny);
+    }
+    fprintf(f, " %.2f,%.2f\" fill=\"none\" stroke=\"#3a8a3a\" stroke-width=\"1.6\" "
+               "stroke-linejoin=\"round\"/>\n", x1, y1);
+}
+
+static void block(FILE *f, const char *in, double x, double y, double gx0, double gy0,
+                  double gx1, double gy1)
+{
+    double dx = gx1 - gx0, dy = gy1 - gy0, len = hypot(dx, dy);
+    if (!(len > 0)) dx = 1, dy = 0, len = 1;
+    const double ux = dx / len, uy = dy / len, nx = -uy, ny = ux, a = 11, b = 6.5;
+    fprintf(f, "%s<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"#d9a441\" "
+               "stroke=\"#6b4a10\" stroke-width=\"1.2\"/>\n", in,
+            x - a * ux - b * nx, y - a * uy - b * ny, x + a * ux - b * nx, y + a * uy - b * ny,
+            x + a * ux + b * nx, y + a * uy + b * ny, x - a * ux + b * nx, y - a * uy + b * ny);
+}
+
+static void rotor(FILE *f, const char *in, double x, double y)
+{
+    const double r = 15;
+    /* Three quarters of a circle, counter-clockwise on screen, and its head. */
+    fprintf(f, "%s<path d=\"M %.2f %.2f A %.1f %.1f 0 1 0 %.2f %.2f\" fill=\"none\" "
+               "stroke=\"#b8322f\" stroke-width=\"1.6\"/>\n", in, x + r, y, r, r, x, y - r);
+    fprintf(f, "%s<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"#b8322f\"/>\n", in,
+            x, y - r - 4.5, x, y - r + 4.5, x + 7, y - r);
+}
+
+static void ground(FILE *f, const char *in, double x, double y)
+{
+    fprintf(f, "%s<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"#ffffff\" "
+               "stroke=\"#222222\" stroke-width=\"1.2\"/>\n", in, x, y, x - 8, y + 12, x + 8, y + 12);
+    line(f, in, x - 12, y + 12, x + 12, y + 12, "stroke=\"#222222\" stroke-width=\"1.2\"");
+    for (int k = 0; k < 4; k++)
+        line(f, in, x - 10 + 6 * k, y + 12, x - 14 + 6 * k, y + 17,
+             "stroke=\"#222222\" stroke-width=\"1\"");
+}
+
+void plot_svg_items(FILE *f, const plot_job *job, const plot_canvas *cv, const double *pos,
+                    int layer, const char *in)
+{
+    const plot_drawing *dr = job->drawing;
+    for (int i = 0; i < dr->nitems; i++) {
+        const plot_item *it = &dr->items[i];
+        /* Layers: the ground's guides and springs under everything, the
+         * moving items, the ground marks on top; rotors only where asked. */
+        const int mine = layer == PLOT_LAYER_UNDER   ? it->fixed && it->kind != PLOT_GROUND
+                         : layer == PLOT_LAYER_MARKS ? it->fixed && it->kind == PLOT_GROUND
+                         : layer == PLOT_LAYER_MOVING ? !it->fixed && it->kind != PLOT_ROTOR
+                                                      : !it->fixed;
+        if (!mine) continue;
+        double xa, ya, xb, yb, xc, yc;
+        xy_of(job, cv, pos, it->a, &xa, &ya);
+        xy_of(job, cv, pos, it->b, &xb, &yb);
+        xy_of(job, cv, pos, it->c, &xc, &yc);
+        switch (it->kind) {
+        case PLOT_OUTLINE:
+            fprintf(f, "%s<polygon points=\"", in);
+            for (int k = 0; k < it->count; k++) {
+                double x, y;
+                xy_of(job, cv, pos, it->a + k, &x, &y);
+                fprintf(f, "%s%.2f,%.2f", k ? " " : "", x, y);
+            }
+            fputs("\" fill=\"#9cc0e6\" stroke=\"#1f4e79\" stroke-width=\"1.6\" "
+                  "stroke-linejoin=\"round\"/>\n", f);
+            break;
+        case PLOT_BAR:
+            line(f, in, xa, ya, xb, yb, "stroke=\"#1f4e79\" stroke-width=\"9\" stroke-linecap=\"round\"");
+            line(f, in, xa, ya, xb, yb, "stroke=\"#9cc0e6\" stroke-width=\"5.5\" stroke-linecap=\"round\"");
+            break;
+        case PLOT_LINK:
+            line(f, in, xa, ya, xb, yb, "stroke=\"#444444\" stroke-width=\"2\"");
+            break;
+        case PLOT_MASS:
+            fprintf(f, "%s<circle cx=\"%.2f\" cy=\"%.2f\" r=\"8\" fill=\"#1f4e79\" "
+                       "stroke=\"#0d2238\" stroke-width=\"1\"/>\n", in, xa, ya);
+            break;
+        case PLOT_PIN:
+            fprintf(f, "%s<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3.6\" fill=\"#ffffff\" "
+                       "stroke=\"#111111\" stroke-width=\"1.5\"/>\n", in, xa, ya);
+            break;
+        case PLOT_GUIDE:
+            line(f, in, xa, ya, xb, yb,
+                 "stroke=\"#777777\" stroke-width=\"1.2\" stroke-dasharray=\"6 4\"");
+            break;
+        case PLOT_BLOCK:
+            block(f, in, xa, ya, xb, yb, xc, yc);
+            fprintf(f, "%s<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3.6\" fill=\"#ffffff\" "
+                       "stroke=\"#111111\" stroke-width=\"1.5\"/>\n", in, xa, ya);
+            break;
+        case PLOT_BLADE:
+            line(f, in, xa, ya, xb, yb, "stroke=\"#111111\" stroke-width=\"4\" stroke-linecap=\"round\"");
+            break;
+        case PLOT_SPRING:
+            spring(f, in, xa, ya, xb, yb);
+            break;
+        case PLOT_ROTOR:
+            rotor(f, in, xa, ya);
+            break;
+        case PLOT_GROUND:
+            ground(f, in, xa, ya);
+            break;
+        default:
+            break;
+        }
+    }
+}
+
+void plot_svg_paths(FILE *f, const plot_job *job, const plot_canvas *cv, const char *style)
+{
+    const plot_drawing *dr = job->drawing;
+    const plot_samples *s = job->samples;
+    double *pos = malloc((size_t)dr->nanchors * 3 * sizeof *pos);
+    braun_real *qr = malloc((size_t)s->n * sizeof *qr);
+    if (!pos || !qr || dr->ntraces == 0) {
+        free(pos);
+        free(qr);
+        return;
+    }
+    for (int i = 0; i < dr->ntraces; i++) {
+        fprintf(f, "  <polyline fill=\"none\" stroke=\"%s\" %s points=\"", plot_colour(i), style);
+        for (long r = 0; r < s->count; r++) {
+            double x, y;
+            plot_drawing_eval(dr, s->rows + (size_t)r * (size_t)s->cols + 1, qr, pos);
+            xy_of(job, cv, pos, dr->traces[i].anchor, &x, &y);
+            if (isfinite(x) && isfinite(y)) fprintf(f, "%s%.2f,%.2f", r ? " " : "", x, y);
+        }
+        fputs("\"/>\n", f);
+    }
+    free(pos);
+    free(qr);
+}
+
+/* A scale bar of 1, 2 or 5 times a power of ten metres, about a fifth of
+ * the width, at the lower right. */
+void plot_svg_scale_bar(FILE *f, const plot_canvas *cv)
+{
+    const double want = (cv->width - 2 * cv->margin) / 5 / cv->scale;
+    if (!(want > 0) || !isfinite(want)) return;
+    const double p = pow(10, floor(log10(want)));
+    const double len = want / p >= 5 ? 5 * p : want / p >= 2 ? 2 * p : p;
+    const double x1 = cv->width - cv->margin, x0 = x1 - len * cv->scale;
+    const double y = cv->height - 14;
+    line(f, "  ", x0, y, x1, y, "stroke=\"#222222\" stroke-width=\"2\"");
+    line(f, "  ", x0, y - 4, x0, y + 4, "stroke=\"#222222\" stroke-width=\"1.5\"");
+    line(f, "  ", x1, y - 4, x1, y + 4, "stroke=\"#222222\" stroke-width=\"1.5\"");
+    fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"12\" "
+               "text-anchor=\"middle\">%g m</text>\n", (x0 + x1) / 2, y - 6, len);
+}
+
+void plot_svg_caption(FILE *f, const plot_job *job, const plot_canvas *cv)
+{
+    fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"13\">",
+            cv->margin, cv->height - 12);
+    plot_xml_text(f, job->caption);
+    fputs("</text>\n", f);
+    const plot_drawing *dr = job->drawing;
+    for (int i = 0; dr && i < dr->ntraces; i++) {
+        fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"12\" "
+                   "fill=\"%s\">", cv->margin, cv->margin + 14.0 * i, plot_colour(i));
+        plot_xml_text(f, dr->traces[i].name);
+        fputs("</text>\n", f);
+    }
+}
+
+void plot_svg_header(FILE *f, double width, double height, const char *title, int inline_html)
+{
+    /* Inline in HTML the namespace is implied (and the page names no URL). */
+    fprintf(f, "<svg%s version=\"1.1\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
+            inline_html ? "" : " xmlns=\"http://www.w3.org/2000/svg\"", width, height, width, height);
+    fputs("  <title>", f);
+    plot_xml_text(f, title);
+    fputs("</title>\n", f);
+    fprintf(f, "  <rect x=\"0\" y=\"0\" width=\"%.0f\" height=\"%.0f\" fill=\"#ffffff\"/>\n",
+            width, height);
+}
+
+int plot_write_svg(FILE *f, const plot_job *job)
+{
+    if (job->nseries > 0 || !job->drawing) {
+        fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", f);
+        return plot_svg_chart(f, job, CANVAS_WIDTH, 480, 0);
+    }
+    const plot_drawing *dr = job->drawing;
+    const plot_samples *s = job->samples;
+    plot_canvas cv;
+    plot_canvas_fit(&cv, job);
+    double *pos = malloc((size_t)dr->nanchors * 3 * sizeof *pos);
+    braun_real *qr = malloc((size_t)s->n * sizeof *qr);
+    if (!pos || !qr) {
+        free(pos);
+        free(qr);
+        braun_cli_error("out of memory");
+        return -1;
+    }
+    fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", f);
+    plot_svg_header(f, cv.width, cv.height, job->caption, 0);
+    const long frames = job->frames < s->count ? job->frames : s->count;
+    plot_drawing_eval(dr, s->rows + 1, qr, pos);
+    fputs("  <g id=\"ground\">\n", f);
+    plot_svg_items(f, job, &cv, pos, PLOT_LAYER_UNDER, "    ");
+    fputs("  </g>\n", f);
+    plot_svg_paths(f, job, &cv, "stroke-width=\"1.5\" stroke-opacity=\"0.9\"");
+    /* Earlier configurations fainter: opacity 0.2 ... 1. */
+    for (long k = 0; k < frames; k++) {
+        const long r = plot_frame_row(job, k);
+        const double *row = s->rows + (size_t)r * (size_t)s->cols;
+        plot_drawing_eval(dr, row + 1, qr, pos);
+        const double op = frames > 1 ? 0.2 + 0.8 * (double)k / (double)(frames - 1) : 1;
+        char t[BRAUN_CLI_NUMBER_SIZE];
+        fprintf(f, "  <g class=\"frame\" data-t=\"%s\" opacity=\"%.3f\">\n",
+                braun_cli_number(row[0], t), op);
+        /* Motors and torques once, on the newest configuration. */
+        plot_svg_items(f, job, &cv, pos, k == frames - 1 ? PLOT_LAYER_ALL_MOVING : PLOT_LAYER_MOVING,
+                       "    ");
+        for (int i = 0; i < dr->ntraces; i++) {
+            double x, y;
+            plot_canvas_xy(&cv, dr, pos + 3 * dr->traces[i].anchor, &x, &y);
+            fprintf(f, "    <circle cx=\"%.2f\" cy=\"%.2f\" r=\"2.8\" fill=\"%s\"/>\n", x, y,
+                    plot_colour(i));
+        }
+        fputs("  </g>\n", f);
+    }
+    plot_drawing_eval(dr, s->rows + 1, qr, pos);
+    plot_svg_items(f, job, &cv, pos, PLOT_LAYER_MARKS, "  ");
+    plot_svg_caption(f, job, &cv);
+    plot_svg_scale_bar(f, &cv);
+    fputs("</svg>\n", f);
+    free(pos);
+    free(qr);
+    return 0;
+}
+
+/* ------------------------------------------------------------ the chart */
+/* Ticks at 1, 2 or 5 times a power of ten, about six over the range. */
+static double tick_step(double lo, double hi)
+{
+    const double want = (hi - lo) / 6;
+    if (!(want > 0) || !isfinite(want)) return 1;
+    const double p = pow(10, floor(log10(want)));
+    return want / p >= 5 ? 5 * p : want / p >= 2 ? 2 * p : p;
+}
+
+/* Value of series k at row r. */
+static double series_value(const plot_job *job, const plot_series *sr, const double *row,
+                           double *pos, braun_real *qr)
+{
+    if (sr->column >= 0) return row[sr->column];
+    plot_drawing_eval(job->drawing, row + 1, qr, pos);
+    return pos[3 * sr->anchor + sr->axis];
+}
+
+int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, int inline_html)
+{
+    const plot_samples *s = job->samples;
+    const plot_drawing *dr = job->drawing;
+    double *pos = dr ? malloc((size_t)dr->nanchors * 3 * sizeof *pos) : NULL;
+    braun_real *qr = malloc((size_t)s->n * sizeof *qr);
+    if ((dr && !pos) || !qr) {
+        free(pos);
+        free(qr);
+        braun_cli_error("out of memory");
+        return -1;
+    }
+    const double ml = 70, mr = 20, mt = 20 + 16.0 * job->nseries, mb = 50;
+    double t0 = s->rows[0], t1 = s->rows[(size_t)(s->count - 1) * (size_t)s->cols];
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (int k = 0; k < job->nseries; k++)
+        for (long r = 0; r < s->count; r++) {
+            const double y = series_value(job, &job->series[k], s->rows + (size_t)r * (size_t)s->cols, pos, qr);
+            if (isfinite(y) && y < lo) lo = y;
+            if (isfinite(y) && y > hi) hi = y;
+        }
+    if (!(lo <= hi)) lo = hi = 0;
+    if (hi - lo < 1e-12 * (fabs(lo) + fabs(hi)) || hi == lo) lo -= 0.5 + fabs(lo) * 0.1, hi += 0.5 + fabs(hi) * 0.1;
+    if (!(t1 > t0)) t1 = t0 + 1;
+    const double ty = tick_step(lo, hi), tt = tick_step(t0, t1);
+    lo = floor(lo / ty) * ty, hi = ceil(hi / ty) * ty;
+    const double pw = width - ml - mr, ph = height - mt - mb;
+#define X(t) (ml + ((t) - t0) / (t1 - t0) * pw)
+#define Y(v) (mt + ph - ((v) - lo) / (hi - lo) * ph)
+    plot_svg_header(f, width, height, job->caption, inline_html);
+    fprintf(f, "  <rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"none\" "
+               "stroke=\"#222222\"/>\n", ml, mt, pw, ph);
+    for (double v = lo; v <= hi + 0.5 * ty; v += ty) {
+        const double y = Y(v);
+        char num[BRAUN_CLI_NUMBER_SIZE];
+        snprintf(num, sizeof num, "%.4g", fabs(v) < 1e-12 * ty ? 0.0 : v);
+        line(f, "  ", ml, y, ml + pw, y, "stroke=\"#dddddd\" stroke-width=\"1\"");
+        fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"12\" "
+                   "text-anchor=\"end\">%s</text>\n", ml - 6, y + 4, num);
+    }
+    for (double t = ceil(t0 / tt) * tt; t <= t1 + 1e-9 * tt; t += tt) {
+        const double x = X(t);
+        line(f, "  ", x, mt + ph, x, mt + ph + 5, "stroke=\"#222222\" stroke-width=\"1\"");
+        fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"12\" "
+                   "text-anchor=\"middle\">%.4g</text>\n", x, mt + ph + 18, fabs(t) < 1e-12 * tt ? 0.0 : t);
+    }
+    fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"13\" "
+               "text-anchor=\"middle\">t [s]</text>\n", ml + pw / 2, height - 12);
+    for (int k = 0; k < job->nseries; k++) {
+        const plot_series *sr = &job->series[k];
+        fprintf(f, "  <polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\" points=\"",
+                plot_colour(k));
+        for (long r = 0; r < s->count; r++) {
+            const double *row = s->rows + (size_t)r * (size_t)s->cols;
+            const double y = series_value(job, sr, row, pos, qr);
+            if (isfinite(y)) fprintf(f, "%s%.2f,%.2f", r ? " " : "", X(row[0]), Y(y));
+        }
+        fputs("\"/>\n", f);
+        fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"13\" "
+                   "fill=\"%s\">", ml, 16.0 + 16.0 * k, plot_colour(k));
+        plot_xml_text(f, sr->label);
+        if (sr->unit) {
+            fputs(" [", f);
+            plot_xml_text(f, sr->unit);
+            fputc(']', f);
+        }
+        fputs("</text>\n", f);
+    }
+#undef X
+#undef Y
+    fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"11\" "
+               "fill=\"#555555\" text-anchor=\"end\">", width - mr, height - 12);
+    plot_xml_text(f, job->caption);
+    fputs("</text>\n</svg>\n", f);
+    free(pos);
+    free(qr);
+    return 0;
+}

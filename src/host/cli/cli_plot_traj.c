@@ -1,0 +1,124 @@
+/* `braun plot MODEL --traj FILE`: a trajectory written by `braun run MODEL
+ * --out FILE`, drawn without simulating again. The header must name the
+ * model's columns (with or without their units); every row is numbers,
+ * traj_err may be empty, times never decrease. Errors name FILE:LINE. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_plot.h"
+
+/* One header cell: unquoted, without " [unit]". */
+static const char *header_cell(const char *p, const char *end, char *name, size_t size)
+{
+    size_t k = 0;
+    if (p < end && *p == '"') {
+        for (p++; p < end; p++) {
+            if (*p == '"' && p + 1 < end && p[1] == '"') p++;
+            else if (*p == '"') { p++; break; }
+            if (k + 1 < size) name[k++] = *p;
+        }
+    } else {
+        for (; p < end && *p != ','; p++)
+            if (k + 1 < size) name[k++] = *p;
+    }
+    name[k] = '\0';
+    char *br = strstr(name, " [");
+    if (br) *br = '\0';
+    return p;
+}
+
+int plot_traj_read(const char *path, const braun_cli_target *t, plot_samples *s)
+{
+    char err[512];
+    size_t len;
+    char *text = braun_cli_read_file(path, (size_t)1 << 30, &len, err, sizeof err);
+    if (!text) return braun_cli_error("--traj %s", err);
+    const int n = t->sys.n, cols = braun_cli_column_count(n);
+    double *row = malloc((size_t)cols * sizeof *row);
+    int rc = row ? 0 : braun_cli_error("out of memory");
+    const char *p = text, *end = text + len;
+    long line = 1;
+    /* The header. */
+    const char *eol = memchr(p, '\n', (size_t)(end - p));
+    if (!eol) eol = end;
+    for (int j = 0; !rc && j < cols; j++) {
+        char want[160], got[160];
+        const char *unit;
+        braun_cli_column_name(t, n, j, want, sizeof want, &unit);
+        if (p >= eol) {
+            rc = braun_cli_error("--traj %s:1: %d columns, '%s' needs %d (the columns of braun "
+                                 "run %s --out)", path, j, t->name, cols, t->name);
+            break;
+        }
+        p = header_cell(p, eol, got, sizeof got);
+        if (strcmp(want, got) != 0)
+            rc = braun_cli_error("--traj %s:1: column %d is '%s', '%s' has '%s' there (the "
+                                 "columns of braun run %s --out)", path, j + 1, got, t->name,
+                                 want, t->name);
+        if (p < eol && *p == ',') p++;
+        else if (j + 1 < cols && !rc)
+            rc = braun_cli_error("--traj %s:1: %d columns, '%s' needs %d", path, j + 1,
+                                 t->name, cols);
+    }
+    if (!rc && p < eol && *p != '\r')
+        rc = braun_cli_error("--traj %s:1: more columns than '%s' has (%d)", path, t->name, cols);
+    /* The last row's time sets the window of the samples. */
+    double t_last = NAN;
+    for (const char *q = end; !rc && q > eol;) {
+        const char *start = q;
+        while (start > eol + 1 && start[-1] != '\n') start--;
+        if (start < q && *start != '\n' && *start != '\r') {
+            t_last = strtod(start, NULL);
+            break;
+        }
+        q = start - 1;
+    }
+    if (!rc && !(isfinite(t_last)))
+        rc = braun_cli_error("--traj %s: no rows after the header", path);
+    if (!rc) {
+        const double from = isnan(s->from) ? -HUGE_VAL : s->from;
+        const long cap = s->cap;
+        if (plot_samples_init(s, n, cap, from, t_last)) rc = braun_cli_error("out of memory");
+    }
+    p = eol < end ? eol + 1 : end;
+    double t_prev = -HUGE_VAL;
+    long rows = 0;
+    while (!rc && p < end) {
+        line++;
+        eol = memchr(p, '\n', (size_t)(end - p));
+        if (!eol) eol = end;
+        if (eol == p || (eol == p + 1 && *p == '\r')) {
+            p = eol + 1;
+            continue;
+        }
+        for (int j = 0; j < cols && !rc; j++) {
+            char *stop;
+            if (j == cols - 1 && (p >= eol || *p == '\r')) {
+                row[j] = NAN; /* traj_err: empty without a reference */
+                break;
+            }
+            row[j] = strtod(p, &stop);
+            const int last = j == cols - 1;
+            if (stop == p || stop > eol || (!last && *stop != ',') ||
+                (last && stop < eol && *stop != '\r'))
+                rc = braun_cli_error("--traj %s:%ld: column %d is not a number (or the row has "
+                                     "fewer than %d columns)", path, line, j + 1, cols);
+            p = stop < eol ? stop + 1 : eol;
+        }
+        if (!rc && !(row[0] >= t_prev))
+            rc = braun_cli_error("--traj %s:%ld: t = %g comes after t = %g", path, line, row[0], t_prev);
+        if (!rc) {
+            t_prev = row[0];
+            plot_samples_add(s, row);
+            rows++;
+        }
+        p = eol + 1;
+    }
+    if (!rc) plot_samples_finish(s);
+    if (!rc && s->count == 0)
+        rc = braun_cli_error("--traj %s: no rows at or after --from %g", path, s->from);
+    free(row);
+    free(text);
+    return rc;
+}
