@@ -1,0 +1,261 @@
+#!/bin/sh
+# Tests of `braun plot` and of what people read from `braun run` (issue 15):
+#   sh tests/cli/plot.sh path/to/braun path/to/png_ink
+# The SVG is well-formed and draws the bodies where they are (every rod of
+# the four-bar drawn 1 m long at the picture's scale, the pivots 1 m apart),
+# a frame rendered to PNG (rsvg-convert) is not blank, the animation page
+# loads nothing from outside and its script plays (node, or a visible
+# skip), the PNG comes from gnuplot, --traj redraws a CSV, built-in models
+# draw as their data/ scenes; the progress line and the summary line; shipped
+# scenes from any directory. "ok - NAME" / "not ok - NAME" / "ok - NAME # SKIP
+# WHY" and "N passed, M failed, K skipped"; exit 1 if anything failed.
+BRAUN=${1:?usage: sh tests/cli/plot.sh path/to/braun path/to/png_ink}
+INK=${2:?usage: sh tests/cli/plot.sh path/to/braun path/to/png_ink}
+case $BRAUN in /*) ;; *) BRAUN=$(pwd)/$BRAUN ;; esac
+case $INK in /*) ;; *) INK=$(pwd)/$INK ;; esac
+TOP=$(cd "$(dirname "$0")/../.." && pwd)
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/braun-plot.XXXXXX") || exit 1
+trap 'rm -rf "$TMP"' EXIT INT TERM
+passed=0
+failed=0
+skipped=0
+ok() { passed=$((passed + 1)); echo "ok - $1"; }
+skip() { skipped=$((skipped + 1)); echo "ok - $1 # SKIP $2"; }
+not_ok() { failed=$((failed + 1)); echo "not ok - $1"; [ -z "$2" ] || echo "#   $2"; }
+check() { name=$1; shift; if "$@"; then ok "$name"; else not_ok "$name"; fi; }
+have() { command -v "$1" > /dev/null 2>&1; }
+
+# ink FILE.png MIN_FRACTION: at least that share of the pixels drawn, over
+# at least half of the width and a third of the height, in several colours.
+ink() {
+    out=$("$INK" "$1") || return 1
+    echo "$out" | awk -v f="$2" '{ w = $1; h = $2; n = $3
+        exit !(n >= f * w * h && $6 - $4 >= w / 2 && $7 - $5 >= h / 3 && $8 >= 3) }'
+}
+
+cd "$TMP" || exit 1
+cp "$TOP/data/four-bar.json" "$TOP/data/slider-crank.json" .
+
+# ------------------------------------------------------------------ SVG
+"$BRAUN" plot four-bar.json --dt 1e-2 --t-end 3 -o four-bar.svg > out.txt 2> err.txt; rc=$?
+check "plot four-bar.json --dt 1e-2 --t-end 3 -o four-bar.svg: exit 0, quiet when not a terminal" \
+    sh -c '[ "$1" -eq 0 ] && [ -s four-bar.svg ] && [ ! -s out.txt ] && [ ! -s err.txt ]' sh "$rc"
+if have xmllint; then
+    check "the SVG is well-formed XML" xmllint --noout four-bar.svg
+else
+    skip "the SVG is well-formed XML" "xmllint not found (libxml2-utils)"
+fi
+check "the SVG has 12 configurations (the default), each with the 5 rods and 3 moving joints" \
+    awk '/<g class="frame"/ { f++; bars = 0; pins = 0 }
+         /stroke-width="9"/ { bars++ }
+         /r="3.6"/ { pins++ }
+         /<\/g>/ && f { if (bars != 5 || pins != 3) bad = 1 }
+         END { exit !(f == 12 && !bad) }' four-bar.svg
+# Geometry: the three ground pivots (0,0), (1,0), (2,0) are the apexes of
+# the ground marks, so they give the scale; every rod is 1 m long.
+check "every rod is drawn 1 m long at the picture's scale (pivots 1 m apart), to 0.05 px" \
+    awk -F'"' '
+        /<polygon points=/ && /fill="#ffffff" stroke="#222222"/ {
+            split($2, p, "[ ,]"); gx[++g] = p[1]; gy[g] = p[2] }
+        /stroke-width="9"/ { n++; x1[n] = $2; y1[n] = $4; x2[n] = $6; y2[n] = $8 }
+        END {
+            if (g != 3 || n != 60) exit 1
+            s = gx[2] - gx[1]
+            if (s < 50 || (gx[3] - gx[2]) - s > 0.02 || (gx[3] - gx[2]) - s < -0.02) exit 1
+            if (gy[1] != gy[2] || gy[2] != gy[3]) exit 1
+            for (i = 1; i <= n; i++) {
+                d = sqrt((x2[i] - x1[i]) ^ 2 + (y2[i] - y1[i]) ^ 2) - s
+                if (d > 0.05 || d < -0.05) exit 1
+            }
+        }' four-bar.svg
+if have rsvg-convert; then
+    rsvg-convert four-bar.svg -o four-bar-svg.png 2> /dev/null
+    check "the SVG rendered by rsvg-convert is not blank ($("$INK" four-bar-svg.png 2>&1))" \
+        ink four-bar-svg.png 0.02
+else
+    skip "the SVG rendered by rsvg-convert is not blank" "rsvg-convert not found (librsvg2-bin)"
+fi
+"$BRAUN" plot four-bar --dt 1e-2 --t-end 3 -o builtin.svg
+check "the built-in four-bar draws exactly as data/four-bar.json" cmp -s builtin.svg four-bar.svg
+
+# The paper's Fig. 1: a stroboscopic view of the slider-crank, h = 5e-2, t in [96.9, 99].
+"$BRAUN" plot slider-crank --dt 5e-2 --t-end 99 --from 96.9 --frames 43 --points rod.B -o fig1.svg; rc=$?
+check "Fig. 1: 43 configurations of t = 96.9 ... 99 s and the slider's path" sh -c '
+    [ "$1" -eq 0 ] && [ "$(grep -c "<g class=\"frame\"" fig1.svg)" -eq 43 ] &&
+    grep -q "<g class=\"frame\" data-t=\"96.9" fig1.svg && grep -q "<g class=\"frame\" data-t=\"99\"" fig1.svg &&
+    grep -q "<polyline fill=\"none\" stroke=\"#d62728\"" fig1.svg' sh "$rc"
+# The slider's path stays on its line y = 0: one screen y for every point.
+check "Fig. 1: the path of rod.B is a straight line (the slider's guide)" \
+    awk '/<polyline fill="none" stroke="#d62728"/ {
+            sub(/.*points="/, ""); sub(/".*/, ""); n = split($0, p, " ")
+            split(p[1], a, ","); for (i = 2; i <= n; i++) { split(p[i], b, ","); if (b[2] != a[2]) bad = 1 }
+            found = n > 10 }
+         END { exit !(found && !bad) }' fig1.svg
+
+# ------------------------------------------------------------------ HTML
+"$BRAUN" plot four-bar.json --dt 1e-2 --t-end 3 --points J2 -o four-bar.html; rc=$?
+check "-o four-bar.html: exit 0" [ "$rc" -eq 0 ]
+check "the page loads nothing from outside (no src, href, url(), @import, link, URL or fetch)" \
+    sh -c '! grep -Eiq "src=|href=|url\(|@import|<link|<iframe|<object|<embed|<img|https?:|ftp:|//[a-z0-9]|fetch\(|XMLHttpRequest|import\(" four-bar.html'
+check "the page has play/pause, a time slider and one inline script" sh -c '
+    grep -q "<button id=\"play\"" four-bar.html && grep -q "<input id=\"slider\" type=\"range\"" four-bar.html &&
+    [ "$(grep -c "<script>" four-bar.html)" -eq 1 ] && [ "$(grep -c "<script" four-bar.html)" -eq 1 ]'
+check "the page has a configuration per state (301 at h = 1e-2 over 3 s)" \
+    [ "$(grep -c '<g data-t=' four-bar.html)" -eq 301 ]
+# One configuration of the page, shown, rendered.
+awk '/<svg/ { on = 1; sub(/<svg/, "<svg xmlns=\"http://www.w3.org/2000/svg\"") }
+     on && /<g data-t="1.5"/ { sub(/ style="display:none"/, "") }
+     on { print } /<\/svg>/ { on = 0 }' four-bar.html > page-frame.svg
+if have rsvg-convert; then
+    rsvg-convert page-frame.svg -o page-frame.png 2> /dev/null
+    check "a frame of the page (t = 1.5 s) rendered to PNG is not blank ($("$INK" page-frame.png 2>&1))" \
+        ink page-frame.png 0.01
+else
+    skip "a frame of the page rendered to PNG is not blank" "rsvg-convert not found (librsvg2-bin)"
+fi
+if have node; then
+    node "$TOP/tests/cli/page_check.js" four-bar.html > node.txt 2>&1; rc=$?
+    check "the page's script plays, pauses, follows the slider and the speed (node: $(grep -c '^ok' node.txt) checks)" \
+        sh -c '[ "$1" -eq 0 ] && ! grep -q "^not ok" node.txt' sh "$rc"
+    [ "$rc" -eq 0 ] || cat node.txt
+else
+    skip "the page's script plays, pauses, follows the slider" "node not found"
+fi
+if have chromium; then
+    timeout 60 chromium --headless --no-sandbox --disable-gpu --window-size=900,700 \
+        --screenshot="$TMP/chromium.png" "file://$TMP/four-bar.html" > /dev/null 2>&1
+    if [ -s chromium.png ]; then
+        check "headless Chromium draws the page ($("$INK" chromium.png 2>&1))" ink chromium.png 0.01
+    else
+        not_ok "headless Chromium draws the page" "no screenshot"
+    fi
+else
+    skip "headless Chromium draws the page" "chromium not installed"
+fi
+
+# ------------------------------------------------------------------ PNG (gnuplot)
+if have gnuplot; then
+    "$BRAUN" plot four-bar.json --dt 1e-2 --t-end 3 -o four-bar.png; rc=$?
+    check "-o four-bar.png through gnuplot: a PNG that is not blank ($("$INK" four-bar.png 2>&1))" \
+        sh -c '[ "$1" -eq 0 ] && [ "$(head -c 4 four-bar.png | od -An -c | tr -d " ")" = "211PNG" ] && "$2" four-bar.png > /dev/null' \
+        sh "$rc" "$INK"
+    ink four-bar.png 0.01 || not_ok "the gnuplot PNG has ink over the picture" "$("$INK" four-bar.png)"
+else
+    skip "-o four-bar.png through gnuplot" "gnuplot not found (gnuplot-nox)"
+fi
+
+# ------------------------------------------------------------------ a point's path and coordinates
+"$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 5 --points rod.B --plot x,y,crank.theta -o chart.svg; rc=$?
+check "--points rod.B --plot x,y,crank.theta: a chart of three series" sh -c '
+    [ "$1" -eq 0 ] && [ "$(grep -c "<polyline" chart.svg)" -eq 3 ] &&
+    grep -q ">rod.B.x \[m\]<" chart.svg && grep -q ">crank.theta \[rad\]<" chart.svg' sh "$rc"
+if have xmllint; then check "the chart is well-formed XML" xmllint --noout chart.svg; fi
+# rod.B.x is 2 cos(theta_1) for the slider-crank (both links 1 m, B on y = 0):
+# the chart's x series and 2 cos(crank.theta) from the CSV agree.
+"$BRAUN" run slider-crank.json --dt 1e-2 --t-end 5 --out sc.csv --summary /dev/null
+# The columns mean what they say: with the links' points at -0.5 and 0.5
+# along each body, crank.A = rod.A and rod.B is on y = 0 at every row.
+check "the CSV's columns are the bodies' x, y, theta: crank.A = rod.A and rod.B on y = 0, to 1e-7 (max |Phi_q| 2.1e-8 at h = 1e-2)" \
+    awk -F, 'NR > 1 { ax = $2 + cos($4) / 2 - ($5 - cos($7) / 2); ay = $3 + sin($4) / 2 - ($6 - sin($7) / 2)
+                      by = $6 + sin($7) / 2
+                      if (ax > 1e-7 || ax < -1e-7 || ay > 1e-7 || ay < -1e-7 || by > 1e-7 || by < -1e-7) bad = 1; n++ }
+             END { exit !(n == 501 && !bad) }' sc.csv
+
+# ------------------------------------------------------------------ --traj
+"$BRAUN" plot slider-crank.json --traj sc.csv --points rod.B -o traj.svg; rc=$?
+"$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 5 --points rod.B -o run.svg
+check "--traj: the CSV of a run draws the same configurations as the run" sh -c '
+    [ "$1" -eq 0 ] && grep -v "<title>\|<text" traj.svg > a && grep -v "<title>\|<text" run.svg > b && cmp -s a b' sh "$rc"
+printf 't [s],x\n0,1\n' > wrong.csv
+"$BRAUN" plot slider-crank.json --traj wrong.csv -o w.svg > /dev/null 2> err.txt; rc=$?
+check "--traj with the wrong columns: exit 2 naming the column" sh -c '
+    [ "$1" -eq 2 ] && grep -q "^braun: --traj wrong.csv:1: column 2 is .x., .slider-crank. has .crank.x. there" err.txt && [ ! -e w.svg ]' sh "$rc"
+
+# ------------------------------------------------------------------ refused
+bad() { name=$1; shift
+    "$BRAUN" "$@" > bad.out 2> bad.err; rc=$?
+    if [ "$rc" -eq 2 ] && [ ! -s bad.out ] && [ "$(wc -l < bad.err)" -eq 1 ] && grep -q "^braun: " bad.err
+    then ok "refused: $name ($(cut -c1-90 bad.err))"
+    else not_ok "refused: $name" "exit $rc: $(cat bad.err)"; fi
+}
+bad "no -o" plot four-bar --dt 1e-2 --t-end 1
+bad "unknown extension" plot four-bar --dt 1e-2 --t-end 1 -o x.pdf
+bad "--traj with run options" plot four-bar --traj sc.csv --dt 1e-2 -o x.svg
+bad "unknown body in --points" plot slider-crank --dt 1e-2 --t-end 1 --points arm.A -o x.svg
+bad "unknown point in --points" plot slider-crank --dt 1e-2 --t-end 1 --points rod.C -o x.svg
+bad "unknown --plot column" plot slider-crank --dt 1e-2 --t-end 1 --plot crank.bogus -o x.svg
+bad "x without --points" plot slider-crank --dt 1e-2 --t-end 1 --plot x -o x.svg
+bad "a system without a scene to draw" plot andrews --dt 1e-4 --t-end 0.001 -o x.svg
+bad "unknown --view" plot four-bar --dt 1e-2 --t-end 1 --view xw -o x.svg
+bad "--frames 0" plot four-bar --dt 1e-2 --t-end 1 --frames 0 -o x.svg
+bad "-o onto the scene" plot four-bar.json --dt 1e-2 --t-end 1 -o four-bar.json
+bad "-o onto the --traj input" plot slider-crank.json --traj sc.csv -o sc.csv
+bad "--progress with --quiet" run four-bar --dt 1e-2 --t-end 1 --progress --quiet
+check "refused plots leave no file" sh -c '[ ! -e x.svg ] && [ ! -e x.pdf ] && cmp -s four-bar.json "$1/data/four-bar.json"' sh "$TOP"
+"$BRAUN" plot andrews --dt 1e-4 --t-end 0.001 --plot 'q[0],v[0]' -o andrews.svg; rc=$?
+check "a system defined in C plots its coordinates q[i], v[i] against time" sh -c '
+    [ "$1" -eq 0 ] && grep -q ">q\[0\]<" andrews.svg && grep -q ">v\[0\]<" andrews.svg' sh "$rc"
+
+# ------------------------------------------------------------------ CSV and JSON people read
+"$BRAUN" run slider-crank --dt 0.05 --t-end 1 --out short.csv --summary short.json
+check "CSV: t = 0.1 is written 0.1 (not 0.10000000000000001), the header has units" sh -c '
+    [ "$(sed -n 4p short.csv | cut -d, -f1)" = 0.1 ] && [ "$(head -c 27 short.csv)" = "t [s],crank.x [m],crank.y [" ]'
+# Shortest round trip, checked with the C library's printf (awk's): each
+# number reads back as itself at its own digits and not at one digit less.
+check "CSV: every number is the shortest decimal that reads back as its double" \
+    awk -F, 'NR > 1 { for (i = 1; i <= NF; i++) { v = $i; if (v == "") continue
+                 d = v; sub(/e.*/, "", d); gsub(/[-.]/, "", d); sub(/^0+/, "", d); p = length(d); if (p == 0) p = 1
+                 x = v + 0
+                 if (sprintf("%.17g", sprintf("%." p "g", x) + 0) != sprintf("%.17g", x)) bad = 1
+                 if (p > 1 && sprintf("%.17g", sprintf("%." (p - 1) "g", x) + 0) == sprintf("%.17g", x)) bad = 1
+                 n++ } }
+             END { exit !(n > 300 && !bad) }' short.csv
+check "CSV: the built-in slider-crank names its columns as data/slider-crank.json does" sh -c '
+    "$1" run slider-crank.json --dt 0.05 --t-end 1 --out file.csv --summary /dev/null &&
+    [ "$(head -n 1 file.csv)" = "$(head -n 1 short.csv)" ]' sh "$BRAUN"
+check "JSON: dt 0.05, the effective rank_tol (10 max(m, n) eps = 1.33e-14) and energy_max_rel 0.01" sh -c '
+    grep -q "^  \"dt\": 0.05,$" short.json && grep -q "^  \"rank_tol\": 1.3322676295501878e-14,$" short.json &&
+    grep -q "^  \"energy_max_rel\": 0.01,$" short.json && grep -q "^  \"guard\": 0.001,$" short.json &&
+    grep -q "^  \"defaults\": \[\"rank_tol\", \"energy_max_rel\", \"symmetry_tol\", \"inconsistency_tol\", \"guard\", \"ref_h\"\]$" short.json'
+check "JSON: the guard's bounds are its relative value times the scales" \
+    awk -F': ' '/"guard": / { g = $2 + 0 } /"guard_position_bound"/ { b = $2 + 0 } /"guard_position_scale"/ { s = $2 + 0 }
+         END { exit !(g == 0.001 && s > 0 && (b - g * s) ^ 2 < 1e-30) }' short.json
+check "JSON: cpu_s says it excludes monitoring" grep -q '"cpu_s_note": "integration alone: a second run of the same steps without monitoring or output"' short.json
+
+# ------------------------------------------------------------------ progress and the summary line
+"$BRAUN" run four-bar --dt 1e-3 --t-end 20 --summary /dev/null --progress 2> prog.txt; rc=$?
+check "--progress writes progress to stderr when it is not a terminal" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^braun: four-bar: t = 20 of 20 s (100%), 20k steps, .* steps/s, 0 s left \[run 2 of 2: monitoring\]$" prog.txt &&
+    grep -q "\[run 1 of 2: timing, no monitoring\]$" prog.txt' sh "$rc"
+check "--progress: one summary line: status, steps, CPU time and what cpu_s means, errors, guard bounds" \
+    sh -c '[ "$(grep -c "^braun: four-bar: BRAUN_OK at t = 20 s, 20000 steps (rk4, h = 0.001), CPU .* s (cpu_s: the integration alone, timed in a run without monitoring; the monitored run took .* s); max |Phi_q| .*, |q - q_ref| .* (guard bounds .*)$" prog.txt)" -eq 1 ]'
+"$BRAUN" run four-bar --dt 1e-3 --t-end 2 --summary /dev/null 2> quiet.txt
+check "without a terminal nothing is written to stderr by default" [ ! -s quiet.txt ]
+if have script; then
+    script -qec "$BRAUN run four-bar --dt 1e-3 --t-end 5 --summary /dev/null" /dev/null > tty.txt 2>&1
+    check "on a terminal: the progress line is rewritten in place (CR, erase) and the summary line follows" sh -c '
+        grep -q "$(printf "\r")braun: four-bar: t = " tty.txt && grep -q "$(printf "\033")\[K" tty.txt &&
+        grep -q "braun: four-bar: BRAUN_OK at t = 5 s, 5000 steps" tty.txt'
+    script -qec "$BRAUN run four-bar --dt 1e-3 --t-end 5 --summary /dev/null --quiet" /dev/null > ttyq.txt 2>&1
+    check "on a terminal, --quiet: no progress and no summary line" sh -c '! grep -q "braun:" ttyq.txt'
+else
+    skip "progress on a terminal" "script (util-linux) not found"
+fi
+"$BRAUN" run pendulum --dt 1 --t-end 50 --progress --out pend.csv --summary pend.json 2> pend.txt; rc=$?
+check "a run the guard stops: the summary line says which state was refused and which kept" sh -c '
+    [ "$1" -eq 1 ] && grep -q "^braun: pendulum: BRAUN_ERR_ACCURACY at t = 1 s (that state refused; kept t = 0 s, the last that passed)" pend.txt' sh "$rc"
+check "... and the CSV ends at the state kept (t = 0), the JSON's final_t too" sh -c '
+    [ "$(tail -n 1 pend.csv | cut -d, -f1)" = 0 ] && grep -q "^  \"final_t\": 0,$" pend.json &&
+    grep -q "^  \"refused_state_t\": 1,$" pend.json'
+
+# ------------------------------------------------------------------ from anywhere
+mkdir elsewhere && cd elsewhere || exit 1
+"$BRAUN" run damped-motor.json --dt 1e-3 --t-end 1 --summary s.json; rc=$?
+check "a shipped scene runs by its name from any directory (damped-motor.json)" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^  \"scene\": \"damped-motor\",$" s.json' sh "$rc"
+"$BRAUN" plot sleigh --dt 1e-2 --t-end 2 -o sleigh.svg; rc=$?
+check "... and draws by its name without .json (sleigh)" sh -c '[ "$1" -eq 0 ] && [ -s sleigh.svg ]' sh "$rc"
+cd .. || exit 1
+
+echo "$passed passed, $failed failed, $skipped skipped"
+[ "$failed" -eq 0 ]
