@@ -117,8 +117,8 @@ int main(int argc, char **argv)
     FILE *md = md_path ? fopen(md_path, "w") : NULL;
     if (md) {
         fprintf(md, "| model | integrator | setting | status | t reached / end [s] | max ‖Φ_q‖ | bound | "
-                    "max ‖[Φ̇_q; Φ_v]‖ | bound | max \\|Φ_e\\| [J] | bound | steps | CPU [s] |\n");
-        fprintf(md, "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                    "max ‖[Φ̇_q; Φ_v]‖ | bound | max \\|Φ_e\\| [J] | bound | steps | CPU [s] | why it stopped |\n");
+        fprintf(md, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     }
     int passed = 0, failed = 0;
     static unsigned char buf[1 << 20];
@@ -185,10 +185,18 @@ int main(int argc, char **argv)
                    "|Phi_e| %.3g (%.3g), %ld steps, %.2f s%s%s\n",
                    ok ? "ok" : "not ok", subs[s].name, iname, setting, status, (double)d.t, w.pos, bp,
                    w.vel, bv, w.energy, be, d.stats.steps, secs, why[0] ? ": " : "", why);
+            /* a '|' would end the table cell */
+            char cell[600];
+            size_t c = 0;
+            for (const char *p = st == BRAUN_OK ? "" : why; *p && c + 3 < sizeof cell; p++) {
+                if (*p == '|') cell[c++] = '\\';
+                cell[c++] = *p;
+            }
+            cell[c] = 0;
             if (md)
-                fprintf(md, "| %s | %s | %s | %s | %.6g / %g | %.2g | %.2g | %.2g | %.2g | %.2g | %.2g | %ld | %.2f |\n",
+                fprintf(md, "| %s | %s | %s | %s | %.6g / %g | %.2g | %.2g | %.2g | %.2g | %.2g | %.2g | %ld | %.2f | %s |\n",
                         subs[s].name, iname, setting, status, (double)d.t, Ts, w.pos, bp, w.vel, bv, w.energy, be,
-                        d.stats.steps, secs);
+                        d.stats.steps, secs, cell);
             if (ok) passed++;
             else failed++;
             braun_data_release(&d);
