@@ -78,7 +78,7 @@ static const braun_scene_field circle_fields[] = {
 extern const braun_scene_joint_class toy_circle;
 const braun_scene_joint_class toy_circle = {"circle", "&toy_circle", 0, circle_fields,
                                             circle_defaults, circle_check, circle_rows,
-                                            NULL, circle_eval};
+                                            NULL, circle_eval, 0};
 
 /* ------------------------------------------------------------ scenes */
 /* A particle of 1 kg at angle phi0 from the downward vertical on a circle
@@ -97,9 +97,9 @@ static void make_pendulum(pendulum *p, const braun_scene_joint_class *cls, doubl
 {
     memset(p, 0, sizeof *p);
     p->bodies[0] = (braun_scene_body){BRAUN_BODY_PARTICLE, 1.0, 0.0,
-                                      {R * sin(phi0), -R * cos(phi0), 0}, {0, 0, 0}, 0};
-    p->points[0] = (braun_scene_point){0, 0.0, 0.0};
-    p->points[1] = (braun_scene_point){BRAUN_SCENE_GROUND, 0.0, 0.0};
+                                      {R * sin(phi0), -R * cos(phi0), 0}, {0, 0, 0}, 0, {0}, 0};
+    p->points[0] = (braun_scene_point){0, 0.0, 0.0, 0.0};
+    p->points[1] = (braun_scene_point){BRAUN_SCENE_GROUND, 0.0, 0.0, 0.0};
     /* The distance joint measures d = P_b - P_a: its a is the centre. */
     if (cls == &toy_circle) p->joints[0] = (braun_scene_joint){.type = cls, .a = 0, .b = 1, .value = R};
     else p->joints[0] = (braun_scene_joint){.type = cls, .a = 1, .b = 0, .value = R};
@@ -126,8 +126,8 @@ static void test_derivatives(void **state)
     }
     /* A point off the centre of a rigid body: J_P has a θ column and the
      * velocity product cc enters b_qv. */
-    p.bodies[0] = (braun_scene_body){BRAUN_BODY_RIGID, 2.0, 0.3, {0.4, -0.5, 0.7}, {0}, 0};
-    p.points[0] = (braun_scene_point){0, 0.3, -0.2};
+    p.bodies[0] = (braun_scene_body){BRAUN_BODY_RIGID, 2.0, 0.3, {0.4, -0.5, 0.7}, {0}, 0, {0}, 0};
+    p.points[0] = (braun_scene_point){0, 0.3, -0.2, 0};
     assert_int_equal(braun_scene_build(&p.s, &p.sys, NULL), BRAUN_OK);
     assert_int_equal(p.sys.n, 3);
     for (int trial = 0; trial < 3; trial++) {
@@ -192,8 +192,8 @@ static void test_sparse(void **state)
     (void)state;
     pendulum p;
     make_pendulum(&p, &toy_circle, 0.8, 0.3);
-    p.bodies[0] = (braun_scene_body){BRAUN_BODY_RIGID, 2.0, 0.3, {0.4, -0.5, 0.7}, {0.1, 0.2, 0.3}, 0};
-    p.points[0] = (braun_scene_point){0, 0.3, -0.2};
+    p.bodies[0] = (braun_scene_body){BRAUN_BODY_RIGID, 2.0, 0.3, {0.4, -0.5, 0.7}, {0.1, 0.2, 0.3}, 0, {0}, 0};
+    p.points[0] = (braun_scene_point){0, 0.3, -0.2, 0};
     assert_int_equal(braun_scene_build(&p.s, &p.sys, NULL), BRAUN_OK);
     void *buf = malloc(braun_scene_sparse_size(&p.s));
     braun_system sp;
@@ -232,7 +232,9 @@ static void test_scene_file(void **state)
                                                 err, sizeof err);
     assert_null(f);
     assert_string_equal(err, "circle.json:3:39: joint 'track': unknown joint type 'circle' "
-                             "(revolute, distance, slider, prismatic, angle, knife)");
+                             "(revolute, distance, slider, prismatic, angle, knife, spherical, "
+                             "revolute3d, prismatic3d, cylindrical, universal, weld, point_line, "
+                             "point_plane)");
     f = braun_scene_load_text_ex("circle.json", circle_text, strlen(circle_text), &extra, err,
                                  sizeof err);
     if (!f) fail_msg("%s", err);

@@ -1,6 +1,6 @@
 /*
- * libbraun scenes: planar mechanisms described as data, built into the
- * callbacks of braun_system (braun.h) with analytic derivatives.
+ * libbraun scenes: planar and spatial mechanisms described as data, built
+ * into the callbacks of braun_system (braun.h) with analytic derivatives.
  *
  * A scene is an immutable description — arrays of small structs for bodies,
  * points, rods, joints (holonomic ones and knife edges) and effects — plus a
@@ -17,8 +17,14 @@
  *   rod         none of its own: a uniform rod between two particles or
  *               ground points in natural coordinates; its kinetic energy
  *               (m/6)(|v_a|² + v_a·v_b + |v_b|²) adds blocks m/3, m/6 to M.
- * Every element class has a constant mass matrix, so a built scene always
- * sets BRAUN_MASS_CONSTANT.
+ *   rigid3d     x, y, z, e0, e1, e2, e3 (centre of mass, Euler parameters:
+ *               a unit quaternion, kept unit by one row of Φ_q of the body's
+ *               own); M(q) = diag(m I, 4GᵀJG + 4k ppᵀ) (docs/method.md,
+ *               "Spatial rigid bodies")
+ *   particle3d  x, y, z
+ * The planar classes have a constant mass matrix, so a planar scene sets
+ * BRAUN_MASS_CONSTANT; a scene with a body class whose mass depends on q
+ * (rigid3d) does not, and its forces carry the velocity-product terms.
  *
  * Only what a scene calls for is computed: no nonholonomic callback when it
  * has no knife edge (p = 0), no power callback (and no BRAUN_ENERGY_INPUT)
@@ -99,10 +105,10 @@ typedef struct braun_scene_joint_class braun_scene_joint_class;
 typedef struct braun_scene_effect_class braun_scene_effect_class;
 
 /* Most coordinates of one body (the size of braun_scene_body's q0, v0):
- * 3 for the planar rigid body. A spatial body class (12 natural
- * coordinates, or 7 with a quaternion) raises it; nothing else in the
- * builder, the reader or the generator depends on it. */
-#define BRAUN_SCENE_MAX_DOF 3
+ * 3 for the planar rigid body, 7 for rigid3d (a position and a
+ * quaternion), 12 for a body in natural coordinates (a point and three
+ * unit vectors: the class a program may define, as bench/spatial does). */
+#define BRAUN_SCENE_MAX_DOF 12
 
 /* Partials of a point with respect to its body's coordinates that a body
  * class may keep in braun_scene_pt.jac (room for 3 x 4). */
@@ -135,7 +141,13 @@ typedef struct braun_scene_effect_class braun_scene_effect_class;
  *   BRAUN_FIELD_FN          braun_scene_fn: a number (a constant) or a
  *                           function object
  *   BRAUN_FIELD_POINTS      bodies only: named points {"NAME": [x, y], ...}
- *                           in the body frame (count (2) coordinates each) */
+ *                           in the body frame (count coordinates each: 2
+ *                           planar, 3 spatial)
+ *   BRAUN_FIELD_JOINT       int: a joint by its name (an effect on a
+ *                           joint's axis: torsion3d, motor3d)
+ * A REAL field with BRAUN_FIELD_DIMVEC (count 3) is a vector of the
+ * scene's dimension: 2 entries in a planar scene (the third is 0), 3 in a
+ * spatial one (gravity's g). */
 typedef enum braun_scene_field_kind {
     BRAUN_FIELD_POINT = 1,
     BRAUN_FIELD_BODY = 2,
@@ -143,7 +155,8 @@ typedef enum braun_scene_field_kind {
     BRAUN_FIELD_OFFSET = 4,
     BRAUN_FIELD_REAL = 5,
     BRAUN_FIELD_FN = 6,
-    BRAUN_FIELD_POINTS = 7
+    BRAUN_FIELD_POINTS = 7,
+    BRAUN_FIELD_JOINT = 8
 } braun_scene_field_kind;
 
 /* Flags of a descriptor. */
@@ -154,6 +167,8 @@ typedef enum braun_scene_field_kind {
 #define BRAUN_FIELD_NONNEG 0x10u   /* REAL: every entry >= 0 */
 #define BRAUN_FIELD_NONZERO 0x20u  /* REAL: not 0 (count 1), not the zero vector */
 #define BRAUN_FIELD_SMOOTH 0x40u   /* FN: constant, linear or sine, not a step (a drive) */
+#define BRAUN_FIELD_DIMVEC 0x80u   /* REAL (count 3): 2 entries in a planar scene */
+#define BRAUN_FIELD_UNIT 0x100u    /* REAL vector: normalised on load (axes, directions) */
 
 typedef struct braun_scene_field {
     const char *key;      /* scene-file key; NULL ends the table */
@@ -174,8 +189,11 @@ typedef struct braun_scene_field {
  *   P' = J_P v,  P'' = J_P v' + cc,
  * with J_P = ∂P/∂q nonzero only at the body's columns col .. col + dof - 1.
  * A joint or effect reads pos, vel and cc and reaches J_P only through
- * braun_scene_pt_grad, so it works on any body class (planar or, later,
- * spatial). Planar classes leave the third entries 0. */
+ * braun_scene_pt_grad, so it works on any body class, planar or spatial.
+ * Planar classes leave the third entries 0. The same struct carries a
+ * body-fixed direction d (braun_scene_dir_eval: pos = R(q) d, no
+ * translation; `direction` set), which spatial joints and effects use for
+ * axes. */
 typedef struct braun_scene_pt {
     const braun_scene_body *body; /* its body, NULL on the ground (fixed) */
     int col;                      /* column of the body's first coordinate, -1 on the ground */
@@ -183,6 +201,7 @@ typedef struct braun_scene_pt {
     braun_real vel[3];            /* P' (0 when v was NULL) */
     braun_real cc[3];             /* velocity product of P'' (0 when v was NULL) */
     braun_real jac[BRAUN_SCENE_PT_PARTIALS]; /* the body class's partials, its own layout */
+    int direction;                /* 1: a body-fixed direction (grad skips the translation) */
 } braun_scene_pt;
 
 /* Point i of scene s at (q, v), both of n entries (v may be NULL). */
@@ -193,6 +212,19 @@ void braun_scene_pt_eval(const braun_scene *s, int i, const braun_real *q, const
  * g: world components, the first dim of them read). Nothing for a ground
  * point. */
 void braun_scene_pt_grad(const braun_scene_pt *P, const braun_real *g, braun_real *row);
+
+/* The body-fixed direction d (3 entries, body frame; world on the ground,
+ * body BRAUN_SCENE_GROUND) of body `body` at (q, v): pos = R(q) d, vel, cc
+ * and the partials, as for a point; braun_scene_pt_grad adds gᵀ ∂(Rd)/∂q.
+ * Only for bodies whose class has a direction hook (spatial bodies). */
+void braun_scene_dir_eval(const braun_scene *s, int body, const braun_real *d,
+                          const braun_real *q, const braun_real *v, braun_scene_pt *D);
+
+/* World position and velocity of point i of a built scene at (q, v)
+ * (pos, vel: 3 entries, z = 0 in a planar scene; v and vel may be NULL):
+ * what a reported point (docs/scene-format.md, "Reported points") holds. */
+void braun_scene_point_state(const braun_scene *s, int i, const braun_real *q,
+                             const braun_real *v, braun_real *pos, braun_real *vel);
 
 /* Angle θ and angular velocity ω of a body that has one (0 for the ground
  * or a body without angle; omega 0 when v is NULL); returns θ's column, or
@@ -212,12 +244,13 @@ braun_real braun_scene_initial_angle(const braun_scene *s, int body);
 /* A body class: its coordinates, mass block, kinetic energy, weight and
  * point kinematics. Every hook gets the body's own slice of q and v (dof
  * entries, starting at the body's iq) and writes only its own entries.
- *   mass     add the body's dof x dof mass block into M: entry (i, j) at
- *            M[i·ld + j], M pointing at the block's (0, 0).
- *            M must be constant (a scene sets BRAUN_MASS_CONSTANT); the
+ *   mass     add the body's constant dof x dof mass block into M: entry
+ *            (i, j) at M[i·ld + j], M pointing at the block's (0, 0). The
  *            sparse system hands the block out as it is (a zeroed block
- *            plus this hook), so it is also the sparsity's block.
+ *            plus this hook), so it is also the sparsity's block. NULL when
+ *            the class has mass_at.
  *   kinetic  T = ½ vᵀ M_b v; adds ∂T/∂v into dEdv (NULL: not wanted).
+ *            NULL when the class has kinetic_at.
  *   point    kinematics of point pt of the body: P has body and col set
  *            and vel, cc zeroed; write pos (all 3 entries: a planar class
  *            writes pos[2] = 0), when v is not NULL vel and cc, and
@@ -228,7 +261,29 @@ braun_real braun_scene_initial_angle(const braun_scene *s, int body);
  *   weight   uniform gravity g (world): Q[k] += (m gᵀ ∂r_c/∂q)_k.
  *   gravity_potential   -m g·r_c at q (the weight's potential).
  *   check    NULL or a static sentence on what is wrong with b (the builder
- *            has checked every number is finite and in range). */
+ *            has checked every number is finite and in range).
+ * Optional hooks (NULL for planar bodies; positional initialisers of older
+ * classes leave them NULL), for spatial bodies:
+ *   mass_at     the mass block at q, when it depends on q (Euler
+ *               parameters); then the scene does not set
+ *               BRAUN_MASS_CONSTANT.
+ *   kinetic_at  T(q, v); adds ∂T/∂q into dEdq and ∂T/∂v into dEdv (either
+ *               NULL: not wanted).
+ *   inertial    Q += the velocity-product (Coriolis, centrifugal,
+ *               gyroscopic) forces -Ṁv + ∂T/∂q of a q-dependent mass block.
+ *   rows, constraint   rows of Φ_q on the body's own coordinates (a unit
+ *               quaternion's |p|² - 1 = 0): phi[r], A row r at A + r·ld
+ *               (pointing at the body's first column; add into it), bv[r]
+ *               (b_q = 0: scleronomic); any output may be NULL.
+ *   direction   kinematics of the body-fixed direction d (body frame), as
+ *               point with the translation left out: P->direction is set.
+ *   omega       W (3 x dof, row-major): the world angular velocity is
+ *               ω = W v (torques: Q += Wᵀτ, power τ·ω).
+ *   initial     the body's coordinates and velocities from its q0 and v0
+ *               (which then describe the state: position, quaternion,
+ *               velocity, angular velocity); NULL: copied.
+ *   defaults    scene files: after the body's fields are read (a quaternion
+ *               normalised). */
 #define BRAUN_BODY_CLASS_POINT_MASS 0x01u /* a point mass whose coordinates are
                                            * its position: rods may end on it,
                                            * its points carry no offset */
@@ -251,29 +306,56 @@ struct braun_scene_body_class {
     void (*weight)(const braun_scene_body *b, const braun_real *g, braun_real *Q);
     braun_real (*gravity_potential)(const braun_scene_body *b, const braun_real *g,
                                     const braun_real *q);
+    /* Spatial bodies (optional, see above). */
+    void (*mass_at)(const braun_scene_body *b, const braun_real *q, braun_real *M, int ld);
+    braun_real (*kinetic_at)(const braun_scene_body *b, const braun_real *q, const braun_real *v,
+                             braun_real *dEdq, braun_real *dEdv);
+    void (*inertial)(const braun_scene_body *b, const braun_real *q, const braun_real *v,
+                     braun_real *Q);
+    int rows;
+    void (*constraint)(const braun_scene_body *b, const braun_real *q, const braun_real *v,
+                       braun_real *phi, braun_real *A, int ld, braun_real *bv);
+    void (*direction)(const braun_scene_body *b, const braun_real *d, const braun_real *q,
+                      const braun_real *v, braun_scene_pt *P);
+    void (*omega)(const braun_scene_body *b, const braun_real *q, braun_real *W);
+    void (*initial)(const braun_scene_body *b, braun_real *q, braun_real *v);
+    void (*defaults)(braun_scene_body *b, unsigned given);
 };
 
 extern const braun_scene_body_class braun_scene_body_rigid;    /* x, y, θ; M = diag(m, m, I) */
 extern const braun_scene_body_class braun_scene_body_particle; /* x, y; M = diag(m, m), m >= 0 */
+/* Spatial rigid body in Euler parameters: q = (x, y, z, e0, e1, e2, e3),
+ * one row |p|² - 1 = 0; q0 = (position, quaternion [w, x, y, z]), v0 =
+ * (velocity, world angular velocity), tensor = (I_xx, I_yy, I_zz, I_xy,
+ * I_xz, I_yz) about the centre of mass in the body frame. */
+extern const braun_scene_body_class braun_scene_body_rigid3d;
+/* Spatial point mass: x, y, z; M = diag(m, m, m), m >= 0. */
+extern const braun_scene_body_class braun_scene_body_particle3d;
 #define BRAUN_BODY_RIGID (&braun_scene_body_rigid)
 #define BRAUN_BODY_PARTICLE (&braun_scene_body_particle)
+#define BRAUN_BODY_RIGID3D (&braun_scene_body_rigid3d)
+#define BRAUN_BODY_PARTICLE3D (&braun_scene_body_particle3d)
 
 struct braun_scene_body {
     const braun_scene_body_class *kind;
     braun_real mass;      /* kg; > 0 for rigid bodies, >= 0 for particles */
     braun_real inertia;   /* kg m² about the centre of mass (rigid, > 0) */
-    braun_real q0[BRAUN_SCENE_MAX_DOF]; /* initial coordinates: x, y, θ (θ unused by particles) */
-    braun_real v0[BRAUN_SCENE_MAX_DOF]; /* initial velocity and angular velocity */
+    braun_real q0[BRAUN_SCENE_MAX_DOF]; /* initial coordinates: x, y, θ (θ unused by particles);
+                                          * rigid3d: x, y, z, then the quaternion w, x, y, z */
+    braun_real v0[BRAUN_SCENE_MAX_DOF]; /* initial velocity and angular velocity (rigid3d:
+                                          * vx, vy, vz, then ω in the world frame) */
     int iq;               /* set by braun_scene_build: index of its first coordinate in q */
+    braun_real tensor[6]; /* rigid3d: I_xx, I_yy, I_zz, I_xy, I_xz, I_yz (kg m², body frame,
+                           * about the centre of mass; I_xy = -∫xy dm) */
+    int row;              /* set by braun_scene_build: its first own row of Φ_q (class rows) */
 };
 
 /* A point: fixed on a rigid body (body frame), a particle itself, or fixed
- * on the ground (world frame). (Spatial bodies will add a z here, as they
- * widen q0 and v0: the classes' interface already carries 3 world
- * coordinates.) */
+ * on the ground (world frame). z is 0 in a planar scene. */
 struct braun_scene_point {
     int body;             /* body index or BRAUN_SCENE_GROUND */
     braun_real x, y;      /* body frame; world frame on the ground; 0 on a particle */
+    braun_real z;         /* spatial scenes */
 };
 
 /* Uniform rod between two points that are particles or on the ground;
@@ -331,6 +413,7 @@ struct braun_scene_joint_class {
     int (*eval)(const braun_scene *s, const braun_scene_joint *j, braun_real t,
                 const braun_real *q, const braun_real *v, braun_real *phi, braun_real *A,
                 braun_real *b, braun_real *bv);
+    int dim;                  /* scenes it belongs in: 2 planar, 3 spatial, 0 both */
 };
 
 /* a, b points: P_a - P_b = 0 (2 rows). */
@@ -361,15 +444,58 @@ extern const braun_scene_joint_class braun_scene_joint_knife;
 #define BRAUN_JOINT_ANGLE (&braun_scene_joint_angle)
 #define BRAUN_JOINT_KNIFE (&braun_scene_joint_knife)
 
+/* Spatial joints (docs/scene-format.md, "Spatial joints"). Directions are
+ * body-fixed unit vectors: axis in the frame of the first point's body,
+ * axis_b in the second's; ref_a ⊥ axis and ref_b ⊥ axis_b are reference
+ * directions that coincide in the initial configuration (scene files fill
+ * axis_b, ref_a, ref_b from the initial state; C scenes call
+ * braun_scene_defaults() or give them). With w = axis × ref on each body:
+ *   spherical    a, b: P_a - P_b = 0 (3)
+ *   revolute3d   spherical rows, ref_a·axis_b = 0, w_a·axis_b = 0 (5);
+ *                driven: cos f (w_a·ref_b) - sin f (ref_a·ref_b) = 0 (+1)
+ *   prismatic3d  a the point P, b the line point A: axis·ref_b = 0,
+ *                ref_a·w_b = 0, w_a·axis_b = 0 (orientation, 3), then
+ *                ref_a·(P - A) = 0, w_a·(P - A) = 0 (2); driven:
+ *                axis·(P - A) - f(t) = 0 (+1)
+ *   cylindrical  a the point P, b the line point A: ref_a·axis_b = 0,
+ *                w_a·axis_b = 0, ref_a·(P - A) = 0, w_a·(P - A) = 0 (4)
+ *   universal    spherical rows, axis·axis_b = 0 (4)
+ *   weld         spherical rows and the orientation rows (6)
+ *   point_line   a the point P, b the line point A: the last two
+ *                cylindrical rows (2)
+ *   point_plane  a the point P, b the plane point A: axis·(P - A) = 0 (1)
+ * Here "axis" and "ref_a" are on the body of point b (the line's, the
+ * plane's) for prismatic3d, cylindrical, point_line and point_plane, as
+ * the planar slider has its line on b. */
+extern const braun_scene_joint_class braun_scene_joint_spherical;
+extern const braun_scene_joint_class braun_scene_joint_revolute3d;
+extern const braun_scene_joint_class braun_scene_joint_prismatic3d;
+extern const braun_scene_joint_class braun_scene_joint_cylindrical;
+extern const braun_scene_joint_class braun_scene_joint_universal;
+extern const braun_scene_joint_class braun_scene_joint_weld;
+extern const braun_scene_joint_class braun_scene_joint_point_line;
+extern const braun_scene_joint_class braun_scene_joint_point_plane;
+#define BRAUN_JOINT_SPHERICAL (&braun_scene_joint_spherical)
+#define BRAUN_JOINT_REVOLUTE3D (&braun_scene_joint_revolute3d)
+#define BRAUN_JOINT_PRISMATIC3D (&braun_scene_joint_prismatic3d)
+#define BRAUN_JOINT_CYLINDRICAL (&braun_scene_joint_cylindrical)
+#define BRAUN_JOINT_UNIVERSAL (&braun_scene_joint_universal)
+#define BRAUN_JOINT_WELD (&braun_scene_joint_weld)
+#define BRAUN_JOINT_POINT_LINE (&braun_scene_joint_point_line)
+#define BRAUN_JOINT_POINT_PLANE (&braun_scene_joint_point_plane)
+
 struct braun_scene_joint {
     const braun_scene_joint_class *type;
     int a, b;             /* points, or bodies (angle joints), as the class says */
-    braun_real axis[2];   /* slider, prismatic: line direction; knife: blade (non-zero) */
+    braun_real axis[3];   /* slider, prismatic: line direction; knife: blade (non-zero);
+                           * spatial joints: the axis (a unit vector) */
     braun_real value;     /* length, or angle offset; unused when driven (distance, angle) */
     int driven;           /* 1: follows drive (rheonomic) */
     braun_scene_fn drive; /* constant, linear or sine */
     int row;              /* set by braun_scene_build: its first row (of Φ_q, or of Φ_v
                            * for a nonholonomic joint) */
+    braun_real axis_b[3]; /* spatial joints: unit vectors in the bodies' frames (above) */
+    braun_real ref_a[3], ref_b[3];
 };
 
 /* ------------------------------------------------------------- effects */
@@ -400,9 +526,11 @@ struct braun_scene_effect_class {
     int (*power)(const braun_scene *s, const braun_scene_effect *e, braun_real t,
                  const braun_real *q, const braun_real *v, braun_real *P);
     int (*inputs)(const braun_scene_effect *e);
+    int dim;                  /* scenes it belongs in: 2 planar, 3 spatial, 0 both */
 };
 
-/* g[2]: uniform gravity on every mass (potential energy; at most one). */
+/* g: uniform gravity on every mass (potential energy; at most one); g[2]
+ * is 0 in a planar scene. */
 extern const braun_scene_effect_class braun_scene_effect_gravity;
 /* a, b points; k, c, rest: linear spring k (N/m, potential) and damper c
  * (N s/m, dissipates) along P_b - P_a. */
@@ -410,7 +538,8 @@ extern const braun_scene_effect_class braun_scene_effect_spring;
 /* a, b bodies; k, c, rest: rotational spring (N m/rad) and damper
  * (N m s/rad) on θ_b - θ_a. */
 extern const braun_scene_effect_class braun_scene_effect_torsion;
-/* a point; f[0], f[1]: world force components (N) as functions of t. */
+/* a point; f[0], f[1], f[2]: world force components (N) as functions of
+ * t (f[2] = 0 in a planar scene). */
 extern const braun_scene_effect_class braun_scene_effect_force;
 /* a body, b reaction body or ground; f[0]: torque (N m) on a, -f on b. */
 extern const braun_scene_effect_class braun_scene_effect_torque;
@@ -424,13 +553,32 @@ extern const braun_scene_effect_class braun_scene_effect_motor;
 #define BRAUN_EFFECT_TORQUE (&braun_scene_effect_torque)
 #define BRAUN_EFFECT_MOTOR (&braun_scene_effect_motor)
 
+/* Spatial effects. body_force: a point, f[0..2] its components in the
+ * frame of the point's body. torque3d, body_torque: a body, b reaction
+ * body or ground, f[0..2] the torque's world (torque3d) or body-frame
+ * (body_torque) components; τ on a, -τ on b. torsion3d: a the index of a
+ * revolute3d or cylindrical joint; k, c, rest on its angle θ (0 in the
+ * initial configuration, taken within π of rest). motor3d: a the joint;
+ * τ = tau0 (1 - θ'/omega0) about its axis on the body of its point b,
+ * -τ on that of a. */
+extern const braun_scene_effect_class braun_scene_effect_body_force;
+extern const braun_scene_effect_class braun_scene_effect_torque3d;
+extern const braun_scene_effect_class braun_scene_effect_body_torque;
+extern const braun_scene_effect_class braun_scene_effect_torsion3d;
+extern const braun_scene_effect_class braun_scene_effect_motor3d;
+#define BRAUN_EFFECT_BODY_FORCE (&braun_scene_effect_body_force)
+#define BRAUN_EFFECT_TORQUE3D (&braun_scene_effect_torque3d)
+#define BRAUN_EFFECT_BODY_TORQUE (&braun_scene_effect_body_torque)
+#define BRAUN_EFFECT_TORSION3D (&braun_scene_effect_torsion3d)
+#define BRAUN_EFFECT_MOTOR3D (&braun_scene_effect_motor3d)
+
 struct braun_scene_effect {
     const braun_scene_effect_class *type;
     int a, b;             /* points or bodies, as the class says */
-    braun_real g[2];      /* gravity */
+    braun_real g[3];      /* gravity */
     braun_real k, c, rest;/* springs and dampers */
     braun_real tau0, omega0; /* motor: stall torque (N m), no-load speed (rad/s, != 0) */
-    braun_scene_fn f[2];  /* force components, or torque in f[0] */
+    braun_scene_fn f[3];  /* force or torque components (planar torque: f[0]) */
 };
 
 /* The built-in classes, each list ended by NULL, in the order the scene
@@ -459,7 +607,7 @@ extern const braun_scene_effect_class *const braun_scene_effect_classes[];
  *        BRAUN_FIELD_REQUIRED | BRAUN_FIELD_POSITIVE, NULL},
  *       {NULL, 0, 0, 0, 0, NULL}};
  *   const braun_scene_joint_class toy = {"toy", "&toy", 0, toy_fields, NULL, NULL,
- *                                        toy_rows, NULL, toy_eval};
+ *                                        toy_rows, NULL, toy_eval, 0};
  * then {.type = &toy, .a = 3, .value = 0.5} in a scene's joints. */
 
 /* ------------------------------------------------------------------ */
@@ -477,6 +625,7 @@ struct braun_scene {
     int n, m, p;          /* coordinates, holonomic rows, nonholonomic rows */
     int driven;           /* number of driven joints (then BRAUN_CONSTRAINT_WORK) */
     int energy_input;     /* an effect puts energy in or takes it out */
+    int dim;              /* 2: planar bodies, 3: spatial bodies */
 };
 
 /* What braun_scene_build found wrong (element and index, static text). */
@@ -497,16 +646,20 @@ typedef struct braun_scene_error {
 } braun_scene_error;
 
 /* Validate the description, number the coordinates (bodies in order, each
- * its class's dof: 3 for a rigid body, 2 for a particle) and the rows (of
- * Φ_q: rods, then holonomic joints in order; of Φ_v: nonholonomic joints
- * — knife edges — in order), and fill sys with the scene's callbacks
+ * its class's dof: 3 for a rigid body, 2 for a particle, 7 for rigid3d)
+ * and the rows (of Φ_q: rods, then holonomic joints in order, then the
+ * bodies' own rows (a rigid3d's unit quaternion) in body order; of Φ_v:
+ * nonholonomic joints — knife edges — in order), and fill sys with the
+ * scene's callbacks
  * (sys->user = s: the scene must outlive the system). Rejects dangling
  * indices, non-finite or out-of-range numbers (|x| > BRAUN_SCENE_MAX_ABS),
  * non-positive masses, inertias and lengths, a coordinate without mass,
  * rods ending on rigid bodies, joints of a body with itself, zero axes,
- * step drives and more than one gravity; a NULL class or a class without
- * its required hooks (joints: rows, eval; bodies: mass, kinetic, point,
- * grad, weight, gravity_potential). err may be NULL.
+ * step drives and more than one gravity; planar and spatial bodies in one
+ * scene, an element of the other dimension, a point of a planar scene off
+ * z = 0; a NULL class or a class without its required hooks (joints:
+ * rows, eval; bodies: mass or mass_at, kinetic or kinetic_at, point, grad,
+ * weight, gravity_potential, constraint when rows > 0). err may be NULL.
  * Sizes: a scene with rods has at most BRAUN_MAX_DENSE (4096) coordinates
  * and rows; one without rods up to BRAUN_MAX_SPARSE (2^20), since it can be
  * handed out sparse (below) — braun_model_init refuses the dense system of
@@ -514,6 +667,17 @@ typedef struct braun_scene_error {
  * Returns BRAUN_OK, BRAUN_ERR_ARGUMENT (bad description) or BRAUN_ERR_SIZE
  * (no coordinates, or more than those bounds). */
 int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err);
+
+/* For C scenes: the values a scene file leaves to the initial state, filled
+ * in where the description holds 0 — every joint and effect class's
+ * defaults hook called with the fields that are non-zero as "given" (a
+ * distance of length 0 gets the initial distance, a spatial joint its
+ * axis_b and reference directions, a spring of rest length 0 its initial
+ * length; axes normalised). Call it once before braun_scene_build; a
+ * scene file has had it done by its reader. Returns BRAUN_OK, or
+ * BRAUN_ERR_ARGUMENT when a reference is out of range (nothing changed
+ * then). */
+int braun_scene_defaults(braun_scene *s);
 
 /* ------------------------------------------------------------------ */
 /* Sparse systems (large mechanisms)                                   */

@@ -43,6 +43,12 @@ typedef struct braun_scene_file {
     /* Names of the elements, for messages (same order as the arrays; NULL
      * for an element without "name"). Knife edges are joints. */
     const char **body_names, **joint_names, **effect_names;
+    /* Reported points ("report", docs/scene-format.md): nreports names
+     * and the scene's point each names (braun_scene_point_state gives its
+     * position and velocity at a state). */
+    int nreports;
+    const char **report_names;
+    int *report_points;
 } braun_scene_file;
 
 /* Classes a program adds to the built-in ones (braun_scene.h) for the

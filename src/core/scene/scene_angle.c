@@ -68,4 +68,4 @@ static const braun_scene_field angle_fields[] = {
 
 const braun_scene_joint_class braun_scene_joint_angle = {
     "angle", "BRAUN_JOINT_ANGLE", 0, angle_fields, angle_defaults, angle_check, angle_rows, NULL,
-    angle_eval};
+    angle_eval, 2};

@@ -2,10 +2,11 @@
  * rows, and hands out the callbacks it needs — and no others (docs/method.md
  * "What a step costs"): no nonholonomic callback without nonholonomic
  * joints (knife edges), no power callback without an effect that puts
- * energy in or out (dampers, forces, torques, motors), and always a
- * constant mass matrix. It knows no element type: every check beyond the
- * numbers and references, every row count and every callback goes through
- * the element's class (braun_scene.h). */
+ * energy in or out (dampers, forces, torques, motors), and a constant mass
+ * matrix unless a body class's mass depends on q (rigid3d). It knows no
+ * element type: every check beyond the numbers and references, every row
+ * count and every callback goes through the element's class
+ * (braun_scene.h). A scene is planar or spatial as a whole (s->dim). */
 #include "scene_internal.h"
 
 /* braun_model_init's bound on n, m, p: a scene with rods is always dense;
@@ -55,6 +56,7 @@ static const char *check_refs(const braun_scene *s, const braun_scene_field *f, 
             !braun_scene__ok_point_ref(s, x))
             return msg[0];
         if (f->kind == BRAUN_FIELD_BODY && !braun_scene__ok_body_ref(s, x)) return msg[1];
+        if (f->kind == BRAUN_FIELD_JOINT && !(x >= 0 && x < s->njoints)) return msg[4];
     }
     return NULL;
 }
@@ -79,11 +81,23 @@ static const char *check_ref_flags(const braun_scene *s, const braun_scene_field
 
 static const char *const joint_msgs[] = {
     "joint refers to an unknown point", "joint refers to an unknown body",
-    "a body of the joint cannot be the ground", "a body of the joint must be rigid (have an angle)"};
+    "a body of the joint cannot be the ground", "a body of the joint must be rigid (have an angle)",
+    "joint refers to an unknown joint"};
 static const char *const effect_msgs[] = {
     "effect refers to an unknown point", "effect refers to an unknown body",
     "a body of the effect cannot be the ground",
-    "a body of the effect must be rigid (have an angle)"};
+    "a body of the effect must be rigid (have an angle)", "effect refers to an unknown joint"};
+
+/* An element class of the other dimension than the scene's (0: any). */
+static const char *dim_msg(const braun_scene *s, int dim, const char *kind)
+{
+    if (dim == 0 || dim == s->dim) return NULL;
+    if (kind[0] == 'j')
+        return dim == 2 ? "a planar joint in a spatial scene (use its spatial counterpart)"
+                        : "a spatial joint in a planar scene";
+    return dim == 2 ? "a planar effect in a spatial scene (use its spatial counterpart)"
+                    : "a spatial effect in a planar scene";
+}
 
 static int check_bodies(const braun_scene *s, braun_scene_error *err)
 {
@@ -92,11 +106,17 @@ static int check_bodies(const braun_scene *s, braun_scene_error *err)
         const braun_scene_body_class *c = b->kind;
         const int E = BRAUN_SCENE_ELEM_BODY, A = BRAUN_ERR_ARGUMENT;
         if (!c) return braun_scene__fail(err, A, E, k, "unknown body kind");
-        if (!c->mass || !c->kinetic || !c->point || !c->grad || !c->weight ||
-            !c->gravity_potential || c->dof < 1 || c->dof > BRAUN_SCENE_MAX_DOF ||
-            (c->dim != 2 && c->dim != 3) || c->angle >= c->dof)
+        if (!(c->mass || c->mass_at) || !(c->kinetic || c->kinetic_at) || !c->point ||
+            !c->grad || !c->weight || !c->gravity_potential || c->dof < 1 ||
+            c->dof > BRAUN_SCENE_MAX_DOF || (c->dim != 2 && c->dim != 3) || c->angle >= c->dof ||
+            c->rows < 0 || (c->rows > 0 && !c->constraint) || (c->dim == 2 && c->rows > 0))
             return braun_scene__fail(err, A, E, k, "body class without its hooks or sizes");
-        if (!ok_num(b->mass) || !ok_num(b->inertia))
+        if (c->dim != s->dim)
+            return braun_scene__fail(err, A, E, k, "planar and spatial bodies in one scene (a scene "
+                                                   "is planar or spatial as a whole)");
+        int finite = ok_num(b->mass) && ok_num(b->inertia);
+        for (int i = 0; i < 6; i++) finite = finite && ok_num(b->tensor[i]);
+        if (!finite)
             return braun_scene__fail(err, A, E, k, "mass or inertia is not a finite number in range");
         for (int i = 0; i < BRAUN_SCENE_MAX_DOF; i++)
             if (!ok_num(b->q0[i]) || !ok_num(b->v0[i]))
@@ -114,11 +134,13 @@ static int check_points(const braun_scene *s, braun_scene_error *err)
         const int E = BRAUN_SCENE_ELEM_POINT, A = BRAUN_ERR_ARGUMENT;
         if (!braun_scene__ok_body_ref(s, p->body))
             return braun_scene__fail(err, A, E, k, "point on an unknown body");
-        if (!ok_num(p->x) || !ok_num(p->y))
+        if (!ok_num(p->x) || !ok_num(p->y) || !ok_num(p->z))
             return braun_scene__fail(err, A, E, k, "point coordinates are not finite numbers in range");
+        if (s->dim == 2 && p->z != 0)
+            return braun_scene__fail(err, A, E, k, "a point of a planar scene has z = 0");
         if (p->body < 0) continue;
         const braun_scene_body_class *c = s->bodies[p->body].kind;
-        if ((c->flags & BRAUN_BODY_CLASS_POINT_MASS) && (p->x != 0 || p->y != 0))
+        if ((c->flags & BRAUN_BODY_CLASS_POINT_MASS) && (p->x != 0 || p->y != 0 || p->z != 0))
             return braun_scene__fail(err, A, E, k, "a point of a particle has no offset");
     }
     return BRAUN_OK;
@@ -135,6 +157,7 @@ static int check_rods(const braun_scene *s, braun_scene_error *err)
     for (int k = 0; k < s->nrods; k++) {
         const braun_scene_rod *r = &s->rods[k];
         const int E = BRAUN_SCENE_ELEM_ROD, A = BRAUN_ERR_ARGUMENT;
+        if (s->dim != 2) return braun_scene__fail(err, A, E, k, "rods are planar only");
         if (!braun_scene__ok_point_ref(s, r->a) || !braun_scene__ok_point_ref(s, r->b))
             return braun_scene__fail(err, A, E, k, "rod end is not a point of the scene");
         const int ba = braun_scene__body_of(s, r->a), bb = braun_scene__body_of(s, r->b);
@@ -158,9 +181,14 @@ static int check_joint(const braun_scene *s, int k, braun_scene_error *err)
     const int E = BRAUN_SCENE_ELEM_JOINT, A = BRAUN_ERR_ARGUMENT;
     if (!c) return braun_scene__fail(err, A, E, k, "unknown joint type");
     if (!c->rows || !c->eval) return braun_scene__fail(err, A, E, k, "joint class without rows or eval");
-    if (!ok_num(j->value) || !ok_num(j->axis[0]) || !ok_num(j->axis[1]))
+    int finite = ok_num(j->value);
+    for (int i = 0; i < 3; i++)
+        finite = finite && ok_num(j->axis[i]) && ok_num(j->axis_b[i]) && ok_num(j->ref_a[i]) &&
+                 ok_num(j->ref_b[i]);
+    if (!finite)
         return braun_scene__fail(err, A, E, k, "joint parameters are not finite numbers in range");
-    const char *why = check_refs(s, c->fields, j, joint_msgs);
+    const char *why = dim_msg(s, c->dim, "joint");
+    if (!why) why = check_refs(s, c->fields, j, joint_msgs);
     if (!why && c->check) why = c->check(s, j);
     if (why) return braun_scene__fail(err, A, E, k, why);
     if (j->driven) {
@@ -182,11 +210,12 @@ static int check_effects(braun_scene *s, braun_scene_error *err)
         const braun_scene_effect_class *c = e->type;
         const int E = BRAUN_SCENE_ELEM_EFFECT, A = BRAUN_ERR_ARGUMENT;
         if (!c) return braun_scene__fail(err, A, E, k, "unknown effect type");
-        if (!ok_num(e->g[0]) || !ok_num(e->g[1]) || !ok_num(e->k) || !ok_num(e->c) ||
-            !ok_num(e->rest) || !ok_num(e->tau0) || !ok_num(e->omega0) || !ok_fn(&e->f[0]) ||
-            !ok_fn(&e->f[1]))
+        if (!ok_num(e->g[0]) || !ok_num(e->g[1]) || !ok_num(e->g[2]) || !ok_num(e->k) ||
+            !ok_num(e->c) || !ok_num(e->rest) || !ok_num(e->tau0) || !ok_num(e->omega0) ||
+            !ok_fn(&e->f[0]) || !ok_fn(&e->f[1]) || !ok_fn(&e->f[2]))
             return braun_scene__fail(err, A, E, k, "effect parameters are not finite numbers in range");
-        const char *why = check_refs(s, c->fields, e, effect_msgs);
+        const char *why = dim_msg(s, c->dim, "effect");
+        if (!why) why = check_refs(s, c->fields, e, effect_msgs);
         if (!why && c->check) why = c->check(s, e);
         if (!why) why = check_ref_flags(s, c->fields, e, effect_msgs);
         if (why) return braun_scene__fail(err, A, E, k, why);
@@ -195,19 +224,24 @@ static int check_effects(braun_scene *s, braun_scene_error *err)
     return BRAUN_OK;
 }
 
-/* Every coordinate must carry mass, or M is singular. */
-static int check_masses(const braun_scene *s, braun_scene_error *err)
+/* Every coordinate must carry mass, or M is singular. One pass over the
+ * rods marks the bodies a rod with mass ends on (in the bodies' iq, which
+ * the numbering below overwrites), one over the bodies asks. */
+static int check_masses(braun_scene *s, braun_scene_error *err)
 {
+    for (int k = 0; k < s->nbodies; k++) s->bodies[k].iq = 0;
+    for (int r = 0; r < s->nrods; r++) {
+        if (!(s->rods[r].mass > 0)) continue;
+        const int ends[2] = {braun_scene__body_of(s, s->rods[r].a),
+                             braun_scene__body_of(s, s->rods[r].b)};
+        for (int e = 0; e < 2; e++)
+            if (ends[e] >= 0) s->bodies[ends[e]].iq = 1;
+    }
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *b = &s->bodies[k];
-        if (b->mass > 0) continue;
-        int carried = 0;
-        for (int r = 0; r < s->nrods && !carried; r++)
-            carried = s->rods[r].mass > 0 && (braun_scene__body_of(s, s->rods[r].a) == k ||
-                                              braun_scene__body_of(s, s->rods[r].b) == k);
-        if (!carried)
-            return braun_scene__fail(err, BRAUN_ERR_ARGUMENT, BRAUN_SCENE_ELEM_BODY, k,
-                        "particle has no mass (none of its own and no rod with mass at it)");
+        if (b->mass > 0 || b->iq) continue;
+        return braun_scene__fail(err, BRAUN_ERR_ARGUMENT, BRAUN_SCENE_ELEM_BODY, k,
+                                 "particle has no mass (none of its own and no rod with mass at it)");
     }
     return BRAUN_OK;
 }
@@ -237,6 +271,9 @@ int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err)
     if ((s->nbodies && !s->bodies) || (s->npoints && !s->points) || (s->nrods && !s->rods) ||
         (s->njoints && !s->joints) || (s->neffects && !s->effects))
         return braun_scene__fail(err, A, S, -1, "element array missing");
+    /* The scene's dimension is its first body's (check_bodies asks the
+     * others to agree). */
+    s->dim = s->nbodies > 0 && s->bodies[0].kind && s->bodies[0].kind->dim == 3 ? 3 : 2;
     int st = check_bodies(s, err);
     if (!st) st = check_points(s, err);
     if (!st) st = check_rods(s, err);
@@ -264,6 +301,10 @@ int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err)
         *rows += j->type->rows(j);
         s->driven += j->driven != 0;
     }
+    for (int k = 0; k < s->nbodies && m <= max; k++) {
+        s->bodies[k].row = (int)m;
+        m += s->bodies[k].kind->rows;
+    }
     if (n > max || m > max || p > max)
         return braun_scene__fail(err, BRAUN_ERR_SIZE, S, -1,
                     s->nrods > 0 ? "more than 4096 coordinates or rows (a scene with rods is "
@@ -284,8 +325,10 @@ void braun_scene__system(braun_scene *s, braun_system *sys)
     /* Driven joints do work through their ideal constraint forces, which the
      * core adds to Ė unless a system is scleronomic: a scene without drives
      * says so (the core then skips that work and checks b_q = 0). */
-    sys->flags = BRAUN_MASS_CONSTANT | (s->energy_input ? BRAUN_ENERGY_INPUT : 0u) |
-                 (s->driven ? 0u : BRAUN_SCLERONOMIC);
+    int constant = 1;
+    for (int k = 0; k < s->nbodies && constant; k++) constant = s->bodies[k].kind->mass_at == NULL;
+    sys->flags = (constant ? BRAUN_MASS_CONSTANT : 0u) |
+                 (s->energy_input ? BRAUN_ENERGY_INPUT : 0u) | (s->driven ? 0u : BRAUN_SCLERONOMIC);
     sys->mass = braun_scene__mass;
     sys->forces = braun_scene__forces;
     sys->holonomic = s->m > 0 ? braun_scene__holonomic : NULL;
@@ -300,6 +343,10 @@ void braun_scene_initial_state(const braun_scene *s, braun_real *q, braun_real *
 {
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *b = &s->bodies[k];
+        if (b->kind->initial) {
+            b->kind->initial(b, q + b->iq, v + b->iq);
+            continue;
+        }
         const int dim = b->kind->dof;
         for (int i = 0; i < dim; i++) {
             q[b->iq + i] = b->q0[i];

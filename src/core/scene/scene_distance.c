@@ -38,17 +38,25 @@ static int distance_eval(const braun_scene *s, const braun_scene_joint *j, braun
     if (j->driven) braun_scene_fn_eval(&j->drive, t, &L, &dL, &ddL);
     braun_scene__point(s, j->a, q, v, &Pa);
     braun_scene__point(s, j->b, q, v, &Pb);
-    const braun_real dx = Pb.pos[0] - Pa.pos[0], dy = Pb.pos[1] - Pa.pos[1];
-    if (phi) phi[0] = dx * dx + dy * dy - L * L;
+    /* In a planar scene the z terms are exact zeros: the sums are those of
+     * the planar rows, bit for bit. */
+    const braun_real dx = Pb.pos[0] - Pa.pos[0], dy = Pb.pos[1] - Pa.pos[1],
+                     dz = Pb.pos[2] - Pa.pos[2];
+    if (phi) phi[0] = dx * dx + dy * dy + dz * dz - L * L;
     if (A) {
-        braun_scene__add_grad(&Pb, BRAUN_R(2.0) * dx, BRAUN_R(2.0) * dy, A);
-        braun_scene__add_grad(&Pa, BRAUN_R(-2.0) * dx, BRAUN_R(-2.0) * dy, A);
+        const braun_real gb[3] = {BRAUN_R(2.0) * dx, BRAUN_R(2.0) * dy, BRAUN_R(2.0) * dz};
+        const braun_real ga[3] = {-gb[0], -gb[1], -gb[2]};
+        braun_scene_pt_grad(&Pb, gb, A);
+        braun_scene_pt_grad(&Pa, ga, A);
     }
     if (b) b[0] = BRAUN_R(2.0) * L * dL;
     if (bv) {
-        const braun_real ux = Pb.vel[0] - Pa.vel[0], uy = Pb.vel[1] - Pa.vel[1];
-        const braun_real cx = Pb.cc[0] - Pa.cc[0], cy = Pb.cc[1] - Pa.cc[1];
-        bv[0] = BRAUN_R(-2.0) * (ux * ux + uy * uy) - BRAUN_R(2.0) * (dx * cx + dy * cy);
+        const braun_real ux = Pb.vel[0] - Pa.vel[0], uy = Pb.vel[1] - Pa.vel[1],
+                         uz = Pb.vel[2] - Pa.vel[2];
+        const braun_real cx = Pb.cc[0] - Pa.cc[0], cy = Pb.cc[1] - Pa.cc[1],
+                         cz = Pb.cc[2] - Pa.cc[2];
+        bv[0] = BRAUN_R(-2.0) * (ux * ux + uy * uy + uz * uz) -
+                BRAUN_R(2.0) * (dx * cx + dy * cy + dz * cz);
         if (j->driven) bv[0] += BRAUN_R(2.0) * (dL * dL + L * ddL);
     }
     return 0;
@@ -65,4 +73,4 @@ static const braun_scene_field distance_fields[] = {
 
 const braun_scene_joint_class braun_scene_joint_distance = {
     "distance", "BRAUN_JOINT_DISTANCE", 0, distance_fields, distance_defaults, distance_check,
-    distance_rows, NULL, distance_eval};
+    distance_rows, NULL, distance_eval, 0};

@@ -19,7 +19,7 @@ static void add_end(const braun_scene *s, int point, braun_real w, const braun_r
 static void weigh(const braun_scene *s, const braun_scene_effect *e, braun_real sign,
                   braun_real *Q)
 {
-    const braun_real g[2] = {sign * e->g[0], sign * e->g[1]};
+    const braun_real g[3] = {sign * e->g[0], sign * e->g[1], sign * e->g[2]};
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *bd = &s->bodies[k];
         bd->kind->weight(bd, g, Q + bd->iq);
@@ -72,13 +72,15 @@ static const char *gravity_check(const braun_scene *s, const braun_scene_effect 
 {
     for (const braun_scene_effect *o = s->effects; o < e; o++)
         if (o->type == e->type) return "more than one gravity";
+    if (s->dim == 2 && e->g[2] != 0) return "gravity in a planar scene has no z component";
     return NULL;
 }
 
 static const braun_scene_field gravity_fields[] = {
-    {"g", BRAUN_FIELD_REAL, 2, offsetof(braun_scene_effect, g), BRAUN_FIELD_REQUIRED, NULL},
+    {"g", BRAUN_FIELD_REAL, 3, offsetof(braun_scene_effect, g),
+     BRAUN_FIELD_REQUIRED | BRAUN_FIELD_DIMVEC, NULL},
     {NULL, 0, 0, 0, 0, NULL}};
 
 const braun_scene_effect_class braun_scene_effect_gravity = {
     "gravity", "BRAUN_EFFECT_GRAVITY", gravity_fields, NULL, gravity_check, gravity_forces,
-    gravity_potential, NULL, NULL};
+    gravity_potential, NULL, NULL, 0};

@@ -18,9 +18,13 @@
 
 #ifdef BRAUN_SINGLE
 #define braun_scene__hypot hypotf
+#define braun_scene__atan2 atan2f
 #else
 #define braun_scene__hypot hypot
+#define braun_scene__atan2 atan2
 #endif
+
+#define BRAUN_SCENE__PI BRAUN_R(3.14159265358979323846)
 
 /* Internal spelling of the public point kinematics (scene_point.c). */
 typedef braun_scene_pt scene_pt;
@@ -98,6 +102,108 @@ static inline braun_real braun_scene__gravity_potential_xy(const braun_scene_bod
 {
     return -(b->mass * (g[0] * q[0] + g[1] * q[1]));
 }
+
+/* ------------------------------------------------------ 3-vectors */
+static inline braun_real braun_scene__dot3(const braun_real *a, const braun_real *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void braun_scene__cross3(const braun_real *a, const braun_real *b, braun_real *c)
+{
+    const braun_real x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2],
+                     z = a[0] * b[1] - a[1] * b[0];
+    c[0] = x;
+    c[1] = y;
+    c[2] = z;
+}
+
+/* x / |x| in place; returns |x| (0: left as it is). */
+static inline braun_real braun_scene__normalize3(braun_real *x)
+{
+    const braun_real n = braun_sqrt(braun_scene__dot3(x, x));
+    if (n > 0)
+        for (int k = 0; k < 3; k++) x[k] /= n;
+    return n;
+}
+
+/* A body with the class hooks spatial joints need for axes (a direction
+ * hook), or the ground. */
+static inline int braun_scene__has_frame(const braun_scene *s, int body)
+{
+    return body < 0 || (body < s->nbodies && s->bodies[body].kind->direction != NULL);
+}
+
+/* ----------------------------------------------- spatial rows (scene_frames.c) */
+/* A world vector x(q) that a spatial row is built from: a point P1, the
+ * difference P1 - P2 of two points, or a body-fixed direction (P1 from
+ * braun_scene_dir_eval); x, x' and the velocity product cc of x''. */
+typedef struct scene_vec {
+    const scene_pt *p1, *p2; /* p2 NULL: x = p1 */
+    braun_real x[3], dx[3], cc[3];
+} scene_vec;
+
+void braun_scene__vec(scene_vec *x, const scene_pt *p1, const scene_pt *p2);
+/* row += scale · gᵀ ∂x/∂q */
+void braun_scene__vec_grad(const scene_vec *x, const braun_real *g, braun_real scale,
+                           braun_real *row);
+/* Φ = x·y - f(t): phi, A (added), b = f', bv = -(cc_x·y + 2x'·y' + x·cc_y) + f''
+ * (f NULL: 0). Any output may be NULL. */
+void braun_scene__dot_row(const scene_vec *x, const scene_vec *y, const braun_scene_fn *f,
+                          braun_real t, braun_real *phi, braun_real *A, braun_real *b,
+                          braun_real *bv);
+/* The rows P_a - P_b = 0 (3). */
+void braun_scene__coincide_rows(const braun_scene *s, int a, int b, const braun_real *q,
+                                const braun_real *v, braun_real *phi, braun_real *A,
+                                braun_real *b_q, braun_real *bv);
+
+/* The two frames of a spatial joint: on body1 the axis u1 (j->axis), the
+ * reference r1 (j->ref_a) and w1 = u1 × r1; on body2 u2 (j->axis_b), r2
+ * (j->ref_b), w2 = u2 × r2 (all body-fixed, evaluated at q, v). */
+typedef struct scene_frames {
+    scene_pt u1, r1, w1, u2, r2, w2;
+} scene_frames;
+void braun_scene__frames(const braun_scene *s, const braun_scene_joint *j, int body1, int body2,
+                         const braun_real *q, const braun_real *v, scene_frames *F);
+/* Rows of the axes kept parallel: r1·u2 = 0, w1·u2 = 0 (2). */
+void braun_scene__parallel_rows(const scene_frames *F, braun_real *phi, braun_real *A, int n,
+                                braun_real *b, braun_real *bv);
+/* Rows of the relative orientation kept: u1·r2, r1·w2, w1·u2 = 0 (3). */
+void braun_scene__orient_rows(const scene_frames *F, braun_real *phi, braun_real *A, int n,
+                              braun_real *b, braun_real *bv);
+/* The drive row cos f (w1·r2) - sin f (r1·r2) = 0 of a driven revolute. */
+void braun_scene__drive_row(const scene_frames *F, const braun_scene_fn *f, braun_real t,
+                            braun_real *phi, braun_real *A, braun_real *b, braun_real *bv);
+/* The joint's angle θ = atan2(w1·r2, r1·r2) (0 in the initial
+ * configuration), its rate θ' (v may be NULL: 0) and, when grad is not
+ * NULL, grad += scale · ∂θ/∂q. */
+void braun_scene__joint_angle(const braun_scene *s, const braun_scene_joint *j,
+                              const braun_real *q, const braun_real *v, braun_real *theta,
+                              braun_real *rate, braun_real scale, braun_real *grad);
+/* P (point a) on the line through A (point b) along u1: r1·(P - A) = 0,
+ * w1·(P - A) = 0; with parallel first the two parallel rows (cylindrical). */
+void braun_scene__line_rows(const braun_scene *s, const braun_scene_joint *j, int parallel,
+                            const braun_real *q, const braun_real *v, braun_real *phi,
+                            braun_real *A, braun_real *b, braun_real *bv);
+/* Bodies carrying frame 1 and frame 2 of joint j (ground -1). */
+void braun_scene__frame_bodies(const braun_scene *s, const braun_scene_joint *j, int *body1,
+                               int *body2);
+
+/* Defaults and checks the spatial joints share (scene_frames.c): axis
+ * normalised; ref_a a unit vector ⊥ axis; axis_b (when not given) and ref_b
+ * the images of axis and ref_a in body2's frame at the initial state. */
+void braun_scene__frame_defaults(const braun_scene *s, braun_scene_joint *j, int body1,
+                                 int body2, int axis_b_given);
+/* NULL, or what is wrong: bodies without frames, vectors not unit or not
+ * perpendicular. need_b: axis_b is used. */
+const char *braun_scene__frame_check(const braun_scene *s, const braun_scene_joint *j,
+                                     int body1, int body2, int need_b);
+/* R(q0) d of a body at its initial state (the ground: d). */
+void braun_scene__initial_dir(const braun_scene *s, int body, const braun_real *d,
+                              braun_real *out);
+/* R(q0)ᵀ x: a world vector in the body's frame at its initial state. */
+void braun_scene__initial_dir_inverse(const braun_scene *s, int body, const braun_real *x,
+                                      braun_real *out);
 
 /* --------------------------------------------------------------- rods */
 void braun_scene__rod_mass(const braun_scene *s, const braun_scene_rod *r, braun_real *M);

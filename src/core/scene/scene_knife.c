@@ -66,4 +66,4 @@ static const braun_scene_field knife_fields[] = {
 
 const braun_scene_joint_class braun_scene_joint_knife = {
     "knife", "BRAUN_JOINT_KNIFE", 1, knife_fields, NULL, knife_check, knife_rows, NULL,
-    knife_eval};
+    knife_eval, 2};

@@ -55,4 +55,4 @@ static const braun_scene_field motor_fields[] = {
 
 const braun_scene_effect_class braun_scene_effect_motor = {
     "motor", "BRAUN_EFFECT_MOTOR", motor_fields, NULL, motor_check, motor_forces, NULL,
-    motor_power, NULL};
+    motor_power, NULL, 2};

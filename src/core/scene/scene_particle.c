@@ -59,4 +59,5 @@ static const braun_scene_field particle_fields[] = {
 const braun_scene_body_class braun_scene_body_particle = {
     "particle", "BRAUN_BODY_PARTICLE", 2, 2, -1, BRAUN_BODY_CLASS_POINT_MASS, particle_fields,
     particle_check, particle_mass, particle_kinetic, particle_point, particle_grad,
-    braun_scene__weight_xy, braun_scene__gravity_potential_xy};
+    braun_scene__weight_xy, braun_scene__gravity_potential_xy,
+    NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL};

@@ -9,6 +9,7 @@ static void start(const braun_scene_body *bd, scene_pt *P)
 {
     P->body = bd;
     P->col = bd ? bd->iq : -1;
+    P->direction = 0;
     for (int k = 0; k < 3; k++) P->vel[k] = P->cc[k] = 0;
 }
 
@@ -20,12 +21,38 @@ void braun_scene_pt_eval(const braun_scene *s, int i, const braun_real *q, const
         start(NULL, P);
         P->pos[0] = pt->x;
         P->pos[1] = pt->y;
-        P->pos[2] = 0;
+        P->pos[2] = pt->z;
         return;
     }
     const braun_scene_body *bd = &s->bodies[pt->body];
     start(bd, P);
     bd->kind->point(bd, pt, q + bd->iq, v ? v + bd->iq : NULL, P);
+}
+
+void braun_scene_dir_eval(const braun_scene *s, int body, const braun_real *d,
+                          const braun_real *q, const braun_real *v, scene_pt *D)
+{
+    if (body < 0) { /* the ground: world directions, fixed */
+        start(NULL, D);
+        D->direction = 1;
+        for (int k = 0; k < 3; k++) D->pos[k] = d[k];
+        return;
+    }
+    const braun_scene_body *bd = &s->bodies[body];
+    start(bd, D);
+    bd->kind->direction(bd, d, q + bd->iq, v ? v + bd->iq : NULL, D);
+    D->direction = 1;
+}
+
+void braun_scene_point_state(const braun_scene *s, int i, const braun_real *q,
+                             const braun_real *v, braun_real *pos, braun_real *vel)
+{
+    scene_pt P;
+    braun_scene__point(s, i, q, v, &P);
+    for (int k = 0; k < 3; k++) {
+        pos[k] = P.pos[k];
+        if (vel) vel[k] = P.vel[k];
+    }
 }
 
 void braun_scene_pt_grad(const scene_pt *P, const braun_real *g, braun_real *row)
@@ -60,13 +87,20 @@ void braun_scene_initial_point(const braun_scene *s, int i, braun_real *pos)
     if (pt->body < 0) {
         pos[0] = pt->x;
         pos[1] = pt->y;
-        pos[2] = 0;
+        pos[2] = pt->z;
         return;
     }
-    /* The body's own coordinates are q0: no numbering needed. */
+    /* The body's own coordinates are q0 (or what its class makes of
+     * them): no numbering needed. */
     const braun_scene_body *bd = &s->bodies[pt->body];
+    braun_real q[BRAUN_SCENE_MAX_DOF], v[BRAUN_SCENE_MAX_DOF];
+    const braun_real *q0 = bd->q0;
+    if (bd->kind->initial) {
+        bd->kind->initial(bd, q, v);
+        q0 = q;
+    }
     start(bd, &P);
-    bd->kind->point(bd, pt, bd->q0, NULL, &P);
+    bd->kind->point(bd, pt, q0, NULL, &P);
     for (int k = 0; k < 3; k++) pos[k] = P.pos[k];
 }
 

@@ -50,4 +50,4 @@ static const braun_scene_field prismatic_fields[] = {
 
 const braun_scene_joint_class braun_scene_joint_prismatic = {
     "prismatic", "BRAUN_JOINT_PRISMATIC", 0, prismatic_fields, prismatic_defaults,
-    prismatic_check, prismatic_rows, NULL, prismatic_eval};
+    prismatic_check, prismatic_rows, NULL, prismatic_eval, 2};

@@ -47,4 +47,4 @@ static const braun_scene_field revolute_fields[] = {
 
 const braun_scene_joint_class braun_scene_joint_revolute = {
     "revolute", "BRAUN_JOINT_REVOLUTE", 0, revolute_fields, NULL, revolute_check,
-    revolute_rows, NULL, revolute_eval};
+    revolute_rows, NULL, revolute_eval, 2};

@@ -88,4 +88,5 @@ static const braun_scene_field rigid_fields[] = {
 const braun_scene_body_class braun_scene_body_rigid = {
     "rigid", "BRAUN_BODY_RIGID", 3, 2, 2, 0u, rigid_fields, rigid_check,
     rigid_mass, rigid_kinetic, rigid_point, rigid_grad, braun_scene__weight_xy,
-    braun_scene__gravity_potential_xy};
+    braun_scene__gravity_potential_xy,
+    NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL};

@@ -117,4 +117,4 @@ static const braun_scene_field slider_fields[] = {
 
 const braun_scene_joint_class braun_scene_joint_slider = {
     "slider", "BRAUN_JOINT_SLIDER", 0, slider_fields, slider_defaults, braun_scene__slider_check,
-    slider_rows, NULL, slider_eval};
+    slider_rows, NULL, slider_eval, 2};

@@ -1,10 +1,12 @@
 /* The sparse system of a scene without rods (braun_scene_build_sparse).
  *
  * Structure. Every body's mass block is its own (its class's mass hook:
- * diag(m, m, I) or diag(m, m)): M is block diagonal, one block per body in
- * coordinate order. Every row of A_q and A_vv belongs to one joint that
- * touches at most two bodies (its class's bodies hook, or the bodies of its
- * reference fields); its pattern is all the coordinates of those bodies,
+ * diag(m, m, I) or diag(m, m); rigid3d's 7 x 7 block at q): M is block
+ * diagonal, one block per body in coordinate order. Every row of A_q and
+ * A_vv belongs to one joint that touches at most two bodies (its class's
+ * bodies hook, or the bodies of its reference fields), or to one body (its
+ * own rows: a unit quaternion); its pattern is all the coordinates of those
+ * bodies,
  * sorted — structural, not value-based, so an entry that happens to be 0 at
  * some state (the y column of a revolute joint's x row) is in it. Rods are
  * excluded: a rod's kinetic energy couples the blocks of its two ends.
@@ -84,6 +86,11 @@ static void measure(const braun_scene *s, int *rows_max, long *nnz)
         total += (long)rows * row_count(s, bodies, nb);
         if (rows > rmax) rmax = rows;
     }
+    for (int k = 0; k < s->nbodies; k++) {
+        const int rows = s->bodies[k].kind->rows;
+        total += (long)rows * body_dim(s, k);
+        if (rows > rmax) rmax = rows;
+    }
     *rows_max = rmax;
     *nnz = total;
 }
@@ -144,13 +151,13 @@ static int mass_sparse(braun_real t, const braun_real *q, braun_real *M, void *u
 {
     const braun_scene *s = ((const braun_scene_sparse *)user)->scene;
     (void)t;
-    (void)q;
     /* Each body's block, row-major, as its class writes it into zeros. */
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *bd = &s->bodies[k];
         const int d = bd->kind->dof;
         for (int i = 0; i < d * d; i++) M[i] = 0;
-        bd->kind->mass(bd, M, d);
+        if (bd->kind->mass_at) bd->kind->mass_at(bd, q + bd->iq, M, d);
+        else bd->kind->mass(bd, M, d);
         M += d * d;
     }
     return 0;
@@ -170,6 +177,18 @@ static int rows_sparse(braun_scene_sparse *sp, int nonholonomic, int first, int 
                                      AT(b, j->row), AT(bv, j->row));
         if (st) return st;
         if (A) gather(sp, first + j->row, j->type->rows(j), A, base);
+    }
+    if (nonholonomic) return 0;
+    /* The bodies' own rows (after the joints'), b_q = 0. */
+    for (int k = 0; k < s->nbodies; k++) {
+        const braun_scene_body *bd = &s->bodies[k];
+        const int rows = bd->kind->rows;
+        if (rows == 0) continue;
+        bd->kind->constraint(bd, q + bd->iq, v ? v + bd->iq : NULL, AT(phi, bd->row),
+                             A ? sp->scratch + bd->iq : NULL, s->n, v ? AT(bv, bd->row) : NULL);
+        if (b)
+            for (int r = 0; r < rows; r++) b[bd->row + r] = 0;
+        if (A) gather(sp, bd->row, rows, A, base);
     }
     return 0;
 }
@@ -223,6 +242,17 @@ static int fill_rows(const braun_scene *s, braun_scene_sparse *sp, int first, in
     return at;
 }
 
+/* Pattern of the bodies' own rows (numbered after the holonomic joints'):
+ * the body's coordinates. */
+static int body_rows(const braun_scene *s, braun_scene_sparse *sp, int at)
+{
+    for (int k = 0; k < s->nbodies; k++) {
+        const int body[1] = {k};
+        at = fill_rows(s, sp, s->bodies[k].row, s->bodies[k].kind->rows, body, 1, at);
+    }
+    return at;
+}
+
 int braun_scene_build_sparse(braun_scene *s, braun_system *sys, void *buffer, size_t bytes,
                              braun_scene_error *err)
 {
@@ -259,13 +289,15 @@ int braun_scene_build_sparse(braun_scene *s, braun_system *sys, void *buffer, si
     /* Rows in order: holonomic joints (rows are numbered joints in order
      * when there are no rods), then nonholonomic ones. */
     int at = 0, bodies[2];
-    for (int pass = 0; pass < 2; pass++)
+    for (int pass = 0; pass < 2; pass++) {
         for (int k = 0; k < s->njoints; k++) {
             const braun_scene_joint *j = &s->joints[k];
             if (j->type->nonholonomic != pass) continue;
             const int nb = joint_bodies(s, j, bodies);
             at = fill_rows(s, sp, (pass ? s->m : 0) + j->row, j->type->rows(j), bodies, nb, at);
         }
+        if (pass == 0) at = body_rows(s, sp, at); /* the last rows of Φ_q */
+    }
     sp->row_ptr[s->m + s->p] = at;
     for (int k = 0; k < s->nbodies; k++) sp->block[k] = body_dim(s, k);
     sp->sparsity.row_ptr = sp->row_ptr;

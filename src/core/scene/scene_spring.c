@@ -9,7 +9,7 @@
 
 typedef struct geom {
     scene_pt Pa, Pb;
-    braun_real L, ux, uy, rate;
+    braun_real L, ux, uy, uz, rate;
 } geom;
 
 static int measure(const braun_scene *s, const braun_scene_effect *e, const braun_real *q,
@@ -17,13 +17,26 @@ static int measure(const braun_scene *s, const braun_scene_effect *e, const brau
 {
     braun_scene__point(s, e->a, q, v, &g->Pa);
     braun_scene__point(s, e->b, q, v, &g->Pb);
-    const braun_real dx = g->Pb.pos[0] - g->Pa.pos[0], dy = g->Pb.pos[1] - g->Pa.pos[1];
-    g->L = braun_sqrt(dx * dx + dy * dy);
+    /* z terms are exact zeros in a planar scene (the planar sums, bit for bit). */
+    const braun_real dx = g->Pb.pos[0] - g->Pa.pos[0], dy = g->Pb.pos[1] - g->Pa.pos[1],
+                     dz = g->Pb.pos[2] - g->Pa.pos[2];
+    g->L = braun_sqrt(dx * dx + dy * dy + dz * dz);
     if (!(g->L > 0)) return 1;
     g->ux = dx / g->L;
     g->uy = dy / g->L;
-    g->rate = g->ux * (g->Pb.vel[0] - g->Pa.vel[0]) + g->uy * (g->Pb.vel[1] - g->Pa.vel[1]);
+    g->uz = dz / g->L;
+    g->rate = g->ux * (g->Pb.vel[0] - g->Pa.vel[0]) + g->uy * (g->Pb.vel[1] - g->Pa.vel[1]) +
+              g->uz * (g->Pb.vel[2] - g->Pa.vel[2]);
     return 0;
+}
+
+/* row += f ∂L/∂q-direction terms: f û at P_b, -f û at P_a. */
+static void push(const geom *g, braun_real f, braun_real *row)
+{
+    const braun_real gb[3] = {f * g->ux, f * g->uy, f * g->uz};
+    const braun_real ga[3] = {-f * g->ux, -f * g->uy, -f * g->uz};
+    braun_scene_pt_grad(&g->Pb, gb, row);
+    braun_scene_pt_grad(&g->Pa, ga, row);
 }
 
 static int spring_forces(const braun_scene *s, const braun_scene_effect *e, braun_real t,
@@ -33,8 +46,7 @@ static int spring_forces(const braun_scene *s, const braun_scene_effect *e, brau
     (void)t;
     if (measure(s, e, q, v, &g)) return 1;
     const braun_real f = -(e->k * (g.L - e->rest) + e->c * g.rate);
-    braun_scene__add_grad(&g.Pb, f * g.ux, f * g.uy, Q);
-    braun_scene__add_grad(&g.Pa, -f * g.ux, -f * g.uy, Q);
+    push(&g, f, Q);
     return 0;
 }
 
@@ -47,8 +59,7 @@ static int spring_potential(const braun_scene *s, const braun_scene_effect *e,
     *V = BRAUN_R(0.5) * e->k * stretch * stretch;
     if (dVdq) {
         const braun_real f = e->k * stretch;
-        braun_scene__add_grad(&g.Pb, f * g.ux, f * g.uy, dVdq);
-        braun_scene__add_grad(&g.Pa, -f * g.ux, -f * g.uy, dVdq);
+        push(&g, f, dVdq);
     }
     return 0;
 }
@@ -99,4 +110,4 @@ static const braun_scene_field spring_fields[] = {
 
 const braun_scene_effect_class braun_scene_effect_spring = {
     "spring", "BRAUN_EFFECT_SPRING", spring_fields, spring_defaults, spring_check, spring_forces,
-    spring_potential, spring_power, spring_inputs};
+    spring_potential, spring_power, spring_inputs, 0};

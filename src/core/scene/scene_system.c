@@ -1,8 +1,10 @@
 /* The braun_system callbacks of a built scene: each loops over the
  * elements that contribute to it, and only those, through their classes.
- * M is assembled from the body classes' blocks and the rods (called once:
- * the scene sets BRAUN_MASS_CONSTANT); Q from the effects; the rows from
- * rods and joints (holonomic ones into Φ_q, nonholonomic ones into Φ_v);
+ * M is assembled from the body classes' blocks and the rods (called once
+ * when the scene sets BRAUN_MASS_CONSTANT, at every evaluation when a body
+ * class's block depends on q); Q from the effects and the bodies'
+ * velocity-product forces; the rows from rods, joints (holonomic ones into
+ * Φ_q, nonholonomic ones into Φ_v) and the bodies' own rows;
  * the energy law (Eq. 18) from the kinetic energy of bodies and rods and
  * the effects' potentials; the input power from the effects that put
  * energy in or take it out. */
@@ -16,11 +18,12 @@ int braun_scene__mass(braun_real t, const braun_real *q, braun_real *M, void *us
     const braun_scene *s = user;
     const int n = s->n;
     (void)t;
-    (void)q;
     for (size_t i = 0; i < braun_scene__at(n, 0, n); i++) M[i] = 0;
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *bd = &s->bodies[k];
-        bd->kind->mass(bd, M + braun_scene__at(bd->iq, bd->iq, n), n);
+        braun_real *blk = M + braun_scene__at(bd->iq, bd->iq, n);
+        if (bd->kind->mass_at) bd->kind->mass_at(bd, q + bd->iq, blk, n);
+        else bd->kind->mass(bd, blk, n);
     }
     for (int k = 0; k < s->nrods; k++) braun_scene__rod_mass(s, &s->rods[k], M);
     return 0;
@@ -30,9 +33,14 @@ int braun_scene__forces(braun_real t, const braun_real *q, const braun_real *v, 
                         void *user)
 {
     const braun_scene *s = user;
-    /* Absolute and natural coordinates with a constant M: no Coriolis or
-     * centrifugal terms, Q is the applied forces alone. */
+    /* Planar absolute and natural coordinates have a constant M: no
+     * Coriolis or centrifugal terms. A body whose block depends on q adds
+     * its velocity-product forces. */
     for (int i = 0; i < s->n; i++) Q[i] = 0;
+    for (int k = 0; k < s->nbodies; k++) {
+        const braun_scene_body *bd = &s->bodies[k];
+        if (bd->kind->inertial) bd->kind->inertial(bd, q + bd->iq, v + bd->iq, Q + bd->iq);
+    }
     for (int k = 0; k < s->neffects; k++) {
         const braun_scene_effect *e = &s->effects[k];
         if (!e->type->forces) continue;
@@ -61,6 +69,16 @@ int braun_scene__holonomic(braun_real t, const braun_real *q, const braun_real *
         const int st = j->type->eval(s, j, t, q, v, AT(phi, j->row), ROW(A, j->row, n),
                                      AT(b, j->row), AT(bv, j->row));
         if (st) return st;
+    }
+    for (int k = 0; k < s->nbodies; k++) {
+        const braun_scene_body *bd = &s->bodies[k];
+        const int rows = bd->kind->rows;
+        if (rows == 0) continue;
+        bd->kind->constraint(bd, q + bd->iq, v ? v + bd->iq : NULL, AT(phi, bd->row),
+                             A ? A + braun_scene__at(bd->row, bd->iq, n) : NULL, n,
+                             v ? AT(bv, bd->row) : NULL);
+        if (b)
+            for (int r = 0; r < rows; r++) b[bd->row + r] = 0; /* scleronomic */
     }
     return 0;
 }
@@ -94,7 +112,11 @@ int braun_scene__energy(braun_real t, const braun_real *q, const braun_real *v, 
         for (int i = 0; i < s->n; i++) dE_dv[i] = 0;
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *bd = &s->bodies[k];
-        T += bd->kind->kinetic(bd, v + bd->iq, dE_dv ? dE_dv + bd->iq : NULL);
+        braun_real *dv = dE_dv ? dE_dv + bd->iq : NULL;
+        if (bd->kind->kinetic_at)
+            T += bd->kind->kinetic_at(bd, q + bd->iq, v + bd->iq, dE_dq ? dE_dq + bd->iq : NULL, dv);
+        else
+            T += bd->kind->kinetic(bd, v + bd->iq, dv);
     }
     for (int k = 0; k < s->nrods; k++) T += braun_scene__rod_kinetic(s, &s->rods[k], v, dE_dv);
     for (int k = 0; k < s->neffects; k++) {

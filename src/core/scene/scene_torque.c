@@ -45,4 +45,4 @@ static const braun_scene_field torque_fields[] = {
 
 const braun_scene_effect_class braun_scene_effect_torque = {
     "torque", "BRAUN_EFFECT_TORQUE", torque_fields, NULL, torque_check, torque_forces, NULL,
-    torque_power, NULL};
+    torque_power, NULL, 2};

@@ -92,4 +92,4 @@ static const braun_scene_field torsion_fields[] = {
 
 const braun_scene_effect_class braun_scene_effect_torsion = {
     "torsion", "BRAUN_EFFECT_TORSION", torsion_fields, torsion_defaults, torsion_check,
-    torsion_forces, torsion_potential, torsion_power, torsion_inputs};
+    torsion_forces, torsion_potential, torsion_power, torsion_inputs, 2};

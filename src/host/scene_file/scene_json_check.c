@@ -75,7 +75,9 @@ int sj_check_mass(sj_reader *r)
         braun_real M[BRAUN_SCENE_MAX_DOF * BRAUN_SCENE_MAX_DOF];
         double R[BRAUN_SCENE_MAX_DOF * BRAUN_SCENE_MAX_DOF];
         memset(M, 0, sizeof M);
-        b->kind->mass(b, M, dof);
+        /* A block that depends on q (rigid3d) at the initial state. */
+        if (b->kind->mass_at) b->kind->mass_at(b, r->out->q0 + b->iq, M, dof);
+        else b->kind->mass(b, M, dof);
         /* Cholesky of the body's block, as braun_chol_factor computes it
          * (coupling to other blocks is zero without rods). */
         for (int i = 0; i < dof; i++) {
@@ -99,8 +101,12 @@ int sj_check_mass(sj_reader *r)
         for (int i = 0; i < b->kind->dof; i++) {
             const double p = piv[b->iq + i];
             if (p > tiny) continue;
-            const int rot = i == b->kind->angle;
-            const char *key = rot ? field_key(b->kind->fields, offsetof(braun_scene_body, inertia),
+            /* A planar body's angle, or a spatial body's orientation. */
+            const int spatial = b->kind->dim == 3 && i >= 3;
+            const int rot = i == b->kind->angle || spatial;
+            const char *key = rot ? field_key(b->kind->fields,
+                                              spatial ? offsetof(braun_scene_body, tensor)
+                                                      : offsetof(braun_scene_body, inertia),
                                               "inertia")
                                   : field_key(b->kind->fields, offsetof(braun_scene_body, mass),
                                               "mass");

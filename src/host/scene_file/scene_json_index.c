@@ -120,8 +120,37 @@ void sj_set_centre(sj_reader *r, int body, int point)
     if (sl > 0) r->centre[sl] = point;
 }
 
+/* Joints by name: sorted once, on the first lookup (effects on a joint's
+ * axis are read after every joint). */
+int sj_find_joint(sj_reader *r, const char *name)
+{
+    const braun_scene_file *f = r->out;
+    const int nj = f->scene.njoints;
+    if (!r->joint_index) {
+        r->joint_index = malloc(((size_t)nj + 1) * sizeof *r->joint_index);
+        if (!r->joint_index) return -2;
+        r->njoint_index = 0;
+        for (int k = 0; k < nj; k++) {
+            const char *n = f->joint_names[k];
+            if (!n) continue;
+            sj_name *e = &r->joint_index[r->njoint_index++];
+            e->s = n;
+            e->len = strlen(n);
+            e->index = k;
+        }
+        qsort(r->joint_index, (size_t)r->njoint_index, sizeof *r->joint_index, entry_cmp);
+    }
+    const size_t len = strlen(name);
+    const int i = lower_bound(r->joint_index, r->njoint_index, name, len);
+    if (i == r->njoint_index || name_cmp(r->joint_index[i].s, r->joint_index[i].len, name, len))
+        return -1;
+    return r->joint_index[i].index; /* the first of that name */
+}
+
 void sj_index_free(sj_reader *r)
 {
+    free(r->joint_index);
+    r->joint_index = NULL;
     free(r->body_index);
     free(r->centre);
     free(r->pt_first);

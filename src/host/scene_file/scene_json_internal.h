@@ -66,6 +66,12 @@ typedef struct sj_reader {
     sj_name *body_index, *point_sorted;
     int nbody_index, nslots;
     int *centre, *pt_first, *pt_count;
+    /* Joints by name (sj_find_joint), built on first use. */
+    sj_name *joint_index;
+    int njoint_index;
+    /* The scene's dimension (2 planar, 3 spatial), from its bodies' types
+     * before anything is read: the length of ground points and vectors. */
+    int dim;
     /* The program's own classes, besides the built-in ones (lists NULL or
      * NULL-terminated). */
     braun_scene_classes extra;
@@ -95,6 +101,9 @@ int sj_find_body(const sj_reader *r, const char *name, size_t len);
 void sj_index_points(sj_reader *r, int body, int first);
 int sj_find_point(const sj_reader *r, int body, const char *name);
 void sj_set_centre(sj_reader *r, int body, int point);
+/* The first joint named name (joints read so far), -1 if none, -2 out of
+ * memory. */
+int sj_find_joint(sj_reader *r, const char *name);
 void sj_index_free(sj_reader *r);
 
 /* After the build (scene_json_check.c): the mass matrix's pivots, and

@@ -90,6 +90,8 @@ void braun_scene_free(braun_scene_file *f)
     free((void *)f->body_names);
     free((void *)f->joint_names);
     free((void *)f->effect_names);
+    free((void *)f->report_names);
+    free(f->report_points);
     if (o->root) json_decref(o->root);
     free(o->text);
     free(o);

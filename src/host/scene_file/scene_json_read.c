@@ -128,11 +128,6 @@ static int vec_value(sj_reader *r, json_t *v, const char *field, int count, doub
     return 0;
 }
 
-static int vec2_value(sj_reader *r, json_t *v, const char *field, double *xy)
-{
-    return vec_value(r, v, field, 2, xy);
-}
-
 static int str_field(sj_reader *r, json_t *obj, const char *key, int required, const char **s)
 {
     json_t *v = json_object_get(obj, key);
@@ -261,6 +256,7 @@ static int add_point(sj_reader *r, int body, const double *xyz, const char *name
     s->points[i].body = body;
     s->points[i].x = (braun_real)xyz[0];
     s->points[i].y = (braun_real)xyz[1];
+    s->points[i].z = (braun_real)xyz[2];
     r->point_names[i] = name;
     s->npoints = r->npoints;
     return i;
@@ -272,7 +268,8 @@ static int find_point(const sj_reader *r, int body, const char *name)
 }
 
 /* A point reference: "body.point", "body" (a rigid body's centre or the
- * particle itself), "ground.point", or [x, y] on the ground. */
+ * particle itself), "ground.point", or [x, y] ([x, y, z] in a spatial
+ * scene) on the ground. */
 static int point_ref(sj_reader *r, json_t *obj, const char *key, int *point)
 {
     json_t *v = json_object_get(obj, key);
@@ -281,7 +278,7 @@ static int point_ref(sj_reader *r, json_t *obj, const char *key, int *point)
     int st = 0;
     if (json_is_array(v)) {
         double xyz[3] = {0, 0, 0};
-        st = vec2_value(r, v, key, xyz);
+        st = vec_value(r, v, key, r->dim, xyz);
         if (!st) *point = add_point(r, BRAUN_SCENE_GROUND, xyz, "");
     } else if (json_is_string(v)) {
         const char *ref = json_string_value(v), *dot = strchr(ref, '.');
@@ -307,7 +304,7 @@ static int point_ref(sj_reader *r, json_t *obj, const char *key, int *point)
             }
         } else if (ground) {
             st = sj_fail(r, SJ_AT_VALUE, "%s: field '%s': 'ground' needs a point ('ground.NAME' "
-                                         "or [x, y])", r->who, key);
+                                         "or %s)", r->who, key, r->dim == 3 ? "[x, y, z]" : "[x, y]");
         } else {
             /* The centre: one implicit point per body, made on first use. */
             static const double origin[3] = {0, 0, 0};
@@ -319,7 +316,8 @@ static int point_ref(sj_reader *r, json_t *obj, const char *key, int *point)
         }
     } else {
         st = sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be a point: \"body.point\", \"body\" "
-                                     "or [x, y] on the ground", r->who, key);
+                                     "or %s on the ground", r->who, key,
+                     r->dim == 3 ? "[x, y, z]" : "[x, y]");
     }
     sj_pop(r);
     return st;
@@ -349,14 +347,15 @@ static int body_ref(sj_reader *r, json_t *obj, const char *key, int ground_ok, i
 }
 
 /* Named points of a body or of the ground: {"NAME": [x, y], ...} (count
- * coordinates each: 2, as braun_scene_point has). */
+ * coordinates each: 2 planar, 3 spatial). */
 static int read_points(sj_reader *r, json_t *obj, int body, int count)
 {
     json_t *pts = json_object_get(obj, "points");
     if (!pts) return 0;
     sj_push_key(r, "points");
     if (!json_is_object(pts)) {
-        sj_fail(r, SJ_AT_VALUE, "%s: field 'points' must be an object {\"NAME\": [x, y], ...}", r->who);
+        sj_fail(r, SJ_AT_VALUE, "%s: field 'points' must be an object {\"NAME\": %s, ...}", r->who,
+                count == 3 ? "[x, y, z]" : "[x, y]");
         return -1;
     }
     const char *key;
@@ -365,7 +364,8 @@ static int read_points(sj_reader *r, json_t *obj, int body, int count)
     json_object_foreach(pts, key, val) {
         double xyz[3] = {0, 0, 0};
         sj_push_key(r, key);
-        if (count != 2) return sj_fail(r, SJ_AT_KEY, "%s: points of %d coordinates", r->who, count);
+        if (count != 2 && count != 3)
+            return sj_fail(r, SJ_AT_KEY, "%s: points of %d coordinates", r->who, count);
         if (key[0] == '\0' || strchr(key, '.'))
             return sj_fail(r, SJ_AT_KEY, "%s: point name '%s' must be non-empty and contain no "
                                          "'.'", r->who, key);
@@ -430,7 +430,10 @@ static int check_class_fields(sj_reader *r, json_t *obj, const braun_scene_field
  * descriptor's domain; the path is at the value. */
 static int real_value(sj_reader *r, json_t *v, const braun_scene_field *f, braun_real *out)
 {
-    const int count = f->count > 0 ? f->count : 1;
+    /* A vector of the scene's dimension: 2 entries in a planar scene. */
+    const int count = (f->flags & BRAUN_FIELD_DIMVEC) && r->dim == 2 ? 2
+                      : f->count > 0                                 ? f->count
+                                                                     : 1;
     double x[8] = {0};
     if (count > 8) return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' has too many entries", r->who, f->key);
     if (count == 1 ? number_value(r, v, f->key, x) : vec_value(r, v, f->key, count, x)) return -1;
@@ -449,7 +452,28 @@ static int real_value(sj_reader *r, json_t *v, const braun_scene_field *f, braun
     if ((f->flags & (BRAUN_FIELD_POSITIVE | BRAUN_FIELD_NONNEG | BRAUN_FIELD_NONZERO)) &&
         scale_value(r, f->key, x, count, 0))
         return -1;
+    if ((f->flags & BRAUN_FIELD_UNIT) && count > 1) {
+        double len = 0;
+        for (int i = 0; i < count; i++) len = hypot(len, x[i]);
+        for (int i = 0; i < count; i++) x[i] /= len; /* not 0: NONZERO goes with it */
+    }
     for (int i = 0; i < count; i++) out[i] = (braun_real)x[i];
+    return 0;
+}
+
+/* A joint by its name (effects on a joint's axis). */
+static int joint_ref(sj_reader *r, json_t *obj, const braun_scene_field *f, int *joint)
+{
+    const char *name = "";
+    int st = str_field(r, obj, f->key, 1, &name);
+    if (st) return st;
+    sj_push_key(r, f->key);
+    *joint = sj_find_joint(r, name);
+    if (*joint == -2) return sj_fail(r, SJ_AT_VALUE, "out of memory");
+    if (*joint < 0)
+        return sj_fail(r, SJ_AT_VALUE, "%s refers to unknown joint '%s' (a joint is named by its "
+                                       "\"name\")", r->who, name);
+    sj_pop(r);
     return 0;
 }
 
@@ -506,6 +530,7 @@ static int read_field(sj_reader *r, json_t *obj, json_t *v, const braun_scene_fi
         return st;
     }
     case BRAUN_FIELD_POINTS: return read_points(r, obj, body, count);
+    case BRAUN_FIELD_JOINT: return joint_ref(r, obj, f, ref);
     default:
         sj_push_key(r, f->key);
         return sj_fail(r, SJ_AT_KEY, "%s: field '%s' has a kind the reader does not know (%d)",
@@ -528,7 +553,8 @@ static int read_fields(sj_reader *r, json_t *obj, const braun_scene_field *field
             /* Optional references left out: a body is the ground, a point
              * none (the builder refuses it unless the class allows). */
             if (f->kind == BRAUN_FIELD_BODY) *(int *)(void *)((char *)elem + f->offset) = BRAUN_SCENE_GROUND;
-            if (f->kind == BRAUN_FIELD_POINT || f->kind == BRAUN_FIELD_BODY_POINT)
+            if (f->kind == BRAUN_FIELD_POINT || f->kind == BRAUN_FIELD_BODY_POINT ||
+                f->kind == BRAUN_FIELD_JOINT)
                 *(int *)(void *)((char *)elem + f->offset) = -1;
             continue;
         }
@@ -599,7 +625,9 @@ static int read_body(sj_reader *r, json_t *obj, int k)
     r->out->body_names[k] = name;
     r->out->scene.nbodies = k + 1; /* visible to find_body from now on */
     unsigned given;
-    return read_fields(r, obj, c->fields, b, k, &given);
+    if (read_fields(r, obj, c->fields, b, k, &given)) return -1;
+    if (c->defaults) c->defaults(b, given);
+    return 0;
 }
 
 /* --------------------------------------------------------------- rods */
@@ -724,7 +752,56 @@ static int read_corrections(sj_reader *r, json_t *root)
     return 0;
 }
 
+/* ------------------------------------------------------------- report */
+/* "report": {"NAME": point, ...}: named points for the trajectory CSV. */
+static int read_report(sj_reader *r, json_t *report)
+{
+    braun_scene_file *out = r->out;
+    const size_t n = json_object_size(report);
+    out->report_names = calloc(n + 1, sizeof *out->report_names);
+    out->report_points = calloc(n + 1, sizeof *out->report_points);
+    if (!out->report_names || !out->report_points) return sj_fail(r, SJ_AT_VALUE, "out of memory");
+    const char *key;
+    json_t *val;
+    sj_push_key(r, "report");
+    json_object_foreach(report, key, val) {
+        snprintf(r->who, sizeof r->who, "reported point '%.120s'", key);
+        if (key[0] == '\0' || strchr(key, '.')) {
+            sj_push_key(r, key);
+            return sj_fail(r, SJ_AT_KEY, "%s: a reported point's name must be non-empty and "
+                                         "contain no '.'", r->who);
+        }
+        int point = -1;
+        if (point_ref(r, report, key, &point)) return -1;
+        out->report_names[out->nreports] = key;
+        out->report_points[out->nreports++] = point;
+    }
+    (void)val;
+    sj_pop(r);
+    return 0;
+}
+
 /* ------------------------------------------------------------- driver */
+/* The scene is spatial when its bodies are (their classes' dim), known
+ * before the ground points, which are read first. An unknown type or a
+ * type of the other dimension is reported when that body is read. */
+static int scene_dimension(sj_reader *r, json_t *bodies)
+{
+    r->dim = 2;
+    for (size_t k = 0; k < json_array_size(bodies); k++) {
+        json_t *t = json_object_get(json_array_get(bodies, k), "type");
+        if (!json_is_string(t)) continue;
+        char names[512];
+        const braun_scene_body_class *c = find_body_class(
+            braun_scene_body_classes, r->extra.bodies, json_string_value(t), names, sizeof names);
+        if (c) {
+            r->dim = c->dim == 3 ? 3 : 2;
+            return 0;
+        }
+    }
+    return 0;
+}
+
 /* The JSON path of a scene element, for errors the builder finds. */
 static void element_path(sj_reader *r, const braun_scene_error *e)
 {
@@ -765,7 +842,7 @@ int sj_read_scene(sj_reader *r, json_t *root)
 {
     static const char *const keys[] = {"name",    "description", "bodies",      "ground",
                                        "rods",    "joints",      "effects",     "corrections",
-                                       "reference", NULL};
+                                       "reference", "report",    NULL};
     braun_scene_file *out = r->out;
     braun_scene *s = &out->scene;
     json_t *bodies, *rods, *joints, *effects, *ground;
@@ -784,6 +861,13 @@ int sj_read_scene(sj_reader *r, json_t *root)
         sj_push_key(r, "bodies");
         return sj_fail(r, SJ_AT_VALUE, "scene: field 'bodies' is empty: a scene needs a moving body");
     }
+    json_t *report = json_object_get(root, "report");
+    if (report && !json_is_object(report)) {
+        sj_push_key(r, "report");
+        return sj_fail(r, SJ_AT_VALUE, "scene: field 'report' must be an object {\"NAME\": point, "
+                                       "...}");
+    }
+    if (scene_dimension(r, bodies)) return -1;
     ground = json_object_get(root, "ground");
     if (ground && !json_is_object(ground)) {
         sj_push_key(r, "ground");
@@ -808,6 +892,7 @@ int sj_read_scene(sj_reader *r, json_t *root)
     }
     if (ground && json_is_object(json_object_get(ground, "points")))
         np += (int)json_object_size(json_object_get(ground, "points"));
+    if (report) np += (int)json_object_size(report);
     r->cap_points = np;
     s->bodies = calloc((size_t)nb + 1, sizeof *s->bodies);
     s->points = calloc((size_t)np, sizeof *s->points);
@@ -829,7 +914,8 @@ int sj_read_scene(sj_reader *r, json_t *root)
         static const char *const gkeys[] = {"points", NULL};
         sj_push_key(r, "ground");
         snprintf(r->who, sizeof r->who, "ground");
-        if (check_fields(r, ground, gkeys) || read_points(r, ground, BRAUN_SCENE_GROUND, 2)) return -1;
+        if (check_fields(r, ground, gkeys) || read_points(r, ground, BRAUN_SCENE_GROUND, r->dim))
+            return -1;
         sj_pop(r);
     }
     sj_push_key(r, "bodies");
@@ -862,6 +948,7 @@ int sj_read_scene(sj_reader *r, json_t *root)
     }
     sj_pop(r);
     snprintf(r->who, sizeof r->who, "scene");
+    if (report && read_report(r, report)) return -1;
 
     if (read_corrections(r, root)) return -1;
 
