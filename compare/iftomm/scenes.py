@@ -84,7 +84,7 @@ out.append('  "description": "IFToMM benchmark A03 (docs/iftomm.md): Andrews\' s
            'initial angles, at rest, no gravity, torque 0.033 N m on the crank OF, spring 4530 N/m '
            '(rest 0.07785 m) from D to C; 0.03 s (test set), 0.05 s (IFToMM variant); reported: '
            'F, error max |F - F_ref| over the output grid <= 1e-3 (written by '
-           'compare/iftomm/a03_scene.py)",')
+           'compare/iftomm/scenes.py)",')
 out.append('  "ground": {"points": {"O": [0, 0], "A": [%r, %r], "B": [%r, %r], "C": [%r, %r]}},'
            % (xa, ya, xb, yb, xc, yc))
 out.append('  "bodies": [')
