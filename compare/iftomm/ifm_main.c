@@ -46,6 +46,20 @@ typedef struct study {
     /* For the report. */
     char report[32768];
     size_t rlen;
+    struct pr {
+        const ifm_problem *p;
+        int ran;
+        char why[256];
+        double agreement, ref_energy, ivp_rel;
+        int ivp;
+        struct {
+            int have;
+            char setting[32];
+            double err, rel, cpu, pos, energy;
+            long steps;
+        } best[2], rel_best[2]; /* [0] RK4, [1] DOPRI5 */
+    } pr[32];
+    int npr;
 } study;
 
 static void rprintf(study *s, const char *fmt, ...)
@@ -316,9 +330,37 @@ static int chosen_of(const study *s, const char *id, double *h, double *rtol, in
     return -1;
 }
 
+static void keep(struct pr *e, int i, const run_row *r, int rel)
+{
+    if (!r) return;
+    (rel ? e->rel_best : e->best)[i].have = 1;
+    snprintf((rel ? e->rel_best : e->best)[i].setting, sizeof e->best[i].setting, "%s", r->setting);
+    (rel ? e->rel_best : e->best)[i].err = r->max_error;
+    (rel ? e->rel_best : e->best)[i].rel = r->max_rel;
+    (rel ? e->rel_best : e->best)[i].cpu = r->res.cpu_s;
+    (rel ? e->rel_best : e->best)[i].pos = r->res.max_pos;
+    (rel ? e->rel_best : e->best)[i].energy = r->energy_rel;
+    (rel ? e->rel_best : e->best)[i].steps = r->res.steps;
+}
+
 static void report_problem(study *s, const ifm_problem *p, const ifm_refset *rs,
                            const run_row *rk, const run_row *dp, const char *failure)
 {
+    if (s->npr < 32) {
+        struct pr *e = &s->pr[s->npr++];
+        memset(e, 0, sizeof *e);
+        e->p = p;
+        e->ran = failure == NULL;
+        if (failure) snprintf(e->why, sizeof e->why, "%s", failure);
+        if (rs) {
+            e->agreement = rs->agreement;
+            e->ref_energy = rs->ref.max_energy / fmax(rs->ref.max_kinetic, 1e-300);
+            e->ivp = rs->ivp_checked;
+            e->ivp_rel = rs->ivp_rel;
+        }
+        keep(e, 0, rk, 0);
+        keep(e, 1, dp, 0);
+    }
     rprintf(s, "| %s | %s |", p->id, p->title);
     if (failure) {
         rprintf(s, " not run: %s | | | |\n", failure);
@@ -398,10 +440,100 @@ static void do_problem(study *s, const ifm_problem *p)
     write_series(s, p, &rs, rk, dp);
     note_chosen(s, p, rk_at >= 0 ? rk : NULL, dp_at >= 0 ? dp : NULL);
     report_problem(s, p, &rs, rk_at >= 0 ? rk : NULL, dp_at >= 0 ? dp : NULL, NULL);
+    if (s->npr > 0) {
+        for (int i = 0; i < nrk; i++)
+            if (rk_rows[i].chosen_rel) keep(&s->pr[s->npr - 1], 0, &rk_rows[i], 1);
+        for (int i = 0; i < ndp; i++)
+            if (dp_rows[i].chosen_rel) keep(&s->pr[s->npr - 1], 1, &dp_rows[i], 1);
+    }
     for (int i = 0; i < nrk; i++) ifm_result_free(&rk_rows[i].res);
     for (int i = 0; i < ndp; i++) ifm_result_free(&dp_rows[i].res);
     braun_scene_free(sf);
     ifm_refset_free(&rs);
+}
+
+static const struct pr *find_pr(const study *s, const char *id)
+{
+    for (int i = 0; i < s->npr; i++)
+        if (strcmp(s->pr[i].p->id, id) == 0) return &s->pr[i];
+    return NULL;
+}
+
+/* report-section.md: a section of the compare report (results/compare/
+ * report.md includes it); image paths relative to results/compare/ and
+ * results/iftomm/ alike. */
+static void write_report(study *s)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/report-section.md", s->out);
+    FILE *f = fopen(path, "w");
+    if (!f) return;
+    fprintf(f, "## IFToMM benchmark problems A01-A05 (`make iftomm`)\n\n");
+    fprintf(f, "The IFToMM Library of Computational Benchmark Problems (Gonzalez, Dopico, Lugris, "
+               "Cuadrado, Multibody Syst. Dyn. 16, 2006), run on the shipped scenes "
+               "`data/iftomm/*.json` with libbraun's RK4 and DOPRI5 and all the corrections "
+               "each scene declares. The error is the largest difference of the reported point "
+               "(each coordinate; B0's velocity too) from a reference over the output grid; "
+               "1e-3 is the benchmark's high precision. References are never computed with "
+               "libbraun: closed forms (A01, A02), GSL rk8pd on one minimal coordinate and "
+               "SUNDIALS IDA on the models' own DAEs (A03, A04), rk8pd in joint coordinates and "
+               "IDA on a Cartesian DAE (A05); the column 'reference vs check' is their largest "
+               "disagreement over the grid. docs/iftomm.md has the data, the derivations and "
+               "the sources.\n\n");
+    fputs(s->report, f);
+    fprintf(f, "\nCPU times are this machine's (one core, the integration with the reported "
+               "point recorded at every step, best of up to %d repetitions); the OpenSim 3.2 "
+               "figures are the published ones for the 10 s variants on an Intel Core i5-4570 "
+               "at 3.2 GHz under Windows 8.1, for context only: another machine, another "
+               "program, no common error target.\n\n", s->reps);
+    /* The benchmark's relative measure. */
+    fprintf(f, "**The benchmark's relative measure.** Its descriptions measure errors 'with a "
+               "threshold value of 1e-3'; read as |x - x_ref| / max(|x_ref|, 1e-3), the same "
+               "1e-3 target asks more wherever a coordinate is smaller than 1 m (and F of A03 "
+               "moves on a 7 mm circle, so there it asks 1e-6 m). First settings that meet "
+               "it:\n\n| problem | RK4 | DOPRI5 |\n|---|---|---|\n");
+    for (int i = 0; i < s->npr; i++) {
+        const struct pr *e = &s->pr[i];
+        if (!e->ran) continue;
+        fprintf(f, "| %s |", e->p->id);
+        for (int k = 0; k < 2; k++) {
+            if (e->rel_best[k].have)
+                fprintf(f, " %s: %.2e relative, %.3g s |", e->rel_best[k].setting,
+                        e->rel_best[k].rel, e->rel_best[k].cpu);
+            else
+                fprintf(f, " not met in the sweep |");
+        }
+        fprintf(f, "\n");
+    }
+    const struct pr *a04 = find_pr(s, "A04"), *a02 = find_pr(s, "A02"), *a03 = find_pr(s, "A03");
+    fprintf(f, "\n");
+    if (a04 && a04->ran)
+        for (int k = 0; k < 2; k++)
+            if (a04->best[k].have)
+                fprintf(f, "**A04 over 600 s** (%s %s): max ||Phi_q|| %.2e (target 1e-9), max "
+                           "|Phi_e| %.2e of the largest kinetic energy (target 1e-6), through the "
+                           "redundant closure row.\n\n",
+                        k ? "DOPRI5" : "RK4", a04->best[k].setting, a04->best[k].pos,
+                        a04->best[k].energy);
+    if (a02 && a02->ran && a02->best[0].have)
+        fprintf(f, "**A02, N = 40**: 20 s through every horizontal (singular) configuration "
+                   "with RK4 %s, max ||Phi_q|| %.2e.\n\n", a02->best[0].setting, a02->best[0].pos);
+    if (a03 && a03->ran && a03->ivp)
+        fprintf(f, "**A03**: the primary reference reaches the IVP test set's published y(0.03) "
+                   "to %.1e (relative).\n\n", a03->ivp_rel);
+    fprintf(f, "Plots (the reported quantity over the first 10 s, its error over the run):\n\n");
+    for (int i = 0; i < s->npr; i++) {
+        const struct pr *e = &s->pr[i];
+        if (!e->ran) continue;
+        fprintf(f, "- %s: ![%s quantity](../iftomm/%s-quantity.png) "
+                   "![%s error](../iftomm/%s-error.png)\n",
+                e->p->id, e->p->id, e->p->id, e->p->id, e->p->id);
+    }
+    fprintf(f, "\nData: `results/iftomm/summary.csv` (problem, integrator, setting, max_error, "
+               "criterion_met, cpu_s, max_position_constraint_error, max_energy_error; the "
+               "energy error relative to the reference's largest kinetic energy), `detail.csv` "
+               "(statuses, step counts, the relative measure), `references.csv`.\n");
+    fclose(f);
 }
 
 static int wanted(const char *list, const char *id)
@@ -466,11 +598,6 @@ int main(int argc, char **argv)
     fclose(s.summary);
     fclose(s.detail);
     fclose(s.refs);
-    snprintf(path, sizeof path, "%s/table.md", s.out);
-    FILE *f = fopen(path, "w");
-    if (f) {
-        fputs(s.report, f);
-        fclose(f);
-    }
+    write_report(&s);
     return 0;
 }
