@@ -2,11 +2,10 @@
  * bodies"): q = (r, p), r the centre of mass, p = (e0, e1, e2, e3) a unit
  * quaternion kept unit by the body's own row |p|² - 1 = 0.
  *
- * Kinematics of a body-frame point s (every formula a polynomial in p, so
- * the partials are exact off the unit sphere too):
- *   A(p) = the quadratic rotation matrix (= |p|² R(p/|p|)),
- *   P = r + A(p) s,  ∂P/∂p = J_s (3 x 4),  P'' = J_s p'' + 2 A(p') s
- * (A(p)s is quadratic in p: its second derivative along p' is 2A(p')s).
+ * Kinematics of a body-frame point s: A(p) the quadratic rotation matrix
+ * (= |p|² R(p/|p|)) and P = r + A(p) s / |p|², the rotation that p stands
+ * for whatever its length (body_vector: the partials and velocity product
+ * are exact off the unit sphere too).
  * Angular velocities: body frame ω' = 2 G(p) p', world ω = 2 E(p) p', with
  *   G = [-e, e0 I - ẽ],  E = [-e, e0 I + ẽ],  A = E Gᵀ.
  *
@@ -173,22 +172,39 @@ static void rigid3d_inertial(const braun_scene_body *b, const braun_real *q, con
     for (int c = 0; c < 4; c++) Q[3 + c] += -4 * y[c] - 4 * k * dd * p[c];
 }
 
-/* Shared by points and directions: pos += A(p)s, jac, vel += J p', cc. */
+/* Shared by points and directions: the rotation of s by the unit
+ * quaternion p/|p|, pos += R s = A(p)s/N with N = |p|², so that a body
+ * stays rigid off the unit sphere too (its points move only with the
+ * orientation p stands for: a joint row never sees |p|, and rows that are
+ * exactly dependent on the manifold — a Bricard linkage's — stay so at the
+ * Runge–Kutta stages off it). With g = A(p)s (quadratic), N' = 2pᵀp':
+ *   jac = ∂(g/N)/∂p = J_g/N - g (2pᵀ)/N²
+ *   cc  = g''/N - 2 g' N'/N² - g N''/N² + 2 g N'²/N³,
+ *         g' = J_g p', g'' = 2A(p')s, N'' = 2|p'|². */
 static void body_vector(const braun_real *p, const braun_real *s, const braun_real *v,
                         braun_scene_pt *P)
 {
-    braun_real y[3];
-    rotate(p, s, y);
-    rotate_jac(p, s, P->jac);
-    for (int i = 0; i < 3; i++) P->pos[i] += y[i];
+    braun_real g[3], Jg[12];
+    rotate(p, s, g);
+    rotate_jac(p, s, Jg);
+    const braun_real N = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
+    const braun_real iN = 1 / N;
+    for (int i = 0; i < 3; i++) {
+        P->pos[i] += g[i] * iN;
+        for (int c = 0; c < 4; c++) P->jac[4 * i + c] = (Jg[4 * i + c] - 2 * g[i] * p[c] * iN) * iN;
+    }
     if (v) {
         const braun_real *dp = v + 3;
-        braun_real c[3];
-        for (int i = 0; i < 3; i++)
-            P->vel[i] += P->jac[4 * i] * dp[0] + P->jac[4 * i + 1] * dp[1] +
-                         P->jac[4 * i + 2] * dp[2] + P->jac[4 * i + 3] * dp[3];
-        rotate(dp, s, c);
-        for (int i = 0; i < 3; i++) P->cc[i] = 2 * c[i];
+        braun_real gdd[3];
+        rotate(dp, s, gdd);
+        const braun_real dN = 2 * (p[0] * dp[0] + p[1] * dp[1] + p[2] * dp[2] + p[3] * dp[3]);
+        const braun_real ddN = 2 * (dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2] + dp[3] * dp[3]);
+        for (int i = 0; i < 3; i++) {
+            const braun_real gd = Jg[4 * i] * dp[0] + Jg[4 * i + 1] * dp[1] +
+                                  Jg[4 * i + 2] * dp[2] + Jg[4 * i + 3] * dp[3];
+            P->vel[i] += (gd - g[i] * dN * iN) * iN;
+            P->cc[i] = (2 * gdd[i] - 2 * gd * dN * iN - g[i] * ddN * iN + 2 * g[i] * dN * dN * iN * iN) * iN;
+        }
     }
 }
 

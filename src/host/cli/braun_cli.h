@@ -253,7 +253,9 @@ int braun_cli_column_find(const braun_cli_target *t, int n, const char *want);
 
 /* --------------------------------------------------------- CSV (cli_csv.c) */
 int braun_cli_csv_header(FILE *f, const braun_cli_target *t, int n);
-int braun_cli_csv_row(FILE *f, int n, double t, const double *q,
+/* tg: for the scene's reported points (NAME.x, NAME.y, NAME.z after the
+ * other columns), may be NULL. */
+int braun_cli_csv_row(FILE *f, const braun_cli_target *tg, int n, double t, const double *q,
                       const double *v, const braun_cli_errors *e, int has_ref);
 
 /* ------------------------------------------- accuracy guard (cli_accuracy.c) */

@@ -4,7 +4,10 @@
  * system defined in C), "pos_err [Phi_q]", "vel_err [Phi_q/s]",
  * "energy_err [J]" and "traj_err [q]" — then one row per written state,
  * each number the shortest decimal that reads back as the same double;
- * traj_err is empty without a reference. docs/cli.md lists the columns. */
+ * traj_err is empty without a reference; then a scene's reported points,
+ * "NAME.x [m]", "NAME.y [m]" (and "NAME.z [m]" in a spatial scene).
+ * docs/cli.md lists the columns. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "braun_cli.h"
@@ -23,20 +26,36 @@ static void cell(FILE *f, const char *name, const char *unit)
     if (quote) fputc('"', f);
 }
 
+/* The scene's reported points (docs/scene-format.md, "Reported points"):
+ * NAME.x, NAME.y (and NAME.z in a spatial scene) after the other columns. */
+static int report_dim(const braun_cli_target *t)
+{
+    const braun_scene_file *s = t ? t->scene : NULL;
+    return s && s->nreports > 0 ? (s->scene.dim == 3 ? 3 : 2) : 0;
+}
+
 int braun_cli_csv_header(FILE *f, const braun_cli_target *t, int n)
 {
     char name[160];
     const char *unit;
+    static const char *const axis[3] = {"x", "y", "z"};
     for (int j = 0; j < braun_cli_column_count(n); j++) {
         if (j) fputc(',', f);
         braun_cli_column_name(t, n, j, name, sizeof name, &unit);
         cell(f, name, unit);
     }
+    const int dim = report_dim(t);
+    for (int k = 0; dim && k < t->scene->nreports; k++)
+        for (int c = 0; c < dim; c++) {
+            snprintf(name, sizeof name, "%.120s.%s", t->scene->report_names[k], axis[c]);
+            fputc(',', f);
+            cell(f, name, "m");
+        }
     fputc('\n', f);
     return ferror(f) ? -1 : 0;
 }
 
-int braun_cli_csv_row(FILE *f, int n, double t, const double *q,
+int braun_cli_csv_row(FILE *f, const braun_cli_target *tg, int n, double t, const double *q,
                       const double *v, const braun_cli_errors *e, int has_ref)
 {
     braun_cli_put_number(f, t);
@@ -47,6 +66,26 @@ int braun_cli_csv_row(FILE *f, int n, double t, const double *q,
     fputc(',', f), braun_cli_put_number(f, e->energy);
     fputc(',', f);
     if (has_ref) braun_cli_put_number(f, e->traj);
+    const int dim = report_dim(tg);
+    if (dim) {
+#ifdef BRAUN_SINGLE
+        /* The scene evaluates braun_reals; the rows hold doubles. */
+        braun_real *qr = malloc((size_t)n * sizeof *qr + 1);
+        if (!qr) return -1;
+        for (int i = 0; i < n; i++) qr[i] = (braun_real)q[i];
+#else
+        const braun_real *qr = q;
+#endif
+        for (int k = 0; k < tg->scene->nreports; k++) {
+            braun_real pos[3];
+            braun_scene_point_state(&tg->scene->scene, tg->scene->report_points[k], qr, NULL, pos,
+                                    NULL);
+            for (int c = 0; c < dim; c++) fputc(',', f), braun_cli_put_number(f, (double)pos[c]);
+        }
+#ifdef BRAUN_SINGLE
+        free(qr);
+#endif
+    }
     fputc('\n', f);
     return ferror(f) ? -1 : 0;
 }

@@ -28,6 +28,7 @@ typedef struct run_state {
  * refused, and the last one seen is the final state. */
 typedef struct run_ctx {
     braun_cli_monitor *mon;
+    const braun_cli_target *tg; /* its scene's reported points */
     FILE *csv;
     braun_cli_output *csv_out; /* its file, for the errno of a failed write */
     long every;
@@ -43,7 +44,7 @@ typedef struct run_ctx {
 
 static void write_good(run_ctx *c)
 {
-    if (braun_cli_csv_row(c->csv, c->n, c->good.t, c->good.q, c->good.v, &c->good.e,
+    if (braun_cli_csv_row(c->csv, c->tg, c->n, c->good.t, c->good.q, c->good.v, &c->good.e,
                           c->mon->has_ref))
         braun_cli_output_failed(c->csv_out);
     c->good_written = 1;
@@ -337,6 +338,7 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
     if (st) goto init_failed;
     memset(&ctx, 0, sizeof ctx);
     ctx.mon = &mon;
+    ctx.tg = tg;
     ctx.csv = csv;
     ctx.csv_out = &out_csv;
     ctx.every = a->every;

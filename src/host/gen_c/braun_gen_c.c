@@ -312,7 +312,13 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
     }
 
     /* Designated initialisers: robust to fields the header may add. The
-     * derived fields (iq, row) are left to braun_scene_build. */
+     * derived fields (iq, row) are left to braun_scene_build. What only a
+     * spatial scene has (z, 3-D axes and frames, inertia tensors, g and
+     * f[2]) is written for spatial scenes only: a planar scene's file is
+     * what it was before spatial scenes. */
+    int spatial = 0;
+    for (int i = 0; i < s->nbodies; i++) spatial = spatial || s->bodies[i].kind->dim == 3;
+    const int vec = spatial ? 3 : 2;
     if (open_array(out, "body", sym, "bodies", s->nbodies)) {
         for (int i = 0; i < s->nbodies; i++) {
             const braun_scene_body *b = &s->bodies[i];
@@ -321,10 +327,17 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
             real(out, b->mass);
             fputs(", .inertia = ", out);
             real(out, b->inertia);
+            /* q0, v0: the class's coordinates (at least 3 entries, as
+             * planar scenes always had). */
+            const int nq = b->kind->dof > 3 ? b->kind->dof : 3;
             fputs(",\n     .q0 = ", out);
-            reals(out, b->q0, BRAUN_SCENE_MAX_DOF);
+            reals(out, b->q0, nq);
             fputs(", .v0 = ", out);
-            reals(out, b->v0, BRAUN_SCENE_MAX_DOF);
+            reals(out, b->v0, nq);
+            if (spatial) {
+                fputs(",\n     .tensor = ", out);
+                reals(out, b->tensor, 6);
+            }
             item_end(out, sf->body_names, i);
         }
         fputs("};\n", out);
@@ -338,6 +351,10 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
             real(out, p->x);
             fputs(", .y = ", out);
             real(out, p->y);
+            if (spatial) {
+                fputs(", .z = ", out);
+                real(out, p->z);
+            }
             item_end(out, NULL, i);
         }
         fputs("};\n", out);
@@ -367,7 +384,15 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
             body_field(fl, offsetof(braun_scene_joint, b)) ? ref(out, j->b)
                                                           : (void)fprintf(out, "%d", j->b);
             fputs(", .axis = ", out);
-            reals(out, j->axis, 2);
+            reals(out, j->axis, vec);
+            if (spatial) {
+                fputs(",\n     .axis_b = ", out);
+                reals(out, j->axis_b, 3);
+                fputs(", .ref_a = ", out);
+                reals(out, j->ref_a, 3);
+                fputs(", .ref_b = ", out);
+                reals(out, j->ref_b, 3);
+            }
             fputs(", .value = ", out);
             real(out, j->value);
             fprintf(out, ",\n     .driven = %d, .drive = ", j->driven);
@@ -388,7 +413,7 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
             body_field(fl, offsetof(braun_scene_effect, b)) ? ref(out, e->b)
                                                            : (void)fprintf(out, "%d", e->b);
             fputs(", .g = ", out);
-            reals(out, e->g, 2);
+            reals(out, e->g, vec);
             fputs(",\n     .k = ", out);
             real(out, e->k);
             fputs(", .c = ", out);
@@ -403,6 +428,10 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
             fn(out, &e->f[0]);
             fputs(", ", out);
             fn(out, &e->f[1]);
+            if (spatial) {
+                fputs(",\n           ", out);
+                fn(out, &e->f[2]);
+            }
             fputc('}', out);
             item_end(out, sf->effect_names, i);
         }
