@@ -49,5 +49,5 @@ $(IFTOMM_TEST): tests/iftomm/test_iftomm.c tests/test_util.h $(IFTOMM_LIB_OBJ) \
 	    $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a -lcmocka -ljansson $(IFTOMM_LDLIBS) \
 	    $(LDLIBS_ALL) -o $@
 
-TEST_SUITES += "tools/run-tests $(IFTOMM_TEST)"
+TEST_SUITES += "tools/run-tests $(IFTOMM_TEST)" "sh tests/iftomm/cli.sh $(BUILD)/bin/braun"
 TEST_PREREQS += $(IFTOMM_TEST)
