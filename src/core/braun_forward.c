@@ -346,6 +346,7 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
     /* An evaluation on its own: the plain rank tolerance. */
     pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
     pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
+    pv->rule_stage = 0;
     st = braun__forward(d, (corr ? BRAUN_WITH_RESIDUALS : 0u) |
                                (corr & BRAUN_CORRECT_ENERGY ? BRAUN_WITH_POWER : 0u),
                         vdot);

@@ -58,8 +58,10 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
         if (st) return finish_failed(d, st, out && every > 0 && i > 1 && (i - 1) % every == 0, out, out_user);
         braun__load_state(d);
         st = braun__rk_attempt(d, tb, hi, per_stage, pv->y1, NULL);
-        if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
-        if (st == BRAUN_ERR_ACCURACY) return st;
+        if (st == BRAUN_ERR_ACCURACY) {
+            braun__guard_rollback(d);
+            return st;
+        }
         if (st) return finish_failed(d, st, out && every > 0 && i > 1 && (i - 1) % every == 0, out, out_user);
         /* This step's start passed the guard: only now is the state the
          * last step left reported, so a run the guard stops has reported

@@ -216,10 +216,11 @@ void braun_scene__initial_dir(const braun_scene *s, int body, const braun_real *
         return;
     }
     const braun_scene_body *bd = &s->bodies[body];
-    braun_real q[BRAUN_SCENE_MAX_DOF], v[BRAUN_SCENE_MAX_DOF];
+    braun_real q[BRAUN_SCENE_MAX_DOF];
     const braun_real *q0 = bd->q0;
     scene_pt D;
     if (bd->kind->initial) {
+        braun_real v[BRAUN_SCENE_MAX_DOF];
         bd->kind->initial(bd, q, v);
         q0 = q;
     }

@@ -93,9 +93,10 @@ void braun_scene_initial_point(const braun_scene *s, int i, braun_real *pos)
     /* The body's own coordinates are q0 (or what its class makes of
      * them): no numbering needed. */
     const braun_scene_body *bd = &s->bodies[pt->body];
-    braun_real q[BRAUN_SCENE_MAX_DOF], v[BRAUN_SCENE_MAX_DOF];
+    braun_real q[BRAUN_SCENE_MAX_DOF];
     const braun_real *q0 = bd->q0;
     if (bd->kind->initial) {
+        braun_real v[BRAUN_SCENE_MAX_DOF];
         bd->kind->initial(bd, q, v);
         q0 = q;
     }
