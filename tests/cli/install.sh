@@ -1,7 +1,10 @@
 #!/bin/sh
 # make install into a temporary DESTDIR, then build the README example
-# against it through pkg-config and run it. Prints "ok - NAME" /
-# "not ok - NAME" and "N passed, M failed, 0 skipped".
+# against it through pkg-config and run it; the shared libraries (soname,
+# exactly the public API exported), the CMake package, and every example
+# built with pkg-config and with CMake, linked statically and dynamically,
+# and run (issue 15). Prints "ok - NAME" / "not ok - NAME" and
+# "N passed, M failed, 0 skipped".
 set -u
 top=$(cd "$(dirname "$0")/../.." && pwd)
 tmp=$(mktemp -d)
@@ -19,7 +22,7 @@ flags=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --cflags 
 case "$flags" in *"-lbraun"*) ok "pkg-config --libs braun" ;; *) no "pkg-config --libs braun: $flags" ;; esac
 if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror "$top/examples/pendulum.c" $flags -o "$tmp/pendulum" 2>"$tmp/cc.log"; then
     ok "README example compiles warning-free against the installed library"
-    out=$("$tmp/pendulum"); rc=$?
+    out=$(LD_LIBRARY_PATH="$tmp/opt/braun/lib" "$tmp/pendulum"); rc=$?
     case "$rc:$out" in "0:t = 10 "*) ok "README example runs: $out" ;; *) no "README example (exit $rc) output: $out" ;; esac
     # The same pendulum (released from the horizontal, RK4 h = 1e-3, every
     # correction) as the installed tool's built-in model: the same q at t = 10.
@@ -60,11 +63,145 @@ if ${CC:-cc} -std=c99 -Wall -Wextra -Werror "$tmp/sel.c" $bflags -o "$tmp/sel" 2
     # tool says whether it is), the built-in kernels otherwise.
     if "$tmp/opt/braun/bin/braun" run slider-crank --dt 1e-3 --t-end 0.01 --backend lapack >/dev/null 2>&1
     then want="0 lapack"; else want="0 dense"; fi
-    out=$("$tmp/sel")
+    out=$(LD_LIBRARY_PATH="$tmp/opt/braun/lib" "$tmp/sel")
     case "$out" in "$want") ok "a program links the installed backends (auto for a dense n = 100: $out)" ;;
     *) no "backend selection output: $out" ;; esac
 else
     no "a program links the installed backends"; cat "$tmp/cc2.log"
 fi
+
+# ------------------------------------------------------------ shared libraries
+P=$tmp/opt/braun
+L=$P/lib
+ver=$(sed -n 's/^#define BRAUN_VERSION "\(.*\)"/\1/p' "$top/include/core/braun.h")
+so=$(echo "$ver" | cut -d. -f1-2)
+for l in libbraun libbraun_host libbraun_backends; do
+    if [ -f "$L/$l.so.$ver" ] && [ "$(readlink "$L/$l.so.$so")" = "$l.so.$ver" ] &&
+        [ "$(readlink "$L/$l.so")" = "$l.so.$so" ] && [ -f "$L/$l.a" ]; then
+        ok "installed $l.so.$ver, the links $l.so.$so and $l.so, and $l.a"
+    else
+        no "installed $l.so.$ver with its links and $l.a"
+    fi
+    sn=$(readelf -d "$L/$l.so.$ver" 2>/dev/null | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p')
+    [ "$sn" = "$l.so.$so" ] && ok "$l.so has the soname $sn" || no "$l.so soname: '$sn' (want $l.so.$so)"
+done
+needed=$(readelf -d "$L/libbraun.so.$ver" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | tr '\n' ' ')
+case "$needed" in "libm.so.6 libc.so.6 ") ok "libbraun.so needs libm and libc only ($needed)" ;;
+*) no "libbraun.so needs: $needed" ;; esac
+readelf -d "$L/libbraun_host.so.$ver" | grep -q "NEEDED.*\[libbraun.so.$so\]" &&
+    ok "libbraun_host.so needs libbraun.so.$so" || no "libbraun_host.so does not name libbraun.so.$so"
+# Exactly the public API: every exported symbol is declared in a public
+# header and versioned BRAUN_<so>; none of the internals (braun__*, the
+# dense kernels, the scene builder's helpers, the reader's sj_*).
+for l in libbraun libbraun_host libbraun_backends; do
+    nm -D --defined-only "$L/$l.so.$ver" | awk '$2 != "A" { sub(/@.*/, "", $3); print $3 }' | sort > "$tmp/$l.exported"
+    for h in "$top"/include/core/*.h "$top"/include/host/*.h; do
+        ${CC:-cc} -fpreprocessed -dD -E -P -x c "$h" 2>/dev/null; done | grep -o '[A-Za-z_][A-Za-z0-9_]*' | sort -u > "$tmp/declared"
+    extra=$(comm -23 "$tmp/$l.exported" "$tmp/declared" | tr '\n' ' ')
+    n=$(wc -l < "$tmp/$l.exported" | tr -d ' ')
+    unversioned=$(nm -D --defined-only "$L/$l.so.$ver" | awk '$2 != "A" && $3 !~ /@@BRAUN_'"$so"'$/' | wc -l)
+    if [ -z "$extra" ] && [ "$n" -gt 0 ] && [ "$unversioned" -eq 0 ]; then
+        ok "$l.so exports $n symbols, each declared in a public header, versioned BRAUN_$so"
+    else
+        no "$l.so exports beyond the public headers: $extra ($unversioned unversioned)"
+    fi
+done
+grep -q "^braun_integrate$" "$tmp/libbraun.exported" && grep -q "^braun_scene_build$" "$tmp/libbraun.exported" &&
+    ! grep -q "^braun__\|^braun_qrcp_\|^braun_chol_\|^braun_scene__" "$tmp/libbraun.exported" &&
+    grep -q "^braun_scene_load$" "$tmp/libbraun_host.exported" && ! grep -q "^sj_" "$tmp/libbraun_host.exported" &&
+    ok "braun_integrate, braun_scene_build, braun_scene_load exported; braun__*, braun_qrcp_*, braun_chol_*, sj_* not" ||
+    no "exports: the API or the internals"
+for f in lib/cmake/braun/braunConfig.cmake lib/cmake/braun/braunConfigVersion.cmake share/braun/data/four-bar.json \
+    share/braun/examples/pendulum.c share/braun/examples/CMakeLists.txt share/doc/braun/README.md share/doc/braun/CHANGELOG.md; do
+    [ -f "$P/$f" ] && ok "installed $f" || no "installed $f"
+done
+"$P/bin/braun" --version > "$tmp/version.txt" 2>&1
+grep -q "^braun $ver " "$tmp/version.txt" && ok "braun --version: $(cat "$tmp/version.txt")" || no "braun --version: $(cat "$tmp/version.txt")"
+mkdir -p "$tmp/anywhere"
+(cd "$tmp/anywhere" && "$P/bin/braun" run four-bar.json --dt 1e-2 --t-end 1 --summary s.json) &&
+    grep -q '"scene": "four-bar"' "$tmp/anywhere/s.json" &&
+    ok "the installed braun runs a shipped scene by name from any directory (share/braun/data)" ||
+    no "the installed braun runs four-bar.json from another directory"
+
+# ------------------------------------------------------------ the examples
+# What each example must print (its own checks decide its exit status).
+ref_q=$("$P/bin/braun" run four-bar.json --dt 1e-3 --t-end 10 2>&1 | sed -n 's/^  "final_q": \[\(.*\)\],$/\1/p')
+examples_run() { # examples_run DIR HOW: run the four examples built in DIR
+    d=$1 how=$2
+    out=$("$d/pendulum" 2>&1); rc=$?
+    case "$rc:$out" in "0:t = 10 "*) ok "$how: pendulum runs ($out)" ;; *) no "$how: pendulum (exit $rc) $out" ;; esac
+    out=$("$d/driven_crank" 2>&1); rc=$?
+    [ "$rc" -eq 0 ] && ok "$how: driven_crank runs within its checks ($(echo "$out" | tr '\n' ';' | cut -c1-150))" ||
+        no "$how: driven_crank (exit $rc) $out"
+    out=$("$d/scene" "$P/share/braun/data/four-bar.json" 1e-3 10 2>&1); rc=$?
+    got=$(echo "$out" | sed -n 's/.* q = \(.*\)$/\1/p' | tr ' ' ',')
+    if [ "$rc" -eq 0 ] && awk -v a="$got" -v b="$ref_q" 'BEGIN { n = split(a, x, ","); m = split(b, y, ",")
+            if (n != 6 || m != 6) exit 1
+            for (i = 1; i <= 6; i++) { e = x[i] - y[i]; if (e < 0) e = -e; if (e > 1e-8) exit 1 } }'; then
+        ok "$how: scene runs the installed four-bar.json to braun's final q"
+    else
+        no "$how: scene (exit $rc): $out; braun: $ref_q"
+    fi
+    out=$("$d/backends" 2>&1); rc=$?
+    case "$rc:$out" in "0:chain of 30 links (n = 90) with "*) ok "$how: backends runs ($out)" ;;
+    *) no "$how: backends (exit $rc) $out" ;; esac
+}
+# needs_braun FILE: 1 if FILE names libbraun*.so in NEEDED.
+needs_braun() { readelf -d "$1" 2>/dev/null | grep -q "NEEDED.*libbraun"; }
+
+cp -r "$P/share/braun/examples" "$tmp/ex-pc-shared"
+cp -r "$P/share/braun/examples" "$tmp/ex-pc-static"
+export PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc"
+if make -s -C "$tmp/ex-pc-shared" CFLAGS="-std=c99 -O2 -Wall -Wextra -Wpedantic -Werror" > "$tmp/mk1.log" 2>&1; then
+    ok "pkg-config, shared: the examples build warning-free (make -C examples)"
+    needs_braun "$tmp/ex-pc-shared/pendulum" && needs_braun "$tmp/ex-pc-shared/scene" &&
+        ok "pkg-config, shared: the programs load libbraun.so.$so" || no "pkg-config, shared: no libbraun.so in NEEDED"
+    export LD_LIBRARY_PATH="$L"
+    examples_run "$tmp/ex-pc-shared" "pkg-config, shared"
+    unset LD_LIBRARY_PATH
+else
+    no "pkg-config, shared: the examples build"; cat "$tmp/mk1.log"
+fi
+if make -s -C "$tmp/ex-pc-static" STATIC=1 LIBDIR="$L" CFLAGS="-std=c99 -O2 -Wall -Wextra -Wpedantic -Werror" > "$tmp/mk2.log" 2>&1; then
+    ok "pkg-config, static: the examples build warning-free (make -C examples STATIC=1)"
+    ! needs_braun "$tmp/ex-pc-static/pendulum" && ! needs_braun "$tmp/ex-pc-static/backends" &&
+        ok "pkg-config, static: the programs need no libbraun*.so" || no "pkg-config, static: libbraun*.so in NEEDED"
+    examples_run "$tmp/ex-pc-static" "pkg-config, static"
+else
+    no "pkg-config, static: the examples build"; cat "$tmp/mk2.log"
+fi
+unset PKG_CONFIG_SYSROOT_DIR PKG_CONFIG_PATH
+if command -v cmake > /dev/null 2>&1; then
+    for kind in shared static; do
+        flag=OFF; [ "$kind" = static ] && flag=ON
+        b="$tmp/ex-cmake-$kind"
+        if cmake -S "$P/share/braun/examples" -B "$b" -DCMAKE_PREFIX_PATH="$P" -DBRAUN_USE_STATIC_LIBS=$flag \
+                -DCMAKE_C_FLAGS="-Wall -Wextra -Wpedantic -Werror" > "$tmp/cm-$kind.log" 2>&1 &&
+            cmake --build "$b" >> "$tmp/cm-$kind.log" 2>&1; then
+            ok "CMake, $kind: find_package(braun 0.1) and braun::braun, braun::scene, braun::backends build the examples"
+            if [ "$kind" = shared ]; then
+                needs_braun "$b/pendulum" && ok "CMake, shared: the programs load libbraun.so.$so" || no "CMake, shared: no libbraun.so"
+            else
+                ! needs_braun "$b/pendulum" && ! needs_braun "$b/scene" && ok "CMake, static: no libbraun*.so needed" ||
+                    no "CMake, static: libbraun*.so in NEEDED"
+            fi
+            examples_run "$b" "CMake, $kind"
+        else
+            no "CMake, $kind: the examples build"; tail -20 "$tmp/cm-$kind.log"
+        fi
+    done
+    # The version file: 0.1 and the exact version are met; 0.2, 1.0 and 0.0 are not.
+    mkdir -p "$tmp/cmv"
+    for want in "$so" "$ver" 0.2 1.0 0.0; do
+        printf 'cmake_minimum_required(VERSION 3.13)\nproject(v C)\nfind_package(braun %s REQUIRED)\n' "$want" > "$tmp/cmv/CMakeLists.txt"
+        if cmake -S "$tmp/cmv" -B "$tmp/cmv/b-$want" -DCMAKE_PREFIX_PATH="$P" > /dev/null 2>&1; then r=found; else r=refused; fi
+        case "$want:$r" in "$so:found"|"$ver:found"|0.2:refused|1.0:refused|0.0:refused)
+            ok "CMake: find_package(braun $want) $r" ;;
+        *) no "CMake: find_package(braun $want) $r" ;; esac
+    done
+else
+    no "CMake: cmake not found (Debian: apt-get install cmake)"
+fi
+
 echo "$pass passed, $fail failed, 0 skipped"
 [ "$fail" -eq 0 ]

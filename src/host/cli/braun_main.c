@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "braun_backends.h"
 #include "braun_cli.h"
 
 int main(int argc, char **argv)
@@ -14,7 +15,16 @@ int main(int argc, char **argv)
         return 0;
     }
     if (strcmp(cmd, "--version") == 0) {
-        printf("braun %s\n", BRAUN_VERSION);
+        /* What this build holds: the precision and the backends. */
+        const int lapack = braun_linsolver_lapack() != NULL;
+        const int ss = braun_linsolver_suitesparse() != NULL;
+#ifdef BRAUN_SINGLE
+        const char *precision = "float";
+#else
+        const char *precision = "double";
+#endif
+        printf("braun %s (libbraun %s, %s; backends: dense%s%s)\n", BRAUN_VERSION, BRAUN_VERSION,
+               precision, lapack ? ", lapack" : "", ss ? ", suitesparse" : "");
         return 0;
     }
     if (strcmp(cmd, "list") == 0) {

@@ -287,6 +287,11 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
     a->progress = quiet ? 0 : loud ? 1 : -1;
     if (!a->model) return braun_cli_error("%s needs a MODEL (see braun list)", cmd);
     if (plot) {
+        /* A picture on stdout would interleave with a CSV or summary there. */
+        if (a->plot_path && strcmp(a->plot_path, "-") == 0 &&
+            ((a->out_path && strcmp(a->out_path, "-") == 0) ||
+             (a->summary_path && strcmp(a->summary_path, "-") == 0)))
+            return braun_cli_error("-o - and --out - or --summary - both write to stdout");
         if (!a->plot_path)
             return braun_cli_error("plot needs -o FILE (.svg drawing, .html animation, .png)");
         if (a->traj_path) {
@@ -307,7 +312,8 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
                                "(the adaptive driver corrects per step)");
     if (a->method == BRAUN_DOPRI5 && a->rtol == 0 && a->atol == 0)
         return braun_cli_error("--rtol and --atol cannot both be 0");
-    if (a->out_path && strcmp(a->out_path, "-") == 0 && strcmp(a->summary_path, "-") == 0)
+    if (a->out_path && strcmp(a->out_path, "-") == 0 && a->summary_path &&
+        strcmp(a->summary_path, "-") == 0)
         return braun_cli_error("--out - and the summary both write to stdout; give --summary FILE");
     if (a->every_given && !a->out_path)
         return braun_cli_error("--every %ld without --out: it sets the rows of the trajectory "

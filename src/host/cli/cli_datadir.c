@@ -20,8 +20,7 @@ const char *braun_cli_data_dir(void)
     static char dir[4096];
     const char *env = getenv("BRAUN_DATA_DIR");
     if (env && *env) {
-        if (strlen(env) >= sizeof dir) return NULL;
-        strcpy(dir, env);
+        if ((size_t)snprintf(dir, sizeof dir, "%s", env) >= sizeof dir) return NULL;
         return dir;
     }
     ssize_t len = readlink("/proc/self/exe", dir, sizeof dir - 1);
@@ -34,8 +33,8 @@ const char *braun_cli_data_dir(void)
         *slash = '\0';
     }
     static const char tail[] = "/share/braun/data";
-    if (strlen(dir) + sizeof tail > sizeof dir) return NULL;
-    strcat(dir, tail);
+    const size_t used = strlen(dir);
+    if ((size_t)snprintf(dir + used, sizeof dir - used, "%s", tail) >= sizeof dir - used) return NULL;
     struct stat st;
     return stat(dir, &st) == 0 && S_ISDIR(st.st_mode) ? dir : NULL;
 }
@@ -50,12 +49,7 @@ int braun_cli_data_file(const char *name, char *path, size_t size)
     const int has_ext = len >= 5 && strcmp(name + len - 5, ".json") == 0;
     for (int ext = 0; ext < 2; ext++) {
         if (ext && has_ext) break;
-        const size_t need = strlen(dir) + 1 + len + (ext ? 5 : 0) + 1;
-        if (need > size) return 0;
-        strcpy(path, dir);
-        strcat(path, "/");
-        strcat(path, name);
-        if (ext) strcat(path, ".json");
+        if ((size_t)snprintf(path, size, "%s/%s%s", dir, name, ext ? ".json" : "") >= size) return 0;
         if ((ext || has_ext) && stat(path, &st) == 0 && S_ISREG(st.st_mode)) return 1;
     }
     return 0;

@@ -23,6 +23,13 @@
  * (1, 0) m/s, gravity -y; B0 is reported. n = 2N + 2, m = 2N + 1: one
  * degree of freedom, N + 1 whenever the links are horizontal.
  *
+ * braun gen spatial-chain N [--angle DEG] [-o FILE]: N rigid3d bars (1 m,
+ * 0.1 m x 0.1 m section, 1 kg) on spherical joints, hanging from the
+ * origin as one straight line DEG degrees below the horizontal in the x-y
+ * plane (default 0), turning as one body about the vertical y axis at
+ * 1 rad/s (so the motion is spatial; the start is on the constraints):
+ * n = 7N (Euler parameters), m = 4N (3 rows a joint, 1 a quaternion).
+ *
  * Rigid chains and ladders have no rods: above n = 4096 they run only as
  * sparse systems (braun run --sparse). */
 #include <errno.h>
@@ -167,6 +174,38 @@ static void write_n_four_bar(FILE *f, long N)
     fputs("  ],\n  \"report\": {\"B0\": \"B0\"},\n", f);
 }
 
+static void write_spatial(FILE *f, long N, double deg)
+{
+    /* Bar direction d = (cos φ, -sin φ, 0): body x turned by -φ about z;
+     * centre (i - 1/2) d, velocity ω × centre with ω = (0, 1, 0). */
+    const double phi = deg * PI / 180, c = cos(phi), s = sin(phi);
+    const double qw = cos(-phi / 2), qz = sin(-phi / 2);
+    fprintf(f, "{\n  \"name\": \"spatial-chain-%ld\",\n", N);
+    fprintf(f, "  \"description\": \"%ld rigid3d bars (1 m, 0.1 m square section, 1 kg) on spherical "
+               "joints, straight, %.17g degrees below the horizontal, turning about the vertical at "
+               "1 rad/s; written by braun gen spatial-chain %ld%s%.17g\",\n",
+            N, deg, N, deg == 0 ? "" : " --angle ", deg);
+    fputs("  \"bodies\": [\n", f);
+    for (long i = 1; i <= N; i++) {
+        const double x = ((double)i - 0.5) * c, y = -((double)i - 0.5) * s;
+        /* (0, 1, 0) × (x, y, 0) = (0, 0, -x) */
+        fprintf(f, "    {\"name\": \"bar%ld\", \"type\": \"rigid3d\", \"mass\": 1, "
+                   "\"inertia\": [0.0016666666666666668, 0.084166666666666667, 0.084166666666666667], "
+                   "\"position\": [%.17g, %.17g, 0], ", i, x, y + 0.0);
+        if (deg != 0) fprintf(f, "\"orientation\": [%.17g, 0, 0, %.17g], ", qw, qz);
+        fprintf(f, "\"velocity\": [0, 0, %.17g], \"omega\": [0, 1, 0], "
+                   "\"points\": {\"a\": [-0.5, 0, 0], \"b\": [0.5, 0, 0]}}%s\n",
+                -x + 0.0, i < N ? "," : "");
+    }
+    fputs("  ],\n  \"joints\": [\n", f);
+    fprintf(f, "    {\"name\": \"pivot\", \"type\": \"spherical\", \"a\": \"bar1.a\", "
+               "\"b\": [0, 0, 0]}%s\n", N > 1 ? "," : "");
+    for (long i = 2; i <= N; i++)
+        fprintf(f, "    {\"name\": \"ball%ld\", \"type\": \"spherical\", \"a\": \"bar%ld.b\", "
+                   "\"b\": \"bar%ld.a\"}%s\n", i, i - 1, i, i < N ? "," : "");
+    fputs("  ],\n", f);
+}
+
 static int parse_angle(const char *s, double *deg)
 {
     char *end;
@@ -182,12 +221,12 @@ static int parse_angle(const char *s, double *deg)
 
 #define GEN_USAGE                                                                             \
     "braun gen chain N [--rods] [--angle DEG] [-o FILE] | ladder N [--angle DEG] [-o FILE] | " \
-    "n-four-bar N [-o FILE]"
+    "n-four-bar N [-o FILE] | spatial-chain N [--angle DEG] [-o FILE]"
 
 int braun_cli_gen(int argc, char **argv)
 {
     const char *out = NULL, *count = NULL;
-    int rods = 0, ladder = 0, fourbar = 0, rc;
+    int rods = 0, ladder = 0, fourbar = 0, spatial = 0, rc;
     double deg;
     if (argc < 1) return braun_cli_error("gen needs a kind: " GEN_USAGE);
     if (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0) {
@@ -197,14 +236,17 @@ int braun_cli_gen(int argc, char **argv)
     if (strcmp(argv[0], "chain") == 0) ladder = 0;
     else if (strcmp(argv[0], "ladder") == 0) ladder = 1;
     else if (strcmp(argv[0], "n-four-bar") == 0) fourbar = 1;
-    else return braun_cli_error("unknown scene kind '%s' (chain, ladder, n-four-bar)", argv[0]);
+    else if (strcmp(argv[0], "spatial-chain") == 0) spatial = 1;
+    else return braun_cli_error("unknown scene kind '%s' (chain, ladder, n-four-bar, "
+                                "spatial-chain)", argv[0]);
     deg = ladder ? 30 : 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--rods") == 0) {
-            if (ladder || fourbar)
+            if (ladder || fourbar || spatial)
                 return braun_cli_error("--rods applies to gen chain only (%s)",
-                                       ladder ? "a ladder's rungs are rigid"
-                                              : "an n-four-bar is made of rods already");
+                                       ladder    ? "a ladder's rungs are rigid"
+                                       : spatial ? "a spatial chain's bars are rigid3d bodies"
+                                                 : "an n-four-bar is made of rods already");
             rods = 1;
         } else if (strcmp(argv[i], "--angle") == 0) {
             if (fourbar)
@@ -227,7 +269,7 @@ int braun_cli_gen(int argc, char **argv)
     }
     if (!count)
         return braun_cli_error("gen %s needs the number of %s N", argv[0],
-                               ladder ? "cells" : fourbar ? "four-bar windows" : "links");
+                               ladder ? "cells" : fourbar ? "four-bar windows" : spatial ? "bars" : "links");
     char *end;
     errno = 0;
     long N = strtol(count, &end, 10);
@@ -244,9 +286,11 @@ int braun_cli_gen(int argc, char **argv)
     FILE *f = o.f;
     if (fourbar) write_n_four_bar(f, N);
     else if (ladder) write_ladder(f, N, deg);
+    else if (spatial) write_spatial(f, N, deg);
     else if (rods) write_rods(f, N, deg);
     else write_rigid(f, N, deg);
-    fputs("  \"effects\": [\n    {\"type\": \"gravity\", \"g\": [0, -9.81]}\n  ]\n}\n", f);
+    fprintf(f, "  \"effects\": [\n    {\"type\": \"gravity\", \"g\": [0, -9.81%s]}\n  ]\n}\n",
+            spatial ? ", 0" : "");
     if (ferror(f)) braun_cli_output_failed(&o);
     return braun_cli_output_close(&o) ? BRAUN_CLI_FAILED : 0;
 }

@@ -28,7 +28,7 @@ void braun_cli_write_human(FILE *f, const braun_cli_result *r)
     const braun_cli_run_args *a = r->args;
     const braun_cli_monitor *mon = r->mon;
     const braun_cli_bounds *b = &r->stop.bounds;
-    char st[64], p[16], v[16], e[16], q[16], bp[16], bv[16], be[16];
+    char st[64], p[16], v[16], e[16];
     status_name(r->status, st, sizeof st);
     fprintf(f, "braun: %s: %s", r->scene, st);
     if (r->status == BRAUN_OK) {
@@ -52,12 +52,17 @@ void braun_cli_write_human(FILE *f, const braun_cli_result *r)
                    "monitoring; the monitored run took %.3g s)", r->cpu_s, r->cpu_monitored_s);
     fprintf(f, "; max |Phi_q| %s, |dPhi| %s, |Phi_e| %s", g3(mon->max.pos, p, sizeof p),
             g3(mon->max.vel, v, sizeof v), g3(mon->max.energy, e, sizeof e));
-    if (mon->has_ref) fprintf(f, ", |q - q_ref| %s", g3(mon->max.traj, q, sizeof q));
-    if (b->on)
+    if (mon->has_ref) {
+        char q[16];
+        fprintf(f, ", |q - q_ref| %s", g3(mon->max.traj, q, sizeof q));
+    }
+    if (b->on) {
+        char bp[16], bv[16], be[16];
         fprintf(f, " (guard bounds %s, %s, %s)", g3(b->pos, bp, sizeof bp),
                 g3(b->vel, bv, sizeof bv), g3(b->energy, be, sizeof be));
-    else
+    } else {
         fputs(" (guard off)", f);
+    }
     fputc('\n', f);
     fflush(f);
 }

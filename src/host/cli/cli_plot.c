@@ -67,8 +67,7 @@ static int resolve_series(plot_job *job, plot_drawing *dr, const braun_cli_targe
         item[len] = '\0';
         p = comma ? comma + 1 : p + len;
         const int col = braun_cli_column_find(t, n, item);
-        const int axis = len >= 1 && strchr("xyz", item[len - 1]) &&
-                                 (len == 1 || item[len - 2] == '.')
+        const int axis = strchr("xyz", item[len - 1]) && (len == 1 || item[len - 2] == '.')
                              ? item[len - 1] - 'x'
                              : -1;
         if (col > 0) {

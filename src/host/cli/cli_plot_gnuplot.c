@@ -109,7 +109,9 @@ static int script(FILE *g, const plot_job *job)
             if (dr) plot_drawing_eval(dr, row + 1, qr, pos);
             for (int k = 0; k < job->nseries; k++) {
                 const plot_series *sr = &job->series[k];
-                const double v = sr->column >= 0 ? row[sr->column] : pos[3 * sr->anchor + sr->axis];
+                double v = NAN;
+                if (sr->column >= 0) v = row[sr->column];
+                else if (pos) v = pos[3 * sr->anchor + sr->axis];
                 if (isfinite(v)) fprintf(g, " %.17g", v);
                 else fputs(" NaN", g);
             }
@@ -213,7 +215,10 @@ int plot_write_png(FILE *out, const plot_job *job)
     if (g && fclose(g) != 0) rc = -1;
     if (!g) close(fds[1]);
     int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) continue;
+    pid_t waited;
+    do {
+        waited = waitpid(pid, &status, 0);
+    } while (waited < 0 && errno == EINTR);
     signal(SIGPIPE, old);
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127) {
         braun_cli_error("a .png needs gnuplot, which was not found (Debian: apt-get install "

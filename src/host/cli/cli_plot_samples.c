@@ -34,7 +34,7 @@ int plot_samples_init(plot_samples *s, int n, long cap, double from, double to)
 void plot_samples_add(plot_samples *s, const double *row)
 {
     const double t = row[0];
-    if (t < s->from) return;
+    if (t < s->from || !s->rows) return;
     memcpy(s->last, row, (size_t)s->cols * sizeof *row);
     s->have_last = 1;
     /* Keep the first row at or after each of cap evenly spaced times; a
@@ -48,7 +48,7 @@ void plot_samples_add(plot_samples *s, const double *row)
 
 void plot_samples_finish(plot_samples *s)
 {
-    if (!s->have_last) return;
+    if (!s->have_last || !s->rows) return;
     const double *prev = s->count ? s->rows + (size_t)(s->count - 1) * (size_t)s->cols : NULL;
     if (prev && prev[0] == s->last[0]) return;
     memcpy(s->rows + (size_t)s->count * (size_t)s->cols, s->last, (size_t)s->cols * sizeof *s->last);

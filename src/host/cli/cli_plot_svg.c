@@ -401,7 +401,7 @@ static double tick_step(double lo, double hi)
 static double series_value(const plot_job *job, const plot_series *sr, const double *row,
                            double *pos, braun_real *qr)
 {
-    if (sr->column >= 0) return row[sr->column];
+    if (sr->column >= 0 || !pos || !job->drawing) return sr->column >= 0 ? row[sr->column] : NAN;
     plot_drawing_eval(job->drawing, row + 1, qr, pos);
     return pos[3 * sr->anchor + sr->axis];
 }
@@ -438,16 +438,19 @@ int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, in
     plot_svg_header(f, width, height, job->caption, inline_html);
     fprintf(f, "  <rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"none\" "
                "stroke=\"#222222\"/>\n", ml, mt, pw, ph);
-    for (double v = lo; v <= hi + 0.5 * ty; v += ty) {
-        const double y = Y(v);
+    const long nv = lround((hi - lo) / ty);
+    for (long i = 0; i <= nv; i++) {
+        const double v = lo + (double)i * ty, y = Y(v);
         char num[BRAUN_CLI_NUMBER_SIZE];
         snprintf(num, sizeof num, "%.4g", fabs(v) < 1e-12 * ty ? 0.0 : v);
         line(f, "  ", ml, y, ml + pw, y, "stroke=\"#dddddd\" stroke-width=\"1\"");
         fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"12\" "
                    "text-anchor=\"end\">%s</text>\n", ml - 6, y + 4, num);
     }
-    for (double t = ceil(t0 / tt) * tt; t <= t1 + 1e-9 * tt; t += tt) {
-        const double x = X(t);
+    const double first = ceil(t0 / tt) * tt;
+    const long nt = (long)floor((t1 - first) / tt + 1e-9);
+    for (long i = 0; i <= nt; i++) {
+        const double t = first + (double)i * tt, x = X(t);
         line(f, "  ", x, mt + ph, x, mt + ph + 5, "stroke=\"#222222\" stroke-width=\"1\"");
         fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"12\" "
                    "text-anchor=\"middle\">%.4g</text>\n", x, mt + ph + 18, fabs(t) < 1e-12 * tt ? 0.0 : t);

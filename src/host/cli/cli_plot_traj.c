@@ -35,8 +35,12 @@ int plot_traj_read(const char *path, const braun_cli_target *t, plot_samples *s)
     char *text = braun_cli_read_file(path, (size_t)1 << 30, &len, err, sizeof err);
     if (!text) return braun_cli_error("--traj %s", err);
     const int n = t->sys.n, cols = braun_cli_column_count(n);
-    double *row = malloc((size_t)cols * sizeof *row);
-    int rc = row ? 0 : braun_cli_error("out of memory");
+    double *row = calloc((size_t)cols, sizeof *row);
+    if (!row) {
+        free(text);
+        return braun_cli_error("out of memory");
+    }
+    int rc = 0;
     const char *p = text, *end = text + len;
     long line = 1;
     /* The header. */
