@@ -18,6 +18,8 @@
 
 #include "test_util.h"
 #include "braun_backends.h"
+#include "braun_linalg.h"
+#include "braun_scene_file.h"
 #include "heap_interpose.h"
 
 /* LAPACK (linked for the backend tests): minimum-norm least squares by SVD. */
@@ -1682,6 +1684,383 @@ static void test_simulation_near_singular(void **state)
 }
 
 /* ------------------------------------------------------------------ */
+/* Redundant mechanisms along their motion: scene files                */
+/* ------------------------------------------------------------------ */
+/* The states a run with the built-in dense kernels passes through (every
+ * evaluation of A, stages included), recorded by wrapping the sparse
+ * system's constraint callback; then, at each recorded state, every
+ * operation of the backend on that C against dgelsd and the definitions
+ * (check_slot) and against the built-in kernels (check_dense_kernels),
+ * and the whole run against the same run with this backend. */
+typedef struct scene_run {
+    braun_scene_file *sf;
+    void *store;           /* the sparse system's buffer */
+    braun_system sys;      /* the sparse system */
+    braun_holonomic_fn hol; /* the scene's own */
+    int count, cap;
+    double *q, *t;         /* recorded states (cap x n) and times */
+} scene_run;
+
+static scene_run *rec_run; /* the run rec_hol records into */
+
+static int rec_hol(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                   braun_real *A, braun_real *b, braun_real *bv, void *user)
+{
+    scene_run *r = rec_run;
+    if (A && r->count < r->cap) {
+        for (int j = 0; j < r->sys.n; j++) r->q[(size_t)r->count * (size_t)r->sys.n + j] = q[j];
+        r->t[r->count++] = (double)t;
+    }
+    return r->hol(t, q, v, phi, A, b, bv, user);
+}
+
+static void scene_open(scene_run *r, const char *path, const char *text, int cap)
+{
+    char err[512];
+    memset(r, 0, sizeof *r);
+    r->sf = text ? braun_scene_load_text(path, text, strlen(text), err, sizeof err)
+                 : braun_scene_load(path, err, sizeof err);
+    if (!r->sf) printf("  %s\n", err);
+    assert_non_null(r->sf);
+    const size_t bytes = braun_scene_sparse_size(&r->sf->scene);
+    assert_true(bytes > 0);
+    r->store = malloc(bytes);
+    assert_non_null(r->store);
+    braun_scene_error se;
+    assert_int_equal(braun_scene_build_sparse(&r->sf->scene, &r->sys, r->store, bytes, &se),
+                     BRAUN_OK);
+    assert_int_equal(r->sys.p, 0);
+    for (int b = 0; b < r->sys.sparsity->nblocks; b++) assert_int_equal(r->sys.sparsity->block[b], 3);
+    r->hol = r->sys.holonomic;
+    r->cap = cap;
+    r->q = dvec((size_t)cap * (size_t)r->sys.n);
+    r->t = dvec((size_t)cap);
+}
+
+static void scene_close(scene_run *r)
+{
+    free(r->q);
+    free(r->t);
+    free(r->store);
+    braun_scene_free(r->sf);
+}
+
+/* The run's test system at recorded state i: pattern, A and M from the
+ * scene's own callbacks. */
+static void scene_tsys(const scene_run *r, int i, tsys *t)
+{
+    const braun_system *sys = &r->sys;
+    const braun_sparsity *sp = sys->sparsity;
+    const int n = sys->n, rows = sys->m, nnz = sp->row_ptr[rows];
+    const double *qd = r->q + (size_t)i * (size_t)n;
+    braun_real *q = rvec((size_t)n), *A = rvec((size_t)nnz), *M = rvec(9 * (size_t)sp->nblocks),
+               *phi = rvec((size_t)rows), *b = rvec((size_t)rows), *bv = rvec((size_t)rows),
+               *v = rvec((size_t)n);
+    for (int j = 0; j < n; j++) q[j] = (braun_real)qd[j];
+    assert_int_equal(sys->mass((braun_real)r->t[i], q, M, sys->user), 0);
+    assert_int_equal(r->hol((braun_real)r->t[i], q, v, phi, A, b, bv, sys->user), 0);
+    ts_open(t, sp->nblocks, rows);
+    assert_true(nnz <= t->cap_nnz);
+    for (int k = 0; k <= rows; k++) t->row_ptr[k] = sp->row_ptr[k];
+    for (int k = 0; k < nnz; k++) t->col[k] = sp->col[k], t->A[k] = (double)A[k];
+    for (int k = 0; k < 9 * sp->nblocks; k++) t->M[k] = (double)M[k];
+    t->rows = rows;
+    ts_model(t, rows);
+    free(q);
+    free(A);
+    free(M);
+    free(phi);
+    free(b);
+    free(bv);
+    free(v);
+}
+
+/* The backend's factorization of C (slot 0, tolerance tol) against the
+ * built-in kernels' column-pivoted QR of the same C: the rank, C^+ r for a
+ * consistent and an inconsistent r, lsq's residual, N z. */
+static void check_dense_kernels(void *st, const tsys *t, const dref *d, double tol, double rel,
+                                unsigned long long seed)
+{
+    const int n = t->n, rows = d->rows;
+    braun_real *reals = rvec(braun_qrcp_reals(n, rows) + 1);
+    int *ints = xcalloc(braun_qrcp_ints(rows) + 1, sizeof(int));
+    braun_qrcp f;
+    braun_qrcp_bind(&f, n, rows, reals, ints);
+    for (size_t k = 0; k < (size_t)rows * (size_t)n; k++) f.a[k] = (braun_real)d->C[k];
+    const int kq = braun_qrcp_factor(&f, (braun_real)tol);
+    assert_int_equal(be_factor_c(st, t, 0, rows, tol), kq);
+    double cnorm = 0;
+    for (int i = 0; i < rows; i++) cnorm = fmax(cnorm, nrm2(n, d->C + (size_t)i * n));
+    double *y = dvec((size_t)n), *rd = dvec((size_t)rows), *xq = dvec((size_t)n);
+    braun_real *r = rvec((size_t)rows), *x1 = rvec((size_t)n), *x2 = rvec((size_t)n),
+               *z1 = rvec((size_t)n), *z2 = rvec((size_t)n);
+    for (int kind = 0; kind < 2; kind++) {
+        for (int j = 0; j < n; j++) y[j] = test_frand(&seed);
+        if (kind == 0)
+            c_mul(d, y, rd);
+        else
+            for (int i = 0; i < rows; i++) rd[i] = test_frand(&seed);
+        for (int i = 0; i < rows; i++) r[i] = (braun_real)rd[i];
+        braun_real res1 = -1, res2 = -1;
+        LS()->lsq(st, 0, r, x1, &res1);
+        braun_qrcp_lsq(&f, r, x2, &res2);
+        for (int j = 0; j < n; j++) xq[j] = (double)x2[j];
+        const double scale = amax(n, xq) + 1;
+        assert_le(rdiff(n, x1, xq), rel * scale);
+        assert_near(res1, res2, rel * (cnorm * scale + amax(rows, rd)));
+    }
+    for (int j = 0; j < n; j++) z1[j] = z2[j] = (braun_real)test_frand(&seed);
+    LS()->null_project(st, 0, z1);
+    braun_qrcp_null_project(&f, z2);
+    for (int j = 0; j < n; j++) y[j] = (double)z2[j];
+    assert_le(rdiff(n, z1, y), rel * 2);
+    free(reals);
+    free(ints);
+    free(y);
+    free(rd);
+    free(xq);
+    free(r);
+    free(x1);
+    free(x2);
+    free(z1);
+    free(z2);
+}
+
+/* Run r's scene for `steps` RK4 steps of 1e-3 with the built-in kernels
+ * (recording its states) and with this backend: both BRAUN_OK, the same
+ * trajectory within traj_tol, this backend's energy residual within
+ * energy_tol; then every recorded state through check_slot (a backend
+ * state of its own, whose first factorization tries the Cholesky, and one
+ * kept across the states, which alternates between the paths as in a run)
+ * and check_dense_kernels, with rank `rank`. */
+static void scene_check(scene_run *r, int steps, double check_from, int rank, double rel,
+                        double traj_tol, double energy_tol)
+{
+    const int n = r->sys.n;
+    test_sim a, b;
+    braun_system rec = r->sys;
+    rec.holonomic = rec_hol;
+    rec_run = r;
+    sim_open(&a, &r->sys, LS());
+    sim_open(&b, &rec, NULL);
+    assert_int_equal(braun_set_state(&a.data, 0, r->sf->q0, r->sf->v0), BRAUN_OK);
+    assert_int_equal(braun_set_state(&b.data, 0, r->sf->q0, r->sf->v0), BRAUN_OK);
+    double traj = 0, energy = 0;
+    int st_a = BRAUN_OK, st_b = BRAUN_OK;
+    for (int i = 0; i < steps && st_b == BRAUN_OK; i++) {
+        st_b = braun_step(&b.data, BRAUN_RK4, 1e-3);
+        if (st_a != BRAUN_OK) continue; /* the reference runs on: its states */
+        st_a = braun_step(&a.data, BRAUN_RK4, 1e-3);
+        for (int j = 0; j < n; j++) {
+            traj = fmax(traj, fabs(a.data.q[j] - b.data.q[j]));
+            traj = fmax(traj, fabs(a.data.v[j] - b.data.v[j]));
+        }
+        braun_real ea = 0;
+        if (braun_residuals(&a.data, a.data.t, a.data.q, a.data.v, NULL, NULL, &ea) != 0) ea = NAN;
+        if (!(fabs((double)ea) <= energy)) energy = fabs((double)ea);
+    }
+    const long deficient = a.data.stats.rank_deficient,
+               factorizations = a.data.stats.constraint_factorizations;
+    test_sim_close(&a);
+    test_sim_close(&b);
+    rec_run = NULL;
+    if (getenv("BRAUN_TEST_VERBOSE"))
+        printf("  %s: %d states; run %s, |trajectory difference| %.3g, |Phi_e| %.3g\n",
+               r->sf->name, r->count, braun_status_str(st_a), traj, energy);
+    assert_int_equal(st_b, BRAUN_OK);
+    assert_int_equal(r->count, 4 * steps);
+
+    tsys t0; /* its pattern, which the kept state reads, outlives it */
+    scene_tsys(r, 0, &t0);
+    void *kept = be_create(&t0);
+    int checked = 0;
+    for (int i = 0; i < r->count; i++) {
+        if (i > 0 && r->t[i] < check_from) continue;
+        checked++;
+        tsys t;
+        dref d;
+        scene_tsys(r, i, &t);
+        dref_open(&d, &t, t.rows);
+        const double tol = default_tol(t.rows, t.n);
+        void *fresh = be_create(&t);
+        be_factor_mass(fresh, &t);
+        check_slot(fresh, &t, &d, 0, tol, 1e-10, rank, rel, 100 + (unsigned long long)i);
+        check_dense_kernels(fresh, &t, &d, tol, rel, 200 + (unsigned long long)i);
+        LS()->destroy(fresh);
+        be_factor_mass(kept, &t);
+        check_slot(kept, &t, &d, 0, tol, 1e-10, rank, rel, 300 + (unsigned long long)i);
+        check_dense_kernels(kept, &t, &d, tol, rel, 400 + (unsigned long long)i);
+        dref_close(&d);
+        ts_close(&t);
+    }
+    LS()->destroy(kept);
+    ts_close(&t0);
+    if (getenv("BRAUN_TEST_VERBOSE")) printf("  %d states checked\n", checked);
+    /* The run with this backend, after the states (which say what broke). */
+    assert_int_equal(st_a, BRAUN_OK);
+    assert_int_equal(deficient, factorizations);
+    assert_le(traj, traj_tol);
+    assert_le(energy, energy_tol);
+}
+
+/* data/parallelogram-redundant.json: three cranks and a coupler, 12
+ * revolute rows of rank 11 everywhere, released at 60 degrees; at
+ * t = 0.543 s the cranks pass the ground line, where C also has a small
+ * singular value (sigma_11/sigma_1 down to 1e-5, sigma_12/sigma_1 ~ 1e-17).
+ * There the Cholesky of G = C C^T used to be accepted with rank 12 (its
+ * L-diagonal ratio 1.1e-6 ... 8.8e-5, above 1e-6: the pivot of the
+ * dependent row is sqrt(eps)·cond of the others, not round-off of G), and
+ * SPQR kept the dependent column (|R_jj| 8.2e-14 ... 6.9e-13 against the
+ * tolerance 6.5e-14): N z off by up to 63 |z|, N^2 != N, C^+ r off by
+ * 1e15, and the run stopped by the accuracy guard at t = 0.547 (energy
+ * residual 0.66; an earlier build ran on with energy error 19). */
+static void test_parallelogram_redundant_run(void **state)
+{
+    (void)state;
+    scene_run r;
+    scene_open(&r, "data/parallelogram-redundant.json", NULL, 2600);
+    scene_check(&r, 600, 0, 11, 1e-9, 1e-7, 1e-9);
+    scene_close(&r);
+}
+
+/* The ladder of `braun gen ladder N --angle DEG` (src/host/cli/cli_gen.c,
+ * write_ladder): three rails of N links 0.5 m apart, N rungs pinned at
+ * both ends and the middle, every cell a double parallelogram with one
+ * redundant row; released at DEG from the vertical. */
+static char *ladder_text(int N, double deg)
+{
+    const double pi = 3.14159265358979323846, alpha = deg * pi / 180, s = sin(alpha),
+                 c = cos(alpha), theta = alpha - pi / 2, d = 0.5;
+    static const char *const side[3] = {"left", "mid", "right"};
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    fprintf(f, "{\"name\": \"ladder-%d\", \"ground\": {\"points\": {\"left\": [0, 0], "
+               "\"mid\": [%g, 0], \"right\": [%g, 0]}},\n\"bodies\": [\n", N, d, 2 * d);
+    for (int k = 1; k <= N; k++) {
+        for (int r = 0; r < 3; r++)
+            fprintf(f, "{\"name\": \"%s%d\", \"type\": \"rigid\", \"mass\": 1, "
+                       "\"inertia\": 0.083333333333333329, \"position\": [%.17g, %.17g], "
+                       "\"angle\": %.17g, \"points\": {\"a\": [-0.5, 0], \"b\": [0.5, 0]}},\n",
+                    side[r], k, r * d + (k - 0.5) * s, -(k - 0.5) * c, theta);
+        fprintf(f, "{\"name\": \"rung%d\", \"type\": \"rigid\", \"mass\": 1, "
+                   "\"inertia\": 0.083333333333333329, \"position\": [%.17g, %.17g], "
+                   "\"points\": {\"left\": [%g, 0], \"mid\": [0, 0], \"right\": [%g, 0]}}%s\n",
+                k, d + k * s, -k * c, -d, d, k < N ? "," : "");
+    }
+    fputs("],\n\"joints\": [\n", f);
+    for (int r = 0; r < 3; r++)
+        fprintf(f, "{\"type\": \"revolute\", \"a\": \"%s1.a\", \"b\": \"ground.%s\"},\n", side[r],
+                side[r]);
+    for (int k = 1; k <= N; k++)
+        for (int r = 0; r < 3; r++) {
+            fprintf(f, "{\"type\": \"revolute\", \"a\": \"%s%d.b\", \"b\": \"rung%d.%s\"}",
+                    side[r], k, k, side[r]);
+            if (k < N)
+                fprintf(f, ",\n{\"type\": \"revolute\", \"a\": \"%s%d.a\", \"b\": \"rung%d.%s\"}",
+                        side[r], k + 1, k, side[r]);
+            fputs(k < N || r < 2 ? ",\n" : "\n", f);
+        }
+    fputs("],\n\"effects\": [{\"type\": \"gravity\", \"g\": [0, -9.81]}]}\n", f);
+    fclose(f);
+    return buf;
+}
+
+/* The redundant ladder with 2 cells released nearly horizontal (89
+ * degrees), 24 rows of rank 22: it passes configurations where the same
+ * two failures appeared (the run stopped by the accuracy guard at
+ * t = 0.103), and where a dependent column kept by SPQR makes the test of
+ * every later column fail too (qr_decide: only the first goes). */
+static void test_ladder_redundant_run(void **state)
+{
+    (void)state;
+    char *text = ladder_text(2, 89);
+    scene_run r;
+    scene_open(&r, "ladder-2.json", text, 1000);
+    scene_check(&r, 200, 0, 22, 1e-8, 1e-7, 1e-9);
+    scene_close(&r);
+    free(text);
+    text = ladder_text(4, 89.5);
+    scene_open(&r, "ladder-4.json", text, 2000);
+    scene_check(&r, 500, 0.47, 44, 1e-8, 2e-6, 1e-9);
+    scene_close(&r);
+    free(text);
+}
+
+/* rank_rule (braun_linsolver.h) against the built-in kernels'
+ * braun_qrcp_factor_rule on the same C: row 4 of a 6-link chain repeated
+ * with delta 1e-3 (G accepted at the plain tolerance, L-diagonal ratio
+ * about 1e-3) and 1e-9 (the full-rank QR path). A rule that keeps the
+ * 13th direction out (keep 12, tol_new 1e-2; or cap 12) gives rank 12 on
+ * both paths, one that it passes (tol_new 1e-12) or keep = rows gives 13;
+ * the reduced factorization is a projector whose null space the kept rows
+ * annihilate (C N z within delta of 0); a rule of keep = cap = rows
+ * restores the plain decision. */
+static void test_rank_rule(void **state)
+{
+    (void)state;
+    assert_non_null(LS()->rank_rule);
+    const double deltas[2] = {1e-3, 1e-9};
+    for (int di = 0; di < 2; di++) {
+        const double delta = deltas[di];
+        tsys t;
+        build_chain(&t, 6, 1, 0, 61);
+        ts_dup(&t, 4, 1.0);
+        t.A[t.row_ptr[t.rows - 1]] += delta;
+        ts_model(&t, t.rows);
+        const int rows = t.rows, n = t.n;
+        assert_int_equal(rows, 13);
+        dref d;
+        dref_open(&d, &t, rows);
+        void *st = be_create(&t);
+        be_factor_mass(st, &t);
+        braun_real *reals = rvec(braun_qrcp_reals(n, rows) + 1);
+        int *ints = xcalloc(braun_qrcp_ints(rows) + 1, sizeof(int));
+        braun_qrcp f;
+        braun_qrcp_bind(&f, n, rows, reals, ints);
+        const double tol = default_tol(rows, n);
+        double cnorm = 0;
+        for (int i = 0; i < rows; i++) cnorm = fmax(cnorm, nrm2(n, d.C + (size_t)i * n));
+        const struct {
+            int keep, cap;
+            double tol_new;
+            int rank;
+        } cases[6] = {{13, 13, 0, 13},    {12, 13, 1e-2, 12}, {12, 13, 1e-12, 13},
+                      {13, 13, 1e-2, 13}, {13, 12, 0, 12},    {13, 13, 0, 13}};
+        unsigned long long seed = 9;
+        for (int c = 0; c < 6; c++) {
+            for (size_t k = 0; k < (size_t)rows * (size_t)n; k++) f.a[k] = (braun_real)d.C[k];
+            const double tn = cases[c].tol_new > tol ? cases[c].tol_new : tol;
+            const int kq = braun_qrcp_factor_rule(&f, (braun_real)tol, (braun_real)tn,
+                                                  cases[c].keep, cases[c].cap);
+            assert_int_equal(kq, cases[c].rank);
+            LS()->rank_rule(st, 0, cases[c].keep, cases[c].cap, (braun_real)cases[c].tol_new);
+            assert_int_equal(be_factor_c(st, &t, 0, rows, tol), kq);
+            /* N is a projector and C N z vanishes up to the dropped row's
+             * distance to the kept ones. */
+            braun_real *z = rvec((size_t)n);
+            double *zd = dvec((size_t)n), *cz = dvec((size_t)rows);
+            for (int j = 0; j < n; j++) z[j] = (braun_real)test_frand(&seed);
+            LS()->null_project(st, 0, z);
+            for (int j = 0; j < n; j++) zd[j] = (double)z[j];
+            c_mul(&d, zd, cz);
+            assert_le(amax(rows, cz), (kq < rows ? 4 * delta : 1e-9) * cnorm);
+            LS()->null_project(st, 0, z);
+            assert_le(rdiff(n, z, zd), 1e-12);
+            free(z);
+            free(zd);
+            free(cz);
+        }
+        free(reals);
+        free(ints);
+        LS()->destroy(st);
+        dref_close(&d);
+        ts_close(&t);
+    }
+}
+
+/* ------------------------------------------------------------------ */
 /* Cost against N (BRAUN_BENCH_SUITESPARSE=1)                          */
 /* ------------------------------------------------------------------ */
 static double now(void)
@@ -1781,6 +2160,9 @@ int main(void)
         cmocka_unit_test(test_simulation_redundant),
         cmocka_unit_test(test_simulation_nonholonomic),
         cmocka_unit_test(test_simulation_near_singular),
+        cmocka_unit_test(test_parallelogram_redundant_run),
+        cmocka_unit_test(test_ladder_redundant_run),
+        cmocka_unit_test(test_rank_rule),
         cmocka_unit_test(test_bench),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

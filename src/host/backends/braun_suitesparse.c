@@ -177,6 +177,15 @@ typedef SuiteSparse_long sslong;
  * steps) when the ratio min/max |R_jj| is below QR_REFINE_RATIO. */
 #define QR_REFINE_MAX 2
 #define QR_REFINE_RATIO 1e-3
+/* An accepted Cholesky whose L-diagonal ratio is below CHOL_PROBE_RATIO is
+ * probed with one solve (chol_probe, see above). */
+#define CHOL_PROBE_RATIO 1e-2
+/* A column of SPQR's R whose |R_jj| is at most QR_CHECK_RATIO·cmax gets
+ * the dependency test (qr_decide); at most QR_DROP_PASSES re-factorizations
+ * drop the columns it (or the rank rule) rejects. */
+#define QR_CHECK_RATIO 1e-3
+#define QR_DROP_PASSES 8
+#define QR_DROP_GROW 4.0
 
 enum { PATH_NONE = 0, PATH_ZERO, PATH_CHOL, PATH_QR };
 
@@ -193,6 +202,10 @@ typedef struct ss_slot {
     double *Cx;      /* values of C, pattern cp/ci of the state */
     double cmax;     /* largest row 2-norm of C */
     int path, rank, skip_chol;
+    /* The rank rule of the next factorizations (ss_rank_rule): keep, cap,
+     * tol_new as braun_linsolver.h; keep = cap = rows: the plain tol. */
+    int rule_keep, rule_cap;
+    double rule_tol_new;
     int qr_refine;   /* full-rank QR path: refine the solves (see above) */
     /* full-rank path */
     cholmod_sparse *G; /* upper triangle of P C C^T P^T, fixed pattern */
@@ -728,6 +741,8 @@ static int slot_build(ss_state *s, ss_slot *f, int rows)
     int st;
 
     f->rows = rows;
+    f->rule_keep = f->rule_cap = rows;
+    f->rule_tol_new = 0;
     f->Cx = xcalloc((size_t)s->cp[rows], sizeof *f->Cx);
     f->perm = xcalloc((size_t)rows, sizeof *f->perm);
     f->iperm = xcalloc((size_t)rows, sizeof *f->iperm);
@@ -1021,6 +1036,28 @@ static void ss_mul_r(void *state, const braun_real *x, braun_real *y)
 /* ------------------------------------------------------------------ */
 /* factor_c                                                            */
 /* ------------------------------------------------------------------ */
+static int g_solve(ss_state *s, ss_slot *f, const double *b, double *out);
+
+/* The probe of an accepted Cholesky (see above): y = G^-1 x for a fixed
+ * pseudo-random x in [-1, 1)^rows gives sqrt(|x|/|y|) >= sigma_min(C) (up to
+ * the rounding of the solve), so sqrt(|x|/|y|) < lim·cmax <= lim·sigma_max
+ * proves cond(C) > 1/lim whatever the L diagonal says. 1: accepted, 0: G
+ * rejected, < 0: error. */
+static int chol_probe(ss_state *s, ss_slot *f, double lim)
+{
+    const int rows = f->rows;
+    double *x = s->wr3, *y = s->wr2;
+    unsigned long long u = 0x2545f4914f6cdd1dULL;
+    for (int i = 0; i < rows; i++) {
+        u = u * 6364136223846793005ULL + 1442695040888963407ULL;
+        x[i] = (double)(u >> 11) * 0x1p-52 - 1.0;
+    }
+    if (g_solve(s, f, x, y)) return cc_fail(&s->cc);
+    const double nx = nrm2(rows, x), ny = nrm2(rows, y);
+    if (!(ny <= DBL_MAX)) return 0; /* overflow: singular to working precision */
+    return ny > 0 && sqrt(nx / ny) >= lim * f->cmax ? 1 : 0;
+}
+
 /* G = C C^T from the product map, then CHOLMOD. 1: accepted (full rank),
  * 0: rank deficient or ill-conditioned, < 0: error. */
 static int chol_try(ss_state *s, ss_slot *f, double tol)
@@ -1054,8 +1091,82 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
         for (sslong j = 0; j < (sslong)L->n && f->own_solve; j++)
             f->own_solve = Lnz[j] > 0 && Li[Lp[j]] == j;
     }
+    /* The rank rule: a previous rank below rows (keep) asks for tol_new
+     * too before every row counts again. */
     double lim = tol > CHOL_RATIO_MIN ? tol : CHOL_RATIO_MIN;
-    return sqrt(rc) >= lim ? 1 : 0;
+    if (f->rule_keep < f->rows && f->rule_tol_new > lim) lim = f->rule_tol_new;
+    const double ratio = sqrt(rc);
+    if (!(ratio >= lim)) return 0;
+    if (ratio < CHOL_PROBE_RATIO) return chol_probe(s, f, lim);
+    return 1;
+}
+
+/* The rank decision on the k live columns of SPQR's R (see above). For a
+ * live column j, sig_j = 1/|R(0:j,0:j)^-1 e_j| = |R_jj| / sqrt(1 + |a|^2),
+ * a = R(0:j-1,0:j-1)^-1 R(0:j-1,j), is an upper bound of the smallest
+ * singular value of the rows of C that columns 0..j stand for, hence of C
+ * (interlacing): sig_j <= tau = tol·cmax proves a dependence at the
+ * caller's tolerance, however far above tau Heath's round-off left R_jj.
+ * It is computed (one back substitution over columns 0..j) for the columns
+ * with |R_jj| <= max(QR_CHECK_RATIO·cmax, tau_new), else sig_j = |R_jj|.
+ * The rank is that of the independent columns (sig_j > tau), under the
+ * rank rule at most max(keep, #{sig_j > tau_new}) of them, tau_new =
+ * max(tol_new, tol)·cmax, and at most cap. When that is below k, the
+ * first column (in R's order) that fails the test must go: returns 1 with
+ * *tol2 just above its |R_jj| (SPQR's test is |R_jj| <= tol), and the
+ * caller factors again. Only the first: once column j1 is a direction of
+ * round-off, every later sig_j inherits 1/|R_j1j1| through a, so later
+ * columns with ordinary pivots would fail too (the redundant ladder near
+ * its singular configuration: a dependent column with |R_jj| = 1e-11 and
+ * sig 3e-16, then two independent ones with |R_jj| 6e-4 and sig 7e-16).
+ * The earlier columns are sound: the columns of R(0:j1-1,0:j1-1)^-1 are
+ * those solutions, so its smallest singular value is at least
+ * tau/sqrt(j1). Returns 0 when the rank stands. */
+static int qr_decide(ss_state *s, ss_slot *f, sslong k, double tau, double *tol2)
+{
+    const cholmod_sparse *R = f->qr.R;
+    const sslong *Rp = R->p;
+    const double *Rx = R->x;
+    double *w = s->wr5;
+    const double tol_new = f->rule_tol_new * f->cmax;
+    const double tau_new = tol_new > tau ? tol_new : tau;
+    const double gate = QR_CHECK_RATIO * f->cmax > tau_new ? QR_CHECK_RATIO * f->cmax : tau_new;
+    sslong ndep = 0, nstrong = 0, first_dep = -1, first_weak = -1, weakest = -1;
+    double sig_min = DBL_MAX;
+    for (sslong j = 0; j < k; j++) {
+        const double d = fabs(Rx[Rp[j + 1] - 1]);
+        double sj = d;
+        if (d <= gate) {
+            for (sslong i = 0; i < j; i++) w[i] = 0;
+            w[j] = 1;
+            r_solve(R, j + 1, w);
+            const double nw = nrm2((int)(j + 1), w);
+            sj = nw <= DBL_MAX ? 1.0 / nw : 0; /* Inf/NaN: singular */
+            if (!(sj <= d)) sj = d;
+        }
+        if (sj <= tau) {
+            ndep++;
+            if (first_dep < 0) first_dep = j;
+        } else if (sj > tau_new) {
+            nstrong++;
+        } else if (first_weak < 0) {
+            first_weak = j;
+        }
+        if (sj < sig_min) sig_min = sj, weakest = j;
+    }
+    sslong target = k - ndep;
+    if (f->rule_keep < target) {
+        const sslong t = nstrong > f->rule_keep ? nstrong : f->rule_keep;
+        if (t < target) target = t;
+    }
+    if (f->rule_cap < target) target = f->rule_cap > 0 ? f->rule_cap : 0;
+    if (target >= k) return 0;
+    /* A dependent column first, then one the rule excludes, then (the cap
+     * alone) the weakest. */
+    const sslong j1 = first_dep >= 0 ? first_dep : (first_weak >= 0 ? first_weak : weakest);
+    const double d1 = fabs(Rx[Rp[j1 + 1] - 1]);
+    *tol2 = (d1 > tau ? d1 : tau) * (1 + 1e-9);
+    return 1;
 }
 
 /* SPQR of C^T and, when rank < rows, of S = [R11 R12]^T. Rank or < 0. */
@@ -1077,8 +1188,27 @@ static int qr_try(ss_state *s, ss_slot *f, double tol)
     Ct.sorted = 1;
     Ct.packed = 1;
     qr_free(&f->qr2, cc);
-    sslong k = qr_factor(&f->qr, &Ct, tol * f->cmax, 0, cc);
+    const double tau = tol * f->cmax;
+    sslong k = qr_factor(&f->qr, &Ct, tau, 0, cc);
     if (k < 0) return (int)k;
+    /* The dependency test and the rank rule: re-factor with a larger
+     * tolerance while they drop live columns. */
+    double last = tau;
+    int stalled = 0;
+    for (int pass = 0; pass < QR_DROP_PASSES && k > 0; pass++) {
+        double tol2 = 0;
+        if (!qr_decide(s, f, k, tau, &tol2)) break;
+        /* After a pass that dropped nothing (a later dependent column came
+         * out live in place of the dropped one, its pivot round-off just
+         * above the new tolerance), the tolerance grows faster. */
+        if (stalled && tol2 < QR_DROP_GROW * last) tol2 = QR_DROP_GROW * last;
+        if (tol2 <= last) tol2 = last * (1 + 1e-9);
+        sslong k2 = qr_factor(&f->qr, &Ct, tol2, 0, cc);
+        if (k2 < 0) return (int)k2;
+        stalled = k2 >= k;
+        k = k2;
+        last = tol2;
+    }
     f->qr_refine = 0;
     if (k == f->rows) {
         /* min/max |R_jj| >= 1/cond(C), as the Cholesky's L-diagonal ratio */
@@ -1135,7 +1265,9 @@ static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, bra
     double t = (double)tol;
     if (!(t > 0)) t = 10.0 * (double)(rows > s->n ? rows : s->n) * DBL_EPSILON;
 
-    if (f->skip_chol > 0) {
+    if (f->rule_cap < rows) {
+        /* The rank rule caps the rank below rows: no Cholesky. */
+    } else if (f->skip_chol > 0) {
         f->skip_chol--;
     } else {
         int st = chol_try(s, f, t);
@@ -1398,6 +1530,18 @@ static void ss_null_project(void *state, int slot, braun_real *z)
     for (int j = 0; j < n; j++) z[j] = (braun_real)zd[j];
 }
 
+/* The rank rule of the slot's next factorizations (braun_linsolver.h):
+ * kept until changed, as the built-in kernels do. */
+static void ss_rank_rule(void *state, int slot, int keep, int cap, braun_real tol_new)
+{
+    ss_state *s = state;
+    if (!s || slot < 0 || slot > 1) return;
+    ss_slot *f = &s->s[slot];
+    f->rule_keep = keep < 0 ? 0 : keep;
+    f->rule_cap = cap < 0 ? 0 : cap;
+    f->rule_tol_new = (double)tol_new > 0 ? (double)tol_new : 0;
+}
+
 /* ------------------------------------------------------------------ */
 static const braun_linsolver ss_table = {
     "suitesparse",
@@ -1415,7 +1559,7 @@ static const braun_linsolver ss_table = {
     NULL, /* state_bytes: created, not in the data block */
     NULL, /* bind */
     NULL, /* mass_buffer: the core keeps M */
-    NULL, /* rank_rule: its own rank decision (tol) */
+    ss_rank_rule,
 };
 
 const braun_linsolver *braun_linsolver_suitesparse(void) { return &ss_table; }
