@@ -30,8 +30,11 @@ typedef enum cmp_ref_kind {
     CMP_REF_NONE = 0,   /* no reference: trajectory errors are NaN */
     CMP_REF_CLOSED,     /* closed form of the minimal equation (minimal_exact) */
     CMP_REF_RK8PD,      /* GSL rk8pd on the minimal equation, rtol = atol = tol */
-    CMP_REF_TRAJ,       /* braun RK4 at a small step, tabulated and interpolated */
-    CMP_REF_POINT       /* published values at one time (Andrews at t = 0.03) */
+    CMP_REF_TRAJ,       /* braun RK4 at a small step (not for references any more:
+                         * braun does not judge braun; kept for the tests) */
+    CMP_REF_POINT,      /* published values at one time (Andrews at t = 0.03) */
+    CMP_REF_PROJ        /* the harness's RK4 + projection at a small step (cmp_proj.c),
+                         * tabulated with q, v, a and interpolated (quintic Hermite) */
 } cmp_ref_kind;
 
 /* A target: a system, its initial state, optionally a minimal-coordinate
@@ -80,6 +83,13 @@ cmp_ref *cmp_ref_new(const cmp_target *tg, cmp_ref_kind kind, double tol);
  * of h) and interpolated by cubic Hermite polynomials in q (v linear).
  * NULL if the run fails. */
 cmp_ref *cmp_ref_new_traj(const cmp_target *tg, double T, double h, double dt_tab);
+/* A projection reference: cmp_proj_integrate (RK4 + projection, positions
+ * and velocities) at step h from 0 to T, tabulated every dt_tab (a
+ * multiple of h) with q, v, a: q by quintic, v by cubic Hermite
+ * interpolation. Its work integral is E(ref(t)) - E0 (the energy law holds
+ * along the exact solution). NULL if the run fails (*why: its status). */
+cmp_ref *cmp_ref_new_proj(const cmp_target *tg, double T, double h, double dt_tab,
+                          char *why, size_t whysize);
 /* q, v at time t (n each); 0, 1 if the reference does not know this time
  * (CMP_REF_POINT), or -1 if it failed. */
 int cmp_ref_eval(cmp_ref *r, double t, double *q, double *v);
@@ -125,6 +135,9 @@ typedef enum cmp_method_id {
     CMP_IDA_GGL,         /* SUNDIALS IDA, stabilised index-2 (GGL) */
     CMP_IDA_INDEX1,      /* SUNDIALS IDA, acceleration-level index-1 */
     CMP_ODE_RK4,         /* minimal-coordinate equation, RK4 */
+    CMP_PROJECTION,      /* RK4 on the index-1 equation + coordinate projection */
+    CMP_MUJOCO,          /* MuJoCo 2.2.2 (cmp_mujoco.c), from generated MJCF */
+    CMP_SIMBODY,         /* Simbody 3.7 (cmp_simbody.cpp) */
     CMP_METHOD_COUNT
 } cmp_method_id;
 
@@ -179,6 +192,37 @@ typedef enum cmp_res_kind {
     CMP_RES_SCENE        /* cmp_ggl_residual: O(n) from the scene structure */
 } cmp_res_kind;
 
+/* Integrators of the peers (cmp_spec.integrator of mujoco and simbody runs;
+ * names: cmp_integrator_name). */
+enum cmp_peer_integrator {
+    CMP_MJ_EULER = 100,  /* MuJoCo's semi-implicit Euler */
+    CMP_MJ_RK4,          /* MuJoCo's classic RK4 */
+    CMP_MJ_IMPLICIT,     /* MuJoCo's implicit-in-velocity Euler */
+    CMP_SB_RKM = 110,    /* Simbody RungeKuttaMersonIntegrator (4(5), error control) */
+    CMP_SB_RKF,          /* RungeKuttaFeldbergIntegrator */
+    CMP_SB_RK3,          /* RungeKutta3Integrator */
+    CMP_SB_CPODES,       /* CPodesIntegrator (BDF, Newton) */
+    CMP_SB_RKM_FIXED     /* RungeKuttaMerson at a fixed step (setFixedStepSize) */
+};
+/* "rk4", "dopri5", "bdf", "mj-rk4", "rk-merson", ... */
+const char *cmp_integrator_name(int integrator);
+int cmp_integrator_from_name(const char *name); /* -2 if unknown */
+
+/* Settings of a peer run (docs/compare.md, "Peers"); zero: the peer's default. */
+typedef struct cmp_peer_opts {
+    /* MuJoCo: solref (time constant [s], damping ratio) of every equality,
+     * timeconst < 0: MuJoCo's default 0.02; 0: 2·h, the stiffest it allows;
+     * > 0 as given (multiples of h are in the variant). */
+    double timeconst, dampratio;
+    double solimp[3];    /* dmin, dmax, width; all 0: MuJoCo's 0.9, 0.95, 0.001 */
+    int solver;          /* 0 Newton, 1 CG, 2 PGS */
+    double tolerance;    /* constraint solver tolerance; 0: 1e-8 */
+    int iterations;      /* solver iterations; 0: 100 */
+    /* Simbody: the integrator's accuracy is rtol; constraint tolerance
+     * (0: = accuracy, Simbody's default). */
+    double ctol;
+} cmp_peer_opts;
+
 /* One run: a method, its integrator and its step size or tolerance. */
 typedef struct cmp_spec {
     cmp_method_id method;
@@ -188,6 +232,7 @@ typedef struct cmp_spec {
     double alpha, beta;  /* Baumgarte gains [1/s] */
     char variant[32];    /* "" or a label such as "ab=0.3/h", "atol_alg=1e+06" */
     cmp_ida_opts ida;
+    cmp_peer_opts peer;
     double T;            /* end time */
     double dt_out;       /* output grid */
 } cmp_spec;
@@ -197,6 +242,8 @@ typedef struct cmp_counts {
     long steps, rejected, rhs_evals, jac_evals, lin_setups, lin_solves;
     long err_fails, conv_fails;
     long restarts;       /* IDA restarts after failures (cmp_ida_opts.restarts) */
+    long iterations;     /* projection: Gauss–Newton iterations; MuJoCo: constraint
+                          * solver iterations; Simbody: projections */
 } cmp_counts;
 
 /* Outcome of a run. status 0: reached T; otherwise t_reached < T and
@@ -207,6 +254,10 @@ typedef struct cmp_outcome {
     char detail[160];
     double t_reached;
     cmp_counts counts;
+    /* > 0: the CPU time [s] of the integration itself, measured by the
+     * runner (peers: without building the model and without converting
+     * their samples to q, v); 0: the caller times the whole run. */
+    double cpu_self;
 } cmp_outcome;
 
 /* Integrate tg per spec, sampling into tr (cleared first). Never aborts:
@@ -223,6 +274,21 @@ void cmp_run_ida(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr,
                  cmp_outcome *out);
 void cmp_run_ode(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr,
                  cmp_outcome *out);
+void cmp_run_projection(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr,
+                        cmp_outcome *out);
+/* Peers (cmp_mujoco.c, cmp_simbody.cpp). Without the package the run
+ * fails with status NOT_BUILT. */
+void cmp_run_mujoco(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr,
+                    cmp_outcome *out);
+void cmp_run_simbody(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr,
+                     cmp_outcome *out);
+/* 1 if the peer can express the target (its mechanism and tree), else 0
+ * with the reason in why. */
+int cmp_mujoco_supports(const cmp_target *tg, char *why, size_t whysize);
+int cmp_simbody_supports(const cmp_target *tg, char *why, size_t whysize);
+/* The peers' versions ("2.2.2", "3.7"), or NULL if not built in. */
+const char *cmp_mujoco_version(void);
+const char *cmp_simbody_version(void);
 
 /* Baumgarte: a system whose b_qv, b_vv carry the stabilisation terms
  * (b_qv - 2αΦ̇_q - β²Φ_q, b_vv - 2αΦ_v), so that the ideal acceleration of

@@ -13,6 +13,7 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "cmp.h"
+#include "cmp_proj.h"
 #include "braun_reference.h"
 
 #define REF_DIM_MAX 4
@@ -51,6 +52,76 @@ static int traj_eval(cmp_ref *r, double t, double *q, double *v)
         v[i] = (1 - s) * a[n + i] + s * b[n + i];
     }
     return 0;
+}
+
+/* Quintic Hermite interpolation of q (nodes q, v, a every dt) and cubic
+ * of v (nodes v, a): the projection reference's table. */
+static int proj_eval(cmp_ref *r, double t, double *q, double *v)
+{
+    const int n = r->tg->sys.n;
+    const double x = t / r->dt;
+    long j = (long)floor(x);
+    if (j < 0 || x > (double)(r->count - 1) * (1.0 + 1e-12)) return -1;
+    if (j >= r->count - 1) j = r->count - 2;
+    const double s = x - (double)j, h = r->dt, s2 = s * s, s3 = s2 * s, s4 = s3 * s,
+                 s5 = s4 * s;
+    const double *a = r->table + (size_t)j * (size_t)r->width, *b = a + r->width;
+    const double h0 = 1 - 10 * s3 + 15 * s4 - 6 * s5, h1 = s - 6 * s3 + 8 * s4 - 3 * s5,
+                 h2 = 0.5 * (s2 - 3 * s3 + 3 * s4 - s5), h3 = 10 * s3 - 15 * s4 + 6 * s5,
+                 h4 = -4 * s3 + 7 * s4 - 3 * s5, h5 = 0.5 * (s3 - 2 * s4 + s5);
+    const double c0 = (1 + 2 * s) * (1 - s) * (1 - s), c1 = s * (1 - s) * (1 - s),
+                 c2 = s2 * (3 - 2 * s), c3 = s2 * (s - 1);
+    for (int i = 0; i < n; i++) {
+        q[i] = h0 * a[i] + h * (h1 * a[n + i] + h * h2 * a[2 * n + i]) + h3 * b[i] +
+               h * (h4 * b[n + i] + h * h5 * b[2 * n + i]);
+        v[i] = c0 * a[n + i] + c1 * h * a[2 * n + i] + c2 * b[n + i] + c3 * h * b[2 * n + i];
+    }
+    return 0;
+}
+
+typedef struct proj_sink {
+    cmp_ref *r;
+    long calls;
+} proj_sink;
+
+static int proj_out(double t, const double *q, const double *v, const double *a, void *user)
+{
+    (void)t;
+    proj_sink *k = user;
+    const int n = k->r->tg->sys.n;
+    if (k->calls >= k->r->count) return 1;
+    double *row = k->r->table + (size_t)k->calls * (size_t)k->r->width;
+    memcpy(row, q, (size_t)n * sizeof(double));
+    memcpy(row + n, v, (size_t)n * sizeof(double));
+    memcpy(row + 2 * n, a, (size_t)n * sizeof(double));
+    k->calls++;
+    return 0;
+}
+
+cmp_ref *cmp_ref_new_proj(const cmp_target *tg, double T, double h, double dt_tab, char *why,
+                          size_t whysize)
+{
+    const int n = tg->sys.n;
+    const long every = cmp_every(dt_tab, h);
+    cmp_ref *r = calloc(1, sizeof *r);
+    if (!r) return NULL;
+    r->tg = tg;
+    r->kind = CMP_REF_PROJ;
+    r->tol = h;
+    r->dt = (double)every * h;
+    r->count = (long)floor(T / r->dt + 0.5) + 1;
+    r->width = 3 * n;
+    r->table = malloc((size_t)r->count * (size_t)r->width * sizeof(double));
+    proj_sink k = {r, 0};
+    cmp_outcome o;
+    if (!r->table || cmp_proj_integrate(tg, h, T, every, 0, proj_out, &k, &o) ||
+        k.calls != r->count) {
+        if (why) snprintf(why, whysize, "%s %s", r->table ? o.status_name : "OUT_OF_MEMORY",
+                          r->table ? o.detail : "");
+        cmp_ref_free(r);
+        return NULL;
+    }
+    return r;
 }
 
 typedef struct traj_sink {
@@ -171,6 +242,7 @@ int cmp_ref_eval(cmp_ref *r, double t, double *q, double *v)
         return 0;
     }
     if (r->kind == CMP_REF_TRAJ) return traj_eval(r, t, q, v);
+    if (r->kind == CMP_REF_PROJ) return proj_eval(r, t, q, v);
     if (r->table) {
         const double x = t / r->dt;
         const long j = (long)floor(x + 0.5);
@@ -211,7 +283,8 @@ int cmp_ref_eval(cmp_ref *r, double t, double *q, double *v)
 int cmp_ref_tabulate(cmp_ref *r, double dt, double T)
 {
     /* Trajectory and point references are tables already. */
-    if (r->kind == CMP_REF_TRAJ || r->kind == CMP_REF_POINT) return 0;
+    if (r->kind == CMP_REF_TRAJ || r->kind == CMP_REF_POINT || r->kind == CMP_REF_PROJ)
+        return 0;
     const int n = r->tg->sys.n;
     const long count = (long)floor(T / dt + 0.5) + 1;
     double *table = malloc((size_t)count * 2 * (size_t)n * sizeof(double));
@@ -230,8 +303,32 @@ int cmp_ref_tabulate(cmp_ref *r, double dt, double T)
     return 0;
 }
 
+/* E(t, q, v) of the target's energy law; -1 without one. */
+static int energy_at(const cmp_target *tg, double t, const double *q, const double *v, double *E)
+{
+    const braun_system *s = &tg->sys;
+    if (!s->energy) return -1;
+    double *g = malloc(2 * (size_t)s->n * sizeof(double)), dEdt;
+    if (!g) return -1;
+    const int st = s->energy(t, q, v, E, g, g + s->n, &dEdt, s->user);
+    free(g);
+    return st ? -1 : 0;
+}
+
 int cmp_ref_work(cmp_ref *r, double t, double *W)
 {
+    if (r && r->kind == CMP_REF_PROJ && r->table) {
+        /* Along the exact solution E(t) - E0 is the work put in. */
+        const int n = r->tg->sys.n;
+        double *w = malloc(2 * (size_t)n * sizeof(double)), E, E0;
+        int st = !w || proj_eval(r, t, w, w + n) ||
+                 energy_at(r->tg, t, w, w + n, &E) ||
+                 energy_at(r->tg, 0, r->table, r->table + n, &E0);
+        free(w);
+        if (st) return -1;
+        *W = E - E0;
+        return 0;
+    }
     if (!r || r->kind != CMP_REF_TRAJ || !r->table) return -1;
     const int n = r->tg->sys.n;
     const double x = t / r->dt;
@@ -306,8 +403,10 @@ int cmp_ref_load(const cmp_target *tg, const char *path, cmp_ref **out)
             r = cmp_ref_new(tg, CMP_REF_POINT, 0);
             bad = r == NULL;
         } else if (!bad && (h.kind == CMP_REF_CLOSED || h.kind == CMP_REF_RK8PD ||
-                            h.kind == CMP_REF_TRAJ)) {
-            const int want = h.kind == CMP_REF_TRAJ ? 2 * h.n + 1 : 2 * h.n;
+                            h.kind == CMP_REF_TRAJ || h.kind == CMP_REF_PROJ)) {
+            const int want = h.kind == CMP_REF_TRAJ   ? 2 * h.n + 1
+                             : h.kind == CMP_REF_PROJ ? 3 * h.n
+                                                      : 2 * h.n;
             const size_t cells = (size_t)h.count * (size_t)h.width;
             r = calloc(1, sizeof *r);
             bad = !r || h.width != want || h.count < 2 || !(h.dt > 0);
@@ -352,6 +451,7 @@ const char *cmp_ref_kind_name(cmp_ref_kind kind)
     case CMP_REF_RK8PD: return "gsl-rk8pd";
     case CMP_REF_TRAJ: return "braun-rk4-fine";
     case CMP_REF_POINT: return "published-point";
+    case CMP_REF_PROJ: return "projection-rk4-fine";
     default: return "none";
     }
 }

@@ -12,19 +12,26 @@
 # part in this make's jobserver (and runs under make -n too; run.sh then
 # only says so).
 
-COMPARE_DEPS := libsundials-dev libgsl-dev gnuplot-nox libsuitesparse-dev
+# The peers (issue 14): MuJoCo 2.2.2 (C API) and Simbody 3.7 (a C++ adapter,
+# compare/cmp_simbody.cpp); GNU parallel runs exported run lists.
+COMPARE_DEPS := libsundials-dev libgsl-dev gnuplot-nox libsuitesparse-dev libmujoco-dev \
+	libsimbody-dev parallel
 COMPARE_SRC := $(sort $(wildcard compare/*.c))
-COMPARE_OBJ := $(COMPARE_SRC:%.c=$(BUILD)/obj/%.o)
+COMPARE_CXX_SRC := $(sort $(wildcard compare/*.cpp))
+COMPARE_OBJ := $(COMPARE_SRC:%.c=$(BUILD)/obj/%.o) $(COMPARE_CXX_SRC:%.cpp=$(BUILD)/obj/%.o)
 # Everything but main(), for the harness tests.
 COMPARE_LIB_OBJ := $(filter-out $(BUILD)/obj/compare/cmp_main.o,$(COMPARE_OBJ))
 COMPARE_HDR := $(wildcard compare/*.h)
 # The series table (compare/series.tsv) as C initializers, for
 # compare/cmp_series.c (here and in braun-bench, mk/bench.mk).
 CMP_SERIES_INC := $(BUILD)/gen/cmp_series.inc
-COMPARE_CPPFLAGS := -Icompare -I$(BUILD)/gen -I/usr/include/suitesparse
+COMPARE_CPPFLAGS := -Icompare -I$(BUILD)/gen -I/usr/include/suitesparse \
+	-DCMP_HAVE_MUJOCO -DCMP_HAVE_SIMBODY
 COMPARE_LDLIBS := -lsundials_ida -lsundials_sunlinsolklu -lsundials_sunlinsoldense \
 	-lsundials_sunmatrixsparse -lsundials_sunmatrixdense -lsundials_nvecserial \
-	-lklu -lgsl -lgslcblas
+	-lklu -lgsl -lgslcblas -lmujoco -lSimTKsimbody -lSimTKmath -lSimTKcommon -lstdc++
+CXX ?= g++
+COMPARE_CXXFLAGS := -std=c++17 $(OPT) -Wall -Wextra -Wpedantic -I/usr/include/simbody
 COMPARE_BIN := $(BUILD)/bin/braun-compare
 COMPARE_TEST := $(BUILD)/tests/compare/test_compare
 COMPARE_OUT ?= results/compare
@@ -43,6 +50,11 @@ compare-bin: $(COMPARE_BIN)
 $(BUILD)/obj/compare/%.o: compare/%.c | deps-compare deps-host
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
+
+# The Simbody adapter is C++ (Simbody has no C API).
+$(BUILD)/obj/compare/%.o: compare/%.cpp | deps-compare deps-host
+	@mkdir -p $(dir $@)
+	$(CXX) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(COMPARE_CXXFLAGS) $(CXXFLAGS) $(DEPFLAGS) -c $< -o $@
 
 $(CMP_SERIES_INC): compare/series.tsv compare/series.awk
 	@mkdir -p $(dir $@)
