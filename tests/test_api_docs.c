@@ -86,6 +86,35 @@ static void test_every_zero(void **state)
     }
 }
 
+/* A non-zero return stops the driver with BRAUN_STOPPED, the data at the
+ * state the callback saw. */
+static int stop_third(const braun_data *d, void *u)
+{
+    calls *c = u;
+    record_call(d, u);
+    return c->n == 3;
+}
+
+static void test_output_callback_stops(void **state)
+{
+    (void)state;
+    for (int adaptive = 0; adaptive < 2; adaptive++) {
+        test_sim sim;
+        calls c = {0, {0}};
+        open_builtin(&sim, "pendulum", BRAUN_CORRECT_ALL);
+        braun_adaptive ctl = {1e-6, 1e-8, 0, 0, 0, 0};
+        const int st = adaptive ? braun_integrate_adaptive(&sim.data, &ctl, 1.0, 1, stop_third, &c)
+                                : braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 5, stop_third, &c);
+        assert_int_equal(st, BRAUN_STOPPED);
+        assert_int_equal(c.n, 3);
+        assert_true(sim.data.t == c.t[2]);
+        assert_true(c.t[2] > 0 && c.t[2] < 1.0);
+        if (!adaptive) assert_near(c.t[2], 0.1, 1e-15); /* steps 5 and 10 */
+        assert_int_equal(sim.data.stats.steps, adaptive ? 2 : 10);
+        test_sim_close(&sim);
+    }
+}
+
 /* ------------------------------------------------------------------ */
 /* api.md, "The output callback": braun_residuals and braun_energy may be
  * called on the data inside it; they change neither the run (the same
@@ -358,15 +387,24 @@ static int ramp_power(braun_real t, const braun_real *q, const braun_real *v, br
 /* Max |x - exact| over the steps of RK4 h to T with every correction (the
  * energy one included); *status: how the run ended (the accuracy guard
  * on: guard = 0, off: guard < 0). */
+static double ramp_run_corr(int how, double h, double T, braun_real guard, int *status,
+                           unsigned corr, braun_real *q_end);
+
 static double ramp_run(int how, double h, double T, braun_real guard, int *status)
+{
+    braun_real q_end;
+    return ramp_run_corr(how, h, T, guard, status, BRAUN_CORRECT_ALL, &q_end);
+}
+
+static double ramp_run_corr(int how, double h, double T, braun_real guard, int *status,
+                           unsigned corr, braun_real *q_end)
 {
     ramp r = {how};
     braun_system s = {1, 0, 0, BRAUN_MASS_CONSTANT | (how == RAMP_DT_ONLY ? 0u : BRAUN_ENERGY_INPUT),
                       ramp_mass, ramp_forces, NULL, NULL, ramp_energy,
                       how == RAMP_DT_ONLY ? NULL : ramp_power, &r, NULL};
     test_sim sim;
-    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
-    assert_true(sim.model.opt.corrections & BRAUN_CORRECT_ENERGY);
+    assert_int_equal(test_sim_open(&sim, &s, corr), BRAUN_OK);
     sim.model.opt.guard = guard;
     const double x0 = 1, v0 = 0, w = sqrt(rk / rm);
     const braun_real q0[1] = {x0}, vv0[1] = {v0};
@@ -380,6 +418,7 @@ static double ramp_run(int how, double h, double T, braun_real guard, int *statu
         const double x = x0 * cos(w * t) + (v0 - rc / rk) / w * sin(w * t) + rc * t / rk;
         worst = fmax(worst, fabs(sim.data.q[0] - x));
     }
+    *q_end = sim.data.q[0];
     test_sim_close(&sim);
     return worst;
 }
@@ -414,6 +453,15 @@ static void test_time_dependent_potential(void **state)
     assert_int_equal(st_p, BRAUN_ERR_ACCURACY);
     assert_int_equal(st_p_off, BRAUN_OK);
     assert_true(p_only_off > 1e-3); /* measured 1.0e-2 */
+    /* Without the energy correction the law only feeds ∫Ė and |Φ_e|: the
+     * motion is the same bit for bit, right or wrong. */
+    braun_real q_end[4];
+    int st_n;
+    for (int how = 0; how < 4; how++) {
+        (void)ramp_run_corr(how, h, T, 0, &st_n, BRAUN_CORRECT_NONE, &q_end[how]);
+        assert_int_equal(st_n, BRAUN_OK);
+        assert_true(q_end[how] == q_end[0]);
+    }
 }
 
 /* ------------------------------------------------------------------ */
@@ -536,6 +584,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_zero),
+        cmocka_unit_test(test_output_callback_stops),
         cmocka_unit_test(test_residuals_in_output_callback),
         cmocka_unit_test(test_statistics),
         cmocka_unit_test(test_dopri5_through_braun_step),
