@@ -532,6 +532,26 @@ static void test_energy_correction_on_a_driven_scene(void **state)
     assert_le(worst_h[0], 2e-9);
     assert_le(worst_h[1], 2e-9);
     braun_scene_free(f);
+
+    /* Every coordinate driven (data/driven-crank.json: 6 rows, 6
+     * coordinates): the energy force has no free direction (N_v = 0) and
+     * the run is the one without it. */
+    braun_scene_file *dc = braun_scene_load("data/driven-crank.json", err, sizeof err);
+    if (!dc) print_error("%s\n", err);
+    assert_non_null(dc);
+    assert_int_equal(dc->scene.n, 6);
+    assert_int_equal(dc->scene.m, 6);
+    braun_real qf[2][6];
+    for (int k = 0; k < 2; k++) {
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &dc->sys, corr[k]), BRAUN_OK);
+        assert_int_equal(braun_set_state(&sim.data, 0, dc->q0, dc->v0), BRAUN_OK);
+        assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, 2.0, 0, NULL, NULL), BRAUN_OK);
+        memcpy(qf[k], sim.data.q, sizeof qf[k]);
+        test_sim_close(&sim);
+    }
+    assert_memory_equal(qf[0], qf[1], sizeof qf[0]); /* measured: bit for bit */
+    braun_scene_free(dc);
 }
 
 /* ------------------------------------------------------------------ */
