@@ -103,12 +103,21 @@ check "crank-path.svg draws the path of crank.A: an arc of a circle" awk '
 # The figures the README quotes, against the commands it quotes (the paper
 # test, tests/test_paper.c, bounds them too).
 figure() { sed -n "s/^  \"$1\": \([^,]*\),*$/\1/p"; }
-w=$(braun run four-bar --dt 1e-2 --t-end 1000 | figure max_point_error)
+w=$(braun run four-bar --dt 1e-2 --t-end 1000 --out headline.csv --every 10 | figure max_point_error)
 wo=$(braun run four-bar --dt 1e-2 --t-end 1000 --corrections position,velocity | figure max_point_error)
 check "headline: joint 3 within the README's 3.2e-4 m with the energy correction (got $w)" sh -c '
     grep -q "within \*\*3.2e-4 m\*\*" "$2" && awk -v a="$1" "BEGIN { exit !(a >= 3.1e-4 && a < 3.3e-4) }"' sh "$w" "$README"
 check "headline: the README's 1.29 m without it (got $wo)" sh -c '
     grep -q "\*\*1.29 m\*\* off" "$2" && awk -v a="$1" "BEGIN { exit !(a >= 1.285 && a < 1.295) }"' sh "$wo" "$README"
+# The cranks' turns: the angle of joint 1 about the pivot (0, 0), unwrapped
+# (every 10 steps: about 20 samples a turn).
+turns=$(awk -F, 'NR > 1 { a = atan2($3, $2); if (NR > 2) { d = a - p
+        if (d > 3.14159265) d -= 6.28318531; if (d < -3.14159265) d += 6.28318531; s += d }
+        p = a } END { printf "%.0f", (s < 0 ? -s : s) / 6.28318531 }' headline.csv)
+check "headline: the README's 515 turns (got $turns)" sh -c '
+    grep -q "515 turns of its cranks" "$2" && [ "$1" = 515 ]' sh "$turns" "$README"
+check "... of joint 1, the first column pair of the CSV" sh -c 'head -n 1 headline.csv | grep -q "^t \[s\],J1.x \[m\],J1.y \[m\],"'
+
 
 # ------------------------------------------------------------------ make targets
 # Every `make TARGET` the README names (options and -C DIR aside) exists.
