@@ -17,7 +17,7 @@
  *              x_B = l1 cos ωt + sqrt(l2² − l1² sin² ωt).
  *
  * Prints one line per case; exits 1 if a check is beyond its bound
- * (tests/install/examples.sh runs it against an installed libbraun). */
+ * (tests/cli/install.sh builds and runs it against an installed libbraun). */
 #include <braun.h>
 #include <math.h>
 #include <stdio.h>

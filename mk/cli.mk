@@ -25,3 +25,11 @@ TEST_SUITES += "sh tests/cli/plot.sh $(BUILD)/bin/braun $(PNG_INK)"
 
 test-plot: $(BUILD)/bin/braun $(PNG_INK)
 	@sh tests/cli/plot.sh $(BUILD)/bin/braun $(PNG_INK)
+
+# The README as a new user follows it: its braun commands from another
+# directory, its pictures, headline figures, make targets, files and the
+# install commands of tests/cli/install.sh (tests/cli/readme.sh).
+TEST_SUITES += "BUILD=$(BUILD) sh tests/cli/readme.sh $(BUILD)/bin/braun"
+.PHONY: test-readme
+test-readme: $(BUILD)/bin/braun
+	@BUILD=$(BUILD) sh tests/cli/readme.sh $(BUILD)/bin/braun

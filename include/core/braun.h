@@ -55,7 +55,8 @@ typedef enum braun_status {
     BRAUN_OK = 0,
     BRAUN_ERR_ARGUMENT = -1,      /* NULL pointer, unknown option or enum value, no state set */
     BRAUN_ERR_SIZE = -2,          /* negative or inconsistent n, m, p */
-    BRAUN_ERR_BUFFER = -3,        /* caller buffer too small or misaligned */
+    BRAUN_ERR_BUFFER = -3,        /* buffer smaller than braun_data_size() (any alignment
+                                     is fine), or a backend could not allocate */
     BRAUN_ERR_NONFINITE = -4,     /* NaN/Inf in the state or a callback output */
     BRAUN_ERR_MASS_NOT_SYMMETRIC = -5,
     BRAUN_ERR_MASS_NOT_SPD = -6,  /* Cholesky pivot not positive */
@@ -114,19 +115,25 @@ typedef int (*braun_nonholonomic_fn)(braun_real t, const braun_real *q,
 
 /* Energy-type law (Sec. 2.5, Eq. 18): Φ_e = E(t,q,v) - E0 - ∫Ė dτ.
  *   E       = E(t,q,v)
- *   dE_dq[n], dE_dv[n] (= A_e), dE_dt
- * The library forms b_e = -dE_dt - dE_dq·v + Ė (Eq. 19). */
+ *   dE_dq[n], dE_dv[n] (= A_e), dE_dt = ∂E/∂t (0 unless E depends on t
+ *   explicitly, e.g. a potential V(t, q))
+ * The library forms b_e = -dE_dt - dE_dq·v + Ė (Eq. 19). Φ_e is 0 on the
+ * exact motion only if Ė is the rate of this E (braun_power_fn). */
 typedef int (*braun_energy_fn)(braun_real t, const braun_real *q,
                                const braun_real *v, braun_real *E,
                                braun_real *dE_dq, braun_real *dE_dv,
                                braun_real *dE_dt, void *user);
 
-/* Energy input rate Ė(t,q,v) of the applied forces: dampers, motors,
- * external forces and torques, and the explicit time dependence of a
- * potential that is not in E (a potential V(t, q) that is in E belongs in
- * dE_dt instead). Never the power of the constraint forces: the library
- * adds that itself (see BRAUN_SCLERONOMIC). Only called when the system
- * sets BRAUN_ENERGY_INPUT; ∫Ė dτ is part of the integrated state. */
+/* Energy input rate Ė(t,q,v): the rate at which E changes along the exact
+ * motion, less the power of the ideal constraint forces (the library adds
+ * that itself; see BRAUN_SCLERONOMIC). That is the power of every applied
+ * force that is not in E (dampers, motors, external forces and torques:
+ * Q_applied·v) plus ∂E/∂t when E depends on t explicitly: a potential
+ * V(t, q) in E has its ∂V/∂t both in dE_dt and here (they cancel in b_e,
+ * while ∫Ė keeps Φ_e = 0); alternatively leave it out of E, and its force
+ * is an applied force whose power −(∂V/∂q)·v goes here (docs/api.md,
+ * "Driven and dissipative systems"). Only called when the system sets
+ * BRAUN_ENERGY_INPUT; ∫Ė dτ is part of the integrated state. */
 typedef int (*braun_power_fn)(braun_real t, const braun_real *q,
                               const braun_real *v, braun_real *Edot, void *user);
 
@@ -201,7 +208,10 @@ typedef enum braun_discretization {
     BRAUN_PER_STEP = 0,
     /* Eqs. 16, 17, 20 evaluated at every stage with Δ = Φ/h: the literal
      * right-hand side. Identical to PER_STEP for Euler; for RK4 the 1/h
-     * terms act as a stiff term and cost the method its order. */
+     * terms act as a stiff term and cost the method its order: measured
+     * order 2 with the position correction (with or without the velocity
+     * one), 3 with the velocity correction alone, 1 once the energy
+     * correction is on (tests/test_api_docs.c). Fixed steps only. */
     BRAUN_PER_STAGE = 1
 } braun_discretization;
 
@@ -277,6 +287,9 @@ int braun_model_init(braun_model *model, const braun_system *sys);
 /* ------------------------------------------------------------------ */
 /* Data: state, statistics, scratch                                    */
 /* ------------------------------------------------------------------ */
+/* Counts since braun_set_state (which starts them from zero; a constant
+ * M's one factorization at braun_data_init stays counted): braun_step and
+ * the drivers add to them, call after call. */
 typedef struct braun_stats {
     long steps;             /* accepted steps */
     long rejected_steps;    /* adaptive driver only */
@@ -327,7 +340,9 @@ typedef struct braun_data {
     void *priv;
 } braun_data;
 
-/* Bytes of buffer braun_data_init() needs for this model (including alignment slack). */
+/* Bytes of buffer braun_data_init() needs for this model. They include 16
+ * bytes of slack: the buffer may start at any address (braun_data_init
+ * carves the data from its first 16-byte boundary). */
 size_t braun_data_size(const braun_model *model);
 
 /* Carve the data out of buffer; no allocation. If M is constant it is
@@ -347,7 +362,9 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
  * buffer stays the caller's. Safe to call twice. */
 void braun_data_release(braun_data *d);
 
-/* Set time and state, check it is finite, reset ∫Ė and take E0 = E(t,q,v). */
+/* Set time and state, check it is finite, reset ∫Ė and take E0 = E(t,q,v):
+ * a new run. The statistics start from zero (braun_stats) and the accuracy
+ * guard's scales are measured again at the next step's start. */
 int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
                     const braun_real *v);
 
@@ -379,7 +396,10 @@ typedef enum braun_method {
     BRAUN_EULER = 0,
     BRAUN_HEUN = 1,
     BRAUN_RK4 = 2,
-    BRAUN_DOPRI5 = 3 /* Dormand–Prince 5(4), adaptive driver only */
+    /* Dormand–Prince 5(4): the adaptive driver, or fixed steps through
+     * braun_step and braun_integrate (its 5th-order solution, no error
+     * control; 7 right-hand sides per step) */
+    BRAUN_DOPRI5 = 3
 } braun_method;
 
 /* Name ("euler", "heun", "rk4", "dopri5") <-> method; -1 if unknown. */
@@ -390,8 +410,14 @@ int braun_method_from_name(const char *name);
  * was before the step. BRAUN_DOPRI5 takes its 5th-order solution. */
 int braun_step(braun_data *d, braun_method method, braun_real h);
 
-/* Output callback: called at the start, every `every` steps and at the end.
- * Return non-zero to stop (the driver returns BRAUN_STOPPED). */
+/* Output callback: called at the start, every `every` steps and at the end
+ * (every <= 0: the start and the end only; the end once). A state is
+ * reported once the next step's start has passed the accuracy guard, so
+ * it sees only states that passed. It may read d and call braun_residuals
+ * and braun_energy on it (through a non-const pointer of its own, e.g. in
+ * out_user): that changes neither the run nor d->stats. It must not
+ * change the state. Return non-zero to stop: the driver returns
+ * BRAUN_STOPPED with d at the state the callback saw. */
 typedef int (*braun_output_fn)(const braun_data *d, void *user);
 
 /* Fixed-step driver from d->t to t_end; the last step is shortened to land

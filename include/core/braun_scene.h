@@ -31,7 +31,7 @@
  * when nothing puts energy in or takes it out, no holonomic callback when
  * m = 0. A scene with driven (rheonomic) joints keeps its energy law: the
  * prescribed motion does work through the ideal constraint forces, which the
- * core adds to Ė when the system sets BRAUN_CONSTRAINT_WORK.
+ * core adds to Ė by itself; a scene without one declares BRAUN_SCLERONOMIC.
  *
  * Memory: the builder and the callbacks allocate nothing; the caller owns
  * every array (static, stack or heap). Firmware code may define a scene as
@@ -400,7 +400,7 @@ typedef struct braun_scene_rod {
  *            drive was given. s holds the bodies (with q0) and points read
  *            so far; `given` has bit i set for field i that was given.
  * A joint is driven (rheonomic) when its `driven` is non-zero: the scene
- * then sets BRAUN_CONSTRAINT_WORK. */
+ * then leaves BRAUN_SCLERONOMIC unset (the core adds the drive's work). */
 struct braun_scene_joint_class {
     const char *name;         /* scene-file "type" ("revolute") */
     const char *c_name;       /* what braun gen-c writes ("BRAUN_JOINT_REVOLUTE") */
@@ -623,7 +623,7 @@ struct braun_scene {
     int neffects;  braun_scene_effect *effects;
     /* Derived by braun_scene_build. */
     int n, m, p;          /* coordinates, holonomic rows, nonholonomic rows */
-    int driven;           /* number of driven joints (then BRAUN_CONSTRAINT_WORK) */
+    int driven;           /* number of driven joints (0: BRAUN_SCLERONOMIC) */
     int energy_input;     /* an effect puts energy in or takes it out */
     int dim;              /* 2: planar bodies, 3: spatial bodies */
 };

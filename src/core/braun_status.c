@@ -8,7 +8,7 @@ const char *braun_status_str(int status)
     case BRAUN_STOPPED: return "BRAUN_STOPPED: the output callback asked to stop";
     case BRAUN_ERR_ARGUMENT: return "BRAUN_ERR_ARGUMENT: NULL pointer or invalid option";
     case BRAUN_ERR_SIZE: return "BRAUN_ERR_SIZE: invalid or inconsistent sizes n, m, p";
-    case BRAUN_ERR_BUFFER: return "BRAUN_ERR_BUFFER: workspace buffer too small or misaligned";
+    case BRAUN_ERR_BUFFER: return "BRAUN_ERR_BUFFER: workspace buffer smaller than braun_data_size(), or a backend could not allocate";
     case BRAUN_ERR_NONFINITE: return "BRAUN_ERR_NONFINITE: NaN or Inf in the state or a callback output";
     case BRAUN_ERR_MASS_NOT_SYMMETRIC: return "BRAUN_ERR_MASS_NOT_SYMMETRIC: mass matrix is not symmetric";
     case BRAUN_ERR_MASS_NOT_SPD: return "BRAUN_ERR_MASS_NOT_SPD: mass matrix is not positive definite";

@@ -183,8 +183,11 @@ static void write_spatial(FILE *f, long N, double deg)
     fprintf(f, "{\n  \"name\": \"spatial-chain-%ld\",\n", N);
     fprintf(f, "  \"description\": \"%ld rigid3d bars (1 m, 0.1 m square section, 1 kg) on spherical "
                "joints, straight, %.17g degrees below the horizontal, turning about the vertical at "
-               "1 rad/s; written by braun gen spatial-chain %ld%s%.17g\",\n",
-            N, deg, N, deg == 0 ? "" : " --angle ", deg);
+               "1 rad/s; written by braun gen spatial-chain %ld",
+            N, deg, N);
+    /* the option only when it was not the default */
+    if (deg != 0) fprintf(f, " --angle %.17g", deg);
+    fputs("\",\n", f);
     fputs("  \"bodies\": [\n", f);
     for (long i = 1; i <= N; i++) {
         const double x = ((double)i - 0.5) * c, y = -((double)i - 0.5) * s;

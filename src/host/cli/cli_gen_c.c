@@ -4,6 +4,7 @@
  * defaults to the file's base name with '-' and '.' turned into '_'. */
 #include <errno.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "braun_cli.h"
 #include "braun_scene_file.h"
@@ -53,11 +54,17 @@ int braun_cli_gen_c(int argc, char **argv)
     } else if (braun_gen_c_check_symbol(symbol, why, sizeof why)) {
         return braun_cli_error("gen-c --symbol: %s", why);
     }
+    /* Not a file here: a shipped scene by its name ("damped-motor",
+     * "four-bar.json"), as run, plot and check find it. */
+    static char found[4096];
+    struct stat st_in;
+    const char *path = scene;
+    if (stat(scene, &st_in) != 0 && braun_cli_data_file(scene, found, sizeof found)) path = found;
     char err[512];
-    braun_scene_file *sf = braun_scene_load(scene, err, sizeof err);
+    braun_scene_file *sf = braun_scene_load(path, err, sizeof err);
     if (!sf) return braun_cli_error("%s", err);
     braun_cli_id input;
-    braun_cli_path_id(scene, &input);
+    braun_cli_path_id(path, &input);
     braun_cli_output o;
     int rc = braun_cli_output_open(&o, out ? out : "-", "gen-c -o");
     if (!rc && (rc = braun_cli_output_distinct(&o, NULL, &input, scene)) == 0)

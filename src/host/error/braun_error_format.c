@@ -93,7 +93,7 @@ static void describe(msg *w, const braun_data *d)
         put(w, "invalid sizes n, m, p");
         return;
     case BRAUN_ERR_BUFFER:
-        put(w, "workspace buffer too small or misaligned (see braun_data_size)");
+        put(w, "workspace buffer smaller than braun_data_size(), or a backend could not allocate");
         return;
     case BRAUN_ERR_NONFINITE:
         put(w, "%s", noun(where));
