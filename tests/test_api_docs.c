@@ -207,7 +207,7 @@ static void test_statistics(void **state)
     const braun_builtin *b = builtin("slider-crank");
     sim.data.work_in = 3;
     assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
-    const braun_stats zero = {0, 0, 0, 1, 0, 0, 0};
+    const braun_stats zero = {0, 0, 0, 1, 0, 0, 0, 0};
     assert_memory_equal(&sim.data.stats, &zero, sizeof zero);
     assert_true(sim.data.work_in == 0 && sim.data.t == 0);
     test_sim_close(&sim);

@@ -125,7 +125,7 @@ static void matmul(int a, int b, int c, const braun_real *A, const braun_real *B
 
 static void check_penrose(const pinv_case *c, int expect_rank, double tol)
 {
-    braun_real reals[2 * NMAX * NMAX + 4 * NMAX];
+    braun_real reals[2 * NMAX * NMAX + 12 * NMAX];
     int ints[NMAX];
     braun_qrcp f;
     assert_true(braun_qrcp_reals(c->n, c->rows) <= sizeof reals / sizeof reals[0]);
@@ -221,6 +221,97 @@ static void test_rank_tolerance(void **state)
     assert_int_equal(factor(&c, &f, reals, ints, 1e-6), 1);
 }
 
+/* Soft directions (braun_qrcp_soft.c): C = U diag(σ) Vᵀ with known
+ * orthonormal U, V; redundant copies of a row make the rank-deficient
+ * case. soft_find must find exactly the directions below the gate 10λ
+ * (λ = rel·|r_00|), and soft_project must return the part of x along
+ * them, each weighted by w = λ⁴/(σ⁴ + λ⁴), and nothing of x elsewhere. */
+static void orthonormal_columns(int n, int k, braun_real *Q, unsigned *seed)
+{
+    for (int c = 0; c < k; c++) {
+        for (int i = 0; i < n; i++) Q[i * k + c] = frand(seed);
+        for (int pass = 0; pass < 2; pass++)
+            for (int e = 0; e < c; e++) {
+                double d = 0;
+                for (int i = 0; i < n; i++) d += Q[i * k + c] * Q[i * k + e];
+                for (int i = 0; i < n; i++) Q[i * k + c] -= d * Q[i * k + e];
+            }
+        double nn = 0;
+        for (int i = 0; i < n; i++) nn += Q[i * k + c] * Q[i * k + c];
+        for (int i = 0; i < n; i++) Q[i * k + c] /= sqrt(nn);
+    }
+}
+
+static void soft_case(const double *sig, int k, int redundant, int expect_soft)
+{
+    const int n = 6, rows = k + redundant;
+    const double rel = 1e-4;
+    unsigned seed = 11u + (unsigned)k * 7u + (unsigned)redundant;
+    braun_real U[NMAX * NMAX], V[NMAX * NMAX];
+    orthonormal_columns(k, k, U, &seed);
+    orthonormal_columns(n, k, V, &seed);
+    pinv_case c = {rows, n, {0}};
+    for (int i = 0; i < k; i++)
+        for (int j = 0; j < n; j++) {
+            double sum = 0;
+            for (int l = 0; l < k; l++) sum += U[i * k + l] * sig[l] * V[j * k + l];
+            c.C[i * n + j] = sum;
+        }
+    for (int r = 0; r < redundant; r++) /* row k + r = 2·row 0 + row 1 */
+        for (int j = 0; j < n; j++) c.C[(k + r) * n + j] = 2 * c.C[j] + c.C[n + j];
+    braun_real reals[2 * NMAX * NMAX + 12 * NMAX];
+    int ints[NMAX];
+    braun_qrcp f;
+    assert_true(braun_qrcp_reals(n, rows) <= sizeof reals / sizeof reals[0]);
+    assert_int_equal(factor(&c, &f, reals, ints, (braun_real)(NMAX * DBL_EPSILON)), k);
+    assert_int_equal(braun_qrcp_soft_find(&f, rel), expect_soft);
+    braun_real x[NMAX], y[NMAX];
+    for (int i = 0; i < n; i++) x[i] = frand(&seed);
+    braun_qrcp_soft_project(&f, x, y);
+    double r00 = 0; /* |r_00|: the largest row norm of C */
+    for (int i = 0; i < rows; i++) {
+        double s2 = 0;
+        for (int j = 0; j < n; j++) s2 += c.C[i * n + j] * c.C[i * n + j];
+        if (sqrt(s2) > r00) r00 = sqrt(s2);
+    }
+    const double lam = rel * r00;
+    /* Round-off ε‖C‖ in C turns a direction of singular value σ toward the
+     * null space by about ε‖C‖/σ (a few ε·rows·n·‖C‖ after the
+     * factorizations): that far from Vᵀ the soft directions of the
+     * computed C may lie. */
+    double smin = 1;
+    for (int l = 0; l < k; l++)
+        if (sig[l] < smin) smin = sig[l];
+    const double tol = 1e-13 + 64 * DBL_EPSILON * (double)(rows * n) * r00 / smin;
+    double py[NMAX];
+    for (int i = 0; i < n; i++) py[i] = y[i];
+    for (int l = 0; l < k; l++) {
+        double xv = 0, yv = 0;
+        for (int i = 0; i < n; i++) {
+            xv += x[i] * V[i * k + l];
+            yv += y[i] * V[i * k + l];
+        }
+        const double l4 = pow(lam, 4), w = l4 / (pow(sig[l], 4) + l4);
+        const int soft = sig[l] < BRAUN_SOFT_GATE * lam;
+        assert_near(yv, soft ? w * xv : 0, tol);
+        for (int i = 0; i < n; i++) py[i] -= yv * V[i * k + l];
+    }
+    for (int i = 0; i < n; i++) assert_near(py[i], 0, tol); /* nothing outside range(Cᵀ) */
+}
+
+static void test_soft_directions(void **state)
+{
+    (void)state;
+    const double none[4] = {1, 0.7, 0.3, 0.05}, one[4] = {1, 0.6, 0.2, 1e-7},
+                 two[4] = {1, 0.5, 2e-5, 3e-8}, edge[4] = {1, 0.5, 0.25, 1e-4};
+    soft_case(none, 4, 0, 0);
+    soft_case(one, 4, 0, 1);
+    soft_case(two, 4, 0, 2);
+    soft_case(one, 4, 1, 1); /* a dependent row: the triangle is T of S = U T */
+    soft_case(two, 4, 2, 2);
+    soft_case(edge, 4, 0, 1); /* w between 0 and 1: σ = 1e-4, λ ~ 1e-4 */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -232,6 +323,7 @@ int main(void)
         cmocka_unit_test(test_pinv_more_rows_than_columns),
         cmocka_unit_test(test_pinv_zero_and_rank_one),
         cmocka_unit_test(test_rank_tolerance),
+        cmocka_unit_test(test_soft_directions),
     };
     return cmocka_run_group_tests_name("linalg", tests, NULL, NULL);
 }

@@ -113,7 +113,7 @@ static void test_failed_init_releases(void **state)
     (void)state;
     static braun_linsolver fake = {"fake", BRAUN_LS_DENSE, fake_create, fake_destroy,
                                    fake_factor_mass, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
-                                   NULL, NULL, NULL};
+                                   NULL, NULL, NULL, NULL, NULL, NULL};
     fixture f;
     open_fixture(&f);
     f.model.opt.linsolver = &fake;

@@ -90,6 +90,16 @@ struct braun_linsolver {
      * not quite at states the stages reach off it, keep being dropped.
      * NULL: the backend decides by tol alone. */
     void (*rank_rule)(void *state, int slot, int keep, int cap, braun_real tol_new);
+    /* Optional: soft directions of slot's last factorization (docs/method.md,
+     * "Redundant rows through a singular configuration"): soft_find finds
+     * the right singular vectors s_c of C whose singular values σ_c are kept
+     * by the rank decision but below 10λ, λ = rel·‖C‖, weighs each with
+     * w_c = λ⁴/(σ_c⁴ + λ⁴), and returns their number (0: none, the common
+     * case — it should then cost next to nothing); soft_project then sets
+     * y := Σ_c w_c s_c (s_cᵀ x) (n entries, y not aliasing x). NULL: the
+     * core does without them. */
+    int (*soft_find)(void *state, int slot, braun_real rel);
+    void (*soft_project)(void *state, int slot, const braun_real *x, braun_real *y);
 };
 
 #ifdef __cplusplus

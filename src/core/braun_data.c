@@ -44,7 +44,7 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     d->work_in = 0;
     d->E0 = 0;
     d->has_E0 = 0;
-    d->stats = (braun_stats){0, 0, 0, 0, 0, 0, 0};
+    d->stats = (braun_stats){0, 0, 0, 0, 0, 0, 0, 0};
     /* Every option, before anything is made. */
     int st = braun__check_options(d);
     if (st) return st;
@@ -73,6 +73,8 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
     pv->rule_keep[1] = pv->rule_cap[1] = s->m;
     pv->rule_stage = 0;
+    pv->soft_on = pv->have_ref = 0;
+    pv->ref_step = 0;
     pv->step_rank[0] = pv->rows;
     pv->step_rank[1] = s->m;
     pv->Edot = 0;
@@ -134,11 +136,12 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     d->work_in = 0;
     /* A new run: its statistics start from zero (the constant M's one
      * factorization, made at braun_data_init, stays counted). */
-    d->stats = (braun_stats){0, 0, 0, pv->R_is_constant ? 1 : 0, 0, 0, 0};
+    d->stats = (braun_stats){0, 0, 0, pv->R_is_constant ? 1 : 0, 0, 0, 0, 0};
     pv->state_integrated = 0;
     pv->state_set = 1;
     pv->has_prev = 0;
     pv->t_lo = 0;
+    pv->have_ref = 0;
     /* A new run decides its first rank by the plain tolerance. */
     pv->step_rank[0] = pv->rows;
     pv->step_rank[1] = pv->m;

@@ -69,4 +69,6 @@ const braun_linsolver braun__dense_linsolver = {
     dense_bind,
     braun__dense_mass_buffer,
     braun__dense_rank_rule,
+    braun__dense_soft_find,
+    braun__dense_soft_project,
 };

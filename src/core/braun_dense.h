@@ -89,6 +89,16 @@ static inline void braun__dense_lsq(void *state, int slot, const braun_real *r, 
     braun_qrcp_lsq(braun__dense_slot(state, slot), r, x, resid_norm);
 }
 
+static inline int braun__dense_soft_find(void *state, int slot, braun_real rel)
+{
+    return braun_qrcp_soft_find(braun__dense_slot(state, slot), rel);
+}
+
+static inline void braun__dense_soft_project(void *state, int slot, const braun_real *x, braun_real *y)
+{
+    braun_qrcp_soft_project(braun__dense_slot(state, slot), x, y);
+}
+
 static inline void braun__dense_null_project(void *state, int slot, braun_real *z)
 {
     braun_qrcp_null_project(braun__dense_slot(state, slot), z);

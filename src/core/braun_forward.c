@@ -210,13 +210,52 @@ static int nonfinite_culprit(braun_data *d, int with_residuals)
     return st;
 }
 
+/* The soft-direction filter (options.soft_tol; docs/method.md, "Redundant
+ * rows through a singular configuration"). With redundant rows (a
+ * rank-deficient C) near a singular configuration, C keeps a direction s
+ * whose singular value σ is tiny and which the redundant rows block at
+ * second order. The index-1 flow conserves the velocity-level residual,
+ * so a residual e of round-off or of a stage's own error is a velocity
+ * e_s/σ along s and an acceleration ≈ σ'·e_s/σ² along it: a rate σ'/σ no
+ * explicit stage can follow when it lands within h·σ' of the singular
+ * point (the exact flow merely removes that velocity; one RK4 step turned
+ * 1e-6 into 1e-2 and stopped the run). The true acceleration along s is
+ * smooth through the crossing, so a stage with such a direction takes
+ * that component with weight 1 − w, w = λ⁴/(σ⁴ + λ⁴), λ = soft_tol·‖C‖,
+ * from its own evaluation and w from the last stage that had none (this
+ * step's or the last one's: a crossing lasts far less than a step; with
+ * no such stage the stage keeps its own). Without redundant rows the
+ * filter is off: at a bifurcation the direction is another branch's
+ * tangent, and the velocity a replaced component leaves at the next stage
+ * costs more than the kick it removes (measured on the slider-crank,
+ * docs/method.md). Returns 1 when the stage had a soft direction (it is
+ * then no reference), else 0. */
+static int soft_filter(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = BRAUN_N(pv->n);
+    if (pv->rank[0] >= pv->rows) return 0;
+    const braun_real rel = d->model->opt.soft_tol > 0 ? d->model->opt.soft_tol : BRAUN_SOFT_TOL;
+    if (BRAUN_LS_CALL(pv, soft_find, pv->ls_state, 0, rel) <= 0) return 0;
+    if (!pv->have_ref || pv->ref_step < d->stats.steps - 1) return 1;
+    /* u += Σ w s sᵀ(g − u), g = R v'_ref − ã the reference's constraint force. */
+    braun__mul_r(pv, pv->aref, pv->tmp);
+    for (int i = 0; i < n; i++) pv->tmp[i] -= pv->atil[i] + pv->u[i];
+    BRAUN_LS_CALL(pv, soft_project, pv->ls_state, 0, pv->tmp, pv->ce);
+    for (int i = 0; i < n; i++) pv->u[i] += pv->ce[i];
+    d->stats.soft_filtered++;
+    return 1;
+}
+
 static int stage_ideal(braun_data *d, int with_residuals, braun_real *vdot)
 {
     braun_priv *pv = braun__priv(d);
     const int n = BRAUN_N(pv->n), m = pv->m, rows = BRAUN_ROWS(pv->rows);
     const int with_rows = rows > 0;
+    int soft = 0;
     if (with_rows) {
         braun__pinv(pv, 0, pv->rv, pv->u);
+        if (pv->soft_on) soft = soft_filter(d);
         for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i] + pv->u[i];
     } else {
         for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i];
@@ -231,6 +270,11 @@ static int stage_ideal(braun_data *d, int with_residuals, braun_real *vdot)
          (!braun_all_finite(rows, pv->ev) || !braun_all_finite(m, pv->phi))))
         return nonfinite_culprit(d, with_residuals);
     if (vdot) braun__solve_r(pv, pv->z, vdot);
+    if (pv->soft_on && !soft && vdot) {
+        for (int i = 0; i < n; i++) pv->aref[i] = vdot[i];
+        pv->ref_step = d->stats.steps;
+        pv->have_ref = 1;
+    }
     return BRAUN_OK;
 }
 
@@ -347,6 +391,7 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
     pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
     pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
     pv->rule_stage = 0;
+    pv->soft_on = 0; /* braun_eval is the plain Udwadia–Kalaba acceleration */
     st = braun__forward(d, (corr ? BRAUN_WITH_RESIDUALS : 0u) |
                                (corr & BRAUN_CORRECT_ENERGY ? BRAUN_WITH_POWER : 0u),
                         vdot);

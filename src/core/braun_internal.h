@@ -55,6 +55,9 @@
  * first step's last stage). */
 #define BRAUN_RANK_TOL_STAGE BRAUN_R(1e-3)
 
+/* The default of options.soft_tol (docs/method.md). */
+#define BRAUN_SOFT_TOL BRAUN_R(1e-4)
+
 /* The evaluation point every stage reads (set by braun__at). */
 typedef struct braun_point {
     braun_real t;
@@ -107,6 +110,11 @@ typedef struct braun_priv {
     int rule_keep[2], rule_cap[2];
     int rule_stage;       /* a step's later stages: a rank rises only past BRAUN_RANK_TOL_STAGE */
     int step_rank[2];     /* the last step's first-stage rank (the rows: none yet) */
+    /* The soft-direction filter (braun_forward.c, soft_filter): on for the
+     * stages of a step; aref is the acceleration v' of the last stage that
+     * had no soft direction, from step ref_step (have_ref: one exists). */
+    int soft_on, have_ref;
+    long ref_step;
     /* Stage outputs, one meaning each (see the table above). */
     braun_real *Q;        /* n: forces */
     braun_real *atil;     /* n: ã = R⁻ᵀQ, the weighted unconstrained acceleration */
@@ -126,6 +134,7 @@ typedef struct braun_priv {
     /* The last state before the current one ([q; v; ∫Ė] and t), for the
      * accuracy guard: a run it stops goes back to the last state that passed. */
     braun_real *yprev;
+    braun_real *aref;     /* n (rows > 0): the soft filter's reference v' */
     braun_real tprev, tprev_lo;
     int has_prev;
     /* The clock is compensated (Kahan): d->t + t_lo is the sum of the steps
@@ -240,6 +249,17 @@ extern const braun_linsolver braun__dense_linsolver;
     ((pv)->ls == &braun__dense_linsolver ? braun__dense_##op(__VA_ARGS__)           \
                                          : (pv)->ls->op(__VA_ARGS__))
 #endif
+
+/* The linear solver finds soft directions (braun_linsolver.h, soft_find). */
+static inline int braun__has_soft(const braun_priv *pv)
+{
+#ifdef BRAUN_NO_LINSOLVER
+    (void)pv;
+    return 1;
+#else
+    return pv->ls->soft_find != NULL && pv->ls->soft_project != NULL;
+#endif
+}
 
 /* x := R^-T b, x := R^-1 b (x may be b), y := R x. */
 static inline void braun__solve_rt(const braun_priv *pv, const braun_real *b, braun_real *x)

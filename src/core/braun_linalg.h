@@ -79,7 +79,29 @@ typedef struct braun_qrcp {
     braun_real *s;     /* rows x rows scratch: QR of S when rank < rows */
     braun_real *stau;  /* rows */
     braun_real *work;  /* max(n, rows) */
+    braun_real *soft;  /* BRAUN_QRCP_SOFT_REALS(n, rows): soft directions */
+    int nsoft;         /* soft directions found by braun_qrcp_soft_find */
 } braun_qrcp;
+
+/* Soft directions (src/braun_qrcp_soft.c): at most BRAUN_SOFT_MAX at a
+ * time, below BRAUN_SOFT_GATE·λ. */
+#define BRAUN_SOFT_MAX 3
+#define BRAUN_SOFT_GATE 10
+#define BRAUN_QRCP_SOFT_REALS(n, rows) \
+    ((size_t)BRAUN_SOFT_MAX * (size_t)(rows) + BRAUN_SOFT_MAX + (size_t)(rows) + (size_t)(n))
+
+/* y[0..len) := (I - tau v v^T) y with v = (1, vtail[0..len-1)): one
+ * Householder reflector of the factorization. */
+static inline void braun_qrcp__reflect(int len, const braun_real *vtail, braun_real tau,
+                                       braun_real *y)
+{
+    if (tau == 0) return;
+    braun_real w = y[0];
+    for (int i = 1; i < len; i++) w += vtail[i - 1] * y[i];
+    w *= tau;
+    y[0] -= w;
+    for (int i = 1; i < len; i++) y[i] -= w * vtail[i - 1];
+}
 
 /* Bytes of the reals and ints a braun_qrcp of this size needs. */
 size_t braun_qrcp_reals(int n, int rows);
@@ -103,6 +125,16 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
                     braun_real *resid);
 /* z[n] := N z = z - C^+ C z (projection onto the null space of C). */
 void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z);
+/* The soft directions of the last factorization: the right singular
+ * vectors s_c of C whose singular values σ_c are below BRAUN_SOFT_GATE·λ,
+ * λ = rel·|r_00| (rel > 0), found by inverse iteration on the factor, each
+ * with the weight w_c = λ⁴/(σ_c⁴ + λ⁴). Returns their number (0 when every
+ * diagonal entry of the factor is above the gate: then it costs a scan of
+ * the diagonal). */
+int braun_qrcp_soft_find(braun_qrcp *f, braun_real rel);
+/* y[n] := Σ_c w_c s_c (s_cᵀ x): the weighted part of x[n] along the soft
+ * directions found (0 when there are none). y must not alias x. */
+void braun_qrcp_soft_project(const braun_qrcp *f, const braun_real *x, braun_real *y);
 
 /* ---- small vector helpers (inline: n is small and the calls are hot) ---- */
 static inline braun_real braun_dot(int n, const braun_real *x, const braun_real *y)

@@ -69,6 +69,7 @@ int braun_model_init(braun_model *model, const braun_system *sys)
     model->opt.symmetry_tol = 0;
     model->opt.inconsistency_tol = 0;
     model->opt.guard = 0;
+    model->opt.soft_tol = 0;
     model->opt.linsolver = NULL;
     return BRAUN_OK;
 }

@@ -33,6 +33,10 @@ int braun__check_options(braun_data *d)
                            (double)o->inconsistency_tol, t);
     if (bad_real(o->guard))
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.guard", -1, -1, (double)o->guard, t);
+    /* A relative threshold of 1 or more would project every direction. */
+    if (bad_real(o->soft_tol) || o->soft_tol >= 1)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.soft_tol (must be < 1)", -1, -1,
+                           (double)o->soft_tol, t);
     if ((o->corrections & BRAUN_CORRECT_ENERGY) && !d->model->sys.energy)
         return braun__fail(d, BRAUN_ERR_NO_ENERGY_LAW, "options", -1, -1, 0, t);
 #ifdef BRAUN_NO_LINSOLVER

@@ -14,7 +14,8 @@ size_t braun_qrcp_reals(int n, int rows)
            + (size_t)rows                /* tau */
            + (size_t)rows * (size_t)rows /* s */
            + (size_t)rows                /* stau */
-           + (size_t)w;                  /* work */
+           + (size_t)w                   /* work */
+           + BRAUN_QRCP_SOFT_REALS(n, rows); /* soft */
 }
 
 size_t braun_qrcp_ints(int rows) { return (size_t)rows; }
@@ -30,6 +31,8 @@ void braun_qrcp_bind(braun_qrcp *f, int n, int rows, braun_real *reals,
     f->s = f->tau + rows;
     f->stau = f->s + (size_t)rows * (size_t)rows;
     f->work = f->stau + rows;
+    f->soft = f->work + (n > rows ? n : rows);
+    f->nsoft = 0;
     f->perm = ints;
 }
 
@@ -46,17 +49,7 @@ static braun_real house(int len, braun_real *x, braun_real normx)
     return (beta - alpha) / beta;
 }
 
-/* y[0..len) := (I - tau v v^T) y with v = (1, vtail[0..len-1)). */
-static inline void reflect(int len, const braun_real *vtail, braun_real tau,
-                    braun_real *y)
-{
-    if (tau == 0) return;
-    braun_real w = y[0];
-    for (int i = 1; i < len; i++) w += vtail[i - 1] * y[i];
-    w *= tau;
-    y[0] -= w;
-    for (int i = 1; i < len; i++) y[i] -= w * vtail[i - 1];
-}
+#define reflect braun_qrcp__reflect
 
 static braun_real sumsq(int len, const braun_real *x)
 {
@@ -88,6 +81,7 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
         norm2[j] = ref[j] = sumsq(n, a + (size_t)j * (size_t)n);
     }
     f->rank = 0;
+    f->nsoft = 0;
     for (int k = 0; k < kmax; k++) {
         int best = k;
         for (int j = k + 1; j < rows; j++)

@@ -36,6 +36,8 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     pv->rule_cap[0] = pv->rows;
     pv->rule_cap[1] = pv->m;
     pv->rule_stage = 0;
+    /* The soft-direction filter acts on the stages of a step. */
+    pv->soft_on = pv->rows > 0 && d->model->opt.soft_tol >= 0 && braun__has_soft(pv);
     for (int s = 0; s < tb->stages; s++) {
         const braun_real *ys = y0;
         if (s > 0) {
@@ -99,6 +101,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
     pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
     pv->rule_stage = 0;
+    pv->soft_on = 0;
     for (int i = 0; i < N; i++) y1[i] = y0[i];
     for (int s = 0; s < tb->stages; s++) {
         const braun_real b = (braun_real)tb->b[s] * h;

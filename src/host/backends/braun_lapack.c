@@ -388,6 +388,8 @@ static const braun_linsolver lapack_table = {
     NULL, /* bind */
     NULL, /* mass_buffer: the core keeps M */
     ls_rank_rule,
+    NULL, /* soft_find: no soft-direction filter (docs/method.md) */
+    NULL, /* soft_project */
 };
 
 const braun_linsolver *braun_linsolver_lapack(void) { return &lapack_table; }

@@ -1560,6 +1560,8 @@ static const braun_linsolver ss_table = {
     NULL, /* bind */
     NULL, /* mass_buffer: the core keeps M */
     ss_rank_rule,
+    NULL, /* soft_find: no soft-direction filter (docs/method.md) */
+    NULL, /* soft_project */
 };
 
 const braun_linsolver *braun_linsolver_suitesparse(void) { return &ss_table; }

@@ -95,6 +95,7 @@ typedef struct braun_cli_run_args {
     const char *backend;        /* --backend: dense | lapack | suitesparse | auto */
     int sparse;                 /* --sparse: the scene's sparsity (braun_scene_build_sparse) */
     double guard;               /* --guard: 0 library default (1e-3), < 0 off */
+    double soft_tol;            /* --soft-tol: 0 library default (1e-4), < 0 off */
     int progress;               /* -1: when stderr is a terminal; 0: --quiet; 1: --progress */
     int timing;                 /* run the timed run (cpu_s); braun plot does not */
     int run_given;              /* an option of the simulation was given (plot --traj refuses) */

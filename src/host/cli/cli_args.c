@@ -176,6 +176,14 @@ static int apply(const char *opt, const char *val, braun_cli_run_args *a, int pl
     if (strcmp(opt, "--energy-max-rel") == 0) return parse_nonnegative(opt, val, &a->energy_max_rel);
     /* 0 is the library's default, a negative value turns the guard off. */
     if (strcmp(opt, "--guard") == 0) return parse_real(opt, val, &a->guard);
+    /* 0 is the library's default, a negative value turns the filter off. */
+    if (strcmp(opt, "--soft-tol") == 0) {
+        const int rc = parse_real(opt, val, &a->soft_tol);
+        if (!rc && a->soft_tol >= 1)
+            return braun_cli_error("--soft-tol %s: must be < 1 (relative to the constraint "
+                                   "matrix's norm)", val);
+        return rc;
+    }
     if (strcmp(opt, "--rtol") == 0) return parse_nonnegative(opt, val, &a->rtol);
     if (strcmp(opt, "--atol") == 0) return parse_nonnegative(opt, val, &a->atol);
     if (strcmp(opt, "--ref-h") == 0) return parse_positive(opt, val, &a->ref_h);
@@ -209,7 +217,7 @@ static int takes_value(const char *opt, int plot)
 {
     static const char *const names[] = {
         "--dt", "--t-end", "--integrator", "--corrections", "--discretization",
-        "--rank-tol", "--energy-max-rel", "--guard", "--rtol", "--atol", "--ref-h",
+        "--rank-tol", "--energy-max-rel", "--guard", "--soft-tol", "--rtol", "--atol", "--ref-h",
         "--every", "--out", "--summary", "--backend"};
     static const char *const plot_names[] = {"-o", "--traj", "--points", "--plot", "--frames",
                                              "--from", "--samples", "--view"};

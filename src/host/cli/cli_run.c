@@ -259,6 +259,7 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
     model.opt.rank_tol = (braun_real)a->rank_tol;
     model.opt.energy_max_rel = (braun_real)a->energy_max_rel;
     model.opt.guard = (braun_real)a->guard;
+    model.opt.soft_tol = (braun_real)a->soft_tol;
 
     const int n = model.sys.n;
     const size_t bytes = braun_data_size(&model);

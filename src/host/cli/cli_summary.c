@@ -101,6 +101,7 @@ int braun_cli_write_summary(FILE *f, const braun_cli_result *r)
     integer(&j, "constraint_factorizations", r->stats.constraint_factorizations);
     integer(&j, "rank_deficient", r->stats.rank_deficient);
     integer(&j, "energy_guard_hits", r->stats.energy_guard_hits);
+    integer(&j, "soft_filtered", r->stats.soft_filtered);
     num(&j, "cpu_s", r->cpu_s);
     num(&j, "max_position_constraint_error", mon->max.pos);
     num(&j, "max_velocity_constraint_error", mon->max.vel);
@@ -144,6 +145,8 @@ int braun_cli_write_summary(FILE *f, const braun_cli_result *r)
     if (!(o->inconsistency_tol > 0)) defaulted[nd++] = "inconsistency_tol";
     num(&j, "inconsistency_tol", o->inconsistency_tol > 0 ? (double)o->inconsistency_tol
                                                           : sqrt((double)BRAUN_EPS));
+    if (o->soft_tol == 0) defaulted[nd++] = "soft_tol";
+    num(&j, "soft_tol", o->soft_tol < 0 ? NAN : o->soft_tol > 0 ? (double)o->soft_tol : 1e-4);
     /* The accuracy guard: relative value, and the bounds it applied. */
     const braun_cli_bounds *b = &r->stop.bounds;
     if (o->guard == 0) defaulted[nd++] = "guard";
