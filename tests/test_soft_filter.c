@@ -85,7 +85,7 @@ static void test_redundant_crossing(void **state)
     (void)state;
     double pos, energy;
     long filtered;
-    /* Measured: |Phi_q| 1.3e-11, |Phi_e| 4.7e-12, 4 stages filtered. */
+    /* Measured: |Phi_q| 1.3e-11, |Phi_e| 4.7e-12, 6 stages filtered. */
     assert_int_equal(through_crossing(0, &pos, &energy, &filtered), BRAUN_OK);
     print_message("filter on: max |Phi_q| %.3g, |Phi_e| %.3g, %ld stages filtered\n", pos, energy,
                   filtered);
