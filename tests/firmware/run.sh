@@ -196,10 +196,11 @@ ADDR2LINE=${FW_ADDR2LINE:-arm-none-eabi-addr2line}
 # "FUNC HELPER FILE:LINE").
 path_check() {
     pc=$1; root=$2; img=$FW/$pc/path.elf
-    [ "$OUT/$pc-path.dis" -nt "$img" ] || {
+    # Disassembled once per build of the image.
+    if [ ! -s "$OUT/$pc-path.dis" ] || [ -n "$(find "$img" -newer "$OUT/$pc-path.dis")" ]; then
         "$OBJDUMP" -d --no-show-raw-insn "$img" > "$OUT/$pc-path.dis"
         "$OBJDUMP" -s -j .text -j .data "$img" > "$OUT/$pc-path.words"
-    }
+    fi
     awk -v roots="$root" -v lib="libbraun.a(" -f firmware/tools/double-path.awk \
         "$FW/$pc/path.map" "$OUT/$pc-path.dis" "$OUT/$pc-path.words" > "$OUT/$pc-path-$root.txt"
     # One addr2line for all the calls; a call is inside a braun__fail(...)
