@@ -255,11 +255,59 @@ static int cmd_test(const char *which, const fw_workspace *ws)
         bad |= run("slider-crank", BRAUN_RK4, 1e-3, 200,
                    BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY, ws) != 0;
     }
+    /* 500 steps (0.5 s) of a small scene; 50 of a large one: IFToMM A04
+     * (n = 35, 35 rows) costs 2.6M instructions per step in float and 35M
+     * in double (soft-float), 1.75e9 instructions for 50 steps, about 3 s
+     * of emulation. */
     for (int i = 0; scenes && fw_platform_scene_at(i); i++) {
         const fw_scene *sc = fw_platform_scene_at(i);
-        bad |= run(sc->label, BRAUN_RK4, 1e-3, 500, sc->corrections, ws) != 0;
+        const long steps = sc->sys.n > 16 ? 50 : 500;
+        bad |= run(sc->label, BRAUN_RK4, 1e-3, steps, sc->corrections, ws) != 0;
     }
     return bad;
+}
+
+/* One run of any built-in model or scene: `run NAME H STEPS [CORR]`, the
+ * records of the test runs (default corrections: the model's). */
+static int cmd_run(int argc, char **argv, const fw_workspace *ws)
+{
+    subject sub;
+    if (argc < 4 || find_subject(argv[1], &sub)) return 2;
+    const double h = parse_real(argv[2]);
+    const long steps = parse_long(argv[3]);
+    const int corr = argc > 4 ? parse_corrections(argv[4]) : (int)sub.corrections;
+    if (!(h > 0) || steps < 0 || corr < 0) return 2;
+    return run(argv[1], BRAUN_RK4, h, steps, (unsigned)corr, ws) != 0;
+}
+
+/* `trace NAME STEPS [CORR]`: STEPS RK4 steps (h = 1e-3) and nothing else,
+ * for an instruction trace of the step path: tests/firmware/run.sh runs it
+ * under QEMU -d exec for 1 and for 1 + k steps, and the difference of the
+ * two traces is k steps (the board skips its timer calibration). */
+static int cmd_trace(int argc, char **argv, const fw_workspace *ws)
+{
+    braun_model model;
+    braun_data d;
+    subject sub;
+    if (argc < 3 || find_subject(argv[1], &sub)) return 2;
+    const long steps = parse_long(argv[2]);
+    const int corr = argc > 3 ? parse_corrections(argv[3]) : (int)sub.corrections;
+    const braun_real h = BRAUN_R(1e-3);
+    if (steps < 0 || corr < 0) return 2;
+    memset(&d, 0, sizeof d);
+    int st = setup(argv[1], (unsigned)corr, ws, &model, &d, &sub);
+    long i = 0;
+    for (; i < steps && !st; i++) st = braun_step(&d, BRAUN_RK4, h);
+    fw_puts("trace");
+    fw_kv_str("model", argv[1]);
+    fw_kv_str("corrections", corrections_name((unsigned)corr));
+    fw_kv_long("steps", i);
+    fw_kv_long("rank_deficient", d.priv ? d.stats.rank_deficient : -1);
+    fw_kv_long("guard", d.priv ? d.stats.energy_guard_hits : -1);
+    fw_kv_long("status", st);
+    fw_putc('\n');
+    fw_flush();
+    return st != 0;
 }
 
 /* ------------------------------------------------------------ bench */
@@ -287,17 +335,23 @@ static int bench_one(const char *name, unsigned corrections, long steps,
     subject sub = {NULL, NULL, NULL, NULL, 0, NULL};
     unsigned long tmin = (unsigned long)-1, tmax = 0, tsum = 0;
     const unsigned long over = tick_overhead();
-    long done = 0;
+    long done = 0, imax = -1;
+    /* Converted once, outside the timed window (a double-to-float call on
+     * the M4F). */
+    const braun_real hr = (braun_real)h;
     memset(&d, 0, sizeof d);
     int st = setup(name, corrections, ws, &model, &d, &sub);
     const int ready = d.priv != NULL;
     for (long i = 0; i < steps && !st; i++) {
         const unsigned long t0 = fw_platform_ticks();
-        st = braun_step(&d, BRAUN_RK4, (braun_real)h);
+        st = braun_step(&d, BRAUN_RK4, hr);
         const unsigned long dt = fw_platform_ticks() - t0 - over;
         if (st) break; /* a failed step is not a step */
         if (dt < tmin) tmin = dt;
-        if (dt > tmax) tmax = dt;
+        if (dt > tmax) {
+            tmax = dt;
+            imax = i;
+        }
         tsum += dt;
         done++;
     }
@@ -309,6 +363,7 @@ static int bench_one(const char *name, unsigned corrections, long steps,
     fw_kv_long("ticks_min", (long)tmin);
     fw_kv_long("ticks_max", (long)tmax);
     fw_kv_long("ticks_sum", (long)tsum);
+    fw_kv_long("step_max", imax); /* 0-based index of the dearest step */
     fw_kv_long("tick_overhead", (long)over);
     fw_kv_long("rank_deficient", ready ? d.stats.rank_deficient : -1);
     fw_kv_long("guard", ready ? d.stats.energy_guard_hits : -1);
@@ -329,8 +384,20 @@ static int cmd_bench(int argc, char **argv, const fw_workspace *ws)
                                     BRAUN_CORRECT_ALL};
     long steps = argc > 1 ? parse_long(argv[1]) : 100;
     int only_corr = argc > 3 ? parse_corrections(argv[3]) : -1;
-    int bad = 0;
+    int bad = 0, listed = 0;
     if (steps <= 0 || (argc > 3 && only_corr < 0)) return 2;
+    for (size_t m = 0; argc > 2 && m < sizeof models / sizeof models[0]; m++)
+        listed |= strcmp(argv[2], models[m].model) == 0;
+    if (argc > 2 && !listed) {
+        /* Any other built-in model or scene of this build, at h = 1e-3. */
+        subject sub;
+        if (find_subject(argv[2], &sub)) return 2;
+        for (size_t c = 0; c < sizeof corr / sizeof corr[0]; c++) {
+            if (only_corr >= 0 && (unsigned)only_corr != corr[c]) continue;
+            bad |= bench_one(argv[2], corr[c], steps, 1e-3, ws) != 0;
+        }
+        return bad;
+    }
     for (size_t m = 0; m < sizeof models / sizeof models[0]; m++) {
         if (argc > 2 && strcmp(argv[2], models[m].model) != 0) continue;
         for (size_t c = 0; c < sizeof corr / sizeof corr[0]; c++) {
@@ -407,6 +474,48 @@ static int cmd_long(int argc, char **argv, const fw_workspace *ws)
     put_status(st);
     fw_flush();
     return st != 0;
+}
+
+/* ------------------------------------------------------------ dadd */
+
+/* `dadd`: how many of 20000 sums 1 + b, b uniform in -[2^-33, 2^-32), this
+ * platform's double addition rounds wrongly. On the M4F double is libgcc's
+ * __adddf3 (libgcc/config/arm/ieee754-df.S): for an alignment shift of 33
+ * it keeps one bit of the smaller operand's low word plus a sticky bit, so
+ * when the difference then normalises left by one bit (1 − b < 1) the
+ * rounding bit is lost; x86-64 (SSE2) rounds all correctly. The check is
+ * exact: r = 1 + b lies in [1/2, 1], so 1 − r is exact (Sterbenz), and
+ * e = (1 − r) + b, two numbers within a factor 4 of each other, is the
+ * exact rounding error, which must not exceed half an ulp (2^-54; a tie
+ * goes to even). */
+static int cmd_dadd(void)
+{
+    unsigned long long x = 88172645463325252ull;
+    long bad = 0;
+    const long samples = 20000;
+    for (long i = 0; i < samples; i++) {
+        volatile double one = 1.0, b;
+        unsigned long long bits;
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        /* sign 1, exponent 1023 - 33, a random significand */
+        bits = (x & 0x000FFFFFFFFFFFFFull) | (990ull << 52) | 0x8000000000000000ull;
+        double bv;
+        memcpy(&bv, &bits, sizeof bv);
+        b = bv;
+        const double r = one + b;
+        const double e = (one - r) + b, half = 5.551115123125783e-17; /* 2^-54 */
+        unsigned long long rbits;
+        memcpy(&rbits, &r, sizeof rbits);
+        if (e > half || e < -half || ((e == half || e == -half) && (rbits & 1u))) bad++;
+    }
+    fw_puts("dadd");
+    fw_kv_long("samples", samples);
+    fw_kv_long("misrounded", bad);
+    fw_putc('\n');
+    fw_flush();
+    return 0;
 }
 
 /* ------------------------------------------------------------ sizes */
@@ -494,17 +603,23 @@ int fw_demo_main(int argc, char **argv, const fw_workspace *ws)
     }
     if (strcmp(cmd, "test") == 0)
         rc = cmd_test(argc > 1 ? argv[1] : NULL, ws);
+    else if (strcmp(cmd, "run") == 0)
+        rc = cmd_run(argc, argv, ws);
+    else if (strcmp(cmd, "trace") == 0)
+        rc = cmd_trace(argc, argv, ws);
     else if (strcmp(cmd, "bench") == 0)
         rc = cmd_bench(argc, argv, ws);
     else if (strcmp(cmd, "long") == 0)
         rc = cmd_long(argc, argv, ws);
+    else if (strcmp(cmd, "dadd") == 0)
+        rc = cmd_dadd();
     else if (strcmp(cmd, "sizes") == 0)
         rc = cmd_sizes(0);
     else if (strcmp(cmd, "sizes-header") == 0)
         rc = cmd_sizes(1);
     else
         rc = 2;
-    if (rc == 2) fw_puts("usage: test [builtin|scenes] | bench STEPS [MODEL [CORR]] | long MODEL H STEPS EVERY | sizes | sizes-header\n");
+    if (rc == 2) fw_puts("usage: test [builtin|scenes] | run NAME H STEPS [CORR] | trace NAME STEPS [CORR] | bench STEPS [MODEL [CORR]] | long MODEL H STEPS EVERY | dadd | sizes | sizes-header\n");
     fw_flush();
     return rc;
 }

@@ -7,9 +7,18 @@
  *
  * Commands (words of the semihosting command line, or argv on the host):
  *   test [builtin|scenes]         the runs of `make firmware-test`
- *   bench STEPS [MODEL [CORR]]    per-step cost, corrections none/pv/all
+ *   run NAME H STEPS [CORR]       one run of a built-in model or scene
+ *                                 ("scene:NAME"), RK4, records as in test
+ *   trace NAME STEPS [CORR]       STEPS RK4 steps (h = 1e-3), nothing else:
+ *                                 for an instruction trace of the step path
+ *   bench STEPS [MODEL [CORR]]    per-step cost, corrections none/pv/all:
+ *                                 slider-crank (h = 1e-3) and four-bar
+ *                                 (1e-2), or MODEL, any built-in model or
+ *                                 scene ("scene:NAME"), at h = 1e-3
  *   long MODEL H STEPS EVERY      trajectory samples (libbraun and RK4 on
  *                                 the minimal equation) for the float study
+ *   dadd                          misrounded sums 1 + b of this platform's
+ *                                 double addition (libgcc's Arm __adddf3)
  *   sizes                         braun_data_size() per built-in model
  *   sizes-header                  the same as C #defines (build-time table)
  */
@@ -29,7 +38,9 @@ extern const char fw_platform_name[];
 /* Scenes of this build, provided by the platform: on the target the C
  * sources `braun gen-c` wrote (static data, braun_scene_build at start-up),
  * on the host the same scene files read by the JSON reader. */
-#define FW_SCENE_MAX_N 16
+/* Coordinates of the largest scene a record holds: IFToMM A04 (Bricard's
+ * linkage, five rigid3d bodies in Euler parameters) has n = 35. */
+#define FW_SCENE_MAX_N 40
 typedef struct fw_scene {
     const char *name;        /* scene file name without .json */
     const char *label;       /* "scene:" name, as the demo's records call it */

@@ -11,41 +11,43 @@ static int bad_real(braun_real x) { return !braun_is_finite(x); }
 int braun__check_options(braun_data *d)
 {
     const braun_options *o = &d->model->opt;
-    const double t = (double)d->t;
+    /* Widened to double only where an error is recorded: this runs every
+     * step, and in a float build on an FPU without double that is a call. */
+    const braun_real t = d->t;
     if (o->corrections & ~(unsigned)BRAUN_CORRECT_ALL)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.corrections (unknown bits)", -1, -1,
-                           (double)o->corrections, t);
+                           (double)o->corrections, (double)t);
     if (o->discretization != BRAUN_PER_STEP && o->discretization != BRAUN_PER_STAGE)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.discretization", -1, -1,
-                           (double)o->discretization, t);
+                           (double)o->discretization, (double)t);
     /* A relative rank tolerance of 1 or more declares every pivot zero. */
     if (bad_real(o->rank_tol) || o->rank_tol >= 1)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.rank_tol (must be < 1)", -1, -1,
-                           (double)o->rank_tol, t);
+                           (double)o->rank_tol, (double)t);
     if (bad_real(o->energy_max_rel))
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.energy_max_rel", -1, -1,
-                           (double)o->energy_max_rel, t);
+                           (double)o->energy_max_rel, (double)t);
     if (bad_real(o->symmetry_tol))
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.symmetry_tol", -1, -1,
-                           (double)o->symmetry_tol, t);
+                           (double)o->symmetry_tol, (double)t);
     if (bad_real(o->inconsistency_tol))
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.inconsistency_tol", -1, -1,
-                           (double)o->inconsistency_tol, t);
+                           (double)o->inconsistency_tol, (double)t);
     if (bad_real(o->guard))
-        return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.guard", -1, -1, (double)o->guard, t);
-    /* A relative threshold of 1 or more would project every direction. */
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.guard", -1, -1, (double)o->guard, (double)t);
+    /* A relative threshold of 1 or more would filter every direction. */
     if (bad_real(o->soft_tol) || o->soft_tol >= 1)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "options.soft_tol (must be < 1)", -1, -1,
-                           (double)o->soft_tol, t);
+                           (double)o->soft_tol, (double)t);
     if ((o->corrections & BRAUN_CORRECT_ENERGY) && !d->model->sys.energy)
-        return braun__fail(d, BRAUN_ERR_NO_ENERGY_LAW, "options", -1, -1, 0, t);
+        return braun__fail(d, BRAUN_ERR_NO_ENERGY_LAW, "options", -1, -1, 0, (double)t);
 #ifdef BRAUN_NO_LINSOLVER
     if (o->linsolver)
-        return braun__fail(d, BRAUN_ERR_ARGUMENT, "linear solver (not in this build)", -1, -1, 0, t);
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "linear solver (not in this build)", -1, -1, 0, (double)t);
 #endif
     /* The solver the data block was made for. */
     if (d->priv && braun__priv(d)->ls != braun__model_linsolver(d->model))
         return braun__fail(d, BRAUN_ERR_ARGUMENT,
-                           "options.linsolver changed after braun_data_init", -1, -1, 0, t);
+                           "options.linsolver changed after braun_data_init", -1, -1, 0, (double)t);
     return BRAUN_OK;
 }

@@ -12,7 +12,8 @@
 #include "fw_out.h"
 
 /* The scenes the target runs from generated C, read here from their files
- * by the JSON reader (build/firmware/gen/fw_scene_list.h lists them). */
+ * by the JSON reader (build/firmware/gen/fw_scene_list.h lists them, with
+ * their paths below data/). */
 #ifdef FW_HAVE_SCENE_LIST
 #include "fw_scene_list.h"
 #endif
@@ -33,12 +34,18 @@ unsigned long fw_platform_ticks(void) { return 0; }
 const fw_scene *fw_platform_scene_at(int i)
 {
     static const char *const names[] = {
-#define FW_SCENE(sym, name) name,
+#define FW_SCENE(sym, name, path) name,
         FW_SCENES
 #undef FW_SCENE
         NULL};
     static const char *const labels[] = {
-#define FW_SCENE(sym, name) "scene:" name,
+#define FW_SCENE(sym, name, path) "scene:" name,
+        FW_SCENES
+#undef FW_SCENE
+        NULL};
+    /* The scene file below the data directory, without .json. */
+    static const char *const paths[] = {
+#define FW_SCENE(sym, name, path) path,
         FW_SCENES
 #undef FW_SCENE
         NULL};
@@ -51,12 +58,15 @@ const fw_scene *fw_platform_scene_at(int i)
         char path[512], err[512];
         const char *dir = getenv("FW_DATA_DIR") ? getenv("FW_DATA_DIR") : FW_DATA_DIR;
         state[i] = -1;
-        snprintf(path, sizeof path, "%s/%s.json", dir, names[i]);
+        snprintf(path, sizeof path, "%s/%s.json", dir, paths[i]);
         /* Kept for the life of the program: sys.user points into it. */
         braun_scene_file *sf = braun_scene_load(path, err, sizeof err);
         if (!sf) {
             fprintf(stderr, "fw_host: %s\n", err);
-        } else if (sf->scene.n <= FW_SCENE_MAX_N) {
+        } else if (sf->scene.n > FW_SCENE_MAX_N) {
+            fprintf(stderr, "fw_host: %s: n = %d coordinates, more than FW_SCENE_MAX_N = %d\n",
+                    path, sf->scene.n, FW_SCENE_MAX_N);
+        } else {
             fw_scene *s = &scenes[i];
             s->name = names[i];
             s->label = labels[i];
