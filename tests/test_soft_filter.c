@@ -100,8 +100,9 @@ static void test_redundant_crossing(void **state)
 }
 
 /* Without redundant rows (the slider-crank and the four-bar pass their
- * singular configurations with full-rank factorizations) nothing is
- * filtered: the run is bit for bit the one with the filter off. */
+ * singular configurations with full-rank factorizations) the window is
+ * 100 times narrower, 1e-6·‖C‖: in 20 s at h = 1e-3 no stage lands in it,
+ * and the runs are bit for bit the ones with the filter off. */
 static void test_full_rank_untouched(void **state)
 {
     (void)state;

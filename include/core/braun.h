@@ -266,17 +266,17 @@ typedef struct braun_options {
      * turns the guard off. */
     braun_real guard;
     /* The soft-direction filter (docs/method.md, "Redundant rows through a
-     * singular configuration"): with redundant rows near a singular
-     * configuration, C keeps a direction whose singular value σ is tiny and
-     * the index-1 flow turns any velocity error in it into an acceleration
-     * ≈ σ'·e/σ² that no explicit stage can follow. Within a step, a stage
-     * with such a direction (σ below 10λ, λ = soft_tol·‖C‖) takes the
-     * component of its ideal acceleration along it with weight
-     * λ⁴/(σ⁴ + λ⁴) from the last stage (this step's or the last one's) that
-     * had none. Only rank-deficient factorizations (redundant rows) are
-     * filtered. 0 selects the default 1e-4; < 0 turns it off (the plain
-     * Udwadia–Kalaba acceleration at every stage, as braun_eval always
-     * computes it). Counted in braun_stats.soft_filtered. Backends
+     * singular configuration"): near a singular configuration C keeps a
+     * direction whose singular value σ is tiny, and the index-1 flow turns
+     * any velocity error in it into an acceleration ≈ σ'·e/σ² that no
+     * explicit stage can follow. Within a step, a stage with such a
+     * direction (σ below 10λ, λ = soft_tol·‖C‖) takes the component of its
+     * ideal acceleration along it with weight λ⁴/(σ⁴ + λ⁴) from the last
+     * stage (this step's or the last one's) that had none. Without
+     * redundant rows (a full-rank factorization: a bifurcation) λ is 100
+     * times smaller. 0 selects the default 1e-4; < 0 turns it off (the
+     * plain Udwadia–Kalaba acceleration at every stage, as braun_eval
+     * always computes it). Counted in braun_stats.soft_filtered. Backends
      * without it (LAPACK, SuiteSparse) ignore it. */
     braun_real soft_tol;
     /* Linear algebra (braun_linsolver.h): NULL is libbraun's own dense

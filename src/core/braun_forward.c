@@ -211,10 +211,9 @@ static int nonfinite_culprit(braun_data *d, int with_residuals)
 }
 
 /* The soft-direction filter (options.soft_tol; docs/method.md, "Redundant
- * rows through a singular configuration"). With redundant rows (a
- * rank-deficient C) near a singular configuration, C keeps a direction s
- * whose singular value σ is tiny and which the redundant rows block at
- * second order. The index-1 flow conserves the velocity-level residual,
+ * rows through a singular configuration"). Near a singular configuration
+ * C keeps a direction s whose singular value σ is tiny (with redundant
+ * rows, one they block at second order). The index-1 flow conserves the velocity-level residual,
  * so a residual e of round-off or of a stage's own error is a velocity
  * e_s/σ along s and an acceleration ≈ σ'·e_s/σ² along it: a rate σ'/σ no
  * explicit stage can follow when it lands within h·σ' of the singular
@@ -225,17 +224,20 @@ static int nonfinite_culprit(braun_data *d, int with_residuals)
  * from its own evaluation and w from the last stage that had none (this
  * step's or the last one's: a crossing lasts far less than a step; with
  * no such stage the stage keeps its own). Without redundant rows the
- * filter is off: at a bifurcation the direction is another branch's
- * tangent, and the velocity a replaced component leaves at the next stage
- * costs more than the kick it removes (measured on the slider-crank,
- * docs/method.md). Returns 1 when the stage had a soft direction (it is
- * then no reference), else 0. */
+ * window is 100 times narrower: at a bifurcation the direction is another
+ * branch's tangent, and the velocity a replaced component leaves at the
+ * next stage costs more than the kick it removes unless σ is far below
+ * the stage's residual level (measured on the slider-crank and the
+ * four-bar, docs/method.md). Returns 1 when the stage had a soft
+ * direction (it is then no reference), else 0. */
 static int soft_filter(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
     const int n = BRAUN_N(pv->n);
-    if (pv->rank[0] >= pv->rows) return 0;
-    const braun_real rel = d->model->opt.soft_tol > 0 ? d->model->opt.soft_tol : BRAUN_SOFT_TOL;
+    braun_real rel = d->model->opt.soft_tol > 0 ? d->model->opt.soft_tol : BRAUN_SOFT_TOL;
+    /* Without redundant rows (a bifurcation) only where the stage's own
+     * evaluation is surely worse: a window 100 times narrower. */
+    if (pv->rank[0] >= pv->rows) rel *= BRAUN_R(1e-2);
     if (BRAUN_LS_CALL(pv, soft_find, pv->ls_state, 0, rel) <= 0) return 0;
     if (!pv->have_ref || pv->ref_step < d->stats.steps - 1) return 1;
     /* u += Σ w s sᵀ(g − u), g = R v'_ref − ã the reference's constraint force. */

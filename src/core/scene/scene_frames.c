@@ -281,10 +281,6 @@ void braun_scene__frame_defaults(const braun_scene *s, braun_scene_joint *j, int
     orthogonalize(j->ref_b, j->axis_b);
 }
 
-static int unit(const braun_real *x)
-{
-    return braun_fabs(braun_scene__dot3(x, x) - 1) <= BRAUN_R(1e-9);
-}
 
 const char *braun_scene__frame_check(const braun_scene *s, const braun_scene_joint *j,
                                      int body1, int body2, int need_b)
@@ -294,16 +290,16 @@ const char *braun_scene__frame_check(const braun_scene *s, const braun_scene_joi
     if (!braun_scene__has_frame(s, body1) || !braun_scene__has_frame(s, body2))
         return "a body of the joint has no orientation (a particle): its axes need rigid3d "
                "bodies or the ground";
-    if (!unit(j->axis) || !unit(j->ref_a))
+    if (!braun_scene__is_unit3(j->axis) || !braun_scene__is_unit3(j->ref_a))
         return "the joint's axis and reference direction must be unit vectors (scene files and "
                "braun_scene_defaults() normalise them)";
-    if (braun_fabs(braun_scene__dot3(j->axis, j->ref_a)) > BRAUN_R(1e-9))
+    if (braun_fabs(braun_scene__dot3(j->axis, j->ref_a)) > BRAUN_SCENE__UNIT_TOL)
         return "the joint's reference direction must be perpendicular to its axis";
     if (need_b) {
-        if (!unit(j->axis_b) || !unit(j->ref_b))
+        if (!braun_scene__is_unit3(j->axis_b) || !braun_scene__is_unit3(j->ref_b))
             return "the joint's axis_b and ref_b must be unit vectors (scene files and "
                    "braun_scene_defaults() fill them from the initial state)";
-        if (braun_fabs(braun_scene__dot3(j->axis_b, j->ref_b)) > BRAUN_R(1e-9))
+        if (braun_fabs(braun_scene__dot3(j->axis_b, j->ref_b)) > BRAUN_SCENE__UNIT_TOL)
             return "the joint's ref_b must be perpendicular to its axis_b";
     }
     return NULL;

@@ -26,6 +26,12 @@
 
 #define BRAUN_SCENE__PI BRAUN_R(3.14159265358979323846)
 
+/* How far |x|² of a direction given as a unit vector (or x·y of two given
+ * as perpendicular) may be from 1 (0): 1e-9 in double; in float a unit
+ * vector rounded to float is off by a few ε (a skew axis by 6e-8). */
+#define BRAUN_SCENE__UNIT_TOL \
+    (BRAUN_EPS > BRAUN_R(1e-10) ? BRAUN_R(16.0) * BRAUN_EPS : BRAUN_R(1e-9))
+
 /* Internal spelling of the public point kinematics (scene_point.c). */
 typedef braun_scene_pt scene_pt;
 #define braun_scene__point braun_scene_pt_eval
@@ -107,6 +113,12 @@ static inline braun_real braun_scene__gravity_potential_xy(const braun_scene_bod
 static inline braun_real braun_scene__dot3(const braun_real *a, const braun_real *b)
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* x is a unit vector to BRAUN_SCENE__UNIT_TOL. */
+static inline int braun_scene__is_unit3(const braun_real *x)
+{
+    return braun_fabs(braun_scene__dot3(x, x) - 1) <= BRAUN_SCENE__UNIT_TOL;
 }
 
 static inline void braun_scene__cross3(const braun_real *a, const braun_real *b, braun_real *c)

@@ -18,7 +18,7 @@ static const char *point_plane_check(const braun_scene *s, const braun_scene_joi
     if (!braun_scene__has_frame(s, braun_scene__body_of(s, j->b)))
         return "the plane's body has no orientation (a particle): it must be a rigid3d body or "
                "the ground";
-    if (braun_fabs(braun_scene__dot3(j->axis, j->axis) - 1) > BRAUN_R(1e-9))
+    if (!braun_scene__is_unit3(j->axis))
         return "the plane's normal must be a unit vector (scene files and braun_scene_defaults() "
                "normalise it)";
     return NULL;

@@ -11,10 +11,6 @@ static void universal_defaults(const braun_scene *s, braun_scene_joint *j, unsig
     braun_scene__normalize3(j->axis_b);
 }
 
-static int unit(const braun_real *x)
-{
-    return braun_fabs(braun_scene__dot3(x, x) - 1) <= BRAUN_R(1e-9);
-}
 
 static const char *universal_check(const braun_scene *s, const braun_scene_joint *j)
 {
@@ -24,7 +20,7 @@ static const char *universal_check(const braun_scene *s, const braun_scene_joint
     if (!braun_scene__has_frame(s, a) || !braun_scene__has_frame(s, b))
         return "a body of the joint has no orientation (a particle): its axes need rigid3d "
                "bodies or the ground";
-    if (!unit(j->axis) || !unit(j->axis_b))
+    if (!braun_scene__is_unit3(j->axis) || !braun_scene__is_unit3(j->axis_b))
         return "the joint's axis and axis_b must be unit vectors (scene files and "
                "braun_scene_defaults() normalise them)";
     return NULL;
