@@ -267,7 +267,7 @@ static void soft_case(const double *sig, int k, int redundant, int expect_soft)
     assert_int_equal(braun_qrcp_soft_find(&f, rel), expect_soft);
     braun_real x[NMAX], y[NMAX];
     for (int i = 0; i < n; i++) x[i] = frand(&seed);
-    braun_qrcp_soft_project(&f, x, y);
+    braun_qrcp_soft_project(&f, x, y, 0);
     double r00 = 0; /* |r_00|: the largest row norm of C */
     for (int i = 0; i < rows; i++) {
         double s2 = 0;
@@ -297,6 +297,23 @@ static void soft_case(const double *sig, int k, int redundant, int expect_soft)
         for (int i = 0; i < n; i++) py[i] -= yv * V[i * k + l];
     }
     for (int i = 0; i < n; i++) assert_near(py[i], 0, tol); /* nothing outside range(Cᵀ) */
+    /* With a rate: the weights times z⁴/(1 + z⁴), z = rate/σ (here the
+     * rate is the smallest σ: the stiffest direction gets half). Only
+     * without redundant rows: a dependent row changes C's singular values
+     * (Cᵀ C gains its outer product), so sig is no longer their value. */
+    if (redundant) return;
+    braun_real y2[NMAX];
+    braun_qrcp_soft_project(&f, x, y2, (braun_real)smin);
+    for (int l = 0; l < k; l++) {
+        double xv = 0, yv = 0;
+        for (int i = 0; i < n; i++) {
+            xv += x[i] * V[i * k + l];
+            yv += y2[i] * V[i * k + l];
+        }
+        const double l4 = pow(lam, 4), s4 = pow(sig[l], 4), r4 = pow(smin, 4);
+        const double w = l4 / (s4 + l4) * r4 / (r4 + s4);
+        assert_near(yv, sig[l] < BRAUN_SOFT_GATE * lam ? w * xv : 0, tol);
+    }
 }
 
 static void test_soft_directions(void **state)

@@ -272,7 +272,9 @@ typedef struct braun_options {
      * explicit stage can follow. Within a step, a stage with such a
      * direction (σ below 10λ, λ = soft_tol·‖C‖) takes the component of its
      * ideal acceleration along it with weight λ⁴/(σ⁴ + λ⁴) from the last
-     * stage (this step's or the last one's) that had none. Without
+     * stage (this step's or the last one's) that had none (less where the
+     * step could follow the direction's rate). Fixed steps only: the
+     * adaptive driver shrinks its step there instead. Without
      * redundant rows (a full-rank factorization: a bifurcation) λ is 100
      * times smaller. 0 selects the default 1e-4; < 0 turns it off (the
      * plain Udwadia–Kalaba acceleration at every stage, as braun_eval

@@ -93,13 +93,15 @@ struct braun_linsolver {
     /* Optional: soft directions of slot's last factorization (docs/method.md,
      * "Redundant rows through a singular configuration"): soft_find finds
      * the right singular vectors s_c of C whose singular values σ_c are kept
-     * by the rank decision but below 10λ, λ = rel·‖C‖, weighs each with
-     * w_c = λ⁴/(σ_c⁴ + λ⁴), and returns their number (0: none, the common
-     * case — it should then cost next to nothing); soft_project then sets
-     * y := Σ_c w_c s_c (s_cᵀ x) (n entries, y not aliasing x). NULL: the
-     * core does without them. */
+     * by the rank decision but below 10λ, λ = rel·‖C‖, and returns their
+     * number (0: none, the common case — it should then cost next to
+     * nothing); soft_project then sets y := Σ_c w_c s_c (s_cᵀ x) (n
+     * entries, y not aliasing x) with w_c = λ⁴/(σ_c⁴ + λ⁴) · z⁴/(1 + z⁴),
+     * z = rate/σ_c (the second factor 1 when rate <= 0). NULL: the core
+     * does without them. */
     int (*soft_find)(void *state, int slot, braun_real rel);
-    void (*soft_project)(void *state, int slot, const braun_real *x, braun_real *y);
+    void (*soft_project)(void *state, int slot, const braun_real *x, braun_real *y,
+                         braun_real rate);
 };
 
 #ifdef __cplusplus

@@ -94,9 +94,10 @@ static inline int braun__dense_soft_find(void *state, int slot, braun_real rel)
     return braun_qrcp_soft_find(braun__dense_slot(state, slot), rel);
 }
 
-static inline void braun__dense_soft_project(void *state, int slot, const braun_real *x, braun_real *y)
+static inline void braun__dense_soft_project(void *state, int slot, const braun_real *x, braun_real *y,
+                                             braun_real rate)
 {
-    braun_qrcp_soft_project(braun__dense_slot(state, slot), x, y);
+    braun_qrcp_soft_project(braun__dense_slot(state, slot), x, y, rate);
 }
 
 static inline void braun__dense_null_project(void *state, int slot, braun_real *z)

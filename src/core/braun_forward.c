@@ -240,10 +240,16 @@ static int soft_filter(braun_data *d)
     if (pv->rank[0] >= pv->rows) rel *= BRAUN_R(1e-2);
     if (BRAUN_LS_CALL(pv, soft_find, pv->ls_state, 0, rel) <= 0) return 0;
     if (!pv->have_ref || pv->ref_step < d->stats.steps - 1) return 1;
+    /* The rate σ' ≈ ‖b_v‖/‖R v‖ (b_qv is −Ȧ_q v): a direction the step can
+     * follow (h·σ'/σ small, as in an adaptive step that has shrunk) keeps
+     * its own evaluation. */
+    braun__mul_r(pv, pv->at.v, pv->tmp);
+    const braun_real rv = braun_nrm2(n, pv->tmp);
+    const braun_real rate = rv > 0 ? pv->at.h * braun_nrm2(pv->rows, pv->bv) / rv : 0;
     /* u += Σ w s sᵀ(g − u), g = R v'_ref − ã the reference's constraint force. */
     braun__mul_r(pv, pv->aref, pv->tmp);
     for (int i = 0; i < n; i++) pv->tmp[i] -= pv->atil[i] + pv->u[i];
-    BRAUN_LS_CALL(pv, soft_project, pv->ls_state, 0, pv->tmp, pv->ce);
+    BRAUN_LS_CALL(pv, soft_project, pv->ls_state, 0, pv->tmp, pv->ce, rate);
     for (int i = 0; i < n; i++) pv->u[i] += pv->ce[i];
     d->stats.soft_filtered++;
     return 1;

@@ -81,6 +81,9 @@ typedef struct braun_qrcp {
     braun_real *work;  /* max(n, rows) */
     braun_real *soft;  /* BRAUN_QRCP_SOFT_REALS(n, rows): soft directions */
     int nsoft;         /* soft directions found by braun_qrcp_soft_find */
+    braun_real dmin;   /* smallest |diagonal entry| of the triangle the solves use
+                          (set by the factorization: the soft directions' gate) */
+    braun_real soft_lam; /* λ of the soft directions found */
 } braun_qrcp;
 
 /* Soft directions (src/braun_qrcp_soft.c): at most BRAUN_SOFT_MAX at a
@@ -127,14 +130,15 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
 void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z);
 /* The soft directions of the last factorization: the right singular
  * vectors s_c of C whose singular values σ_c are below BRAUN_SOFT_GATE·λ,
- * λ = rel·|r_00| (rel > 0), found by inverse iteration on the factor, each
- * with the weight w_c = λ⁴/(σ_c⁴ + λ⁴). Returns their number (0 when every
- * diagonal entry of the factor is above the gate: then it costs a scan of
- * the diagonal). */
+ * λ = rel·|r_00| (rel > 0), found by inverse iteration on the factor.
+ * Returns their number (0 when the factor's smallest diagonal entry is
+ * above the gate: then it costs one compare). */
 int braun_qrcp_soft_find(braun_qrcp *f, braun_real rel);
 /* y[n] := Σ_c w_c s_c (s_cᵀ x): the weighted part of x[n] along the soft
- * directions found (0 when there are none). y must not alias x. */
-void braun_qrcp_soft_project(const braun_qrcp *f, const braun_real *x, braun_real *y);
+ * directions found (0 when there are none), w_c = λ⁴/(σ_c⁴ + λ⁴), times
+ * z⁴/(1 + z⁴), z = rate/σ_c, when rate > 0. y must not alias x. */
+void braun_qrcp_soft_project(const braun_qrcp *f, const braun_real *x, braun_real *y,
+                             braun_real rate);
 
 /* ---- small vector helpers (inline: n is small and the calls are hot) ---- */
 static inline braun_real braun_dot(int n, const braun_real *x, const braun_real *y)

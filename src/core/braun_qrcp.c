@@ -33,6 +33,8 @@ void braun_qrcp_bind(braun_qrcp *f, int n, int rows, braun_real *reals,
     f->work = f->stau + rows;
     f->soft = f->work + (n > rows ? n : rows);
     f->nsoft = 0;
+    f->dmin = 0;
+    f->soft_lam = 0;
     f->perm = ints;
 }
 
@@ -82,6 +84,7 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
     }
     f->rank = 0;
     f->nsoft = 0;
+    braun_real dmin = 0;
     for (int k = 0; k < kmax; k++) {
         int best = k;
         for (int j = k + 1; j < rows; j++)
@@ -108,6 +111,8 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
         /* Rank decision relative to the largest pivot (≈ ||C||_2); a pivot
          * beyond the first `keep` must also clear tol_new. */
         if (pivot == 0 || pivot <= tol * r00 || (k >= keep && pivot <= tol_new * r00)) break;
+        /* |R_kk| = pivot: the smallest kept one, for the soft directions. */
+        if (k == 0 || pivot < dmin) dmin = pivot;
         f->tau[k] = house(n - k, col, pivot);
         for (int j = k + 1; j < rows; j++) {
             braun_real *cj = COL(a, f, j, n) + k;
@@ -121,6 +126,7 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
         f->rank = k + 1;
     }
 
+    f->dmin = dmin;
     /* Dependent rows: S = [R11 R12]^T is rows x k; factor it by Householder
      * QR (column-major in f->s) for the least-squares solve of S w = P^T r. */
     const int rk = f->rank;
@@ -134,6 +140,9 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
             f->stau[j] = house(rows - j, cj, braun_nrm2(rows - j, cj));
             for (int c = j + 1; c < rk; c++)
                 reflect(rows - j, cj + 1, f->stau[j], s + (size_t)c * (size_t)rows + j);
+            /* The solves use T: its diagonal is the soft directions' gate. */
+            const braun_real tjj = braun_fabs(cj[0]);
+            if (j == 0 || tjj < f->dmin) f->dmin = tjj;
         }
     }
     return rk;

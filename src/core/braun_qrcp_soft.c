@@ -85,6 +85,7 @@ int braun_qrcp_soft_find(braun_qrcp *f, braun_real rel)
      * |M_ii| is; pivoting puts those last. */
     const braun_real lam = rel * braun_fabs(COL(f->a, f, 0, BRAUN_N(f->n))[0]);
     const braun_real thresh = BRAUN_SOFT_GATE * lam;
+    if (!(f->dmin < thresh)) return 0; /* the common case: one compare */
     int cand[BRAUN_SOFT_MAX], p = 0;
     for (int i = k - 1; i >= 0 && p < BRAUN_SOFT_MAX; i--)
         if (braun_fabs(tri(f, i, i)) < thresh) cand[p++] = i;
@@ -133,29 +134,42 @@ int braun_qrcp_soft_find(braun_qrcp *f, braun_real rel)
             }
         if (off == 0) break;
     }
-    /* Keep the directions whose singular value is below the threshold,
-     * each with its weight w = λ⁴/(σ⁴ + λ⁴): 1 for σ << λ, 1e-4 at the
-     * threshold, so the operator is smooth where directions come and go. */
+    /* Keep the directions whose singular value is below the threshold. */
     int kept = 0;
-    const braun_real l4 = lam * lam * lam * lam;
     for (int c = 0; c < p; c++) {
         const braun_real *v = V + (size_t)c * (size_t)k;
         const braun_real s = braun_sqrt(tri_norm2(f, v));
         if (!(s < thresh)) continue;
         braun_real *dst = V + (size_t)kept * (size_t)k;
         for (int i = 0; i < k && dst != v; i++) dst[i] = v[i];
-        sig[kept++] = l4 / (s * s * s * s + l4);
+        sig[kept++] = s;
     }
+    f->soft_lam = lam;
     f->nsoft = kept;
     return kept;
 }
 
-void braun_qrcp_soft_project(const braun_qrcp *f, const braun_real *x, braun_real *y)
+void braun_qrcp_soft_project(const braun_qrcp *f, const braun_real *x, braun_real *y,
+                             braun_real rate)
 {
     const int n = BRAUN_N(f->n), k = f->rank, p = f->nsoft;
     const braun_real *V = f->soft;
     braun_real *xw = (braun_real *)(V + (size_t)BRAUN_SOFT_MAX * (size_t)k + BRAUN_SOFT_MAX) + k;
-    const braun_real *w = V + (size_t)BRAUN_SOFT_MAX * (size_t)k;
+    const braun_real *sig = V + (size_t)BRAUN_SOFT_MAX * (size_t)k;
+    /* The weights: w = λ⁴/(σ⁴ + λ⁴) (1 for σ << λ, 1e-4 at the gate: the
+     * operator is smooth where directions come and go), times z⁴/(1 + z⁴)
+     * with z = rate/σ when a rate is given: nothing where the direction is
+     * not stiff for the step. */
+    braun_real w[BRAUN_SOFT_MAX];
+    const braun_real l4 = f->soft_lam * f->soft_lam * f->soft_lam * f->soft_lam;
+    for (int c = 0; c < p; c++) {
+        const braun_real s2 = sig[c] * sig[c], s4 = s2 * s2;
+        w[c] = l4 / (s4 + l4);
+        if (rate > 0) {
+            const braun_real r2 = rate * rate, r4 = r2 * r2;
+            w[c] *= r4 / (r4 + s4);
+        }
+    }
     /* xw = Q1ᵀ x (the reflectors in order, the first k entries); then
      * y = Q1 Σ w_c v_c (v_cᵀ xw). */
     for (int i = 0; i < n; i++) xw[i] = x[i];
