@@ -73,7 +73,7 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
     pv->rule_keep[1] = pv->rule_cap[1] = s->m;
     pv->rule_stage = 0;
-    pv->soft_on = pv->have_ref = 0;
+    pv->soft_on = pv->have_ref = pv->stage = pv->ref_slot = 0;
     pv->ref_step = 0;
     pv->step_rank[0] = pv->rows;
     pv->step_rank[1] = s->m;

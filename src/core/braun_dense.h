@@ -91,7 +91,14 @@ static inline void braun__dense_lsq(void *state, int slot, const braun_real *r, 
 
 static inline int braun__dense_soft_find(void *state, int slot, braun_real rel)
 {
-    return braun_qrcp_soft_find(braun__dense_slot(state, slot), rel);
+    braun_qrcp *f = braun__dense_slot(state, slot);
+    /* The common case inline: no diagonal entry below the gate. */
+    if (f->rank == 0 ||
+        !(f->dmin < BRAUN_SOFT_GATE * rel * braun_fabs(f->a[(size_t)f->perm[0] * (size_t)BRAUN_N(f->n)]))) {
+        f->nsoft = 0;
+        return 0;
+    }
+    return braun_qrcp_soft_find(f, rel);
 }
 
 static inline void braun__dense_soft_project(void *state, int slot, const braun_real *x, braun_real *y,

@@ -239,7 +239,13 @@ static int soft_filter(braun_data *d)
      * evaluation is surely worse: a window 100 times narrower. */
     if (pv->rank[0] >= pv->rows) rel *= BRAUN_R(1e-2);
     if (BRAUN_LS_CALL(pv, soft_find, pv->ls_state, 0, rel) <= 0) return 0;
-    if (!pv->have_ref || pv->ref_step < d->stats.steps - 1) return 1;
+    /* The reference: stage ref_slot's v' (k[ref_slot] + n) of this step
+     * (a slot before this stage) or of the last one (a slot from this
+     * stage on, not yet overwritten). */
+    if (!pv->have_ref || pv->ref_step < d->stats.steps - 1 ||
+        (pv->ref_step < d->stats.steps && pv->ref_slot < pv->stage))
+        return 1;
+    const braun_real *aref = pv->k[pv->ref_slot] + n;
     /* The rate σ' ≈ ‖b_v‖/‖R v‖ (b_qv is −Ȧ_q v): a direction the step can
      * follow (h·σ'/σ small, as in an adaptive step that has shrunk) keeps
      * its own evaluation. */
@@ -247,7 +253,7 @@ static int soft_filter(braun_data *d)
     const braun_real rv = braun_nrm2(n, pv->tmp);
     const braun_real rate = rv > 0 ? pv->at.h * braun_nrm2(pv->rows, pv->bv) / rv : 0;
     /* u += Σ w s sᵀ(g − u), g = R v'_ref − ã the reference's constraint force. */
-    braun__mul_r(pv, pv->aref, pv->tmp);
+    braun__mul_r(pv, aref, pv->tmp);
     for (int i = 0; i < n; i++) pv->tmp[i] -= pv->atil[i] + pv->u[i];
     BRAUN_LS_CALL(pv, soft_project, pv->ls_state, 0, pv->tmp, pv->ce, rate);
     for (int i = 0; i < n; i++) pv->u[i] += pv->ce[i];
@@ -278,8 +284,8 @@ static int stage_ideal(braun_data *d, int with_residuals, braun_real *vdot)
          (!braun_all_finite(rows, pv->ev) || !braun_all_finite(m, pv->phi))))
         return nonfinite_culprit(d, with_residuals);
     if (vdot) braun__solve_r(pv, pv->z, vdot);
-    if (pv->soft_on && !soft && vdot) {
-        for (int i = 0; i < n; i++) pv->aref[i] = vdot[i];
+    if (pv->soft_on && !soft) {
+        pv->ref_slot = pv->stage;
         pv->ref_step = d->stats.steps;
         pv->have_ref = 1;
     }

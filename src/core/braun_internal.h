@@ -111,9 +111,10 @@ typedef struct braun_priv {
     int rule_stage;       /* a step's later stages: a rank rises only past BRAUN_RANK_TOL_STAGE */
     int step_rank[2];     /* the last step's first-stage rank (the rows: none yet) */
     /* The soft-direction filter (braun_forward.c, soft_filter): on for the
-     * stages of a step; aref is the acceleration v' of the last stage that
-     * had no soft direction, from step ref_step (have_ref: one exists). */
-    int soft_on, have_ref;
+     * stages of a fixed step (stage: the one being evaluated, its v' at
+     * k[stage] + n); the reference is the v' of the last stage that had no
+     * soft direction, stage ref_slot of step ref_step (have_ref: one). */
+    int soft_on, have_ref, stage, ref_slot;
     long ref_step;
     /* Stage outputs, one meaning each (see the table above). */
     braun_real *Q;        /* n: forces */
@@ -134,7 +135,6 @@ typedef struct braun_priv {
     /* The last state before the current one ([q; v; ∫Ė] and t), for the
      * accuracy guard: a run it stops goes back to the last state that passed. */
     braun_real *yprev;
-    braun_real *aref;     /* n (rows > 0): the soft filter's reference v' */
     braun_real tprev, tprev_lo;
     int has_prev;
     /* The clock is compensated (Kahan): d->t + t_lo is the sum of the steps

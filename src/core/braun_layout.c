@@ -59,8 +59,7 @@ typedef struct shape {
     X(phi0, (s).rows)                                                                \
     X(ev0, (s).rows)                                                                 \
     X(enorm, (s).rows)                                                               \
-    X(yprev, (s).N)                                                                  \
-    X(aref, (s).rows > 0 ? (s).n : 0)
+    X(yprev, (s).N)
 
 static shape shape_of(const braun_model *model, const braun_linsolver *ls)
 {

@@ -76,6 +76,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
          * and — at the step's start, or at every stage per stage — the
          * corrections, at the same point. */
         braun__at(pv, ts, ys, ys + n, ys[2 * n], h);
+        pv->stage = s;
         st = diverged_if_integrated(
             d, s, braun__forward(d, BRAUN_WITH_POWER | (wants_res ? BRAUN_WITH_RESIDUALS : 0u), k + n));
         if (st) return st;
