@@ -199,7 +199,7 @@ typedef SuiteSparse_long sslong;
 #define DEP_SEED 0x9e3779b97f4a7c15ULL
 #define DEP_LMAX 1.0
 #define DEP_PIVOT_ERR 1e3
-#define CG_MAX 500
+#define CG_MAX 200
 
 enum { PATH_NONE = 0, PATH_ZERO, PATH_CHOL, PATH_QR };
 
@@ -220,6 +220,7 @@ typedef struct ss_slot {
      * tol_new as braun_linsolver.h; keep = cap = rows: the plain tol. */
     int rule_keep, rule_cap;
     double rule_tol_new;
+    double tol;      /* the relative tolerance of the last factor_c */
     int qr_refine;   /* full-rank QR path: refine the solves (see above) */
     /* Cholesky path with redundant rows: ndep rows set aside, dep[a] (in
      * L's order) and dep_row[i] (in row order) 1 for them, dlist their row
@@ -1167,6 +1168,14 @@ static int dep_probe(ss_state *s, ss_slot *f, double thr)
     return sum / DEP_PROBES <= lim2 ? 1 : 0;
 }
 
+/* No rows set aside. */
+static void dep_clear(ss_slot *f)
+{
+    for (int k = 0; k < f->ndep; k++) f->dep_row[f->dlist[k]] = 0;
+    memset(f->dep, 0, (size_t)f->rows * sizeof *f->dep);
+    f->ndep = 0;
+}
+
 /* An LDL^T of G whose pivots at most dbound CHOLMOD replaced: those rows
  * (D) are set aside, and the rank is k = rows - |D| when (see above) the
  * rank rule's cap allows k, the kept rows' pivots pass the tests of a
@@ -1247,6 +1256,7 @@ static int chol_dep(ss_state *s, ss_slot *f, double tol, double dbound)
         }
     }
     if (st != 1) {
+        /* (dlist may not be set: clear everything) */
         for (int a = 0; a < rows; a++) f->dep[a] = f->dep_row[a] = 0;
         f->ndep = 0;
     }
@@ -1277,11 +1287,7 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
         }
         Gx[e] = g;
     }
-    if (f->ndep > 0) {
-        for (int k = 0; k < f->ndep; k++) f->dep_row[f->dlist[k]] = 0;
-        memset(f->dep, 0, (size_t)f->rows * sizeof *f->dep);
-        f->ndep = 0;
-    }
+    dep_clear(f);
     /* max_i G_ii = cmax^2 */
     const double dbound = CHOL_DBOUND * f->cmax * f->cmax;
     cc->dbound = f->L->is_super ? 0 : dbound;
@@ -1490,6 +1496,7 @@ static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, bra
     }
     double t = (double)tol;
     if (!(t > 0)) t = 10.0 * (double)(rows > s->n ? rows : s->n) * DBL_EPSILON;
+    f->tol = t;
 
     if (f->rule_cap < rows) {
         /* The rank rule caps the rank below rows: no Cholesky. */
@@ -1719,7 +1726,8 @@ static double dot_dep(const ss_slot *f, const double *a, const double *b)
  * first (refined on the kept rows as the Cholesky path refines), s by
  * conjugate gradients with a Jacobi preconditioner when t is above
  * round-off; CG's products also give W^T s and C_B^+ W^T s as sums, each
- * then refined. 0 or -1. */
+ * then refined. 0, -1 (a solve failed), or 1: CG did not converge in
+ * CG_MAX iterations (x not written in full). */
 static int pinv_basis(ss_state *s, ss_slot *f, const double *r, double *x)
 {
     const int n = s->n, rows = f->rows;
@@ -1782,7 +1790,8 @@ static int pinv_basis(ss_state *s, ss_slot *f, const double *r, double *x)
         pv[i] = zr[i];
     }
     double rz = dot_dep(f, t, zr);
-    for (int it = 0; it < CG_MAX; it++) {
+    int converged = 0;
+    for (int it = 0; it < CG_MAX && !converged; it++) {
         if (ww_apply(s, f, pv, ap)) return -1;
         const double pap = dot_dep(f, pv, ap);
         if (!(pap > 0)) break;
@@ -1796,7 +1805,10 @@ static int pinv_basis(ss_state *s, ss_slot *f, const double *r, double *x)
         for (int i = 0; i < rows; i++) za[i] += alpha * z[i];
         for (int j = 0; j < n; j++) xa[j] += alpha * xx[j];
         f->cg_iters++;
-        if (inf_norm(rows, t) <= stop) break;
+        if (inf_norm(rows, t) <= stop) {
+            converged = 1;
+            break;
+        }
         double rz2 = 0;
         for (int k = 0; k < f->ndep; k++) {
             const int i = f->dlist[k];
@@ -1810,9 +1822,26 @@ static int pinv_basis(ss_state *s, ss_slot *f, const double *r, double *x)
             pv[i] = zr[i] + beta * pv[i];
         }
     }
+    if (!converged) return 1;
     /* x += C_B^+ W^T s, both factors refined */
     if (wt_solve(s, f, sv, za, 0, REFINE_MAX) || cbp_solve(s, f, za, xa, 0, REFINE_MAX)) return -1;
     for (int j = 0; j < n; j++) x[j] += xa[j];
+    return 0;
+}
+
+/* Move a factorization of the redundant-rows Cholesky path to the QR
+ * path (pinv_basis could not solve its least-squares part); 0, or -1 when
+ * SPQR fails or finds another rank (the slot then has no factorization). */
+static int qr_switch(ss_state *s, ss_slot *f)
+{
+    dep_clear(f);
+    const int k = qr_try(s, f, f->tol);
+    if (k != f->rank) {
+        f->path = PATH_NONE;
+        return -1;
+    }
+    f->path = PATH_QR;
+    f->skip_chol = CHOL_SKIP_CALLS;
     return 0;
 }
 
@@ -1822,7 +1851,15 @@ static int pinv_d(ss_state *s, ss_slot *f, const double *r, double *x)
     const int n = s->n, rows = f->rows;
     memset(x, 0, (size_t)n * sizeof *x);
     if (f->path == PATH_ZERO) return 0;
-    if (f->path == PATH_CHOL && f->ndep) return pinv_basis(s, f, r, x);
+    if (f->path == PATH_CHOL && f->ndep) {
+        const int st = pinv_basis(s, f, r, x);
+        if (st <= 0) return st;
+        /* CG did not converge (W large: the kept rows nearly dependent
+         * among themselves): this factorization moves to the QR path,
+         * which must find the same rank. */
+        if (qr_switch(s, f)) return -1;
+        memset(x, 0, (size_t)n * sizeof *x);
+    }
     if (f->path == PATH_CHOL) {
         double *y = s->wr, *res = s->wr2;
         if (g_solve(s, f, r, y)) return -1;
