@@ -17,8 +17,10 @@
  *                 once in create(). C in CSR (rows x n) is C^T in CSC
  *                 (n x rows): the SPQR input below is a view, not a copy.
  *
- * Two ways to factor C (both per slot: slot 0 all m + p rows, slot 1 the
- * first m rows, each with its own state):
+ * Three ways to factor C (per slot: slot 0 all m + p rows, slot 1 the first
+ * m rows, each with its own state): G = C C^T by Cholesky when C has full
+ * rank, the same Cholesky with the dependent rows set aside when C has
+ * exactly dependent rows (redundant constraints), SPQR otherwise.
  *
  *  Full rank (the usual case): G = C C^T = A M^-1 A^T, sparse SPD, rows x rows.
  *   Its pattern (two rows are coupled when they touch a common mass block)
@@ -27,8 +29,8 @@
  *   analysis. G is stored already permuted to CHOLMOD's fill-reducing order
  *   (upper triangle, analysed again in natural order), because
  *   cholmod_l_factorize would otherwise build a permuted transpose of G at
- *   every call. Every factor_c fills G's values from the map and calls
- *   cholmod_l_factorize. Then
+ *   every call. Every factor_c fills G's values from the map and factors it
+ *   (LDL^T; "Numeric factorization" below). Then
  *       C^+ r = C^T G^-1 r,     N z = z - C^T G^-1 C z.
  *   The solves with a simplicial factor (CHOLMOD's choice for chain- and
  *   tree-like mechanisms; LDL^T or LL^T) are done here, in place:
@@ -40,8 +42,9 @@
  *   solve is checked (componentwise residual of C x = r, resp. C N z = 0,
  *   with the sparse C) and refined by up to two further solves when the
  *   check fails.
- *   Rank decision: C is declared rank deficient when CHOLMOD reports G not
- *   positive definite or when the ratio min/max of the diagonal of L (of
+ *   Rank decision: C is declared rank deficient when a pivot of G's LDL^T
+ *   is at most dbound (next section: the rows may be set aside; else the
+ *   QR path), a pivot is negative, or the ratio min/max of the diagonal of L (of
  *   L L^T; sqrt(cholmod_l_rcond) for LL^T and LDL^T factors alike) is below
  *   max(tol, 1e-6). The floor 1e-6 is needed because G squares the
  *   condition number: the Cholesky pivot of a row that depends on earlier
@@ -61,14 +64,85 @@
  *   xLACN2) is within 1.4x of cond_2(G) in those cases but costs about five
  *   solves with L: factor_c on a 1000-link chain 74 -> 173 us (2.3x), for no
  *   accuracy gained, so the diagonal bound stays. (A row 1e-9 from a copy of
- *   another, cond(C) 1.2e10, never reaches the ratio: CHOLMOD finds G not
- *   positive definite.) A rejected G hands over to the QR path, which then
- *   decides the rank with the caller's tol.
+ *   another, cond(C) 1.2e10, never reaches the ratio: its pivot, 1e-18
+ *   cmax^2, is below dbound, and the next section refuses to set it aside:
+ *   the row is not dependent to round-off.) A rejected G hands over to the
+ *   QR path, which then decides the rank with the caller's tol.
  *   After a rejection the next CHOL_SKIP_CALLS factorizations of the slot go
- *   to the QR path directly (a redundant mechanism would otherwise pay for
- *   a useless Cholesky at every call); then the Cholesky is tried again.
+ *   to the QR path directly (an ill-conditioned C would otherwise pay for a
+ *   useless Cholesky at every call); then the Cholesky is tried again. Not
+ *   after a refusal of the next section's, which the next call usually
+ *   passes (the first call of a run, without the rank rule's keep).
  *
- *  Rank deficient (redundant rows, singular configurations): SPQR,
+ *  Redundant rows on the Cholesky path (rows that depend exactly on others,
+ *   as in the redundant ladder, a double parallelogram or a duplicated
+ *   joint: a structural deficiency, with the dependent rows' residuals at
+ *   round-off). G's LDL^T is computed with its pivots of magnitude at most
+ *   dbound = CHOL_DBOUND·max_i G_ii = 1e-13 cmax^2 replaced by +-dbound
+ *   (CHOLMOD's Common->dbound). The pivot of a row is its squared distance
+ *   from the span of the rows eliminated before it; for a row that depends
+ *   on them it comes out at round-off, a few eps·cmax^2, and is replaced.
+ *   Those rows (D) are set aside and the others (B) kept: L without D's
+ *   rows and columns is the factor of G_BB = C_B C_B^T, as long as the
+ *   columns of L at D's pivots are round-off over dbound, i.e. at most
+ *   DEP_LMAX = 1 (checked; a row only nearly dependent leaves entries up to
+ *   sqrt(pivot)·cmax/dbound there and is refused), and the solves of this
+ *   path skip those rows and columns. One symbolic analysis thus serves
+ *   full-rank and redundant C, and a redundant C costs a Cholesky per call,
+ *   not SPQR's analysis and two QRs (ladder of 1000 cells, 12 000 rows:
+ *   about 72 -> 16 ms per RK4 step).
+ *   The rank is k = rows - |D| when (a) the rank rule's cap allows k; (b)
+ *   the kept rows pass the tests of a full-rank G (positive pivots, ratio
+ *   at least lim, the probe), lim with tol_new when the rule's keep is
+ *   below k; (c) the rows set aside depend on the kept ones to within thr =
+ *   tol·cmax, or max(tol, tol_new)·cmax when keep <= k (direction k + 1 is
+ *   then beyond keep). With K = [-W^T; I] (below) the left null vectors of
+ *   the exact dependence (K^T K >= I), sigma_(k+1)(C) <= ||C^T K||_2 <=
+ *   ||C^T K||_F, and column j of C^T K is row j's distance from the kept
+ *   rows' span, at most its distance from those before it. (c) holds when
+ *   the sum over D of bounds on those squared distances (dbound, what
+ *   earlier set-aside columns took from the pivot, DEP_PIVOT_ERR·eps·cmax^2
+ *   = 1e3 eps cmax^2 for rounding) is at most (DEP_MARGIN·thr)^2,
+ *   DEP_MARGIN = 0.1: in a run, at a step's later stages (tol_new 1e-3).
+ *   Else DEP_PROBES = 2 probes in C-space (dep_probe): for a fixed w of +-1
+ *   on D, v = C_D^T w minus its projection on the row space of C_B is
+ *   C^T K w, whose mean square estimates ||C^T K||_F^2; accepted when that
+ *   is at most (DEP_MARGIN·thr)^2 (a solve's error lies in the row space of
+ *   C_B, orthogonal to C^T K w, and can only enlarge it). A randomized
+ *   check: a dependence broken along a direction u (in D's coordinates)
+ *   with |u·w| < 0.1 for both fixed w is found only once it exceeds thr
+ *   ten times over. A factorization that fails (a)-(c) goes to the QR path.
+ *   With C = P C_B, P = [I; W] in row order, W = C_D C_B^+ (exactly; the
+ *   rows set aside replaced by their projections on the row space of C_B,
+ *   the rank-k approximation that the QR path's complete orthogonal
+ *   decomposition makes when SPQR keeps the same rows):
+ *       C^+ r = C_B^+ P^+ r = C_B^+ (r_B + W^T s),
+ *       (I + W W^T) s = t = r_D - W r_B
+ *   (min |u - r_B|^2 + |W u - r_D|^2 by the Woodbury identity), t the
+ *   inconsistency of the rows set aside: at rounding level for a consistent
+ *   r (an acceleration's), then C^+ r = C_B^+ r_B, refined as the full-rank
+ *   path refines; else s by conjugate gradients, each product with
+ *   I + W W^T two solves with G_BB, preconditioned by diag(I + W W^T)
+ *   estimated from one +-1 vector (exact when the dependences share no kept
+ *   rows; 1-2 iterations on the ladder); W^T s and C_B^+ W^T s summed from
+ *   CG's products and corrected once (corrected semi-normal equations,
+ *   Björck, BIT 27 (1987)). CG stops when t is at rounding level of
+ *   |r| + |C||x| (REFINE_TOL eps); a CG that has not after CG_MAX = 200
+ *   iterations (W huge: the kept rows nearly dependent themselves) moves
+ *   the factorization to the QR path, which must find the same rank.
+ *   N z = z - C_B^T G_BB^-1 C_B z, refined as on the full-rank path. Cost:
+ *   a Cholesky per factor_c, plus two solves at a run's step starts (the
+ *   probe); pinv 2 solves for a consistent r, about 7 with CG. Nothing is
+ *   allocated per call (tested).
+ *
+ *  Numeric factorization: the first of each layout of L is CHOLMOD's; a
+ *   simplicial LDL^T (columns sorted, diagonal first: checked) is then
+ *   refactored here (ldl_numeric: left-looking on that pattern, the same
+ *   pivot replacement), about twice as fast as cholmod_l_factorize's
+ *   row-oriented one (ladder, 12 000 rows: 0.73 against 1.42 ms).
+ *
+ *  Rank deficient otherwise (singular configurations, rows not dependent
+ *   to round-off, the rank rule's cap below the rank): SPQR,
  *   rank-revealing sparse QR (Heath's method) of C^T with the absolute
  *   tolerance tol·max_i ||row i of C|| (the largest column norm of C^T: the
  *   first pivot of the core's column-pivoted QR), through SuiteSparseQR_C,
@@ -131,11 +205,11 @@
  *   those of C, not of the truncated E S Q1^T whose pseudoinverse is wanted.
  *
  * lsq's residual ||r - C C^+ r|| is computed with the sparse C from the
- * returned x (both paths). Cost per call: O(nnz(C)·block size) to form C,
- * O(products of the map) for G, then CHOLMOD's or SPQR's factorization and
+ * returned x (all paths). Cost per call: O(nnz(C)·block size) to form C,
+ * O(products of the map) for G, then the LDL^T or SPQR's factorization and
  * O(nnz(L)) resp. O(nnz(H) + nnz(R) + nnz(R2)) per solve (refined: up to
- * three times that, plus two compensated sweeps over C). The refinement's
- * work vectors (2 of rows, 2 of n entries) are allocated in create().
+ * three times that, plus two compensated sweeps over C). The work vectors
+ * (10 of rows, 7 of n entries) are allocated in create().
  *
  * tol <= 0 in factor_c selects the core's default, 10·max(rows, n)·eps.
  *
@@ -188,11 +262,13 @@ typedef SuiteSparse_long sslong;
 #define QR_DROP_PASSES 8
 #define QR_DROP_GROW 4.0
 /* Redundant rows on the Cholesky path (see above): a pivot of G's LDL^T at
- * most CHOL_DBOUND·max_i G_ii marks a row that depends on earlier ones
- * (CHOLMOD replaces it, Common->dbound); the rows so set aside must pass
- * DEP_PROBES dependency probes within DEP_MARGIN of the rank threshold;
- * the least-squares part is conjugate gradients on I + W W^T, at most
- * CG_MAX iterations. */
+ * most CHOL_DBOUND·max_i G_ii marks a row that depends on earlier ones and
+ * is replaced; the rows so set aside need their columns of L at most
+ * DEP_LMAX, and their distance from the kept rows (pivot bound with
+ * DEP_PIVOT_ERR·eps·cmax^2 for rounding, else DEP_PROBES probes from
+ * DEP_SEED) at most DEP_MARGIN times the rank threshold; the
+ * least-squares part is conjugate gradients on I + W W^T, at most CG_MAX
+ * iterations. */
 #define CHOL_DBOUND 1e-13
 #define DEP_PROBES 2
 #define DEP_MARGIN 0.1
