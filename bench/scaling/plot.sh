@@ -3,8 +3,8 @@
 # the legend) and, if measured, error against cost at N = 1000.
 set -eu
 OUT=$1
-png='set terminal pngcairo size 1200,800 font "DejaVu Sans,11" linewidth 1.5'
-svg='set terminal svg size 1200,800 dynamic font "DejaVu Sans,11" linewidth 1.5'
+png='set terminal pngcairo size 1600,800 font "DejaVu Sans,11" linewidth 1.5'
+svg='set terminal svg size 1600,800 dynamic font "DejaVu Sans,11" linewidth 1.5'
 # One data file per (kind, backend): N, µs per step.
 series=""
 for k in chain ladder spatial-chain; do
@@ -32,7 +32,7 @@ $t
 set output '$OUT/scaling.$term'
 set logscale xy
 set grid
-set key bottom right box opaque
+set key outside right top box
 set xlabel 'N (chain: links; ladder: cells of 4 bodies; spatial chain: rigid3d bars)'
 set xrange [8:3000]
 set ylabel 'CPU time per step (µs)'

@@ -48,7 +48,7 @@ END {
         for (j = 1; j <= nb; j++)
             if ((k, order[j]) in why)
                 printf "\n%s%s.\n", why[k, order[j]], why[k, order[j]] ~ /failed/ ? "; larger N not tried" : ": not run"
-        printf "\nSlope of log(cost per step) on log(N), from N = 100 (from N = 10 too for the spatial chain):"
+        printf "\nSlope of log(cost per step) on log(N), from N = 100%s:", k == "spatial-chain" ? " and from N = 10" : ""
         for (j = 1; j <= nb; j++)
             for (r = 1; r <= nsl[k, order[j]]; r++)
                 printf " %s **%s** (%s);", order[j], slope[k, order[j], r], pts[k, order[j], r]
