@@ -1397,7 +1397,7 @@ static int ldl_build(ss_slot *f)
     for (sslong c = 0; c < n; c++)
         for (sslong e = Gp[c]; e < Gp[c + 1]; e++) f->gl_p[Gi[e] + 1]++;
     for (sslong a = 0; a < n; a++) f->gl_p[a + 1] += f->gl_p[a];
-    sslong *cur = f->lr_p == NULL ? NULL : xcalloc((size_t)n, sizeof *cur);
+    sslong *cur = xcalloc((size_t)n, sizeof *cur);
     if (!cur) return BRAUN_ERR_BUFFER;
     for (sslong a = 0; a < n; a++) cur[a] = f->gl_p[a];
     for (sslong c = 0; c < n; c++)
@@ -1452,10 +1452,11 @@ static long ldl_numeric(ss_slot *f, double dbound, long *neg)
     return hits;
 }
 
-/* G = C C^T from the product map, then CHOLMOD's LDL^T with the pivots of
- * dependent rows replaced (Common->dbound, simplicial factors only). 1:
- * accepted (full rank, or rank rows - ndep with the rows set aside), 0:
- * rank deficient or ill-conditioned otherwise, < 0: error. */
+/* G = C C^T from the product map, then its LDL^T (CHOLMOD's for the first
+ * factorization of a layout of L, ldl_numeric's after) with the pivots of
+ * dependent rows replaced (simplicial factors only). 1: accepted (full
+ * rank, or rank rows - ndep with the rows set aside), 0: rank deficient or
+ * ill-conditioned otherwise, < 0: error. */
 static int chol_try(ss_state *s, ss_slot *f, double tol)
 {
     cholmod_common *cc = &s->cc;
