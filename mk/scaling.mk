@@ -7,7 +7,7 @@
 # scaling.md) and, with SCALING_DOCS set, the tables of docs/performance.md.
 # A benchmark, not a test. `make bench` runs it too (BENCH_SCALING=0: not).
 #
-#   make scaling                          everything (about 10 minutes)
+#   make scaling                          everything (about 4 minutes)
 #   make scaling SCALING_N="10 100 1000"  SCALING_BACKENDS="dense suitesparse"
 #   make scaling SCALING_MATCHED=0        without the equal-error study
 
