@@ -1,11 +1,13 @@
-# make scaling (issue 7): cost per step against the number of bodies N for
-# every linear-algebra backend and IDA+KLU, on `braun gen chain N` and the
-# redundant ladder, with fitted log-log slopes; cost per simulated second at
+# make scaling (issues 7, 13, 16): cost per step against the number of bodies
+# N for every linear-algebra backend and IDA+KLU, on `braun gen chain N`, the
+# redundant ladder and the spatial chain (`braun gen spatial-chain N`; no
+# IDA: its harness has no rigid3d Jacobian), with fitted log-log slopes and
+# the ladder's cost per body against the chain's; cost per simulated second at
 # equal trajectory error at N = 1000. Writes results/scaling/ (CSV, PNG,
 # scaling.md) and, with SCALING_DOCS set, the tables of docs/performance.md.
 # A benchmark, not a test. `make bench` runs it too (BENCH_SCALING=0: not).
 #
-#   make scaling                          everything (about 5 minutes)
+#   make scaling                          everything (about 4 minutes)
 #   make scaling SCALING_N="10 100 1000"  SCALING_BACKENDS="dense suitesparse"
 #   make scaling SCALING_MATCHED=0        without the equal-error study
 
@@ -14,7 +16,8 @@ SCALING_OBJ := $(SCALING_SRC:%.c=$(BUILD)/obj/%.o)
 SCALING_BIN := $(BUILD)/bin/braun-scaling
 SCALING_OUT ?= results/scaling
 SCALING_N ?= 10 20 50 100 200 500 1000 2000
-SCALING_LADDER_N ?= 10 30 100 300 1000
+SCALING_LADDER_N ?= 10 30 100 300 1000 2000
+SCALING_SPATIAL_N ?= 10 20 50 100 200 500 1000
 SCALING_BACKENDS ?= dense lapack suitesparse
 SCALING_MATCHED ?= 1
 SCALING_DOCS ?= docs/performance.md
@@ -46,4 +49,5 @@ scaling: deps-backends
 	@$(MAKE) --no-print-directory scaling-bin
 	@sh bench/scaling/run.sh --bin $(SCALING_BIN) --braun $(BUILD)/bin/braun \
 	    --out $(SCALING_OUT) --n "$(SCALING_N)" --ladder-n "$(SCALING_LADDER_N)" \
+	    --spatial-n "$(SCALING_SPATIAL_N)" \
 	    --backends "$(SCALING_BACKENDS)" --matched $(SCALING_MATCHED) --docs "$(SCALING_DOCS)"

@@ -1992,6 +1992,108 @@ static void test_ladder_redundant_run(void **state)
     free(text);
 }
 
+/* ------------------------------------------------------------------ */
+/* Redundant rows on the Cholesky path                                 */
+/* ------------------------------------------------------------------ */
+/* factor_c, pinv, lsq and null_project of slot 0 once: the heap calls they
+ * made. */
+static long heap_round(void *st, const tsys *t, double tol, int *rank)
+{
+    const int n = t->n, rows = t->rows;
+    braun_real *A = rvec((size_t)t->row_ptr[rows] + 1), *r = rvec((size_t)rows),
+               *x = rvec((size_t)n), rn = 0;
+    for (int k = 0; k < t->row_ptr[rows]; k++) A[k] = (braun_real)t->A[k];
+    unsigned long long seed = 17;
+    for (int i = 0; i < rows; i++) r[i] = (braun_real)test_frand(&seed);
+    const long before = heap_calls;
+    *rank = LS()->factor_c(st, 0, rows, A, (braun_real)tol, NULL, NULL);
+    LS()->pinv(st, 0, r, x);
+    LS()->lsq(st, 0, r, x, &rn);
+    LS()->null_project(st, 0, x);
+    const long calls = heap_calls - before;
+    free(A);
+    free(r);
+    free(x);
+    return calls;
+}
+
+/* A redundant system as a run sees it after its first step (the rank rule
+ * keeps `rank`, a rise only past sqrt(eps)): the rank, C^+ r for consistent
+ * and inconsistent r, lsq, N z against dgelsd, the definitions and the
+ * built-in kernels' QRCP (check_slot, check_dense_kernels); and the path:
+ * with the rows that depend on others set aside in the Cholesky
+ * factorization, a factorization and its solves allocate nothing, where
+ * SPQR returns new factors at every call. Then the plain tolerance (keep =
+ * rows): the same answers, on whichever path. */
+static void redundant_check(const tsys *t, int rank, double rel, unsigned long long seed)
+{
+    const double tol = default_tol(t->rows, t->n);
+    dref d;
+    dref_open(&d, t, t->rows);
+    void *st = be_create(t);
+    be_factor_mass(st, t);
+    LS()->rank_rule(st, 0, rank, t->rows, (braun_real)sqrt(DBL_EPSILON));
+    check_slot(st, t, &d, 0, tol, 1e-10, rank, rel, seed);
+    check_dense_kernels(st, t, &d, tol, rel, seed + 1);
+    if (heap_counting()) {
+        int k1 = -1, k2 = -1;
+        heap_round(st, t, tol, &k1);
+        assert_int_equal(heap_round(st, t, tol, &k2), 0);
+        assert_int_equal(k1, rank);
+        assert_int_equal(k2, rank);
+    }
+    LS()->rank_rule(st, 0, t->rows, t->rows, 0);
+    check_slot(st, t, &d, 0, tol, 1e-10, rank, rel, seed + 2);
+    LS()->destroy(st);
+    dref_close(&d);
+}
+
+/* The states of a scene file at its start (q0). */
+static void scene_start_tsys(scene_run *r, tsys *t)
+{
+    for (int j = 0; j < r->sys.n; j++) r->q[j] = (double)r->sf->q0[j];
+    r->t[0] = 0;
+    r->count = 1;
+    scene_tsys(r, 0, t);
+}
+
+/* Exact and scaled copies of rows along a chain (10 and 120 links), the
+ * double parallelogram, and the ladders of `braun gen ladder` (3 and 30
+ * cells: 36 and 360 rows, one redundant row per cell; a cell's rows share
+ * no kept rows with the next cell's dependence, the 30-cell one couples
+ * 30 of them through I + W W^T). */
+static void test_redundant_cholesky(void **state)
+{
+    (void)state;
+    for (int kind = 0; kind < 2; kind++) {
+        tsys t;
+        build_chain(&t, 10, kind, 1, 801 + (unsigned long long)kind);
+        redundant_check(&t, 20, 1e-10, 810);
+        ts_close(&t);
+    }
+    tsys t;
+    build_chain(&t, 120, 1, 1, 803);
+    redundant_check(&t, 240, 1e-9, 820);
+    ts_close(&t);
+    const double alphas[2] = {1.1, -2.0};
+    for (int i = 0; i < 2; i++) {
+        build_parallelogram(&t, alphas[i], i, 804 + (unsigned long long)i);
+        redundant_check(&t, 11, 1e-11, 830);
+        ts_close(&t);
+    }
+    const int cells[2] = {3, 30};
+    for (int i = 0; i < 2; i++) {
+        char *text = ladder_text(cells[i], 30);
+        scene_run r;
+        scene_open(&r, "ladder.json", text, 1);
+        scene_start_tsys(&r, &t);
+        redundant_check(&t, 11 * cells[i], 1e-9, 840);
+        ts_close(&t);
+        scene_close(&r);
+        free(text);
+    }
+}
+
 /* rank_rule (braun_linsolver.h) against the built-in kernels'
  * braun_qrcp_factor_rule on the same C: row 4 of a 6-link chain repeated
  * with delta 1e-3 (G accepted at the plain tolerance, L-diagonal ratio
@@ -2083,10 +2185,12 @@ static void test_bench(void **state)
     printf("# chain of N links, time per call in microseconds (and per link)\n");
     printf("# %5s %6s %6s %6s | %9s %9s %9s %9s | %12s\n", "N", "n", "rows", "path", "create",
            "factor_c", "pinv", "null_prj", "f+p+n per N");
-    /* kind 0: full rank (Cholesky path); 1: redundant rows (QR path, rank
-     * deficient); 2: one row 1e-9 from row 4 (QR path at full rank, the
+    /* kind 0: full rank (Cholesky path); 1: redundant rows (Cholesky path,
+     * rows set aside; factor_c without the rank rule of a run, so the
+     * dependency probe runs at every call, and pinv's r inconsistent: CG
+     * at every call); 2: one row 1e-9 from row 4 (QR path at full rank, the
      * solves refined). */
-    const char *paths[3] = {"chol", "qr", "qr-fr"};
+    const char *paths[3] = {"chol", "chol-d", "qr-fr"};
     for (int kind = 0; kind < 3; kind++)
         for (int ii = 0; ii < 6; ii++) {
             const int N = Ns[ii];
@@ -2167,6 +2271,7 @@ int main(void)
         cmocka_unit_test(test_parallelogram_redundant_run),
         cmocka_unit_test(test_ladder_redundant_run),
         cmocka_unit_test(test_rank_rule),
+        cmocka_unit_test(test_redundant_cholesky),
         cmocka_unit_test(test_bench),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -3,21 +3,23 @@
 # the legend) and, if measured, error against cost at N = 1000.
 set -eu
 OUT=$1
-png='set terminal pngcairo size 1200,800 font "DejaVu Sans,11" linewidth 1.5'
-svg='set terminal svg size 1200,800 dynamic font "DejaVu Sans,11" linewidth 1.5'
+png='set terminal pngcairo size 1600,800 font "DejaVu Sans,11" linewidth 1.5'
+svg='set terminal svg size 1600,800 dynamic font "DejaVu Sans,11" linewidth 1.5'
 # One data file per (kind, backend): N, µs per step.
 series=""
-for k in chain ladder; do
+for k in chain ladder spatial-chain; do
     for b in $(awk -F, -v k="$k" 'NR > 1 && $1 == k { print $6 }' "$OUT/step.csv" | sort -u); do
         f="$OUT/.$k-$b.dat"
         awk -F, -v k="$k" -v b="$b" 'NR > 1 && $1 == k && $6 == b && $7 != "nan" && $7 != "" { print $2, $7 / 1000 }' \
             "$OUT/step.csv" > "$f"
         [ -s "$f" ] || continue
-        slope=$(awk -F, -v k="$k" -v b="$b" '$1 == k && $2 == b { print $3 }' "$OUT/slopes.csv")
+        # the slope over the widest range (the spatial chain's from N = 10)
+        sl=$(awk -F, -v k="$k" -v b="$b" '$1 == k && $2 == b { print $5, $3 }' "$OUT/slopes.csv" | sort -n | head -n 1)
+        slope=${sl#* } nmin=${sl%% *}
         failN=$(awk -F, -v k="$k" -v b="$b" '$1 == k && $6 == b && $11 ~ /^failed/ { print $2; exit }' "$OUT/step.csv")
-        dash=1; [ "$k" = ladder ] && dash=2
+        dash=1 pt0=4; [ "$k" = ladder ] && dash=2; [ "$k" = spatial-chain ] && dash=4 pt0=8
         case $b in dense) c=1 ;; lapack) c=2 ;; suitesparse) c=3 ;; *) c=4 ;; esac
-        series="$series${series:+, }'$f' using 1:2 with linespoints dt $dash lc $c pt $((c + 4)) title '$k, $b${slope:+ (slope $slope for N >= 100)}${failN:+ (fails at N = $failN)}'"
+        series="$series${series:+, }'$f' using 1:2 with linespoints dt $dash lc $c pt $((c + pt0)) title '$k, $b${slope:+ (slope $slope for N >= $nmin)}${failN:+ (fails at N = $failN)}'"
     done
 done
 # The N^1.3 line through the sparse backend's chain cost at N = 100.
@@ -30,8 +32,8 @@ $t
 set output '$OUT/scaling.$term'
 set logscale xy
 set grid
-set key bottom right box opaque
-set xlabel 'N (chain: links; ladder: cells of 4 bodies)'
+set key outside right top box
+set xlabel 'N (chain: links; ladder: cells of 4 bodies; spatial chain: rigid3d bars)'
 set xrange [8:3000]
 set ylabel 'CPU time per step (µs)'
 set title 'Cost per step against N: corrected RK4 step (braun, each backend) and IDA+KLU step (GGL, analytic Jacobian)'

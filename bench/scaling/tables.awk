@@ -6,10 +6,15 @@ file == 1 {
     key = $1 SUBSEP $2; kinds[$1] = 1; Ns[$1, $2] = 1; backends[$6] = 1
     cell[$1, $2, $6] = ($7 == "nan" || $7 == "") ? ($11 ~ /skipped/ ? "–" : "fails") : sprintf("%.3g", $7 / 1000)
     if ($11 ~ /^failed/) why[$1, $6] = $6 " " $11 " (N = " $2 ")"
+    if ($11 ~ /^skipped: no /) why[$1, $6] = $6 " " substr($11, 10)
     if ($4 != "") { nn[$1, $2] = $4; rows[$1, $2] = $5 }
     if ($10 > 0) rd[$1, $2] = 1
 }
-file == 2 { slope[$1, $2] = $3; pts[$1, $2] = $4 " points, N " $5 "–" $6 }
+file == 2 {
+    # several ranges per (kind, backend): listed in the order of slopes.csv
+    ns = ++nsl[$1, $2]; slope[$1, $2, ns] = $3; pts[$1, $2, ns] = $4 " points, N " $5 "–" $6
+}
+file == 1 && $7 != "nan" && $7 != "" { ns_step[$1, $2, $6] = $7 }
 file == 3 {
     mrow[++nm] = $0
     if ($7 != "nan" && $7 > 0 && $9 == "ok") {
@@ -19,7 +24,10 @@ file == 3 {
 }
 END {
     nb = split("dense lapack suitesparse ida-klu", order, " ")
-    for (k in kinds) {
+    nk = split("chain ladder spatial-chain", korder, " ")
+    for (ki = 1; ki <= nk; ki++) {
+        k = korder[ki]
+        if (!(k in kinds)) continue
         printf "\n**%s**: CPU µs per step (corrected RK4 step for braun's backends; one BDF step for IDA+KLU)\n\n", k
         printf "| N | n | rows |"
         for (i = 1; i <= nb; i++) if (order[i] in backends) printf " %s |", order[i]
@@ -37,10 +45,31 @@ END {
             printf "\n"
         }
         delete list
-        for (j = 1; j <= nb; j++) if ((k, order[j]) in why) printf "\n%s; larger N not tried.\n", why[k, order[j]]
-        printf "\nSlope of log(cost per step) on log(N), N ≥ 100:"
-        for (j = 1; j <= nb; j++) if ((k, order[j]) in slope) printf " %s **%s** (%s);", order[j], slope[k, order[j]], pts[k, order[j]]
+        for (j = 1; j <= nb; j++)
+            if ((k, order[j]) in why)
+                printf "\n%s%s.\n", why[k, order[j]], why[k, order[j]] ~ /failed/ ? "; larger N not tried" : ": not run"
+        printf "\nSlope of log(cost per step) on log(N), from N = 100%s:", k == "spatial-chain" ? " and from N = 10" : ""
+        for (j = 1; j <= nb; j++)
+            for (r = 1; r <= nsl[k, order[j]]; r++)
+                printf " %s **%s** (%s);", order[j], slope[k, order[j], r], pts[k, order[j], r]
         printf "\n"
+        # Cost per body against the planar chain's at the same N (suitesparse).
+        per = (k == "ladder") ? 4 : (k == "spatial-chain" ? 1 : 0)
+        if (per > 0) {
+            line = ""
+            for (i = 1; i <= m2; i++) delete list2[i]
+            m2 = 0
+            for (x in Ns) { split(x, p, SUBSEP); if (p[1] == k) list2[++m2] = p[2] + 0 }
+            for (i = 1; i <= m2; i++) for (j = i + 1; j <= m2; j++) if (list2[j] < list2[i]) { t = list2[i]; list2[i] = list2[j]; list2[j] = t }
+            for (i = 1; i <= m2; i++) {
+                N = list2[i]
+                if ((k, N, "suitesparse") in ns_step && ("chain", N, "suitesparse") in ns_step)
+                    line = line sprintf(" N = %d: **%.2f**;", N, ns_step[k, N, "suitesparse"] / per / ns_step["chain", N, "suitesparse"])
+            }
+            if (line != "")
+                printf "\n%s against the chain, cost per body on SuiteSparse (%s):%s\n", k,
+                    per == 4 ? "4 bodies per cell" : "one bar against one link", line
+        }
     }
     if (nm > 0) {
         printf "\n**Chain, N = 1000, equal error**: max trajectory error against CPU seconds per simulated second\n\n"
