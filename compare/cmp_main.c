@@ -8,6 +8,8 @@
  *   braun-compare list
  *   braun-compare series        the series table (compare/series.tsv) as built in
  *   braun-compare claims        the claims table (compare/cmp_claims.c)
+ *   braun-compare files         the CSV files of a study, in merge order
+ *   braun-compare versions      the peers built in (MuJoCo, Simbody)
  *
  * LIST: names separated by spaces or commas. plan, --prepare and --job are
  * the steps of compare/run.sh's parallel study (docs/compare.md). */
@@ -246,6 +248,17 @@ int main(int argc, char **argv)
     if (strcmp(argv[1], "report") == 0) return cmd_report(argc - 2, argv + 2);
     if (strcmp(argv[1], "list") == 0) return cmd_list();
     if (strcmp(argv[1], "scenes") == 0) return cmd_scenes(argc - 2, argv + 2);
+    if (strcmp(argv[1], "files") == 0) {
+        /* The CSV files of a study, in merge order (compare/run.sh). */
+        printf("%s\n", cmp_study_files);
+        return 0;
+    }
+    if (strcmp(argv[1], "versions") == 0) {
+        /* The peers built in (compare/run.sh's meta.txt). */
+        const char *mj = cmp_mujoco_version(), *sb = cmp_simbody_version();
+        printf("mujoco=%s\nsimbody=%s\n", mj ? mj : "not built", sb ? sb : "not built");
+        return 0;
+    }
     if (strcmp(argv[1], "series") == 0) {
         cmp_series_print(stdout);
         return 0;

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -16,7 +17,7 @@
 #include "cmp_proj.h"
 #include "braun_reference.h"
 
-#define REF_DIM_MAX 4
+#define REF_DIM_MAX (2 * CMP_MINIMAL_MAX)
 
 struct cmp_ref {
     const cmp_target *tg;
@@ -178,10 +179,13 @@ cmp_ref *cmp_ref_new_traj(const cmp_target *tg, double T, double h, double dt_ta
     return r;
 }
 
-/* GSL calls this: the model's minimal right-hand side. */
+/* GSL calls this: the model's minimal right-hand side (a built-in model's,
+ * or the harness's equation of a scene, cmp_minimal.c). */
 static int minimal_rhs(double t, const double y[], double dydt[], void *params)
 {
     const cmp_target *tg = params;
+    if (tg->minimal)
+        return cmp_minimal_rhs(tg->minimal, t, y, dydt) ? GSL_EBADFUNC : GSL_SUCCESS;
     braun_minimal_find(tg->builtin->name)->rhs(t, y, dydt, tg->builtin->sys.user);
     for (int i = 0; i < braun_minimal_find(tg->builtin->name)->dim; i++)
         if (!isfinite(dydt[i])) return GSL_EBADFUNC;
@@ -197,6 +201,28 @@ cmp_ref *cmp_ref_new(const cmp_target *tg, cmp_ref_kind kind, double tol)
         if (r) {
             r->tg = tg;
             r->kind = kind;
+        }
+        return r;
+    }
+    if (tg->minimal && kind == CMP_REF_RK8PD) {
+        /* The harness's minimal equation of a scene. */
+        const int dim = cmp_minimal_dim(tg->minimal);
+        if (dim > REF_DIM_MAX) return NULL;
+        cmp_ref *r = calloc(1, sizeof *r);
+        if (!r) return NULL;
+        r->tg = tg;
+        r->kind = kind;
+        r->tol = tol;
+        memcpy(r->y, cmp_minimal_y0(tg->minimal), (size_t)dim * sizeof(double));
+        gsl_set_error_handler_off();
+        r->sys.function = minimal_rhs;
+        r->sys.jacobian = NULL;
+        r->sys.dimension = (size_t)dim;
+        r->sys.params = (void *)tg;
+        r->drv = gsl_odeiv2_driver_alloc_y_new(&r->sys, gsl_odeiv2_step_rk8pd, 1e-6, tol, tol);
+        if (!r->drv) {
+            free(r);
+            return NULL;
         }
         return r;
     }
@@ -274,6 +300,10 @@ int cmp_ref_eval(cmp_ref *r, double t, double *q, double *v)
                 return -1;
             }
         }
+        if (r->tg->minimal) {
+            cmp_minimal_state(r->tg->minimal, r->y, q, v);
+            return 0;
+        }
         for (int i = 0; i < braun_minimal_find(b->name)->dim; i++) y[i] = r->y[i];
     }
     braun_minimal_find(b->name)->to_state(y, q, v, b->sys.user);
@@ -285,6 +315,8 @@ int cmp_ref_tabulate(cmp_ref *r, double dt, double T)
     /* Trajectory and point references are tables already. */
     if (r->kind == CMP_REF_TRAJ || r->kind == CMP_REF_POINT || r->kind == CMP_REF_PROJ)
         return 0;
+    /* Tabulated once already (the same grid: a study's group). */
+    if (r->table) return fabs(r->dt - dt) <= 1e-12 * dt && r->count == (long)floor(T / dt + 0.5) + 1 ? 0 : -1;
     const int n = r->tg->sys.n;
     const long count = (long)floor(T / dt + 0.5) + 1;
     double *table = malloc((size_t)count * 2 * (size_t)n * sizeof(double));
@@ -378,12 +410,18 @@ int cmp_ref_save(const cmp_ref *r, const char *path)
             h.count = r->count;
         }
     }
-    FILE *f = fopen(path, "wb");
+    /* Written beside and renamed: a run that loads it (another process,
+     * another host of a run list) sees the whole file or none. */
+    char tmp[1100];
+    snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid());
+    FILE *f = fopen(tmp, "wb");
     if (!f) return -1;
     const size_t cells = (size_t)h.count * (size_t)h.width;
     int bad = fwrite(&h, sizeof h, 1, f) != 1;
     if (!bad && cells) bad = fwrite(r->table, sizeof(double), cells, f) != cells;
     if (fclose(f)) bad = 1;
+    if (!bad && rename(tmp, path)) bad = 1;
+    if (bad) remove(tmp);
     return bad ? -1 : 0;
 }
 
