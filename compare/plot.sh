@@ -497,14 +497,15 @@ $line
 EOF
             else
                 title=$(printf '%s\n' "$series_all" | awk -F'|' -v m="$m" -v i="$i" 'index($1, m ":" i ":") == 1 { print $2; exit }')
-                title="${title:-$m $i}, $(variant_text "$v")"
+                title="${title:-$m $i} — $(variant_text "$v");"
                 colour=$(printf '%s\n' "$series_all" | awk -F'|' -v m="$m" 'index($1, m ":") == 1 { print $3; exit }')
                 dash=1
             fi
             if [ "$h" != nan ]; then setting="h = $(exp10 "$h") s"; else setting="rtol = $(exp10 "$r")"; fi
             if [ "$st" = ok ]; then what="its most accurate run: $setting, error $(printf '%.2g' "$err")"
             else what="no run reached T; furthest: $setting, $st at t = $tr s"; fi
-            add_trace "$m" "$i" "$v" "$h" "$r" "$title — $what" "${colour:-#999999}" "$dash"
+            case $title in *";") title="$title $what" ;; *) title="$title — $what" ;; esac
+            add_trace "$m" "$i" "$v" "$h" "$r" "$title" "${colour:-#999999}" "$dash"
         done
         [ -n "$entries" ] && [ -n "$refdat" ] || continue
         W=$(awk -v T="$T" 'BEGIN { print (T / 2 < 10 ? T / 2 : 10) }')

@@ -173,7 +173,8 @@ if [ $mode = list ]; then
     repo=$(pwd)
     case $bin in /*) abin=$bin ;; *) abin=$repo/$bin ;; esac
     case $parts in /*) aparts=$parts ;; *) aparts=$repo/$parts ;; esac
-    run="cd $(q "$repo") && $(q "$abin") run --study $(q "$study") --scenes $(q "$scenes")"
+    run="mkdir -p $(q "$aparts") && cd $(q "$repo") && $(q "$abin") run --study $(q "$study")"
+    run="$run --scenes $(q "$scenes")"
     run="$run --methods $(q "$methods") --reps $(q "$reps") --refdir $(q "$aparts")"
     mkdir -p "$out/jobs"
     awk -v run="$run" -v parts="$aparts" '$1 == "prepare" {

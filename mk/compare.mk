@@ -101,6 +101,8 @@ $(COMPARE_TEST): tests/compare/test_compare.c tests/test_util.h $(COMPARE_LIB_OB
 
 TEST_SUITES += "tools/run-tests $(COMPARE_TEST)" "sh tests/compare/quick.sh $(COMPARE_BIN)"
 TEST_SUITES += "sh tests/compare/parallel.sh $(COMPARE_BIN)"
+# The run list (compare/run.sh --list) under GNU parallel, merged.
+TEST_SUITES += "sh tests/compare/jobs.sh $(COMPARE_BIN)"
 # The series table's three readers: the report, plot.sh and braun-bench.
 TEST_SUITES += "sh tests/compare/series.sh $(COMPARE_BIN) $(BENCH_BIN)"
 TEST_PREREQS += $(COMPARE_TEST) $(COMPARE_BIN) $(BENCH_BIN)
