@@ -33,8 +33,11 @@ typedef enum cmp_ref_kind {
     CMP_REF_TRAJ,       /* braun RK4 at a small step (not for references any more:
                          * braun does not judge braun; kept for the tests) */
     CMP_REF_POINT,      /* published values at one time (Andrews at t = 0.03) */
-    CMP_REF_PROJ        /* the harness's RK4 + projection at a small step (cmp_proj.c),
+    CMP_REF_PROJ,       /* the harness's RK4 + projection at a small step (cmp_proj.c),
                          * tabulated with q, v, a and interpolated (quintic Hermite) */
+    CMP_REF_CLOSED_GSL  /* the same closed form as CMP_REF_CLOSED evaluated with GSL's
+                         * Jacobi elliptic functions (cmp_pendulum_gsl): the closed
+                         * form's own error is the difference of the two */
 } cmp_ref_kind;
 
 /* A target: a system, its initial state, optionally a minimal-coordinate
@@ -95,6 +98,12 @@ void cmp_minimal_state(cmp_minimal *mm, const double *y, double *q, double *v);
 
 /* ------------------------------------------------------------ references */
 typedef struct cmp_ref cmp_ref;
+
+/* The pendulum φ'' = −w2 sin φ from (φ0, φ0') in closed form with GSL's
+ * Jacobi elliptic functions and elliptic integrals (an implementation
+ * independent of libbraun's braun_pendulum_exact): rotation and libration,
+ * not the separatrix. 0, or -1. */
+int cmp_pendulum_gsl(double w2, double phi0, double dphi0, double t, double *phi, double *dphi);
 
 /* A reference evaluator: closed form (any t) or rk8pd (t non-decreasing
  * between calls). tol: rk8pd rtol = atol (ignored for the closed form).

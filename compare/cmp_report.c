@@ -22,16 +22,21 @@
 #include "cmp_series.h"
 #include "cmp_study.h"
 
-/* The label of a run: its series' (compare/series.tsv), else its method's
- * series label with the sweep setting in words. */
+/* The label of a run: its series' (compare/series.tsv); a sweep cell's is
+ * its method and integrator with the setting that differs from the main
+ * series, in words. */
 static const char *label_of(const cmp_row *r)
 {
     const cmp_series *s = cmp_series_of(r->method, r->integ, r->variant);
     if (s) return s->label;
-    static char buf[160];
-    const cmp_series *base = cmp_series_of(r->method, r->integ, "-");
-    if (base)
-        snprintf(buf, sizeof buf, "%s, %s", base->label, cmp_variant_text(r->variant));
+    static char buf[192];
+    if (!strcmp(r->method, "baumgarte") && !strncmp(r->variant, "ab=", 3))
+        snprintf(buf, sizeof buf, "Baumgarte (α = β = %s), RK4", r->variant + 3);
+    else if (!strcmp(r->method, "mujoco"))
+        snprintf(buf, sizeof buf, "MuJoCo 2.2.2 %s, %s (else as the main series)",
+                 !strcmp(r->integ, "mj-rk4") ? "RK4" : r->integ, cmp_variant_text(r->variant));
+    else if (!strcmp(r->method, "simbody"))
+        snprintf(buf, sizeof buf, "Simbody 3.7 %s, %s", r->integ, cmp_variant_text(r->variant));
     else
         snprintf(buf, sizeof buf, "%s %s, %s", r->method, r->integ, cmp_variant_text(r->variant));
     return buf;

@@ -230,7 +230,10 @@ set key outside right top box opaque font ",10"
 set datafile missing "nan"'
 
 pairs=$(awk -F, 'NR > 1 { print $1 "," $2 }' "$runs" | sort -u)
-for pair in $pairs; do
+# plot_pair SCENE,T: every plot of one scene and horizon (runs in the
+# background, PLOT_JOBS at a time: the plots of a pair are its own files).
+plot_pair() {
+    pair=$1
     sc=${pair%,*} T=${pair#*,}
     base="$tmp/$sc-$T"
     qu=$(target_field "$sc" "$T" q_unit); qu=${qu:-m; rad}
@@ -251,7 +254,7 @@ for pair in $pairs; do
     done
     p=$(plot_cmd "$base.wp" "1:2" "$sc" "$T")
     if [ -n "$p" ]; then
-        cat > "$tmp/s.gp" <<EOF
+        cat > "$base.gp" <<EOF
 $common
 set title "$sc, T = $T s: trajectory error against CPU time (runs that reached T; the legend names those that stopped)"
 set key below vertical maxrows 9 box opaque font ",9" samplen 3
@@ -259,7 +262,7 @@ set xlabel "CPU time [s], best of k runs"
 set ylabel "max_t ‖q(t) − q_{ref}(t)‖_2 [$qu]"
 plot $p$(floorline "$floor")
 EOF
-        render "wp_${sc}_$T" "$tmp/s.gp"
+        render "wp_${sc}_$T" "$base.gp"
     fi
 
     # ---- Fig. 4: against the step size
@@ -274,7 +277,7 @@ EOF
     if [ -n "$p1$p2$p3$p4" ]; then
         k=$(mostkeyed "$p1" "$p2" "$p3" "$p4")
         p1=${p1:-$blank} p2=${p2:-$blank} p3=${p3:-$blank} p4=${p4:-$blank}
-        cat > "$tmp/s.gp" <<EOF
+        cat > "$base.gp" <<EOF
 $common
 set multiplot layout 2,2 title "$sc, T = $T s: maxima over the run against the step size (runs that reached T; paper's Fig. 4)" margins 0.08,0.98,0.2,0.93 spacing 0.08,0.1
 set xlabel "step size h [s]"
@@ -292,7 +295,7 @@ $(keyfor 4 "$k" 3)
 plot $p4
 unset multiplot
 EOF
-        render "steps_${sc}_$T" "$tmp/s.gp"
+        render "steps_${sc}_$T" "$base.gp"
     fi
 
     # ---- adaptive methods against the tolerance
@@ -305,7 +308,7 @@ EOF
     p1=$(plot_cmd "$base.ie" "1:2" "$sc" "$T" "$tolk")
     p2=$(plot_cmd "$base.it" "1:2" "$sc" "$T" "$tolk")
     if [ -n "$p2" ]; then
-        cat > "$tmp/s.gp" <<EOF
+        cat > "$base.gp" <<EOF
 $common
 set multiplot layout 2,1 title "$sc, T = $T s: adaptive methods against their tolerance (rtol = atol)" margins 0.08,0.98,0.14,0.93 spacing 0.08,0.1
 set xlabel "rtol (relative tolerance) [–]"
@@ -320,7 +323,7 @@ set key at screen 0.5,0.005 center bottom vertical maxrows 2 box opaque font ",1
 plot $p2
 unset multiplot
 EOF
-        render "tol_${sc}_$T" "$tmp/s.gp"
+        render "tol_${sc}_$T" "$base.gp"
     fi
 
     # ---- Figs. 3 and 7: histories at h = 1e-2 (adaptive methods at rtol 1e-8)
@@ -378,7 +381,7 @@ EOF
             p1=${p1:-$blank} p2=${p2:-$blank} p3=${p3:-$blank} p4=${p4:-$blank}
             [ "$sparse" = 1 ] && p4=$(printf '%s' "$p4" | sed 's/with linespoints/with points/g')
             hs=$(exp10 "${hstep:-0.01}")
-            cat > "$tmp/s.gp" <<EOF
+            cat > "$base.gp" <<EOF
 $common
 unset logscale x
 set format x "%g"
@@ -404,11 +407,11 @@ plot $p4$(floorline "$pf")
 unset multiplot
 EOF
             if [ -n "$clipnote" ]; then
-                sed -i "s|^unset multiplot|set label 99 \"$clipnote\" at screen 0.01,0.985 font \",9\" tc rgb \"#aa0000\"\nunset multiplot|" "$tmp/s.gp"
+                sed -i "s|^unset multiplot|set label 99 \"$clipnote\" at screen 0.01,0.985 font \",9\" tc rgb \"#aa0000\"\nunset multiplot|" "$base.gp"
                 note "history_${sc}_$T" "$clipnote"
             fi
-            sed -i 's/with linespoints/with lines/g; s/ with lines\( lc rgb "[^"]*" dt [0-9]*\) pt [0-9]* ps 1.1/ with lines\1/g' "$tmp/s.gp"
-            render "history_${sc}_$T" "$tmp/s.gp"
+            sed -i 's/with linespoints/with lines/g; s/ with lines\( lc rgb "[^"]*" dt [0-9]*\) pt [0-9]* ps 1.1/ with lines\1/g' "$base.gp"
+            render "history_${sc}_$T" "$base.gp"
         fi
     fi
 
@@ -423,7 +426,7 @@ EOF
         hs=$(exp10 "$(hist_h "$sc" "$T" braun:rk4:- max)")
         if [ -n "$p" ]; then
             ref="\"$base.s.braun_rk4_-.dat\" using 1:8 with lines lc rgb \"black\" lw 2.5 title \"numerically exact (Eq. 24, rk8pd)\""
-            cat > "$tmp/s.gp" <<EOF
+            cat > "$base.gp" <<EOF
 set grid lw 0.5 lc rgb "#dddddd"
 set datafile missing "nan"
 set multiplot layout 2,1 title "slider-crank: slider position x_s = x_2 + (l/2) cos θ_2, h = $hs s (paper's Fig. 2)"
@@ -437,11 +440,25 @@ set xrange [$(awk -v T="$T" 'BEGIN { print T - T / 10 }'):$T]
 plot $ref, $p
 unset multiplot
 EOF
-            sed -i 's/with linespoints/with lines/g; s/ pt [0-9]* ps 1.1//g' "$tmp/s.gp"
-            render "slider_${sc}" "$tmp/s.gp"
+            sed -i 's/with linespoints/with lines/g; s/ pt [0-9]* ps 1.1//g' "$base.gp"
+            render "slider_${sc}" "$base.gp"
         fi
     fi
+}
+
+jobs_max=${PLOT_JOBS:-2} pids="" failed_pairs=0
+for pair in $pairs; do
+    plot_pair "$pair" &
+    pids="$pids $!"
+    set -- $pids
+    if [ $# -ge "$jobs_max" ]; then
+        wait "$1" || failed_pairs=$((failed_pairs + 1))
+        shift
+        pids="$*"
+    fi
 done
+for p in $pids; do wait "$p" || failed_pairs=$((failed_pairs + 1)); done
+[ "$failed_pairs" -eq 0 ] || { echo "plot.sh: $failed_pairs scene(s) failed to plot" >&2; exit 1; }
 
 # ---- Fig. 6: the four-bar's x3 against time over the longest horizon, at
 # the paper's h = 1e-2 (braun, without energy correction, Baumgarte, the
@@ -510,7 +527,7 @@ EOF
         [ -n "$entries" ] && [ -n "$refdat" ] || continue
         W=$(awk -v T="$T" 'BEGIN { print (T / 2 < 10 ? T / 2 : 10) }')
         ref="\"$refdat\" using 1:3 with lines lc rgb \"black\" lw 3 title \"numerically exact (closed form)\""
-        cat > "$tmp/s.gp" <<EOF
+        cat > "$base.gp" <<EOF
 set grid lw 0.5 lc rgb "#dddddd"
 set datafile missing "nan"
 set multiplot layout 2,1 title "$sc: x_3 (joint 3) against time, T = $T s, h = 10^{-2} s for braun, Baumgarte, the ODE and RK4 + projection (paper's Fig. 6)" margins 0.08,0.98,0.3,0.93 spacing 0.08,0.12
@@ -525,6 +542,6 @@ set xrange [$(awk -v T="$T" -v W="$W" 'BEGIN { print T - W }'):$T]
 plot $ref$entries
 unset multiplot
 EOF
-        render "fig6_${sc}_$T" "$tmp/s.gp"
+        render "fig6_${sc}_$T" "$base.gp"
     done
 fi

@@ -543,6 +543,29 @@ static void test_projection_gauss_newton(void **state)
     cmp_target_free(&tg);
 }
 
+/* The closed form's second evaluation (GSL's Jacobi functions, the
+ * closed form's own error estimate) agrees with libbraun's on rotations and
+ * librations in both directions, turning points included. */
+static void test_pendulum_closed_forms(void **state)
+{
+    (void)state;
+    static const double start[][2] = {{3.14159265358979, -1.0}, {0.3, 5.0}, {-2.0, -4.5},
+                                      {1.5707963267948966, 0.0}, {-0.4, 0.0}, {0.7, -1.2},
+                                      {2.5, 0.3}};
+    for (size_t c = 0; c < sizeof start / sizeof start[0]; c++) {
+        double mx = 0;
+        for (int k = 0; k <= 200; k++) {
+            const double t = 0.37 * k;
+            double p1, d1, p2, d2;
+            assert_int_equal(braun_pendulum_exact(9.81, start[c][0], start[c][1], t, &p1, &d1), 0);
+            assert_int_equal(cmp_pendulum_gsl(9.81, start[c][0], start[c][1], t, &p2, &d2), 0);
+            mx = fmax(mx, fmax(fabs(p1 - p2), fabs(d1 - d2)));
+        }
+        if (!(mx < 1e-9)) print_message("start %zu: max difference %g\n", c, mx);
+        assert_true(mx < 1e-9);
+    }
+}
+
 /* The harness's own minimal equations of scenes (cmp_minimal.c) agree with
  * RK4 + projection at a small step on the scenes' DAE — two formulations
  * that share nothing but the scene: the double pendulum (an open chain of
@@ -889,6 +912,7 @@ int main(void)
         cmocka_unit_test(test_projection_order),
         cmocka_unit_test(test_projection_gauss_newton),
         cmocka_unit_test(test_minimal_equations),
+        cmocka_unit_test(test_pendulum_closed_forms),
         cmocka_unit_test(test_common_grid),
         cmocka_unit_test(test_singularity_scan),
         cmocka_unit_test(test_csv_reader),
