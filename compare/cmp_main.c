@@ -37,6 +37,7 @@ static void usage(FILE *f)
             "       braun-compare list\n"
             "       braun-compare series\n"
             "       braun-compare claims\n"
+            "       braun-compare files | versions\n"
             "\n"
             "run     integrate every scene with every method on the study's grid of step\n"
             "        sizes and tolerances; write DIR/runs.csv, history.csv,\n"
@@ -53,9 +54,11 @@ static void usage(FILE *f)
             "        (compare/series.tsv): key|label|colour|dash|point|in\n"
             "claims  the paper's claims: claim, paper, figure, its arguments, the tests\n"
             "        and the rule as the report states it (tab-separated)\n"
+            "files   the CSV files a study writes, in merge order\n"
+            "versions  the peers built in (MuJoCo, Simbody)\n"
             "\n"
-            "LIST is separated by spaces or commas. Defaults: the paper's scenes\n"
-            "(slider-crank four-bar) and the pendulum; every method; K = 3.\n"
+            "LIST is separated by spaces or commas. Defaults: every shipped scene\n"
+            "(braun-compare list); every method; K = 3.\n"
             "See docs/compare.md.\n");
 }
 

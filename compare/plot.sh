@@ -147,8 +147,11 @@ plot_cmd() {
                 "$colour" "$dash" "$pt" "$title" "$all"
             continue
         fi
+        # A plot of one run per series (histories) names a run that stopped
+        # in its own words (FILE.title).
+        if [ -s "$f.title" ]; then t=$(cat "$f.title"); else t=$(legend "$key" "$title" "$psc" "$pT"); fi
         printf '"%s" using %s with linespoints lc rgb "%s" dt %s pt %s ps 1.1 title "%s", ' \
-            "$f" "$using" "$colour" "$dash" "$pt" "$(legend "$key" "$title" "$psc" "$pT")"
+            "$f" "$using" "$colour" "$dash" "$pt" "$t"
     done | sed 's/, $//'
 }
 
@@ -180,20 +183,30 @@ mostkeyed() {
 }
 keyfor() { # keyfor PANEL BEST ROWS
     if [ "$1" -eq "$2" ]; then
-        echo "set key at screen 0.5,0.005 center bottom vertical maxrows $3 box opaque font \",10\" samplen 3"
+        echo "set key at screen 0.5,0.005 center bottom vertical maxrows $3 box opaque font \",9\" samplen 3"
     else
         echo "set key off"
     fi
 }
+# The legend below the plot in two columns: legend_rows for N entries, the
+# canvas height that leaves 850 px to the panels, and the bottom margin
+# (a fraction of the canvas) that holds the legend.
+legend_rows() { echo $(( ($1 + 1) / 2 )); }
+canvas_height() { echo $(( 850 + 19 * $1 + 30 )); }
+bottom_margin() { awk -v r="$1" -v h="$2" 'BEGIN { printf "%.3f\n", (19 * r + 60) / h }'; }
+entries() { printf '%s' "$1" | grep -o ' title "' | wc -l; }
 
 # A panel with no data still needs something to plot (an invisible constant).
 blank='1 notitle lc rgb "white"'
 
-# render NAME SCRIPT: PNG and SVG of one gnuplot script.
+# render NAME SCRIPT [HEIGHT]: PNG and SVG of one gnuplot script (1400 px
+# wide; HEIGHT default 900 px: legends below the panels take more).
 render() {
-    name=$1 script=$2
-    { echo "$png"; echo "set output '$dir/$name.png'"; cat "$script"; echo "unset output"
-      echo "$svg"; echo "set output '$dir/$name.svg'"; cat "$script"; echo "unset output"
+    name=$1 script=$2 height=${3:-900}
+    { echo "$png" | sed "s/size 1200,900/size 1400,$height/"; echo "set output '$dir/$name.png'"
+      cat "$script"; echo "unset output"
+      echo "$svg" | sed "s/size 1200,900/size 1400,$height/"; echo "set output '$dir/$name.svg'"
+      cat "$script"; echo "unset output"
     } > "$tmp/$name.gp"
     if ! gnuplot "$tmp/$name.gp" 2> "$tmp/$name.err"; then
         echo "plot.sh: gnuplot failed on $name:" >&2
@@ -204,6 +217,12 @@ render() {
 }
 
 note() { printf '%s\t%s\n' "$1" "$2" >> "$notes"; }
+
+# stop_text STATUS T: "IDA\\_CONV\\_FAIL at t = 191.6 s" for a legend (gnuplot's
+# enhanced text would make the underscores subscripts).
+stop_text() {
+    printf '%s at t = %s s' "$(printf '%s' "$1" | sed 's/_/\\\\_/g')" "$(awk -v t="$2" 'BEGIN { printf "%.4g", t }')"
+}
 
 # variant_text V: a sweep setting in words (as the report's cmp_variant_text).
 variant_text() {
@@ -254,15 +273,17 @@ plot_pair() {
     done
     p=$(plot_cmd "$base.wp" "1:2" "$sc" "$T")
     if [ -n "$p" ]; then
+        rows=$(legend_rows $(( $(entries "$p") + 1 )))
+        ht=$(canvas_height "$rows")
         cat > "$base.gp" <<EOF
 $common
 set title "$sc, T = $T s: trajectory error against CPU time (runs that reached T; the legend names those that stopped)"
-set key below vertical maxrows 9 box opaque font ",9" samplen 3
-set xlabel "CPU time [s], best of k runs"
+set key below vertical maxrows $rows box opaque font ",9" samplen 3
+set xlabel "CPU time [s], best of k runs" offset 0,0.6
 set ylabel "max_t ‖q(t) − q_{ref}(t)‖_2 [$qu]"
 plot $p$(floorline "$floor")
 EOF
-        render "wp_${sc}_$T" "$base.gp"
+        render "wp_${sc}_$T" "$base.gp" "$ht"
     fi
 
     # ---- Fig. 4: against the step size
@@ -276,26 +297,30 @@ EOF
     p4=$(plot_cmd "$base.st" "1:5" "$sc" "$T" "$fixed")
     if [ -n "$p1$p2$p3$p4" ]; then
         k=$(mostkeyed "$p1" "$p2" "$p3" "$p4")
+        eval "pk=\$p$k"
+        rows=$(legend_rows "$(entries "$pk")")
+        ht=$(canvas_height "$rows")
+        bm=$(bottom_margin "$rows" "$ht")
         p1=${p1:-$blank} p2=${p2:-$blank} p3=${p3:-$blank} p4=${p4:-$blank}
         cat > "$base.gp" <<EOF
 $common
-set multiplot layout 2,2 title "$sc, T = $T s: maxima over the run against the step size (runs that reached T; paper's Fig. 4)" margins 0.08,0.98,0.2,0.93 spacing 0.08,0.1
+set multiplot layout 2,2 title "$sc, T = $T s: maxima over the run against the step size (runs that reached T; paper's Fig. 4)" margins 0.08,0.98,$bm,0.93 spacing 0.08,0.1
 set xlabel "step size h [s]"
 set ylabel "max ‖Φ_q‖ [$pu]"
-$(keyfor 1 "$k" 3)
+$(keyfor 1 "$k" "$rows")
 plot $p1
 set ylabel "max |Φ_e| [J]"
-$(keyfor 2 "$k" 3)
+$(keyfor 2 "$k" "$rows")
 plot $p2
 set ylabel "max ‖q − q_{ref}‖ [$qu]"
-$(keyfor 3 "$k" 3)
+$(keyfor 3 "$k" "$rows")
 plot $p3$(floorline "$floor")
 set ylabel "CPU time [s]"
-$(keyfor 4 "$k" 3)
+$(keyfor 4 "$k" "$rows")
 plot $p4
 unset multiplot
 EOF
-        render "steps_${sc}_$T" "$base.gp"
+        render "steps_${sc}_$T" "$base.gp" "$ht"
     fi
 
     # ---- adaptive methods against the tolerance
@@ -308,9 +333,12 @@ EOF
     p1=$(plot_cmd "$base.ie" "1:2" "$sc" "$T" "$tolk")
     p2=$(plot_cmd "$base.it" "1:2" "$sc" "$T" "$tolk")
     if [ -n "$p2" ]; then
+        rows=$(legend_rows "$(entries "$p2")")
+        ht=$(canvas_height "$rows")
+        bm=$(bottom_margin "$rows" "$ht")
         cat > "$base.gp" <<EOF
 $common
-set multiplot layout 2,1 title "$sc, T = $T s: adaptive methods against their tolerance (rtol = atol)" margins 0.08,0.98,0.14,0.93 spacing 0.08,0.1
+set multiplot layout 2,1 title "$sc, T = $T s: adaptive methods against their tolerance (rtol = atol)" margins 0.08,0.98,$bm,0.93 spacing 0.08,0.1
 set xlabel "rtol (relative tolerance) [–]"
 set ylabel "max ‖q − q_{ref}‖ [$qu] (reached T)"
 set key off
@@ -319,11 +347,11 @@ unset logscale y
 set format y "%g"
 set yrange [0:1.05]
 set ylabel "time reached / T [–]"
-set key at screen 0.5,0.005 center bottom vertical maxrows 2 box opaque font ",10" samplen 3
+set key at screen 0.5,0.005 center bottom vertical maxrows $rows box opaque font ",9" samplen 3
 plot $p2
 unset multiplot
 EOF
-        render "tol_${sc}_$T" "$base.gp"
+        render "tol_${sc}_$T" "$base.gp" "$ht"
     fi
 
     # ---- Figs. 3 and 7: histories at h = 1e-2 (adaptive methods at rtol 1e-8)
@@ -342,7 +370,11 @@ EOF
                 st=$(status_of "$sc" "$T" "$key" nan "$x")
             fi
             select_hist "$sc" "$T" "$key" "$x" > "$f"
-            case $st in "ok "*) okfiles="$okfiles $f" ;; esac
+            case $st in
+            "ok "*) okfiles="$okfiles $f" ;;
+            ?*) label=$(printf '%s\n' "$series_all" | awk -F'|' -v k="$key" '$1 == k { print $2 }')
+                printf '%s — stopped: %s' "$label" "$(stop_text "${st% *}" "${st#* }")" > "$f.title" ;;
+            esac
         done
         p1=$(plot_cmd "$base.h" "1:2" "$sc" "$T" "$hk")
         p3=$(plot_cmd "$base.h" "1:4" "$sc" "$T" "$hk")
@@ -358,6 +390,10 @@ EOF
             pf=$pfloor
             [ $pcol -eq 6 ] || { plabel="‖q − q_{ref}‖ [$qu]"; pf=$floor; }
             k=$(mostkeyed "$p1" "$p2" "$p3" "$p4")
+            eval "pk=\$p$k"
+            rows=$(legend_rows "$(entries "$pk")")
+            ht=$(canvas_height "$rows")
+            bm=$(bottom_margin "$rows" "$ht")
             # A reference known at one time only (Andrews): points, not lines.
             sparse=$(cat "$base".h.*.dat 2>/dev/null | awk -v c="$pcol" '$c != "nan" && $c + 0 > 0 { n++ } END { print (n < 20) }')
             # Clip each panel at 1e3 × the largest value of the runs that
@@ -386,23 +422,23 @@ $common
 unset logscale x
 set format x "%g"
 set xrange [0:$T]
-set multiplot layout 2,2 title "$sc, T = $T s: errors along the run, fixed steps h = $hs s, adaptive rtol = 10^{-8} (paper's Figs. 3, 7)" margins 0.08,0.98,0.2,0.93 spacing 0.08,0.1
+set multiplot layout 2,2 title "$sc, T = $T s: errors along the run, fixed steps h = $hs s, adaptive rtol = 10^{-8} (paper's Figs. 3, 7)" margins 0.08,0.98,$bm,0.93 spacing 0.08,0.1
 set xlabel "t [s]"
 set ylabel "‖Φ_q‖ [$pu]"
 $y1
-$(keyfor 1 "$k" 3)
+$(keyfor 1 "$k" "$rows")
 plot $p1
 set ylabel "‖[dΦ_q/dt; Φ_v]‖ [$pu/s]"
 $y2
-$(keyfor 2 "$k" 3)
+$(keyfor 2 "$k" "$rows")
 plot $p2
 set ylabel "|Φ_e| [J]"
 $y3
-$(keyfor 3 "$k" 3)
+$(keyfor 3 "$k" "$rows")
 plot $p3
 set ylabel "$plabel"
 $y4
-$(keyfor 4 "$k" 3)
+$(keyfor 4 "$k" "$rows")
 plot $p4$(floorline "$pf")
 unset multiplot
 EOF
@@ -411,7 +447,7 @@ EOF
                 note "history_${sc}_$T" "$clipnote"
             fi
             sed -i 's/with linespoints/with lines/g; s/ with lines\( lc rgb "[^"]*" dt [0-9]*\) pt [0-9]* ps 1.1/ with lines\1/g' "$base.gp"
-            render "history_${sc}_$T" "$base.gp"
+            render "history_${sc}_$T" "$base.gp" "$ht"
         fi
     fi
 
@@ -491,7 +527,7 @@ $line
 EOF
             m=${key%%:*} rest=${key#*:} i=${rest%%:*} v=${rest#*:}
             st=$(status_of "$sc" "$T" "$key" 0.01 nan)
-            case $st in ""|"ok "*) ;; *) title="$title — stopped: ${st% *} at t = ${st#* } s" ;; esac
+            case $st in ""|"ok "*) ;; *) title="$title — stopped: $(stop_text "${st% *}" "${st#* }")" ;; esac
             add_trace "$m" "$i" "$v" 0.01 nan "$title" "$colour" "$dash"
         done
         # each peer's most accurate run that reached T (else the furthest)
@@ -520,18 +556,21 @@ EOF
             fi
             if [ "$h" != nan ]; then setting="h = $(exp10 "$h") s"; else setting="rtol = $(exp10 "$r")"; fi
             if [ "$st" = ok ]; then what="its most accurate run: $setting, error $(printf '%.2g' "$err")"
-            else what="no run reached T; furthest: $setting, $st at t = $tr s"; fi
+            else what="no run reached T; furthest: $setting, $(stop_text "$st" "$tr")"; fi
             case $title in *";") title="$title $what" ;; *) title="$title — $what" ;; esac
             add_trace "$m" "$i" "$v" "$h" "$r" "$title" "${colour:-#999999}" "$dash"
         done
         [ -n "$entries" ] && [ -n "$refdat" ] || continue
         W=$(awk -v T="$T" 'BEGIN { print (T / 2 < 10 ? T / 2 : 10) }')
+        rows=$(( n + 1 ))
+        ht=$(canvas_height "$rows")
+        bm=$(bottom_margin "$rows" "$ht")
         ref="\"$refdat\" using 1:3 with lines lc rgb \"black\" lw 3 title \"numerically exact (closed form)\""
         cat > "$base.gp" <<EOF
 set grid lw 0.5 lc rgb "#dddddd"
 set datafile missing "nan"
-set multiplot layout 2,1 title "$sc: x_3 (joint 3) against time, T = $T s, h = 10^{-2} s for braun, Baumgarte, the ODE and RK4 + projection (paper's Fig. 6)" margins 0.08,0.98,0.3,0.93 spacing 0.08,0.12
-set key at screen 0.5,0.005 center bottom vertical maxrows 5 box opaque font ",9" samplen 3
+set multiplot layout 2,1 title "$sc: x_3 (joint 3) against time, T = $T s, h = 10^{-2} s for braun, Baumgarte, the ODE and RK4 + projection (paper's Fig. 6)" margins 0.08,0.98,$bm,0.93 spacing 0.08,0.12
+set key at screen 0.5,0.005 center bottom vertical maxrows $rows box opaque font ",9" samplen 3
 set xlabel "t [s]"
 set ylabel "x_3 [m]"
 set yrange [0:4]
@@ -542,6 +581,6 @@ set xrange [$(awk -v T="$T" -v W="$W" 'BEGIN { print T - W }'):$T]
 plot $ref$entries
 unset multiplot
 EOF
-        render "fig6_${sc}_$T" "$base.gp"
+        render "fig6_${sc}_$T" "$base.gp" "$ht"
     done
 fi
