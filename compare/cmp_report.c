@@ -37,9 +37,28 @@ static const char *label_of(const cmp_row *r)
                  !strcmp(r->integ, "mj-rk4") ? "RK4" : r->integ, cmp_variant_text(r->variant));
     else if (!strcmp(r->method, "simbody"))
         snprintf(buf, sizeof buf, "Simbody 3.7 %s, %s", r->integ, cmp_variant_text(r->variant));
+    else if (!strcmp(r->method, "braun-noenergy"))
+        snprintf(buf, sizeof buf, "braun without energy correction, %s%s%s", r->integ,
+                 strcmp(r->variant, "-") ? ", " : "", cmp_variant_text(r->variant));
     else
-        snprintf(buf, sizeof buf, "%s %s, %s", r->method, r->integ, cmp_variant_text(r->variant));
+        snprintf(buf, sizeof buf, "%s, %s%s%s", r->method, r->integ,
+                 strcmp(r->variant, "-") ? ", " : "", cmp_variant_text(r->variant));
     return buf;
+}
+
+/* Free text in a table cell: '|' would end the cell. */
+static const char *cell(const char *text)
+{
+    static char buf[4][512];
+    static int k;
+    char *b = buf[k = (k + 1) % 4];
+    size_t n = 0;
+    for (const char *p = text; *p && n + 3 < sizeof buf[0]; p++) {
+        if (*p == '|') b[n++] = '\\';
+        b[n++] = *p;
+    }
+    b[n] = '\0';
+    return b;
 }
 
 /* ------------------------------------------------------------ meta */
@@ -599,9 +618,11 @@ static const char *notrun_reason(const cmp_rows *d, const char *scene, double T,
         const cmp_row *r = &d->r[k];
         if (!cmp_row_at(r, scene, T) || strcmp(r->method, m) || !r->notrun) continue;
         if (!strcmp(r->status, "NOT_BUILT")) return "not built into this harness";
+        /* detail: "at t = 0 (REASON)" */
         const char *p = strchr(r->detail, '(');
         snprintf(buf, sizeof buf, "cannot express this scene: %.150s", p ? p + 1 : r->detail);
-        buf[strcspn(buf, ")")] = '\0';
+        const size_t l = strlen(buf);
+        if (p && l && buf[l - 1] == ')') buf[l - 1] = '\0';
         return buf;
     }
     return NULL;
@@ -682,8 +703,11 @@ static void cost_table(FILE *md, const cmp_rows *d, int brief)
     fprintf(md, "| scene | method | integrator | h [s] | CPU per step [µs] |\n|---|---|---|---|---|\n");
     for (long k = 0; k < d->ncost; k++) {
         const cmp_cost *c = &d->cost[k];
-        fprintf(md, "| %s | %s | %s | %g | %.3g |\n", c->scene, method_words(c->method), c->integ,
-                c->h, 1e6 * c->per_step);
+        const char *who = !strcmp(c->method, "mujoco") ? "MuJoCo 2.2.2 mj_step (solref 2h, d = 0.9999)"
+                          : !strcmp(c->method, "projection") ? "RK4 + coordinate projection"
+                                                              : method_words(c->method);
+        fprintf(md, "| %s | %s | %s | %g | %.3g |\n", c->scene, who, c->integ, c->h,
+                1e6 * c->per_step);
     }
     fprintf(md, "\n");
 }
@@ -1061,7 +1085,8 @@ static void references_section(FILE *md, const char *dir, const cmp_rows *d)
                 cmp_csv_str(&s, k, c1), cmp_csv_str(&s, k, c2), isnan(t1) ? "" : " ",
                 isnan(t1) ? "" : cmp_fmt_e(t1, a), cmp_csv_str(&s, k, c4), isnan(t2) ? "" : " ",
                 isnan(t2) ? "" : cmp_fmt_e(t2, b), cmp_fmt_e(cmp_csv_num(&s, k, c6), c),
-                cmp_csv_str(&s, k, c8), strcmp(cmp_csv_str(&s, k, c7), "-") ? cmp_csv_str(&s, k, c7) : "");
+                cmp_csv_str(&s, k, c8),
+                strcmp(cmp_csv_str(&s, k, c7), "-") ? cell(cmp_csv_str(&s, k, c7)) : "");
     }
     fprintf(md, "\n");
     cmp_csv_free(&s);
@@ -1087,7 +1112,7 @@ static void library_failures(FILE *md, const cmp_rows *d)
         char c[48], a[24], b[24];
         fprintf(md, "| %s | %g | %s, %s | **%s** | %.6g | %s | %s | %s |\n", r->scene, r->T,
                 label_of(r), cmp_fmt_param(r, c), r->status, r->t_reached, cmp_fmt_e(r->sigma, a),
-                cmp_fmt_e(r->traj, b), strcmp(r->detail, "-") ? r->detail : "");
+                cmp_fmt_e(r->traj, b), strcmp(r->detail, "-") ? cell(r->detail) : "");
     }
     if (!n) fprintf(md, "None: every libbraun run of the study reached T.\n");
     fprintf(md, "\n");

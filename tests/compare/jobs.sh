@@ -4,8 +4,8 @@
 # same CSV files as the study in one process, byte for byte except the
 # CPU-time columns; every line of the list is a self-contained command (run
 # alone, from another directory, before its reference exists, it writes the
-# same row). A part of the quick study: the paper's two scenes with braun
-# (and its cost-per-step job), RK4 + projection and MuJoCo.
+# same row). A part of the quick study: the four-bar with braun (and its
+# cost-per-step job), RK4 + projection and MuJoCo (about 60 runs).
 # Usage: sh tests/compare/jobs.sh build/bin/braun-compare
 # Prints "ok - NAME" / "not ok - NAME" ("ok - NAME # SKIP WHY" for a check
 # that cannot run here) and a closing "N passed, M failed, K skipped".
@@ -24,7 +24,7 @@ check() { # check NAME COMMAND...
 }
 unset MAKEFLAGS MFLAGS MAKELEVEL
 case $BIN in /*) ;; *) BIN=$(pwd)/$BIN ;; esac
-scenes="slider-crank four-bar"
+scenes="four-bar"
 methods="braun projection mujoco"
 set -- --bin "$BIN" --study quick --reps 1 --scenes "$scenes" --methods "$methods"
 
