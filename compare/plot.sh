@@ -412,7 +412,7 @@ EOF
                 lim=$(ymax_of "$col" $okfiles)
                 [ -n "$lim" ] || continue
                 n=$(over "$col" "$lim" "$base".h.*.dat)
-                [ "$n" -eq 0 ] || clipnote="${clipnote:+$clipnote; }$nm axis clipped at $lim (1e3 × the largest value of the runs that reached T; $n binned values above it)"
+                [ "$n" -eq 0 ] || clipnote="${clipnote:+$clipnote, }$nm at $lim ($n binned values above)"
             done
             p1=${p1:-$blank} p2=${p2:-$blank} p3=${p3:-$blank} p4=${p4:-$blank}
             [ "$sparse" = 1 ] && p4=$(printf '%s' "$p4" | sed 's/with linespoints/with points/g')
@@ -443,7 +443,13 @@ plot $p4$(floorline "$pf")
 unset multiplot
 EOF
             if [ -n "$clipnote" ]; then
-                sed -i "s|^unset multiplot|set label 99 \"$clipnote\" at screen 0.01,0.985 font \",9\" tc rgb \"#aa0000\"\nunset multiplot|" "$base.gp"
+                clipnote="clipped at 10³ × the largest value of the runs that reached T: $clipnote"
+                # Drawn with the first panel (a label set after the last plot
+                # of a multiplot is never drawn), then taken away.
+                awk '{ print }
+                    /^set multiplot/ { print "set label 99 \"axes clipped at 10³ × the largest value of the runs that reached T: a run that stopped went above (report: which)\" at screen 0.5,0.957 center font \",10\" tc rgb \"#aa0000\"" }
+                    /^plot / && !done { print "unset label 99"; done = 1 }' \
+                    "$base.gp" > "$base.gp2" && mv "$base.gp2" "$base.gp"
                 note "history_${sc}_$T" "$clipnote"
             fi
             sed -i 's/with linespoints/with lines/g; s/ with lines\( lc rgb "[^"]*" dt [0-9]*\) pt [0-9]* ps 1.1/ with lines\1/g' "$base.gp"

@@ -102,6 +102,29 @@ else
     skip "bench's ratios are to braun:rk4:-" "no braun-bench given"
 fi
 
+# One diverged run cannot flatten a history plot: a run that stopped after
+# reaching 1e140 is clipped at 1e3 x the largest value of the runs that
+# reached T, the plot and plots.tsv say so, and its legend says it stopped.
+clip="$TMP/clip"
+mkdir -p "$clip"
+{
+    echo "$hdr"
+    echo "four-bar,20,braun,rk4,-,0.01,nan,nan,nan,nan,ok,20,0.1,0.1,1,2000,0,8000,0,0,0,0,0,0,1e-8,1e-8,1e-7,1e-7,1e-6,1e-6,1e-5,1e-5,1e-5,1e-5,401,0.5,1e-9,1e-7,0,closed-form,-"
+    echo "four-bar,20,baumgarte,rk4,-,0.01,nan,nan,10,10,BRAUN_ERR_DIVERGED,5,0.1,0.1,1,500,0,2000,0,0,0,0,0,0,1e140,1e140,1e140,1e140,1e140,1e140,1e140,1e140,1e140,1e140,101,0.5,1e-3,1e-3,0,closed-form,-"
+} > "$clip/runs.csv"
+awk -v OFS=, 'BEGIN {
+    print "scene,T,method,integrator,variant,h,rtol,t,pos,vel,energy,traj,point,obs,obs_ref"
+    for (k = 0; k <= 400; k++) { t = k * 0.05
+        print "four-bar", 20, "braun", "rk4", "-", 0.01, "nan", t, 1e-8, 1e-7, 1e-6, 1e-5, 1e-5, 2, 2 }
+    for (k = 0; k <= 100; k++) { t = k * 0.05; e = 10 ^ (1.4 * k)
+        print "four-bar", 20, "baumgarte", "rk4", "-", 0.01, "nan", t, e, e, e, e, e, 2, 2 }
+}' > "$clip/history.csv"
+sh compare/plot.sh "$clip" 2> "$TMP/clip.log"; rc=$?
+check "plot.sh draws a history with a diverged run (exit 0)" [ "$rc" -eq 0 ]
+check "... clips its axes and notes it in plots.tsv" grep -q "^history_four-bar_20	.*clipped at" "$clip/plots.tsv"
+check "... and in the plot" grep -q "clipped at" "$clip/history_four-bar_20.svg"
+check "... whose legend says the run stopped" grep -q "stopped: BRAUN" "$clip/history_four-bar_20.svg"
+
 # A malformed table is refused with its line.
 printf 'braun:rk4\tbraun, RK4\t#1f4e9c\t1\t7\tsteps\n' > "$TMP/bad.tsv"
 check "a key without a variant is refused" sh -c \
