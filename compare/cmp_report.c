@@ -703,7 +703,7 @@ static void cost_table(FILE *md, const cmp_rows *d, int brief)
     fprintf(md, "| scene | method | integrator | h [s] | CPU per step [µs] |\n|---|---|---|---|---|\n");
     for (long k = 0; k < d->ncost; k++) {
         const cmp_cost *c = &d->cost[k];
-        const char *who = !strcmp(c->method, "mujoco") ? "MuJoCo 2.2.2 mj_step (solref 2h, d = 0.9999)"
+        const char *who = !strcmp(c->method, "mujoco") ? "MuJoCo 2.2.2 mj_step (the main series' settings)"
                           : !strcmp(c->method, "projection") ? "RK4 + coordinate projection"
                                                               : method_words(c->method);
         fprintf(md, "| %s | %s | %s | %g | %.3g |\n", c->scene, who, c->integ, c->h,
@@ -944,7 +944,7 @@ static void sweep_table(FILE *md, const cmp_rows *d, const pair *pr, int np, con
         fprintf(md, "\n");
         for (int v = 0; v < nv; v++) {
             fprintf(md, "| %s |", strcmp(vars[v], "-") ? cmp_variant_text(vars[v])
-                                                      : "the main series: solref 2h, ζ = 1, d = 0.9999");
+                                                      : "the main series: solref 2h, ζ = 0.25, d = 0.9999");
             for (int j = 0; j < nh; j++) {
                 const cmp_row *r = cmp_rows_fixed(d, pr[i].scene, pr[i].T, method, integ, vars[v], hs[j]);
                 if (!r) fprintf(md, " – |");

@@ -119,10 +119,10 @@ const char *cmp_variant_text(const char *v)
     static char buf[96];
     if (!strcmp(v, "-") || !*v) return "";
     if (!strcmp(v, "defaults")) return "MuJoCo's default softness (solref 0.02 s, d = 0.9–0.95)";
-    if (!strcmp(v, "solimp=0.9")) return "impedance d = 0.9–0.95 (MuJoCo's default), solref 2h";
-    if (!strcmp(v, "solimp=0.99")) return "impedance d = 0.99–0.999, solref 2h";
-    if (!strcmp(v, "tc=0.02")) return "solref time constant 0.02 s (MuJoCo's default), d = 0.9999";
-    if (!strncmp(v, "tc=", 3)) snprintf(buf, sizeof buf, "solref time constant %s, d = 0.9999", v + 3);
+    if (!strcmp(v, "solimp=0.9")) return "impedance d = 0.9–0.95 (MuJoCo's default)";
+    if (!strcmp(v, "solimp=0.99")) return "impedance d = 0.99–0.999";
+    if (!strcmp(v, "tc=0.02")) return "solref time constant 0.02 s (MuJoCo's default)";
+    if (!strncmp(v, "tc=", 3)) snprintf(buf, sizeof buf, "solref time constant %s", v + 3);
     else if (!strncmp(v, "zeta=", 5)) snprintf(buf, sizeof buf, "damping ratio ζ = %s", v + 5);
     else if (!strncmp(v, "tol=", 4)) snprintf(buf, sizeof buf, "solver tolerance %s, 1000 iterations", v + 4);
     else if (!strcmp(v, "pgs")) return "PGS solver";

@@ -223,16 +223,25 @@ static job *tolerance(joblist *l, const char *sc, const plan *p, double T, cmp_m
 /* ------------------------------------------------------------ peers */
 /* MuJoCo's settings (docs/compare.md, "Peers"). Equalities are soft in
  * MuJoCo: a constraint row is a spring-damper of time constant solref[0]
- * and damping ratio solref[1] whose force is scaled by the impedance d of
- * solimp (the fraction of the constraint force applied; 1 - d is
+ * and damping ratio ζ = solref[1] whose force is scaled by the impedance d
+ * of solimp (the fraction of the constraint force applied; 1 - d is
  * regularisation). The pilot (the sweep below on the paper's scenes, first
- * horizon) found: d decides (0.9 -> 0.9999, MuJoCo's ceiling, cuts the
- * four-bar's error 10-50x), the stiffest time constant 2h helps, the
- * damping ratio matters little, and the solver's tolerance and iterations
- * not at all (with equalities only, Newton solves the quadratic problem in
- * one iteration). The main series use the best: 2h, ratio 1, d = 0.9999. */
+ * horizon, and by hand) found: d decides (0.9 -> 0.9999, MuJoCo's ceiling,
+ * cuts the four-bar's error 10-50x), the stiffest time constant 2h is best,
+ * the less damping the better for RK4 down to ζ = 0.25 (ζ = 0.1 blows up
+ * within 0.1 s) while semi-implicit and implicit Euler blow up at
+ * ζ = 0.25 and keep ζ = 1, and the solver's tolerance and iterations do not
+ * matter at all (with equalities only, Newton solves the quadratic problem
+ * in one iteration). The main series use the best of each integrator. */
 #define MJ_TIGHT_IMP {0.9999, 0.9999, 0.001}
 static const cmp_peer_opts MJ_BEST = {.timeconst = 0, .dampratio = 1, .solimp = MJ_TIGHT_IMP};
+static const cmp_peer_opts MJ_BEST_RK4 = {.timeconst = 0, .dampratio = 0.25, .solimp = MJ_TIGHT_IMP};
+
+/* The main series' settings of a MuJoCo integrator. */
+static const cmp_peer_opts *mj_best(int integrator)
+{
+    return integrator == CMP_MJ_RK4 ? &MJ_BEST_RK4 : &MJ_BEST;
+}
 
 typedef struct peer_setting {
     const char *label;
@@ -245,21 +254,25 @@ typedef struct peer_setting {
  * runs. A series over the step grid, with RK4. */
 static const peer_setting MJ_DEFAULTS = {"defaults", CMP_MJ_RK4, 0, {.timeconst = -1}};
 
-/* The softness sweep: one setting changed from the best at a time (RK4,
- * the study's sweep steps, first horizon, timed once). */
+/* The softness sweep: one setting changed from RK4's main series (solref
+ * 2h, ζ = 0.25, d = 0.9999) at a time (RK4, the study's sweep steps, first
+ * horizon, timed once). */
+#define Z 0.25
 static const peer_setting MJ_SWEEP[] = {
-    {"solimp=0.9", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 1}},
-    {"solimp=0.99", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 1, .solimp = {0.99, 0.999, 0.001}}},
-    {"tc=0.02", CMP_MJ_RK4, 0, {.timeconst = 0.02, .dampratio = 1, .solimp = MJ_TIGHT_IMP}},
-    {"tc=5h", CMP_MJ_RK4, 5, {.dampratio = 1, .solimp = MJ_TIGHT_IMP}},
-    {"tc=20h", CMP_MJ_RK4, 20, {.dampratio = 1, .solimp = MJ_TIGHT_IMP}},
+    {"solimp=0.9", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = Z}},
+    {"solimp=0.99", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = Z, .solimp = {0.99, 0.999, 0.001}}},
+    {"tc=0.02", CMP_MJ_RK4, 0, {.timeconst = 0.02, .dampratio = Z, .solimp = MJ_TIGHT_IMP}},
+    {"tc=5h", CMP_MJ_RK4, 5, {.dampratio = Z, .solimp = MJ_TIGHT_IMP}},
+    {"tc=20h", CMP_MJ_RK4, 20, {.dampratio = Z, .solimp = MJ_TIGHT_IMP}},
+    {"zeta=0.1", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 0.1, .solimp = MJ_TIGHT_IMP}},
     {"zeta=0.5", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 0.5, .solimp = MJ_TIGHT_IMP}},
-    {"zeta=2", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 2, .solimp = MJ_TIGHT_IMP}},
+    {"zeta=1", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 1, .solimp = MJ_TIGHT_IMP}},
     {"tol=1e-12", CMP_MJ_RK4, 0,
-     {.timeconst = 0, .dampratio = 1, .solimp = MJ_TIGHT_IMP, .tolerance = 1e-12, .iterations = 1000}},
-    {"pgs", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 1, .solimp = MJ_TIGHT_IMP, .solver = 2}},
-    {"cg", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 1, .solimp = MJ_TIGHT_IMP, .solver = 1}},
+     {.timeconst = 0, .dampratio = Z, .solimp = MJ_TIGHT_IMP, .tolerance = 1e-12, .iterations = 1000}},
+    {"pgs", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = Z, .solimp = MJ_TIGHT_IMP, .solver = 2}},
+    {"cg", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = Z, .solimp = MJ_TIGHT_IMP, .solver = 1}},
 };
+#undef Z
 
 /* Simbody: the error-controlled integrators at accuracy rtol with the
  * constraint tolerance Simbody defaults to (= accuracy), RK-Merson at a
@@ -309,8 +322,8 @@ static int plan_mujoco(joblist *l, const cmp_target *tg, const plan *p, double T
     int st = 0;
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < p->nH; i++)
-            st |= !peer_fixed(l, sc, p, T, CMP_MUJOCO, integs[k], p->H[i], "", &MJ_BEST, 0,
-                              integs[k] == CMP_MJ_RK4);
+            st |= !peer_fixed(l, sc, p, T, CMP_MUJOCO, integs[k], p->H[i], "", mj_best(integs[k]),
+                              0, integs[k] == CMP_MJ_RK4);
     /* MuJoCo's defaults on the first horizon only: one horizon shows what
      * a new user gets (the long one costs as much as the main RK4 series). */
     for (int i = 0; first && i < p->nH; i++)
@@ -901,7 +914,7 @@ static void run_cost(const job *j, const cmp_target *tg, FILE *f)
             s.method = who[w].m;
             s.integrator = who[w].integ;
             s.h = j->spec.h;
-            if (s.method == CMP_MUJOCO) s.peer = MJ_BEST;
+            if (s.method == CMP_MUJOCO) s.peer = *mj_best(s.integrator);
             const double c = step_seconds(tg, &s, COST_STEPS, why[w], sizeof why[w]);
             if (isnan(c)) best[w] = worst[w] = NAN;
             if (c < best[w]) best[w] = c;
