@@ -33,8 +33,11 @@ typedef enum cmp_ref_kind {
     CMP_REF_TRAJ,       /* braun RK4 at a small step (not for references any more:
                          * braun does not judge braun; kept for the tests) */
     CMP_REF_POINT,      /* published values at one time (Andrews at t = 0.03) */
-    CMP_REF_PROJ        /* the harness's RK4 + projection at a small step (cmp_proj.c),
+    CMP_REF_PROJ,       /* the harness's RK4 + projection at a small step (cmp_proj.c),
                          * tabulated with q, v, a and interpolated (quintic Hermite) */
+    CMP_REF_CLOSED_GSL  /* the same closed form as CMP_REF_CLOSED evaluated with GSL's
+                         * Jacobi elliptic functions (cmp_pendulum_gsl): the closed
+                         * form's own error is the difference of the two */
 } cmp_ref_kind;
 
 /* A target: a system, its initial state, optionally a minimal-coordinate
@@ -59,6 +62,8 @@ typedef struct cmp_target {
     double ref_t;                       /* CMP_REF_POINT: its time ... */
     const double *ref_q;                /* ... and q there (n entries) */
     void *scene_file;                   /* braun_scene_file *, owned */
+    struct cmp_minimal *minimal;        /* the harness's minimal equation of a scene
+                                         * (cmp_minimal.c), owned, or NULL */
     int scene_point;                    /* scene point of ε, -1 if none */
 } cmp_target;
 
@@ -66,13 +71,39 @@ typedef struct cmp_target {
  * or -1 with a message in err. */
 int cmp_target_find(const char *name, cmp_target *tg, char *err, size_t errsize);
 void cmp_target_free(cmp_target *tg);
+/* Units of the constraint rows Φ_q ("m", "m²", "m; m²", "rad", ...) and of
+ * q ("m", "m; rad") for axis labels (no commas: they go into CSV fields). */
+void cmp_target_units(const cmp_target *tg, char *phi, size_t phisize, char *q, size_t qsize);
 
 /* Kind of reference the target supports best: closed form, else rk8pd on the
  * minimal equation, else the target's own (trajectory or published point). */
 cmp_ref_kind cmp_target_ref_kind(const cmp_target *tg);
 
+/* ------------------------------------------------------------ minimal equations
+ * of scenes (cmp_minimal.c): open chains and parallelograms, written by the
+ * harness from the scene's mechanism (never libbraun's method). The state
+ * is y = [α, α'] (dim = 2k entries). */
+#define CMP_MINIMAL_MAX 8
+typedef struct cmp_minimal cmp_minimal;
+/* The minimal equation of a scene target, or NULL with the reason in why. */
+cmp_minimal *cmp_minimal_new(const cmp_target *tg, char *why, size_t whysize);
+void cmp_minimal_free(cmp_minimal *mm);
+int cmp_minimal_dim(const cmp_minimal *mm);
+const double *cmp_minimal_y0(const cmp_minimal *mm);
+const char *cmp_minimal_name(const cmp_minimal *mm);
+/* dy = f(t, y); 0, or -1 (singular mass matrix, not finite). */
+int cmp_minimal_rhs(const cmp_minimal *mm, double t, const double *y, double *dy);
+/* libbraun's q, v (n each) of minimal state y. */
+void cmp_minimal_state(cmp_minimal *mm, const double *y, double *q, double *v);
+
 /* ------------------------------------------------------------ references */
 typedef struct cmp_ref cmp_ref;
+
+/* The pendulum φ'' = −w2 sin φ from (φ0, φ0') in closed form with GSL's
+ * Jacobi elliptic functions and elliptic integrals (an implementation
+ * independent of libbraun's braun_pendulum_exact): rotation and libration,
+ * not the separatrix. 0, or -1. */
+int cmp_pendulum_gsl(double w2, double phi0, double dphi0, double t, double *phi, double *dphi);
 
 /* A reference evaluator: closed form (any t) or rk8pd (t non-decreasing
  * between calls). tol: rk8pd rtol = atol (ignored for the closed form).
@@ -501,6 +532,9 @@ typedef struct cmp_metrics {
     double energy_max, energy_final; /* |Φ_e| */
     double traj_max, traj_final;     /* ||q - q_ref||_2 (NaN without reference) */
     double point_max, point_final;   /* planar distance of the observable point */
+    /* Medians over the samples (a maximum can be one spike's, a median
+     * cannot): ||Φ_q||_2 and |Φ_e|. NaN without samples. */
+    double pos_median, energy_median;
     long samples;
 } cmp_metrics;
 

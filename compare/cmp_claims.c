@@ -167,24 +167,32 @@ static void fig_energy_ratio(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
              "max |Φ_e| over 1000 s with and without the energy correction — %s", list);
 }
 
-/* max ‖Φ_q‖ with / without the energy correction, RK4, h = 1e-2, one
- * value per paper scene and horizon (where the one without is > 0). */
+/* ‖Φ_q‖ with / without the energy correction, RK4, h = 1e-2, one value per
+ * paper scene and horizon: quantity 0 the ratio of the medians over the
+ * run (what the overlapping curves of Figs. 3a, 7a show), quantity 1 the
+ * ratio of the maxima (one spike decides it: reported, not judged). */
 static void fig_constraint_ratio(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
 {
+    char list[512] = "";
     for (int i = 0; i < NPAPER; i++)
         for (int t = 0; t < NHORIZON; t++) {
             const cmp_row *r = cmp_rows_fixed(d, PAPER[i], HORIZON[t], "braun", "rk4", "-", 1e-2);
             const cmp_row *s =
                 cmp_rows_fixed(d, PAPER[i], HORIZON[t], "braun-noenergy", "rk4", "-", 1e-2);
-            if (!r || !s || !(s->pos > 0)) continue;
+            if (!r || !s || !(s->pos_median > 0) || !(s->pos > 0)) continue;
             f->cases++;
-            /* A NaN ratio is left out (as before issue 11). */
-            if (!isnan(r->pos / s->pos)) push(f, 0, r->pos / s->pos);
+            push(f, 0, r->pos_median / s->pos_median);
+            push(f, 1, r->pos / s->pos);
+            list_add(list, sizeof list, "%s %g s: %.2g (maxima %.2g)", PAPER[i], HORIZON[t],
+                     r->pos_median / s->pos_median, r->pos / s->pos);
         }
+    const int n1 = f->n[1];
     snprintf(f->text, sizeof f->text,
-             "%s ratio of max ‖Φ_q‖ with / without energy correction over both scenes and "
-             "horizons: %.3g",
-             stat_adjective(c->test[0].stat), judged(c, f));
+             "ratio of the median ‖Φ_q‖ over the run with / without energy correction, %s over "
+             "both scenes and horizons: %.3g (%s); the ratio of the maxima, decided by the "
+             "largest spike, reaches %.3g",
+             stat_adjective(c->test[0].stat), judged(c, f), list,
+             n1 ? cmp_stat_of(f->v[1], n1, CMP_MAX) : NAN);
 }
 
 /* max ‖q − q_ref‖ of braun / of the minimal ODE, both RK4 at h = 1e-2,
@@ -400,6 +408,82 @@ static void fig_explicit_vs_implicit(const cmp_rows *d, const cmp_claim *c, cmp_
     snprintf(f->text, sizeof f->text, "%s", list);
 }
 
+/* Per paper scene and horizon: the most accurate run of `method` (any
+ * setting of its sweep) within the CPU time of braun RK4 at the paper's
+ * h = 1e-2, over braun's error there (+inf if no run of it reached T
+ * within that time). No cases if the method has no run that ran (a peer
+ * not built, or unable to express the scenes). */
+static void peer_vs_braun(const cmp_rows *d, const char *method, const char *name, cmp_fig *f)
+{
+    char a[24], b[24], e[24], prm[48], list[768] = "";
+    for (int i = 0; i < NPAPER; i++)
+        for (int t = 0; t < NHORIZON; t++) {
+            const double T = HORIZON[t];
+            const cmp_row *r = cmp_rows_fixed(d, PAPER[i], T, "braun", "rk4", "-", 1e-2);
+            int ran = 0;
+            for (long k = 0; k < d->n; k++)
+                ran |= cmp_row_at(&d->r[k], PAPER[i], T) && !strcmp(d->r[k].method, method) &&
+                       !d->r[k].notrun;
+            if (!r || !ran) continue;
+            f->cases++;
+            const cmp_row *w;
+            const double ep = cmp_rows_best_method(d, PAPER[i], T, method, r->cpu * SAME_CPU, &w);
+            const double eb = r->ok ? r->traj : INFINITY;
+            push(f, 0, w ? ep / eb : INFINITY);
+            if (w)
+                list_add(list, sizeof list, "%s %g s: braun %s in %s s, %s %s (%s, %s%s%s)",
+                         PAPER[i], T, cmp_fmt_e(eb, a), cmp_fmt_e(r->cpu, b), name,
+                         cmp_fmt_e(ep, e), w->integ, cmp_fmt_param(w, prm),
+                         strcmp(w->variant, "-") ? ", " : "", cmp_variant_text(w->variant));
+            else
+                list_add(list, sizeof list, "%s %g s: braun %s in %s s, no %s run reached T within it",
+                         PAPER[i], T, cmp_fmt_e(eb, a), cmp_fmt_e(r->cpu, b), name);
+        }
+    snprintf(f->text, sizeof f->text, "%s", list);
+}
+
+static void fig_vs_mujoco(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
+{
+    (void)c;
+    peer_vs_braun(d, "mujoco", "MuJoCo's best", f);
+}
+
+static void fig_vs_simbody(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
+{
+    (void)c;
+    peer_vs_braun(d, "simbody", "Simbody's best", f);
+    if (!f->cases)
+        snprintf(f->text, sizeof f->text, "no Simbody run ran (not built, or no scene it can "
+                                          "express): see the peers section");
+}
+
+static void fig_vs_projection(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
+{
+    (void)c;
+    peer_vs_braun(d, "projection", "RK4 + projection's best", f);
+}
+
+/* CPU time of braun's corrected RK4 step / MuJoCo's RK4 mj_step on the
+ * same mechanism at h = 1e-2, measured in one process (step_cost.csv), one
+ * value per paper scene. */
+static void fig_step_cost(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
+{
+    char list[512] = "";
+    (void)c;
+    for (int i = 0; i < NPAPER; i++) {
+        const double b = cmp_rows_cost(d, PAPER[i], "braun", "rk4"),
+                     m = cmp_rows_cost(d, PAPER[i], "mujoco", "mj-rk4");
+        if (isnan(b) && isnan(m)) continue;
+        f->cases++;
+        push(f, 0, b / m);
+        list_add(list, sizeof list, "%s: braun %.3g µs, MuJoCo %.3g µs per step (ratio %.2g)",
+                 PAPER[i], 1e6 * b, 1e6 * m, b / m);
+    }
+    snprintf(f->text, sizeof f->text, "CPU time per step at h = 1e-2, one process, best of "
+                                      "three rounds of 20000 steps — %s",
+             list);
+}
+
 /* ------------------------------------------------------------ the table */
 #define FIG(fn) .figure = fn, .figure_name = #fn
 /* The largest trajectory error that counts as accurate: 1 cm on 1 m links. */
@@ -427,8 +511,8 @@ const cmp_claim cmp_claims[] = {
         .claim = "The energy correction does not interfere with the constraint correction",
         .paper = "Figs. 7a-b overlap",
         FIG(fig_constraint_ratio),
-        .test = {{0, CMP_MAX, CMP_LE, 10}},
-        .rule = "≤ %1",
+        .test = {{0, CMP_MAX, CMP_LE, 2}},
+        .rule = "the medians within a factor %1 on every scene and horizon",
     },
     {
         .claim = "In long runs the energy-corrected DAE integration is more accurate than the "
@@ -486,6 +570,37 @@ const cmp_claim cmp_claims[] = {
         .test = {{0, CMP_MAX, CMP_LE, 1}},
         .rule = "braun at least as accurate as IDA GGL's best run within that run's CPU time, "
                 "on every paper scene and horizon",
+    },
+    {
+        .claim = "Within the CPU time of braun (RK4, h = 1e-2) MuJoCo's best setting is less "
+                 "accurate",
+        .paper = "issue 14",
+        FIG(fig_vs_mujoco),
+        .test = {{0, CMP_MIN, CMP_GE, 1}},
+        .rule = "MuJoCo's best error at least braun's on every paper scene and horizon",
+    },
+    {
+        .claim = "Within the CPU time of braun (RK4, h = 1e-2) Simbody's best setting is less "
+                 "accurate",
+        .paper = "issue 14",
+        FIG(fig_vs_simbody),
+        .test = {{0, CMP_MIN, CMP_GE, 1}},
+        .rule = "Simbody's best error at least braun's on every paper scene and horizon",
+    },
+    {
+        .claim = "Within the CPU time of braun (RK4, h = 1e-2) RK4 with coordinate projection is "
+                 "less accurate",
+        .paper = "issue 14 (Eich 1993)",
+        FIG(fig_vs_projection),
+        .test = {{0, CMP_MIN, CMP_GE, 1}},
+        .rule = "the projection's best error at least braun's on every paper scene and horizon",
+    },
+    {
+        .claim = "A corrected RK4 step costs no more than MuJoCo's RK4 step on the same mechanism",
+        .paper = "issue 14 (Secs. 1, 3)",
+        FIG(fig_step_cost),
+        .test = {{0, CMP_MAX, CMP_LE, 1}},
+        .rule = "braun / MuJoCo ≤ %1 on both paper scenes",
     },
 };
 const int cmp_nclaims = (int)(sizeof cmp_claims / sizeof cmp_claims[0]);

@@ -8,6 +8,8 @@
  *   braun-compare list
  *   braun-compare series        the series table (compare/series.tsv) as built in
  *   braun-compare claims        the claims table (compare/cmp_claims.c)
+ *   braun-compare files         the CSV files of a study, in merge order
+ *   braun-compare versions      the peers built in (MuJoCo, Simbody)
  *
  * LIST: names separated by spaces or commas. plan, --prepare and --job are
  * the steps of compare/run.sh's parallel study (docs/compare.md). */
@@ -35,6 +37,7 @@ static void usage(FILE *f)
             "       braun-compare list\n"
             "       braun-compare series\n"
             "       braun-compare claims\n"
+            "       braun-compare files | versions\n"
             "\n"
             "run     integrate every scene with every method on the study's grid of step\n"
             "        sizes and tolerances; write DIR/runs.csv, history.csv,\n"
@@ -51,9 +54,11 @@ static void usage(FILE *f)
             "        (compare/series.tsv): key|label|colour|dash|point|in\n"
             "claims  the paper's claims: claim, paper, figure, its arguments, the tests\n"
             "        and the rule as the report states it (tab-separated)\n"
+            "files   the CSV files a study writes, in merge order\n"
+            "versions  the peers built in (MuJoCo, Simbody)\n"
             "\n"
-            "LIST is separated by spaces or commas. Defaults: the paper's scenes\n"
-            "(slider-crank four-bar) and the pendulum; every method; K = 3.\n"
+            "LIST is separated by spaces or commas. Defaults: every shipped scene\n"
+            "(braun-compare list); every method; K = 3.\n"
             "See docs/compare.md.\n");
 }
 
@@ -246,6 +251,17 @@ int main(int argc, char **argv)
     if (strcmp(argv[1], "report") == 0) return cmd_report(argc - 2, argv + 2);
     if (strcmp(argv[1], "list") == 0) return cmd_list();
     if (strcmp(argv[1], "scenes") == 0) return cmd_scenes(argc - 2, argv + 2);
+    if (strcmp(argv[1], "files") == 0) {
+        /* The CSV files of a study, in merge order (compare/run.sh). */
+        printf("%s\n", cmp_study_files);
+        return 0;
+    }
+    if (strcmp(argv[1], "versions") == 0) {
+        /* The peers built in (compare/run.sh's meta.txt). */
+        const char *mj = cmp_mujoco_version(), *sb = cmp_simbody_version();
+        printf("mujoco=%s\nsimbody=%s\n", mj ? mj : "not built", sb ? sb : "not built");
+        return 0;
+    }
     if (strcmp(argv[1], "series") == 0) {
         cmp_series_print(stdout);
         return 0;

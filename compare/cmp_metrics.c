@@ -9,6 +9,22 @@
 
 #include "cmp.h"
 
+static int by_value(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The median of n values (sorted in place); NaN if none or any is NaN. */
+static double median_of(double *x, long n)
+{
+    if (n <= 0) return NAN;
+    for (long i = 0; i < n; i++)
+        if (isnan(x[i])) return NAN;
+    qsort(x, (size_t)n, sizeof *x, by_value);
+    return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+}
+
 static void track(double *mx, double x)
 {
     if (isnan(*mx)) return;
@@ -52,6 +68,9 @@ int cmp_metrics_compute(const cmp_target *tg, const cmp_traj *tr, cmp_ref *ref,
     const int power = (tg->sys.flags & BRAUN_ENERGY_INPUT) && tg->sys.power;
     double work = 0, p_prev = 0, p_prev2 = 0, t_prev = 0, dt_prev = 0;
     long nref = 0; /* samples the reference knows */
+    /* Every sample's ||Φ_q|| and |Φ_e|, for their medians. */
+    double *pos_all = malloc(2 * (size_t)(tr->count > 0 ? tr->count : 1) * sizeof(double));
+    double *en_all = pos_all ? pos_all + (tr->count > 0 ? tr->count : 1) : NULL;
 
     for (long k = 0; k < tr->count; k++) {
         const double t = tr->t[k], *q = tr->q + (size_t)k * n, *v = tr->v + (size_t)k * n;
@@ -125,6 +144,10 @@ int cmp_metrics_compute(const cmp_target *tg, const cmp_traj *tr, cmp_ref *ref,
                 }
             }
         }
+        if (pos_all) {
+            pos_all[mt->samples] = e.pos;
+            en_all[mt->samples] = e.energy;
+        }
         track(&mt->pos_max, e.pos);
         track(&mt->vel_max, e.vel);
         track(&mt->energy_max, e.energy);
@@ -135,6 +158,9 @@ int cmp_metrics_compute(const cmp_target *tg, const cmp_traj *tr, cmp_ref *ref,
         if (each) each(&e, user);
     }
     if (has_ref && nref == 0) mt->traj_max = mt->traj_final = mt->point_max = mt->point_final = NAN;
+    mt->pos_median = pos_all ? median_of(pos_all, mt->samples) : NAN;
+    mt->energy_median = pos_all ? median_of(en_all, mt->samples) : NAN;
+    free(pos_all);
     free(qr);
     free(buf);
     return rc;

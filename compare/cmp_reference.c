@@ -8,15 +8,18 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
+#include <gsl/gsl_sf_ellint.h>
+#include <gsl/gsl_sf_elljac.h>
 
 #include "cmp.h"
 #include "cmp_proj.h"
 #include "braun_reference.h"
 
-#define REF_DIM_MAX 4
+#define REF_DIM_MAX (2 * CMP_MINIMAL_MAX)
 
 struct cmp_ref {
     const cmp_target *tg;
@@ -178,14 +181,100 @@ cmp_ref *cmp_ref_new_traj(const cmp_target *tg, double T, double h, double dt_ta
     return r;
 }
 
-/* GSL calls this: the model's minimal right-hand side. */
+/* GSL calls this: the model's minimal right-hand side (a built-in model's,
+ * or the harness's equation of a scene, cmp_minimal.c). */
 static int minimal_rhs(double t, const double y[], double dydt[], void *params)
 {
     const cmp_target *tg = params;
+    if (tg->minimal)
+        return cmp_minimal_rhs(tg->minimal, t, y, dydt) ? GSL_EBADFUNC : GSL_SUCCESS;
     braun_minimal_find(tg->builtin->name)->rhs(t, y, dydt, tg->builtin->sys.user);
     for (int i = 0; i < braun_minimal_find(tg->builtin->name)->dim; i++)
         if (!isfinite(dydt[i])) return GSL_EBADFUNC;
     return GSL_SUCCESS;
+}
+
+#define PI_D 3.14159265358979323846
+
+/* am(u | m), continuous: am(u + 2K) = am(u) + π. */
+static double amplitude(double u, double m, double K, double *dn)
+{
+    const double n = floor(u / (2 * K) + 0.5), r = u - 2 * K * n;
+    double sn, cn;
+    if (gsl_sf_elljac_e(r, m, &sn, &cn, dn) != GSL_SUCCESS) return NAN;
+    return n * PI_D + atan2(sn, cn);
+}
+
+int cmp_pendulum_gsl(double w2, double phi0, double dphi0, double t, double *phi, double *dphi)
+{
+    const double w = sqrt(w2), E = 0.5 * dphi0 * dphi0 - w2 * cos(phi0);
+    gsl_sf_result K, F;
+    if (E > w2) {
+        /* Rotation: φ = 2 am(c ± w t / k | k²), k² = 2w²/(E + w²). */
+        const double m = 2 * w2 / (E + w2), k = sqrt(m), s = dphi0 >= 0 ? 1.0 : -1.0;
+        if (gsl_sf_ellint_Kcomp_e(k, GSL_PREC_DOUBLE, &K) ||
+            gsl_sf_ellint_F_e(0.5 * phi0 - PI_D * floor(0.5 * phi0 / PI_D + 0.5), k,
+                              GSL_PREC_DOUBLE, &F))
+            return -1;
+        /* am(c) = φ0/2, c in the period of φ0/2's branch. */
+        const double turns = floor(0.5 * phi0 / PI_D + 0.5);
+        const double c = F.val + 2 * K.val * turns;
+        double dn;
+        const double a = amplitude(c + s * w * t / k, m, K.val, &dn);
+        *phi = 2 * a;
+        *dphi = s * 2 * w / k * dn;
+        return isfinite(*phi) ? 0 : -1;
+    }
+    if (E < w2) {
+        /* Libration: sin(φ/2) = k sn(w t + c | k²), k² = (E + w²)/(2w²). */
+        const double m = (E + w2) / (2 * w2), k = sqrt(m);
+        if (gsl_sf_ellint_Kcomp_e(k, GSL_PREC_DOUBLE, &K)) return -1;
+        /* c from sn(c) = sin(φ0/2)/k and cn(c), which the velocity gives
+         * well conditioned even at a turning point (where asin is not):
+         * φ0' = 2kw cn dn / cos(φ0/2). The amplitude ψ = atan2(sn, cn). */
+        const double sn0 = fmax(-1.0, fmin(1.0, sin(0.5 * phi0) / k));
+        const double dn0 = sqrt(fmax(0.0, 1.0 - m * sn0 * sn0));
+        const double cn0 = dphi0 * cos(0.5 * phi0) / (2 * k * w * dn0);
+        const double psi = atan2(sn0, cn0);
+        double c;
+        if (fabs(psi) <= 0.5 * PI_D) {
+            if (gsl_sf_ellint_F_e(psi, k, GSL_PREC_DOUBLE, &F)) return -1;
+            c = F.val;
+        } else {
+            /* F(ψ) = ±2K − F(±π − ψ) beyond ±π/2. */
+            const double sg = psi > 0 ? 1.0 : -1.0;
+            if (gsl_sf_ellint_F_e(sg * PI_D - psi, k, GSL_PREC_DOUBLE, &F)) return -1;
+            c = sg * 2 * K.val - F.val;
+        }
+        double sn, cn, dn;
+        if (gsl_sf_elljac_e(w * t + c, m, &sn, &cn, &dn) != GSL_SUCCESS) return -1;
+        *phi = 2 * asin(k * sn);
+        *dphi = 2 * k * w * cn; /* ½φ'² = E + w² cos φ = 2w²k² cn² */
+        return 0;
+    }
+    return -1;
+}
+
+/* The closed form by GSL for the built-in models that have one: the
+ * four-bar's θ'' + (7g/6l) cos θ = 0 is the pendulum in φ = θ + π/2. */
+static int closed_gsl(const cmp_target *tg, double t, double *y)
+{
+    const braun_builtin *b = tg->builtin;
+    const braun_link_params *p = b->sys.user;
+    const braun_minimal *mm = braun_minimal_find(b->name);
+    double w2, shift;
+    if (!strcmp(b->name, "four-bar")) {
+        w2 = 7.0 * p->g / (6.0 * p->l);
+        shift = PI_D / 2;
+    } else if (!strcmp(b->name, "pendulum")) {
+        w2 = p->g / p->l;
+        shift = 0;
+    } else {
+        return -1;
+    }
+    if (cmp_pendulum_gsl(w2, mm->y0[0] + shift, mm->y0[1], t, &y[0], &y[1])) return -1;
+    y[0] -= shift;
+    return 0;
 }
 
 cmp_ref *cmp_ref_new(const cmp_target *tg, cmp_ref_kind kind, double tol)
@@ -200,10 +289,37 @@ cmp_ref *cmp_ref_new(const cmp_target *tg, cmp_ref_kind kind, double tol)
         }
         return r;
     }
+    if (tg->minimal && kind == CMP_REF_RK8PD) {
+        /* The harness's minimal equation of a scene. */
+        const int dim = cmp_minimal_dim(tg->minimal);
+        if (dim > REF_DIM_MAX) return NULL;
+        cmp_ref *r = calloc(1, sizeof *r);
+        if (!r) return NULL;
+        r->tg = tg;
+        r->kind = kind;
+        r->tol = tol;
+        memcpy(r->y, cmp_minimal_y0(tg->minimal), (size_t)dim * sizeof(double));
+        gsl_set_error_handler_off();
+        r->sys.function = minimal_rhs;
+        r->sys.jacobian = NULL;
+        r->sys.dimension = (size_t)dim;
+        r->sys.params = (void *)tg;
+        r->drv = gsl_odeiv2_driver_alloc_y_new(&r->sys, gsl_odeiv2_step_rk8pd, 1e-6, tol, tol);
+        if (!r->drv) {
+            free(r);
+            return NULL;
+        }
+        return r;
+    }
     if (!b || !braun_minimal_find(b->name)->to_state || braun_minimal_find(b->name)->dim > REF_DIM_MAX) return NULL;
     if (kind == CMP_REF_CLOSED && !braun_minimal_find(b->name)->exact) return NULL;
     if (kind == CMP_REF_RK8PD && !braun_minimal_find(b->name)->rhs) return NULL;
-    if (kind != CMP_REF_CLOSED && kind != CMP_REF_RK8PD) return NULL;
+    if (kind == CMP_REF_CLOSED_GSL) {
+        double y[2];
+        if (closed_gsl(tg, 0, y)) return NULL;
+    } else if (kind != CMP_REF_CLOSED && kind != CMP_REF_RK8PD) {
+        return NULL;
+    }
     cmp_ref *r = calloc(1, sizeof *r);
     if (!r) return NULL;
     r->tg = tg;
@@ -264,6 +380,8 @@ int cmp_ref_eval(cmp_ref *r, double t, double *q, double *v)
     }
     if (r->kind == CMP_REF_CLOSED) {
         if (braun_minimal_find(b->name)->exact(t, y, b->sys.user) < 0) return -1;
+    } else if (r->kind == CMP_REF_CLOSED_GSL) {
+        if (closed_gsl(r->tg, t, y)) return -1;
     } else {
         if (t < r->t) return -1;
         if (t > r->t) {
@@ -273,6 +391,10 @@ int cmp_ref_eval(cmp_ref *r, double t, double *q, double *v)
                 r->failed = 1;
                 return -1;
             }
+        }
+        if (r->tg->minimal) {
+            cmp_minimal_state(r->tg->minimal, r->y, q, v);
+            return 0;
         }
         for (int i = 0; i < braun_minimal_find(b->name)->dim; i++) y[i] = r->y[i];
     }
@@ -285,6 +407,8 @@ int cmp_ref_tabulate(cmp_ref *r, double dt, double T)
     /* Trajectory and point references are tables already. */
     if (r->kind == CMP_REF_TRAJ || r->kind == CMP_REF_POINT || r->kind == CMP_REF_PROJ)
         return 0;
+    /* Tabulated once already (the same grid: a study's group). */
+    if (r->table) return fabs(r->dt - dt) <= 1e-12 * dt && r->count == (long)floor(T / dt + 0.5) + 1 ? 0 : -1;
     const int n = r->tg->sys.n;
     const long count = (long)floor(T / dt + 0.5) + 1;
     double *table = malloc((size_t)count * 2 * (size_t)n * sizeof(double));
@@ -378,12 +502,18 @@ int cmp_ref_save(const cmp_ref *r, const char *path)
             h.count = r->count;
         }
     }
-    FILE *f = fopen(path, "wb");
+    /* Written beside and renamed: a run that loads it (another process,
+     * another host of a run list) sees the whole file or none. */
+    char tmp[1100];
+    snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid());
+    FILE *f = fopen(tmp, "wb");
     if (!f) return -1;
     const size_t cells = (size_t)h.count * (size_t)h.width;
     int bad = fwrite(&h, sizeof h, 1, f) != 1;
     if (!bad && cells) bad = fwrite(r->table, sizeof(double), cells, f) != cells;
     if (fclose(f)) bad = 1;
+    if (!bad && rename(tmp, path)) bad = 1;
+    if (bad) remove(tmp);
     return bad ? -1 : 0;
 }
 
@@ -452,6 +582,7 @@ const char *cmp_ref_kind_name(cmp_ref_kind kind)
     case CMP_REF_TRAJ: return "braun-rk4-fine";
     case CMP_REF_POINT: return "published-point";
     case CMP_REF_PROJ: return "projection-rk4-fine";
+    case CMP_REF_CLOSED_GSL: return "closed-form-gsl";
     default: return "none";
     }
 }

@@ -40,3 +40,32 @@ void cmp_run(const cmp_target *tg, const cmp_spec *spec, cmp_traj *tr, cmp_outco
         cmp_traj_clear(tr);
     }
 }
+
+/* The peers' integrators by name (cmp_peer_integrator), as runs.csv writes them. */
+static const struct {
+    int id;
+    const char *name;
+} peer_integrators[] = {
+    {CMP_MJ_EULER, "mj-euler"},       {CMP_MJ_RK4, "mj-rk4"},
+    {CMP_MJ_IMPLICIT, "mj-implicit"}, {CMP_SB_RKM, "rk-merson"},
+    {CMP_SB_RKF, "rk-feldberg"},      {CMP_SB_RK3, "rk3"},
+    {CMP_SB_CPODES, "cpodes"},        {CMP_SB_RKM_FIXED, "rk-merson-fixed"},
+};
+#define N_PEER_INTEG ((int)(sizeof peer_integrators / sizeof peer_integrators[0]))
+
+const char *cmp_integrator_name(int integrator)
+{
+    if (integrator < 0) return "bdf";
+    for (int i = 0; i < N_PEER_INTEG; i++)
+        if (peer_integrators[i].id == integrator) return peer_integrators[i].name;
+    return braun_method_name((braun_method)integrator);
+}
+
+int cmp_integrator_from_name(const char *name)
+{
+    if (strcmp(name, "bdf") == 0) return -1;
+    for (int i = 0; i < N_PEER_INTEG; i++)
+        if (strcmp(peer_integrators[i].name, name) == 0) return peer_integrators[i].id;
+    const int m = braun_method_from_name(name);
+    return m >= 0 ? m : -2;
+}

@@ -20,7 +20,7 @@ int cmp_rows_load(const char *path, cmp_csv *csv, cmp_rows *d)
               c_rhs = COL("rhs_evals"), c_jac = COL("jac_evals"), c_ls = COL("lin_solves"),
               c_pos = COL("pos_max"), c_vel = COL("vel_max"), c_en = COL("energy_max"),
               c_traj = COL("traj_max"), c_pt = COL("point_max"), c_sig = COL("sigma_end"),
-              c_det = COL("detail");
+              c_det = COL("detail"), c_pmed = COL("pos_median"), c_emed = COL("energy_median");
 #undef COL
     for (long k = 0; k < csv->nrows; k++) {
         cmp_row *r = &d->r[d->n++];
@@ -46,9 +46,93 @@ int cmp_rows_load(const char *path, cmp_csv *csv, cmp_rows *d)
         r->traj = cmp_csv_num(csv, k, c_traj);
         r->point = cmp_csv_num(csv, k, c_pt);
         r->sigma = cmp_csv_num(csv, k, c_sig);
+        r->pos_median = c_pmed >= 0 ? cmp_csv_num(csv, k, c_pmed) : NAN;
+        r->en_median = c_emed >= 0 ? cmp_csv_num(csv, k, c_emed) : NAN;
         r->ok = strcmp(r->status, "ok") == 0;
+        r->notrun = !strcmp(r->status, "NOT_BUILT") || !strcmp(r->status, "UNSUPPORTED");
     }
     return 0;
+}
+
+void cmp_rows_load_extra(const char *dir, cmp_csv *cost_csv, cmp_csv *tgt_csv, cmp_rows *d)
+{
+    char path[1024];
+    memset(cost_csv, 0, sizeof *cost_csv);
+    memset(tgt_csv, 0, sizeof *tgt_csv);
+    snprintf(path, sizeof path, "%s/step_cost.csv", dir);
+    if (cmp_csv_read(path, cost_csv) == 0 && cost_csv->nrows > 0) {
+        d->cost = calloc((size_t)cost_csv->nrows, sizeof *d->cost);
+        const int cs = cmp_csv_col(cost_csv, "scene"), cm = cmp_csv_col(cost_csv, "method"),
+                  ci = cmp_csv_col(cost_csv, "integrator"), ch = cmp_csv_col(cost_csv, "h"),
+                  cc = cmp_csv_col(cost_csv, "cpu_per_step_s");
+        for (long k = 0; d->cost && k < cost_csv->nrows; k++) {
+            cmp_cost *c = &d->cost[d->ncost++];
+            c->scene = cmp_csv_str(cost_csv, k, cs);
+            c->method = cmp_csv_str(cost_csv, k, cm);
+            c->integ = cmp_csv_str(cost_csv, k, ci);
+            c->h = cmp_csv_num(cost_csv, k, ch);
+            c->per_step = cmp_csv_num(cost_csv, k, cc);
+        }
+    }
+    snprintf(path, sizeof path, "%s/targets.csv", dir);
+    if (cmp_csv_read(path, tgt_csv) == 0 && tgt_csv->nrows > 0) {
+        d->tgt = calloc((size_t)tgt_csv->nrows, sizeof *d->tgt);
+        const int cs = cmp_csv_col(tgt_csv, "scene"), cT = cmp_csv_col(tgt_csv, "T"),
+                  cr = cmp_csv_col(tgt_csv, "reference"), cf = cmp_csv_col(tgt_csv, "floor_traj"),
+                  cp = cmp_csv_col(tgt_csv, "floor_point"), cu = cmp_csv_col(tgt_csv, "phi_unit"),
+                  cq = cmp_csv_col(tgt_csv, "q_unit"), cpt = cmp_csv_col(tgt_csv, "point"),
+                  cmin = cmp_csv_col(tgt_csv, "minimal");
+        for (long k = 0; d->tgt && k < tgt_csv->nrows; k++) {
+            cmp_tgt *t = &d->tgt[d->ntgt++];
+            t->scene = cmp_csv_str(tgt_csv, k, cs);
+            t->T = cmp_csv_num(tgt_csv, k, cT);
+            t->reference = cmp_csv_str(tgt_csv, k, cr);
+            t->floor_traj = cmp_csv_num(tgt_csv, k, cf);
+            t->floor_point = cmp_csv_num(tgt_csv, k, cp);
+            t->phi_unit = cmp_csv_str(tgt_csv, k, cu);
+            t->q_unit = cmp_csv_str(tgt_csv, k, cq);
+            t->point = cmp_csv_str(tgt_csv, k, cpt);
+            t->minimal = cmp_csv_str(tgt_csv, k, cmin);
+        }
+    }
+}
+
+const cmp_tgt *cmp_rows_target(const cmp_rows *d, const char *scene, double T)
+{
+    for (long k = 0; k < d->ntgt; k++)
+        if (!strcmp(d->tgt[k].scene, scene) && d->tgt[k].T == T) return &d->tgt[k];
+    return NULL;
+}
+
+double cmp_rows_cost(const cmp_rows *d, const char *scene, const char *method, const char *integ)
+{
+    for (long k = 0; k < d->ncost; k++) {
+        const cmp_cost *c = &d->cost[k];
+        if (!strcmp(c->scene, scene) && !strcmp(c->method, method) && !strcmp(c->integ, integ))
+            return c->per_step;
+    }
+    return NAN;
+}
+
+const char *cmp_variant_text(const char *v)
+{
+    static char buf[96];
+    if (!strcmp(v, "-") || !*v) return "";
+    if (!strcmp(v, "defaults")) return "MuJoCo's default softness (solref 0.02 s, d = 0.9–0.95)";
+    if (!strcmp(v, "solimp=0.9")) return "impedance d = 0.9–0.95 (MuJoCo's default)";
+    if (!strcmp(v, "solimp=0.99")) return "impedance d = 0.99–0.999";
+    if (!strcmp(v, "tc=0.02")) return "solref time constant 0.02 s (MuJoCo's default)";
+    if (!strncmp(v, "tc=", 3)) snprintf(buf, sizeof buf, "solref time constant %s", v + 3);
+    else if (!strncmp(v, "zeta=", 5)) snprintf(buf, sizeof buf, "damping ratio ζ = %s", v + 5);
+    else if (!strncmp(v, "tol=", 4)) snprintf(buf, sizeof buf, "solver tolerance %s, 1000 iterations", v + 4);
+    else if (!strcmp(v, "pgs")) return "PGS solver";
+    else if (!strcmp(v, "cg")) return "CG solver";
+    else if (!strncmp(v, "ctol=", 5)) snprintf(buf, sizeof buf, "constraint tolerance %s", v + 5);
+    else if (!strncmp(v, "ab=", 3)) snprintf(buf, sizeof buf, "α = β = %s", v + 3);
+    else if (!strcmp(v, "tuned")) return "tuned";
+    else if (!strcmp(v, "energy")) return "and the energy level";
+    else snprintf(buf, sizeof buf, "%s", v);
+    return buf;
 }
 
 int cmp_row_at(const cmp_row *r, const char *scene, double T)

@@ -9,18 +9,49 @@
 typedef struct cmp_row {
     const char *scene, *method, *integ, *variant, *status, *detail;
     double T, h, rtol, alpha, t_reached, cpu, pos, vel, en, traj, point, sigma;
+    double pos_median, en_median;      /* medians over the run's samples */
     long steps, rhs, jac, lsolves;
     int ok;                            /* status "ok" */
+    int notrun;                        /* a peer not built, or unable to express the scene */
 } cmp_row;
+
+/* One row of step_cost.csv: CPU seconds per step of a method on a scene. */
+typedef struct cmp_cost {
+    const char *scene, *method, *integ;
+    double h, per_step;                /* NaN: failed (detail says why) */
+} cmp_cost;
+
+/* One row of targets.csv: a scene's reference, its own error and units. */
+typedef struct cmp_tgt {
+    const char *scene, *reference, *phi_unit, *q_unit, *point, *minimal;
+    double T, floor_traj, floor_point;
+} cmp_tgt;
 
 typedef struct cmp_rows {
     cmp_row *r;
     long n;
+    /* Optional (cmp_rows_load_extra): step_cost.csv and targets.csv. */
+    cmp_cost *cost;
+    long ncost;
+    cmp_tgt *tgt;
+    long ntgt;
 } cmp_rows;
 
 /* Read a runs.csv into csv (which owns the strings) and d (free d->r and
  * csv). 0, or -1 if the file cannot be read. */
 int cmp_rows_load(const char *path, cmp_csv *csv, cmp_rows *d);
+
+/* step_cost.csv and targets.csv of dir into d (their strings owned by
+ * cost_csv, tgt_csv; free d->cost, d->tgt). Missing files leave them
+ * empty. */
+void cmp_rows_load_extra(const char *dir, cmp_csv *cost_csv, cmp_csv *tgt_csv, cmp_rows *d);
+/* The targets.csv row of scene, T, or NULL. */
+const cmp_tgt *cmp_rows_target(const cmp_rows *d, const char *scene, double T);
+/* CPU seconds per step of method:integ on scene (step_cost.csv), NaN if none. */
+double cmp_rows_cost(const cmp_rows *d, const char *scene, const char *method, const char *integ);
+/* A variant of a sweep in words ("damping ratio ζ = 0.5", "constraint
+ * tolerance 1e-10"); "" for "-". */
+const char *cmp_variant_text(const char *variant);
 
 /* 1 if the run is of this scene and horizon. */
 int cmp_row_at(const cmp_row *r, const char *scene, double T);

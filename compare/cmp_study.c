@@ -9,6 +9,7 @@
 #include "cmp.h"
 #include "braun_reference.h"
 #include "cmp_study.h"
+#include "cmp_peer.h"
 
 /* ------------------------------------------------------------ plans */
 static const double H_FULL[] = {1e-3, 2e-3, 5e-3, 1e-2, 2e-2, 5e-2};
@@ -117,26 +118,43 @@ const char *cmp_default_scenes(const char *study)
     if (strcmp(study, "quick") == 0) return "slider-crank four-bar";
 #ifdef CMP_HAVE_SCENES
     /* The paper's two, then the hard cases at a reduced grid: redundant
-     * rows, nonholonomic, rheonomic, energy input, chaotic, stiff. */
+     * rows, nonholonomic, rheonomic, energy input, chaotic (two), stiff,
+     * spatial: every shipped scene (the peers run on those they can express). */
     return "slider-crank four-bar pendulum parallelogram-redundant sleigh driven-crank "
-           "damped-motor double-pendulum andrews";
+           "damped-motor double-pendulum chain-5 andrews spatial-arm";
 #else
     return "slider-crank four-bar pendulum";
 #endif
 }
 
 /* ------------------------------------------------------------ jobs */
+/* What a step of the plan does. */
+typedef enum job_kind {
+    JOB_RUN = 0,       /* integrate and measure: a row of runs.csv or ida_probe.csv */
+    JOB_UNSUPPORTED,   /* a peer that cannot express the scene: its row says why */
+    JOB_COST           /* cost per step of braun, projection and MuJoCo (step_cost.csv) */
+} job_kind;
+
 typedef struct job {
     char scene[64];
     cmp_spec spec;
+    job_kind kind;
     int history;   /* write its error history */
     int probe;     /* IDA probe (ida_probe.csv), timed once */
+    int once;      /* timed once: a sweep cell, or a run long enough (REPS_MAX_STEPS) */
+    int trace;     /* write the observable point at every sample of its trace windows */
+    char why[128]; /* JOB_UNSUPPORTED: the peer's reason */
 } job;
 
 typedef struct joblist {
     job *v;
     int n, cap;
 } joblist;
+
+/* Fixed-step runs of at least this many steps are timed once: their CPU
+ * time (seconds) is long against the clock's noise, and repeating them
+ * would cost more than the rest of the study. */
+#define REPS_MAX_STEPS 2e5
 
 static job *add(joblist *l, const char *scene, const plan *p, double T, cmp_method_id m,
                 int integrator)
@@ -166,23 +184,31 @@ static int is_hist_h(double h)
            fabs(h - 5e-2 * hist_scale) < 1e-12 * hist_scale;
 }
 
-static int fixed_step(joblist *l, const char *sc, const plan *p, double T, cmp_method_id m,
-                      int integ, double h, double alpha, const char *variant, int hist)
+/* The paper's Fig. 6: traces of the observable point (x3 of the four-bar)
+ * of the paper's step h = 1e-2 and of every peer run, on the paper's scenes
+ * at the study's longest horizon (trace.csv). */
+static double trace_T = 0;
+static int trace_scene = 0;
+
+static job *fixed_step(joblist *l, const char *sc, const plan *p, double T, cmp_method_id m,
+                       int integ, double h, double alpha, const char *variant, int hist)
 {
     job *j = add(l, sc, p, T, m, integ);
-    if (!j) return -1;
+    if (!j) return NULL;
     j->spec.h = h;
     j->spec.alpha = j->spec.beta = alpha;
     snprintf(j->spec.variant, sizeof j->spec.variant, "%s", variant);
     j->history = hist && is_hist_h(h);
-    return 0;
+    j->once = T / h >= REPS_MAX_STEPS;
+    j->trace = trace_scene && T == trace_T && hist && fabs(h - 1e-2) < 1e-12;
+    return j;
 }
 
-static int tolerance(joblist *l, const char *sc, const plan *p, double T, cmp_method_id m,
-                     int integ, double rtol, const ida_setting *s, int probe)
+static job *tolerance(joblist *l, const char *sc, const plan *p, double T, cmp_method_id m,
+                      int integ, double rtol, const ida_setting *s, int probe)
 {
     job *j = add(l, sc, p, T, m, integ);
-    if (!j) return -1;
+    if (!j) return NULL;
     j->spec.rtol = j->spec.atol = rtol;
     if (s) {
         j->spec.ida = s->o;
@@ -191,6 +217,161 @@ static int tolerance(joblist *l, const char *sc, const plan *p, double T, cmp_me
     j->probe = probe;
     /* Histories of the adaptive methods at one tolerance (Figs. 3, 7). */
     j->history = !probe && fabs(rtol - 1e-8) < 1e-20;
+    return j;
+}
+
+/* ------------------------------------------------------------ peers */
+/* MuJoCo's settings (docs/compare.md, "Peers"). Equalities are soft in
+ * MuJoCo: a constraint row is a spring-damper of time constant solref[0]
+ * and damping ratio ζ = solref[1] whose force is scaled by the impedance d
+ * of solimp (the fraction of the constraint force applied; 1 - d is
+ * regularisation). The pilot (the sweep below on the paper's scenes, first
+ * horizon, and by hand) found: d decides (0.9 -> 0.9999, MuJoCo's ceiling,
+ * cuts the four-bar's error 10-50x), the stiffest time constant 2h is best,
+ * the less damping the better for RK4 down to ζ = 0.25 (ζ = 0.1 blows up
+ * within 0.1 s) while semi-implicit and implicit Euler blow up at
+ * ζ = 0.25 and keep ζ = 1, and the solver's tolerance and iterations do not
+ * matter at all (with equalities only, Newton solves the quadratic problem
+ * in one iteration). The main series use the best of each integrator. */
+#define MJ_TIGHT_IMP {0.9999, 0.9999, 0.001}
+static const cmp_peer_opts MJ_BEST = {.timeconst = 0, .dampratio = 1, .solimp = MJ_TIGHT_IMP};
+static const cmp_peer_opts MJ_BEST_RK4 = {.timeconst = 0, .dampratio = 0.25, .solimp = MJ_TIGHT_IMP};
+
+/* The main series' settings of a MuJoCo integrator. */
+static const cmp_peer_opts *mj_best(int integrator)
+{
+    return integrator == CMP_MJ_RK4 ? &MJ_BEST_RK4 : &MJ_BEST;
+}
+
+typedef struct peer_setting {
+    const char *label;
+    int integrator;
+    double tc_h;        /* > 0: solref's time constant is tc_h·h */
+    cmp_peer_opts o;
+} peer_setting;
+
+/* MuJoCo's own defaults (solref 0.02 1, solimp 0.9 0.95): what a new user
+ * runs. A series over the step grid, with RK4. */
+static const peer_setting MJ_DEFAULTS = {"defaults", CMP_MJ_RK4, 0, {.timeconst = -1}};
+
+/* The softness sweep: one setting changed from RK4's main series (solref
+ * 2h, ζ = 0.25, d = 0.9999) at a time (RK4, the study's sweep steps, first
+ * horizon, timed once). */
+#define Z 0.25
+static const peer_setting MJ_SWEEP[] = {
+    {"solimp=0.9", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = Z}},
+    {"solimp=0.99", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = Z, .solimp = {0.99, 0.999, 0.001}}},
+    {"tc=0.02", CMP_MJ_RK4, 0, {.timeconst = 0.02, .dampratio = Z, .solimp = MJ_TIGHT_IMP}},
+    {"tc=5h", CMP_MJ_RK4, 5, {.dampratio = Z, .solimp = MJ_TIGHT_IMP}},
+    {"tc=20h", CMP_MJ_RK4, 20, {.dampratio = Z, .solimp = MJ_TIGHT_IMP}},
+    {"zeta=0.1", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 0.1, .solimp = MJ_TIGHT_IMP}},
+    {"zeta=0.5", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 0.5, .solimp = MJ_TIGHT_IMP}},
+    {"zeta=1", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = 1, .solimp = MJ_TIGHT_IMP}},
+    {"tol=1e-12", CMP_MJ_RK4, 0,
+     {.timeconst = 0, .dampratio = Z, .solimp = MJ_TIGHT_IMP, .tolerance = 1e-12, .iterations = 1000}},
+    {"pgs", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = Z, .solimp = MJ_TIGHT_IMP, .solver = 2}},
+    {"cg", CMP_MJ_RK4, 0, {.timeconst = 0, .dampratio = Z, .solimp = MJ_TIGHT_IMP, .solver = 1}},
+};
+#undef Z
+
+/* Simbody: the error-controlled integrators at accuracy rtol with the
+ * constraint tolerance Simbody defaults to (= accuracy), RK-Merson at a
+ * fixed step (accuracy SB_FIXED_ACCURACY: the constraint tolerance of its
+ * projections), and a constraint-tolerance sweep on the first horizon. */
+static const int SB_ADAPTIVE[] = {CMP_SB_RKM, CMP_SB_RKF, CMP_SB_RK3, CMP_SB_CPODES};
+#define SB_FIXED_ACCURACY 1e-8
+static const double SB_SWEEP_RTOL[] = {1e-4, 1e-6, 1e-8};
+static const double SB_SWEEP_CTOL[] = {1e-10, 1e-3};
+
+/* A fixed-step run of a peer with settings o (tc_h > 0: solref's time
+ * constant tc_h·h). Every peer run of the longest horizon is traced: the
+ * report picks each peer's best for Fig. 6 afterwards. */
+static job *peer_fixed(joblist *l, const char *sc, const plan *p, double T, cmp_method_id m,
+                       int integ, double h, const char *variant, const cmp_peer_opts *o,
+                       double tc_h, int hist)
+{
+    job *j = fixed_step(l, sc, p, T, m, integ, h, 0, variant, hist);
+    if (!j) return NULL;
+    j->spec.peer = *o;
+    if (tc_h > 0) j->spec.peer.timeconst = tc_h * h;
+    j->trace = trace_scene && T == trace_T;
+    return j;
+}
+
+/* One row that says why a peer does not run on a scene. */
+static int unsupported(joblist *l, const char *sc, const plan *p, double T, cmp_method_id m,
+                       const char *why)
+{
+    job *j = add(l, sc, p, T, m, m == CMP_MUJOCO ? CMP_MJ_RK4 : CMP_SB_RKM);
+    if (!j) return -1;
+    j->kind = JOB_UNSUPPORTED;
+    snprintf(j->why, sizeof j->why, "%.127s", why);
+    return 0;
+}
+
+static int plan_mujoco(joblist *l, const cmp_target *tg, const plan *p, double T, int first)
+{
+    const char *sc = tg->name;
+    char why[256];
+    if (!cmp_mujoco_version()) {
+        /* Not built: one run, which records NOT_BUILT. */
+        return add(l, sc, p, T, CMP_MUJOCO, CMP_MJ_RK4) ? 0 : -1;
+    }
+    if (!cmp_mujoco_supports(tg, why, sizeof why)) return unsupported(l, sc, p, T, CMP_MUJOCO, why);
+    static const int integs[] = {CMP_MJ_EULER, CMP_MJ_RK4, CMP_MJ_IMPLICIT};
+    int st = 0;
+    for (int k = 0; k < 3; k++)
+        for (int i = 0; i < p->nH; i++)
+            st |= !peer_fixed(l, sc, p, T, CMP_MUJOCO, integs[k], p->H[i], "", mj_best(integs[k]),
+                              0, integs[k] == CMP_MJ_RK4);
+    /* MuJoCo's defaults on the first horizon only: one horizon shows what
+     * a new user gets (the long one costs as much as the main RK4 series). */
+    for (int i = 0; first && i < p->nH; i++)
+        st |= !peer_fixed(l, sc, p, T, CMP_MUJOCO, MJ_DEFAULTS.integrator, p->H[i],
+                          MJ_DEFAULTS.label, &MJ_DEFAULTS.o, 0, 0);
+    if (first)
+        for (int i = 0; i < p->nHS; i++)
+            for (int s = 0; s < N_OF(MJ_SWEEP); s++) {
+                job *j = peer_fixed(l, sc, p, T, CMP_MUJOCO, MJ_SWEEP[s].integrator, p->HS[i],
+                                    MJ_SWEEP[s].label, &MJ_SWEEP[s].o, MJ_SWEEP[s].tc_h, 0);
+                if (!j) return -1;
+                j->once = 1;
+            }
+    return st ? -1 : 0;
+}
+
+static int plan_simbody(joblist *l, const cmp_target *tg, const plan *p, double T, int first)
+{
+    const char *sc = tg->name;
+    char why[256];
+    if (!cmp_simbody_version()) return add(l, sc, p, T, CMP_SIMBODY, CMP_SB_RKM) ? 0 : -1;
+    if (!cmp_simbody_supports(tg, why, sizeof why))
+        return unsupported(l, sc, p, T, CMP_SIMBODY, why);
+    for (int k = 0; k < N_OF(SB_ADAPTIVE); k++)
+        for (int i = 0; i < p->nRD; i++) {
+            job *j = tolerance(l, sc, p, T, CMP_SIMBODY, SB_ADAPTIVE[k], p->RD[i], NULL, 0);
+            if (!j) return -1;
+            j->trace = trace_scene && T == trace_T;
+        }
+    for (int i = 0; i < p->nH; i++) {
+        cmp_peer_opts o;
+        memset(&o, 0, sizeof o);
+        job *j = peer_fixed(l, sc, p, T, CMP_SIMBODY, CMP_SB_RKM_FIXED, p->H[i], "", &o, 0, 1);
+        if (!j) return -1;
+        j->spec.rtol = j->spec.atol = SB_FIXED_ACCURACY;
+    }
+    if (first)
+        for (int c = 0; c < N_OF(SB_SWEEP_CTOL); c++)
+            for (int k = 0; k < N_OF(SB_ADAPTIVE); k++)
+                for (int i = 0; i < N_OF(SB_SWEEP_RTOL); i++) {
+                    job *j = tolerance(l, sc, p, T, CMP_SIMBODY, SB_ADAPTIVE[k], SB_SWEEP_RTOL[i],
+                                       NULL, 0);
+                    if (!j) return -1;
+                    j->spec.peer.ctol = SB_SWEEP_CTOL[c];
+                    snprintf(j->spec.variant, sizeof j->spec.variant, "ctol=%g", SB_SWEEP_CTOL[c]);
+                    j->once = 1;
+                    j->history = 0;
+                }
     return 0;
 }
 
@@ -200,6 +381,8 @@ static int plan_jobs(joblist *l, const char *study, const cmp_target *tg, const 
     plan p;
     const char *sc = tg->name;
     make_plan(study, tg, &p);
+    trace_T = p.T[p.nT - 1];
+    trace_scene = tg->paper;
     int st = 0;
     for (int it = 0; it < p.nT; it++) {
         const double T = p.T[it];
@@ -210,40 +393,59 @@ static int plan_jobs(joblist *l, const char *study, const cmp_target *tg, const 
                 static const int integs[] = {BRAUN_EULER, BRAUN_HEUN, BRAUN_RK4};
                 for (int k = 0; k < 3; k++)
                     for (int i = 0; i < p.nH; i++)
-                        st |= fixed_step(l, sc, &p, T, m, integs[k], p.H[i], 0, "",
-                                         integs[k] == BRAUN_RK4);
+                        st |= !fixed_step(l, sc, &p, T, m, integs[k], p.H[i], 0, "",
+                                          integs[k] == BRAUN_RK4);
                 for (int i = 0; i < p.nRD; i++)
-                    st |= tolerance(l, sc, &p, T, m, BRAUN_DOPRI5, p.RD[i], NULL, 0);
+                    st |= !tolerance(l, sc, &p, T, m, BRAUN_DOPRI5, p.RD[i], NULL, 0);
             } else if (m == CMP_BAUMGARTE) {
                 char v[32];
                 for (int i = 0; i < p.nH; i++)
-                    st |= fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.H[i], BG_C_DEFAULT / p.H[i],
-                                     "", 1);
+                    st |= !fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.H[i], BG_C_DEFAULT / p.H[i],
+                                      "", 1);
                 for (int i = 0; i < p.nHS; i++) {
                     for (int k = 0; k < N_OF(BG_SWEEP); k++) {
                         snprintf(v, sizeof v, "ab=%g/h", BG_SWEEP[k]);
-                        st |= fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.HS[i],
-                                         BG_SWEEP[k] / p.HS[i], v, 0);
+                        st |= !fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.HS[i],
+                                          BG_SWEEP[k] / p.HS[i], v, 0);
                     }
                     snprintf(v, sizeof v, "ab=%g", BG_FIXED);
-                    st |= fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.HS[i], BG_FIXED, v, 0);
+                    st |= !fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.HS[i], BG_FIXED, v, 0);
                 }
             } else if (m == CMP_ODE_RK4) {
                 if (!tg->builtin || !braun_minimal_find(tg->builtin->name)->rhs) continue;
                 for (int i = 0; i < p.nH; i++)
-                    st |= fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.H[i], 0, "", 1);
+                    st |= !fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.H[i], 0, "", 1);
             } else if (m == CMP_IDA_GGL) {
                 for (int s = 0; s < N_OF(IDA_MAIN); s++)
                     for (int i = 0; i < p.nRI; i++)
-                        st |= tolerance(l, sc, &p, T, m, -1, p.RI[i], &IDA_MAIN[s], 0);
+                        st |= !tolerance(l, sc, &p, T, m, -1, p.RI[i], &IDA_MAIN[s], 0);
                 if (with_probe && it == 0)
                     for (int s = 0; s < N_OF(IDA_PROBE); s++)
                         for (int i = 0; i < p.nRP; i++)
-                            st |= tolerance(l, sc, &p, T, m, -1, p.RP[i], &IDA_PROBE[s], 1);
+                            st |= !tolerance(l, sc, &p, T, m, -1, p.RP[i], &IDA_PROBE[s], 1);
             } else if (m == CMP_IDA_INDEX1) {
                 for (int i = 0; i < p.nRI; i++)
-                    st |= tolerance(l, sc, &p, T, m, -1, p.RI[i], &IDA_MAIN[0], 0);
+                    st |= !tolerance(l, sc, &p, T, m, -1, p.RI[i], &IDA_MAIN[0], 0);
+            } else if (m == CMP_PROJECTION) {
+                /* Positions and velocities, and onto the energy level too. */
+                static const char *const variants[] = {"", "energy"};
+                for (int k = 0; k < 2; k++)
+                    for (int i = 0; i < p.nH; i++)
+                        st |= !fixed_step(l, sc, &p, T, m, BRAUN_RK4, p.H[i], 0, variants[k], 1);
+            } else if (m == CMP_MUJOCO) {
+                st |= plan_mujoco(l, tg, &p, T, it == 0 && with_probe);
+            } else if (m == CMP_SIMBODY) {
+                st |= plan_simbody(l, tg, &p, T, it == 0 && with_probe);
             }
+        }
+        /* The cost of one step of braun, projection and MuJoCo on the
+         * same mechanism, in one process (the paper's scenes, first
+         * horizon; claim (b) of issue 14). */
+        if (tg->paper && it == 0 && methods[CMP_BRAUN]) {
+            job *j = add(l, sc, &p, T, CMP_BRAUN, BRAUN_RK4);
+            if (!j) return -1;
+            j->kind = JOB_COST;
+            j->spec.h = 1e-2;
         }
     }
     return st;
@@ -255,11 +457,11 @@ const char *const cmp_runs_header =
     "cpu_s,cpu_s_max,reps,steps,rejected,rhs_evals,jac_evals,lin_setups,lin_solves,"
     "err_test_fails,conv_fails,restarts,pos_max,pos_final,vel_max,vel_final,"
     "energy_max,energy_final,traj_max,traj_final,point_max,point_final,samples,"
-    "sigma_end,reference,detail";
+    "sigma_end,pos_median,energy_median,iterations,reference,detail";
 
 static const char *integrator_name(int integ)
 {
-    return integ < 0 ? "bdf" : braun_method_name((braun_method)integ);
+    return cmp_integrator_name(integ);
 }
 
 /* A free-text field without the CSV separator or quotes. */
@@ -290,10 +492,10 @@ static void write_row(FILE *f, const job *j, const cmp_outcome *o, double cpu_mi
     fprintf(f, "%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,", k->steps, k->rejected, k->rhs_evals,
             k->jac_evals, k->lin_setups, k->lin_solves, k->err_fails, k->conv_fails,
             k->restarts);
-    fprintf(f, "%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%ld,%.3e,%s,%s\n",
+    fprintf(f, "%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%ld,%.3e,%.6e,%.6e,%ld,%s,%s\n",
             mt->pos_max, mt->pos_final, mt->vel_max, mt->vel_final, mt->energy_max,
             mt->energy_final, mt->traj_max, mt->traj_final, mt->point_max, mt->point_final,
-            mt->samples, sigma, ref, detail);
+            mt->samples, sigma, mt->pos_median, mt->energy_median, k->iterations, ref, detail);
 }
 
 /* ------------------------------------------------------------ histories */
@@ -397,7 +599,7 @@ const char *const cmp_singular_header =
 #define REF_TOL 1e-13
 
 const char *const cmp_references_header =
-    "scene,T,reference,tol,compared_with,tol2,max_q_diff,final_q_diff,max_point_diff,note";
+    "scene,T,reference,tol,compared_with,tol2,max_q_diff,final_q_diff,max_point_diff,role,note";
 
 /* The projection reference's step and table spacing for a target (scaled
  * like its grid): RK4's error at 2.5e-5 is far below any method's at the
@@ -412,11 +614,20 @@ static double proj_ref_dt(const cmp_target *tg)
     return 1e-3 * tg->h_scale;
 }
 
+/* What a reference knows of its own error: the difference to the same
+ * reference at a looser setting (twice the step, ten times the tolerance;
+ * role "own-error" in references.csv). It bounds the error of the looser
+ * one, hence of the reference: below it a method's error measures the
+ * reference (the report's "floor"). NaN: no estimate. */
+typedef struct ref_info {
+    double floor_traj, floor_point;
+} ref_info;
+
 /* A reference against another, as a metric: max over the grid of
  * ||q_a - q_b||, written as one row of references.csv. */
 static void reference_pair(FILE *f, const cmp_target *tg, double T, double dt,
                            const char *name_a, double tol_a, cmp_ref *a, const char *name_b,
-                           double tol_b, cmp_ref *b)
+                           double tol_b, cmp_ref *b, const char *role, ref_info *ri)
 {
     const int n = tg->sys.n;
     double *w = malloc(4 * (size_t)n * sizeof(double));
@@ -443,38 +654,106 @@ static void reference_pair(FILE *f, const cmp_target *tg, double T, double dt,
         }
     }
     if (!ok) mx = last = pmx = NAN;
-    fprintf(f, "%s,%g,%s,%g,%s,%g,%.6e,%.6e,%.6e,-\n", tg->name, T, name_a, tol_a, name_b,
-            tol_b, mx, last, tg->has_point ? pmx : NAN);
+    fprintf(f, "%s,%g,%s,%g,%s,%g,%.6e,%.6e,%.6e,%s,-\n", tg->name, T, name_a, tol_a, name_b,
+            tol_b, mx, last, tg->has_point ? pmx : NAN, role);
     fflush(f);
+    if (ri && !strcmp(role, "own-error")) {
+        ri->floor_traj = mx;
+        ri->floor_point = tg->has_point ? pmx : NAN;
+    }
     free(w);
 }
 
 /* Compare two references on the grid: the estimate of the reference's own
  * error printed in the report. */
 static void reference_check(FILE *f, const cmp_target *tg, double T, double dt,
-                            cmp_ref_kind ka, double ta, cmp_ref_kind kb, double tb)
+                            cmp_ref_kind ka, double ta, cmp_ref_kind kb, double tb,
+                            const char *role, ref_info *ri)
 {
     cmp_ref *a = cmp_ref_new(tg, ka, ta), *b = cmp_ref_new(tg, kb, tb);
     reference_pair(f, tg, T, dt, cmp_ref_kind_name(ka), ka == CMP_REF_RK8PD ? ta : NAN, a,
-                   cmp_ref_kind_name(kb), kb == CMP_REF_RK8PD ? tb : NAN, b);
+                   cmp_ref_kind_name(kb), kb == CMP_REF_RK8PD ? tb : NAN, b, role, ri);
     cmp_ref_free(a);
     cmp_ref_free(b);
 }
 
+/* The reference against an independent method up to where that got: IDA
+ * GGL at rtol 1e-10 on the harness's own DAE, or RK4 + projection at the
+ * projection reference's step (both on the system's callbacks). */
+static void cross_check(FILE *rf, const cmp_target *tg, double T, double dt, cmp_ref *ref,
+                        const char *name, double tol, cmp_method_id method)
+{
+    cmp_spec sp;
+    memset(&sp, 0, sizeof sp);
+    sp.method = method;
+    sp.T = T;
+    sp.dt_out = dt;
+    if (method == CMP_IDA_GGL) {
+        sp.integrator = -1;
+        sp.rtol = sp.atol = 1e-10;
+        sp.ida.alg_atol = ALG_OFF;
+    } else {
+        sp.integrator = BRAUN_RK4;
+        sp.h = proj_ref_h(tg);
+    }
+    cmp_traj tr;
+    cmp_outcome out;
+    if (!ref || cmp_traj_init(&tr, tg->sys.n, 1024)) return;
+    cmp_run(tg, &sp, &tr, &out);
+    cmp_metrics mt;
+    cmp_ref_restart(ref);
+    cmp_metrics_compute(tg, &tr, ref, &mt, NULL, NULL);
+    cmp_ref_restart(ref);
+    char detail[sizeof out.detail];
+    snprintf(detail, sizeof detail, "%s", out.detail);
+    clean(detail);
+    fprintf(rf, "%s,%g,%s,%g,%s,%g,%.6e,%.6e,%.6e,cross-check,%s up to t = %g%s%s\n", tg->name,
+            T, name, tol, method == CMP_IDA_GGL ? "ida-ggl" : "projection-rk4-fine",
+            method == CMP_IDA_GGL ? 1e-10 : sp.h, mt.traj_max, mt.traj_final, mt.point_max,
+            out.status ? out.status_name : "ok", out.t_reached, out.status ? " " : "",
+            out.status ? detail : "");
+    cmp_traj_free(&tr);
+}
+
+static void cross_ida(FILE *rf, const cmp_target *tg, double T, double dt, cmp_ref *ref,
+                      const char *name, double tol)
+{
+    cross_check(rf, tg, T, dt, ref, name, tol, CMP_IDA_GGL);
+}
 
 /* The reference of a target and horizon, and the estimates of its own error
- * (docs/compare.md, "References"). */
+ * (docs/compare.md, "References"): rows of references.csv, the floor in ri. */
 static cmp_ref *make_reference(const cmp_target *tg, cmp_ref_kind kind, double T, double dt,
-                               FILE *rf)
+                               FILE *rf, ref_info *ri)
 {
     cmp_ref *ref = NULL;
+    ri->floor_traj = ri->floor_point = NAN;
     if (kind == CMP_REF_CLOSED || kind == CMP_REF_RK8PD) {
         ref = cmp_ref_new(tg, kind, REF_TOL);
         if (kind == CMP_REF_CLOSED) {
-            reference_check(rf, tg, T, dt, CMP_REF_CLOSED, 0, CMP_REF_RK8PD, 1e-12);
-            reference_check(rf, tg, T, dt, CMP_REF_CLOSED, 0, CMP_REF_RK8PD, 1e-13);
+            /* The closed form is exact up to its evaluation: its own error is
+             * the difference to a second evaluation (GSL's Jacobi elliptic
+             * functions); rk8pd at 1e-12 and 1e-13 converge to it. */
+            reference_check(rf, tg, T, dt, CMP_REF_CLOSED, 0, CMP_REF_CLOSED_GSL, 0, "own-error",
+                            ri);
+            reference_check(rf, tg, T, dt, CMP_REF_CLOSED, 0, CMP_REF_RK8PD, 1e-12, "cross-check",
+                            NULL);
+            reference_check(rf, tg, T, dt, CMP_REF_CLOSED, 0, CMP_REF_RK8PD, 1e-13, "cross-check",
+                            NULL);
+            reference_check(rf, tg, T, dt, CMP_REF_RK8PD, 1e-12, CMP_REF_RK8PD, 1e-13,
+                            "cross-check", NULL);
+        } else {
+            reference_check(rf, tg, T, dt, CMP_REF_RK8PD, 1e-12, CMP_REF_RK8PD, 1e-13,
+                            "own-error", ri);
         }
-        reference_check(rf, tg, T, dt, CMP_REF_RK8PD, 1e-12, CMP_REF_RK8PD, 1e-13);
+        if (tg->minimal && ref) {
+            /* The harness's own minimal equation against the scene's DAE:
+             * IDA and RK4 + projection, both on the system's callbacks. */
+            if (cmp_ref_tabulate(ref, dt, T) == 0) {
+                cross_ida(rf, tg, T, dt, ref, "gsl-rk8pd", REF_TOL);
+                cross_check(rf, tg, T, dt, ref, "gsl-rk8pd", REF_TOL, CMP_PROJECTION);
+            }
+        }
     } else if (kind == CMP_REF_PROJ) {
         /* RK4 + projection at a small step, checked against the same at
          * twice the step (the estimate of its own error) and against IDA
@@ -485,27 +764,9 @@ static cmp_ref *make_reference(const cmp_target *tg, cmp_ref_kind kind, double T
         if (!ref) fprintf(stderr, "braun-compare: %s: projection reference failed: %s\n", tg->name, why);
         cmp_ref *twice = cmp_ref_new_proj(tg, T, 2 * h, proj_ref_dt(tg), NULL, 0);
         reference_pair(rf, tg, T, dt, "projection-rk4-fine", h, ref, "projection-rk4-fine",
-                       2 * h, twice);
+                       2 * h, twice, "own-error", ri);
         cmp_ref_free(twice);
-        cmp_spec sp;
-        memset(&sp, 0, sizeof sp);
-        sp.method = CMP_IDA_GGL;
-        sp.integrator = -1;
-        sp.rtol = sp.atol = 1e-10;
-        sp.ida.alg_atol = ALG_OFF;
-        sp.T = T;
-        sp.dt_out = dt;
-        cmp_traj tr;
-        cmp_outcome out;
-        if (ref && cmp_traj_init(&tr, tg->sys.n, 1024) == 0) {
-            cmp_run(tg, &sp, &tr, &out);
-            cmp_metrics mt;
-            cmp_metrics_compute(tg, &tr, ref, &mt, NULL, NULL);
-            fprintf(rf, "%s,%g,projection-rk4-fine,%g,ida-ggl,1e-10,%.6e,%.6e,%.6e,%s up to t = %g\n",
-                    tg->name, T, h, mt.traj_max, mt.traj_final, mt.point_max,
-                    out.status ? out.status_name : "ok", out.t_reached);
-            cmp_traj_free(&tr);
-        }
+        cross_ida(rf, tg, T, dt, ref, "projection-rk4-fine", h);
         /* A published value (Andrews' test set) checks the reference too. */
         if (ref && tg->ref_q) {
             const int n = tg->sys.n;
@@ -514,14 +775,15 @@ static cmp_ref *make_reference(const cmp_target *tg, cmp_ref_kind kind, double T
                 double d2 = 0;
                 for (int i = 0; i < n; i++) d2 += (w[i] - tg->ref_q[i]) * (w[i] - tg->ref_q[i]);
                 fprintf(rf, "%s,%g,projection-rk4-fine,%g,published-point,nan,%.6e,%.6e,nan,"
-                            "Test Set for IVP Solvers: PSIDE at rtol = atol = 1e-14; at t = %g only\n",
+                            "cross-check,Test Set for IVP Solvers: PSIDE at rtol = atol = 1e-14; "
+                            "at t = %g only\n",
                         tg->name, T, h, sqrt(d2), sqrt(d2), tg->ref_t);
             }
             free(w);
         }
     } else if (kind == CMP_REF_POINT) {
         ref = cmp_ref_new(tg, kind, 0);
-        fprintf(rf, "%s,%g,published-point,nan,none,nan,nan,nan,nan,"
+        fprintf(rf, "%s,%g,published-point,nan,none,nan,nan,nan,nan,-,"
                     "Test Set for IVP Solvers: PSIDE at rtol = atol = 1e-14\n", tg->name, T);
     }
     if (ref && cmp_ref_tabulate(ref, dt, T)) {
@@ -532,6 +794,139 @@ static cmp_ref *make_reference(const cmp_target *tg, cmp_ref_kind kind, double T
     if (!ref && kind != CMP_REF_NONE)
         fprintf(stderr, "braun-compare: %s: no reference for T = %g\n", tg->name, T);
     return ref;
+}
+
+/* ------------------------------------------------------------ targets.csv */
+const char *const cmp_targets_header =
+    "scene,T,reference,floor_traj,floor_point,phi_unit,q_unit,point,minimal";
+
+/* One row per scene and horizon: the reference and its floor, the units
+ * of the constraint rows and of q, the ε point (plots and report). */
+static void target_row(FILE *f, const cmp_target *tg, double T, const cmp_ref *ref,
+                       const ref_info *ri)
+{
+    char phi[32], q[32], point[96], minimal[160];
+    cmp_target_units(tg, phi, sizeof phi, q, sizeof q);
+    snprintf(point, sizeof point, "%s", tg->has_point ? tg->point_name : "-");
+    snprintf(minimal, sizeof minimal, "%s", tg->minimal ? cmp_minimal_name(tg->minimal) : "-");
+    clean(point);
+    clean(minimal);
+    fprintf(f, "%s,%g,%s,%.6e,%.6e,%s,%s,%s,%s\n", tg->name, T,
+            ref ? cmp_ref_kind_name(cmp_target_ref_kind(tg)) : "none", ri->floor_traj,
+            ri->floor_point, phi, q, point, minimal);
+}
+
+/* ------------------------------------------------------------ traces */
+/* Fig. 6: the observable point's x at every sample of the windows
+ * [0, W] and [T - W, T] of a traced run, W = TRACE_WINDOW. */
+#define TRACE_WINDOW 10.0
+
+const char *const cmp_trace_header = "scene,T,method,integrator,variant,h,rtol,t,obs,obs_ref";
+
+typedef struct trace_ctx {
+    FILE *f;
+    const job *j;
+} trace_ctx;
+
+static void trace_sample(const cmp_sample_err *e, void *user)
+{
+    const trace_ctx *c = user;
+    const cmp_spec *s = &c->j->spec;
+    const double W = fmin(TRACE_WINDOW, 0.5 * s->T);
+    if (e->t > W && e->t < s->T - W) return;
+    fprintf(c->f, "%s,%g,%s,%s,%s,", c->j->scene, s->T, cmp_method_name(s->method),
+            cmp_integrator_name(s->integrator), s->variant[0] ? s->variant : "-");
+    if (s->h > 0) fprintf(c->f, "%g,nan,", s->h);
+    else fprintf(c->f, "nan,%g,", s->rtol);
+    fprintf(c->f, "%.6f,%.10g,%.10g\n", e->t, e->obs, e->obs_ref);
+}
+
+/* Histories and traces from one pass over the samples. */
+typedef struct sample_fanout {
+    hist *h;
+    trace_ctx *tc;
+} sample_fanout;
+
+static void fanout(const cmp_sample_err *e, void *user)
+{
+    sample_fanout *f = user;
+    if (f->h) hist_sample(e, f->h);
+    if (f->tc) trace_sample(e, f->tc);
+}
+
+/* ------------------------------------------------------------ step cost */
+const char *const cmp_step_cost_header =
+    "scene,method,integrator,variant,h,steps,reps,cpu_per_step_s,cpu_per_step_max_s,detail";
+
+/* CPU seconds per step of a fixed-step run of `steps` steps (braun,
+ * projection: their integrators without output; MuJoCo: mj_step). */
+static double step_seconds(const cmp_target *tg, const cmp_spec *sp, long steps, char *why,
+                           size_t whysize)
+{
+    if (sp->method == CMP_MUJOCO) return cmp_mujoco_step_cost(tg, sp, steps, why, whysize);
+    cmp_spec s = *sp;
+    s.T = (double)steps * sp->h;
+    s.dt_out = s.T;
+    cmp_traj tr;
+    cmp_outcome out;
+    if (cmp_traj_init(&tr, tg->sys.n, 4)) return NAN;
+    const double c0 = cmp_cpu_seconds();
+    cmp_run(tg, &s, &tr, &out);
+    const double c = cmp_cpu_seconds() - c0;
+    cmp_traj_free(&tr);
+    if (out.status) {
+        snprintf(why, whysize, "%.40s %.100s", out.status_name, out.detail);
+        return NAN;
+    }
+    return (out.cpu_self > 0 ? out.cpu_self : c) / (double)steps;
+}
+
+/* The cost job: braun's corrected RK4 step (all corrections, and without
+ * energy), the projection's and MuJoCo's mj_step (its three integrators at
+ * the main settings) on the same mechanism at the same h, in this process,
+ * interleaved (COST_REPS rounds, best of them). */
+#define COST_STEPS 20000
+#define COST_REPS 3
+
+static void run_cost(const job *j, const cmp_target *tg, FILE *f)
+{
+    static const struct {
+        cmp_method_id m;
+        int integ;
+        const char *variant;
+    } who[] = {
+        {CMP_BRAUN, BRAUN_RK4, ""},          {CMP_BRAUN_NOENERGY, BRAUN_RK4, ""},
+        {CMP_PROJECTION, BRAUN_RK4, ""},     {CMP_MUJOCO, CMP_MJ_RK4, ""},
+        {CMP_MUJOCO, CMP_MJ_EULER, ""},      {CMP_MUJOCO, CMP_MJ_IMPLICIT, ""},
+    };
+    enum { NW = sizeof who / sizeof who[0] };
+    double best[NW], worst[NW];
+    char why[NW][160];
+    for (int w = 0; w < NW; w++) {
+        best[w] = INFINITY;
+        worst[w] = 0;
+        why[w][0] = '\0';
+    }
+    for (int r = 0; r < COST_REPS; r++)
+        for (int w = 0; w < NW; w++) {
+            cmp_spec s;
+            memset(&s, 0, sizeof s);
+            s.method = who[w].m;
+            s.integrator = who[w].integ;
+            s.h = j->spec.h;
+            if (s.method == CMP_MUJOCO) s.peer = *mj_best(s.integrator);
+            const double c = step_seconds(tg, &s, COST_STEPS, why[w], sizeof why[w]);
+            if (isnan(c)) best[w] = worst[w] = NAN;
+            if (c < best[w]) best[w] = c;
+            if (c > worst[w]) worst[w] = c;
+        }
+    for (int w = 0; w < NW; w++) {
+        clean(why[w]);
+        fprintf(f, "%s,%s,%s,%s,%g,%d,%d,%.6e,%.6e,%s\n", tg->name, cmp_method_name(who[w].m),
+                cmp_integrator_name(who[w].integ), who[w].variant[0] ? who[w].variant : "-",
+                j->spec.h, COST_STEPS, COST_REPS, best[w], worst[w], why[w][0] ? why[w] : "-");
+    }
+    fflush(f);
 }
 
 /* ------------------------------------------------------------ driver */
@@ -554,14 +949,20 @@ static void fmt_elapsed(double s, char *buf, size_t size)
     snprintf(buf, size, "%dm%02ds", m, (int)(s - 60 * m));
 }
 
-/* The five CSV files of a study, or of one step of it. */
+/* The CSV files of a study, or of one step of it (compare/run.sh merges
+ * the steps' files in this order: cmp_study_files). */
 typedef struct outs {
-    FILE *runs, *hist, *refs, *probe, *sing;
+    FILE *runs, *hist, *refs, *probe, *sing, *targets, *trace, *cost;
 } outs;
+
+const char *const cmp_study_files =
+    "runs.csv history.csv references.csv ida_probe.csv singular.csv targets.csv trace.csv "
+    "step_cost.csv";
 
 static int outs_close(outs *f)
 {
-    FILE **all[] = {&f->runs, &f->hist, &f->refs, &f->probe, &f->sing};
+    FILE **all[] = {&f->runs, &f->hist, &f->refs, &f->probe, &f->sing, &f->targets, &f->trace,
+                    &f->cost};
     int rc = 0;
     for (int k = 0; k < N_OF(all); k++) {
         if (*all[k] && fclose(*all[k])) rc = -1;
@@ -582,7 +983,11 @@ static int outs_open(outs *f, const char *dir)
     f->refs = open_csv(dir, "references.csv", cmp_references_header);
     f->probe = open_csv(dir, "ida_probe.csv", cmp_runs_header);
     f->sing = open_csv(dir, "singular.csv", cmp_singular_header);
-    if (f->runs && f->hist && f->refs && f->probe && f->sing) return 0;
+    f->targets = open_csv(dir, "targets.csv", cmp_targets_header);
+    f->trace = open_csv(dir, "trace.csv", cmp_trace_header);
+    f->cost = open_csv(dir, "step_cost.csv", cmp_step_cost_header);
+    if (f->runs && f->hist && f->refs && f->probe && f->sing && f->targets && f->trace && f->cost)
+        return 0;
     outs_close(f);
     return -1;
 }
@@ -656,16 +1061,28 @@ static double elapsed(const cmp_study_opts *o, double wall0)
 }
 
 /* Singular configurations (first horizon of a scene) and the reference of
- * group g with the estimates of its own error. NULL: no reference. */
+ * group g with the estimates of its own error (references.csv) and its
+ * targets.csv row; f NULL: the reference only (a run without its saved
+ * reference, compare/run.sh --list). NULL: no reference. */
 static cmp_ref *prepare_group(const study *st, int g, const cmp_target *tg, const outs *f)
 {
-    if (new_scene(st, g)) {
+    FILE *refs = f ? f->refs : tmpfile();
+    if (f && new_scene(st, g)) {
         cmp_singularity_scan(tg, f->sing);
         fflush(f->sing);
     }
     const job *j = &st->l.v[st->first[g]];
-    cmp_ref *ref = make_reference(tg, cmp_target_ref_kind(tg), j->spec.T, j->spec.dt_out, f->refs);
-    fflush(f->refs);
+    ref_info ri;
+    cmp_ref *ref = refs ? make_reference(tg, cmp_target_ref_kind(tg), j->spec.T, j->spec.dt_out,
+                                         refs, &ri)
+                        : NULL;
+    if (f) {
+        fflush(f->refs);
+        target_row(f->targets, tg, j->spec.T, ref, &ri);
+        fflush(f->targets);
+    } else if (refs) {
+        fclose(refs);
+    }
     return ref;
 }
 
@@ -679,17 +1096,39 @@ static void run_one(const cmp_study_opts *o, const study *st, int i, const cmp_t
     const job *j = &st->l.v[i];
     const cmp_ref_kind kind = cmp_target_ref_kind(tg);
     cmp_ref_restart(ref);
+    char el[32], what[64], line[512];
+
+    if (j->kind == JOB_COST) {
+        const double c0 = cmp_cpu_seconds();
+        run_cost(j, tg, f->cost);
+        fmt_elapsed(elapsed(o, wall0), el, sizeof el);
+        snprintf(line, sizeof line, "[%4d/%d %s] %s: cost per step at h = %g, cpu=%.3gs\n", i + 1,
+                 st->l.n, el, tg->name, j->spec.h, cmp_cpu_seconds() - c0);
+        fputs(line, stderr);
+        return;
+    }
 
     /* Best of k: every repetition samples the same grid (a copy of the
-     * state per output time, no metric work), so each is a full run. */
-    const int reps = j->probe ? 1 : (o->reps < 1 ? 1 : o->reps);
+     * state per output time, no metric work), so each is a full run. A
+     * peer's runner times its integration itself (cpu_self), without
+     * building its model and converting its samples. */
+    const int reps = j->kind == JOB_UNSUPPORTED ? 0
+                     : j->probe || j->once      ? 1
+                                                : (o->reps < 1 ? 1 : o->reps);
     cmp_outcome out, first;
     memset(&first, 0, sizeof first);
-    double cmin = INFINITY, cmax = 0;
+    memset(&out, 0, sizeof out);
+    double cmin = reps ? INFINITY : 0, cmax = 0;
+    if (j->kind == JOB_UNSUPPORTED) {
+        cmp_traj_clear(tr);
+        out.status = -1;
+        snprintf(out.status_name, sizeof out.status_name, "UNSUPPORTED");
+        snprintf(out.detail, sizeof out.detail, "at t = 0 (%s)", j->why);
+    }
     for (int r = 0; r < reps; r++) {
         const double c0 = cmp_cpu_seconds();
         cmp_run(tg, &j->spec, tr, &out);
-        const double c = cmp_cpu_seconds() - c0;
+        const double c = out.cpu_self > 0 ? out.cpu_self : cmp_cpu_seconds() - c0;
         if (c < cmin) cmin = c;
         if (c > cmax) cmax = c;
         if (r == 0) first = out;
@@ -699,9 +1138,10 @@ static void run_one(const cmp_study_opts *o, const study *st, int i, const cmp_t
     }
     cmp_metrics mt;
     hist h;
-    int want_hist = j->history && hist_init(&h, j->spec.T, j->spec.dt_out) == 0;
-    cmp_metrics_compute(tg, tr, ref, &mt, want_hist ? hist_sample : NULL,
-                        want_hist ? &h : NULL);
+    trace_ctx tc = {f->trace, j};
+    const int want_hist = j->history && hist_init(&h, j->spec.T, j->spec.dt_out) == 0;
+    sample_fanout fo = {want_hist ? &h : NULL, j->trace && tg->has_point ? &tc : NULL};
+    cmp_metrics_compute(tg, tr, ref, &mt, fo.h || fo.tc ? fanout : NULL, &fo);
     /* How close to a singular configuration the run ended: at the
      * reference's state at t_reached, else at the run's last sample. */
     double sigma = NAN;
@@ -724,9 +1164,9 @@ static void run_one(const cmp_study_opts *o, const study *st, int i, const cmp_t
     }
     fflush(j->probe ? f->probe : f->runs);
     fflush(f->hist);
+    fflush(f->trace);
 
     /* One write per line: lines of parallel processes do not mix. */
-    char el[32], what[64], line[512];
     fmt_elapsed(elapsed(o, wall0), el, sizeof el);
     if (j->spec.h > 0) snprintf(what, sizeof what, "h=%g", j->spec.h);
     else snprintf(what, sizeof what, "rtol=%g", j->spec.rtol);
@@ -829,7 +1269,10 @@ static int run_prepare(const cmp_study_opts *o, const study *st)
     return rc;
 }
 
-/* Step "job K": run K against its group's saved reference. */
+/* Step "job K": run K against its group's saved reference. A missing
+ * file (a run list's line run before or without its "prepare" line,
+ * compare/run.sh --list) is computed here instead: the same reference, bit
+ * for bit, at the cost of computing it. */
 static int run_job(const cmp_study_opts *o, const study *st)
 {
     const int i = o->job;
@@ -845,8 +1288,18 @@ static int run_job(const cmp_study_opts *o, const study *st)
     cmp_ref *ref = NULL;
     cmp_traj tr;
     outs f;
-    int rc = 1;
-    if (cmp_ref_load(&tg, path, &ref)) {
+    int rc = 1, loaded = -1;
+    FILE *probe = fopen(path, "rb");
+    if (probe) {
+        fclose(probe);
+        loaded = cmp_ref_load(&tg, path, &ref);
+    } else {
+        fprintf(stderr, "braun-compare: %s not there: computing the reference of run %d\n", path,
+                i);
+        ref = st->l.v[i].kind == JOB_COST ? NULL : prepare_group(st, st->group[i], &tg, NULL);
+        loaded = 0;
+    }
+    if (loaded) {
         fprintf(stderr, "braun-compare: cannot read the reference %s\n", path);
     } else if (cmp_traj_init(&tr, tg.sys.n, 4096) == 0) {
         if (outs_open(&f, o->out_dir) == 0) {

@@ -40,6 +40,11 @@ extern const char *const cmp_runs_header;
 extern const char *const cmp_history_header;
 extern const char *const cmp_references_header;
 extern const char *const cmp_singular_header;
+extern const char *const cmp_targets_header;
+extern const char *const cmp_trace_header;
+extern const char *const cmp_step_cost_header;
+/* The CSV files a study writes, space separated, in merge order. */
+extern const char *const cmp_study_files;
 
 /* Write dir/report.md from the CSV files in dir. 0 or 1. */
 int cmp_report_write(const char *dir);

@@ -3,20 +3,34 @@
 # Usage: sh compare/run.sh --bin build/bin/braun-compare --out DIR
 #            [--study default|quick] [--jobs J] [--reps K]
 #            [--scenes "a b"] [--methods "x y"] [--no-report]
+#        sh compare/run.sh --list [the options above]
+#        sh compare/run.sh --merge --bin ... --out DIR [--no-report]
 # Every run of the study (a row of runs.csv or ida_probe.csv) is a process of
 # its own, after a "prepare" process per scene and horizon that computes the
-# reference once (and the rows of references.csv, singular.csv). A generated
-# makefile in DIR/.parts schedules them: under `make -jN` (a recipe marked
-# `+`) through make's jobserver, N at a time; otherwise J at a time (J = 1:
-# one after the other). The parts are merged in the order of the serial run,
-# so the CSV files do not depend on J except in their CPU-time columns.
-# --no-report: the CSV files and meta.txt only (no plots, no report.md).
+# reference once (and the rows of references.csv, targets.csv, singular.csv).
+# A generated makefile in DIR/.parts schedules them: under `make -jN` (a
+# recipe marked `+`) through make's jobserver, N at a time; otherwise J at a
+# time (J = 1: one after the other). The parts are merged in the order of the
+# serial run, so the CSV files do not depend on J except in their CPU-time
+# columns. --no-report: the CSV files and meta.txt only (no plots, no
+# report.md).
+#
+# --list writes the study's steps as self-contained commands, one per line
+# (absolute paths, every option spelled out, no environment needed):
+# DIR/jobs/prepare.txt (one per scene and horizon: the references) and
+# DIR/jobs/runs.txt (one per run), for GNU parallel (also across hosts over
+# ssh) or a Slurm array; each writes its part under DIR/.parts. Run the
+# prepare lines first (a run line whose reference is not there computes it
+# itself: same numbers, more work). --merge then assembles the same CSV files
+# and report from the parts.
 set -eu
 bin=build/bin/braun-compare out=results/compare study=default jobs=2 reps=3
-scenes="" methods="" report=1
+scenes="" methods="" report=1 mode=run
 while [ $# -gt 0 ]; do
     case $1 in
     --no-report) report=0; shift; continue ;;
+    --list) mode=list; shift; continue ;;
+    --merge) mode=merge; shift; continue ;;
     --bin|--out|--study|--jobs|--reps|--scenes|--methods)
         [ $# -ge 2 ] || { echo "compare/run.sh: '$1' needs a value" >&2; exit 2; } ;;
     esac
@@ -34,6 +48,64 @@ while [ $# -gt 0 ]; do
 done
 here=$(dirname "$0")
 case $jobs in ''|*[!0-9]*|0) echo "compare/run.sh: --jobs must be a positive integer" >&2; exit 2 ;; esac
+parts="$out/.parts"
+
+# q WORD: WORD quoted for sh.
+q() { printf "'%s'" "$(printf '%s' "$1" | sed "s/'/'\\\\''/g")"; }
+
+# merge: the parts in plan order, one header each file, then meta.txt, the
+# plots and the report.
+merge() {
+    [ -s "$parts/plan.txt" ] || { echo "compare: no plan in $parts (run --list first)" >&2; exit 1; }
+    # shellcheck disable=SC1091
+    . "$parts/settings"
+    awk '$1 == "prepare" { print "p" $2 } $1 == "job" { print "j" $2 }' "$parts/plan.txt" \
+        > "$parts/order.txt"
+    for f in $("$bin" files); do
+        (cd "$parts" && awk -v name="$f" 'BEGIN {
+            while ((getline part < "order.txt") > 0) {
+                path = part "/" name; k = 0
+                while ((r = (getline line < path)) > 0) if (k++ > 0 || n == 0) print line
+                if (r < 0 || k == 0) { print "compare: cannot read " path > "/dev/stderr"; exit 1 }
+                close(path); n++
+            }
+        }') > "$out/$f.tmp"
+        mv "$out/$f.tmp" "$out/$f"
+    done
+    rm -rf "$parts"
+    end=$(date +%s)
+    {
+        echo "study=$study"
+        echo "scenes=$scenes"
+        echo "methods=${methods:-all}"
+        echo "jobs=$jobs"
+        echo "reps=$reps"
+        echo "run_wall_s=$((end - start))"
+        echo "date=$(date -u +%Y-%m-%dT%H:%M:%SZ)"
+        echo "cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -n 1)"
+        echo "cores=$(nproc 2>/dev/null || echo '?')"
+        echo "sundials=$(dpkg-query -W -f='${Version}' libsundials-dev 2>/dev/null || echo '?')"
+        echo "gsl=$(dpkg-query -W -f='${Version}' libgsl-dev 2>/dev/null || echo '?')"
+        "$bin" versions
+    } > "$out/meta.txt"
+    if [ $report -eq 0 ]; then
+        echo "compare: runs done in $((end - start)) s; CSV files in $out" >&2
+        exit 0
+    fi
+    echo "compare: runs done in $((end - start)) s; plotting" >&2
+    sh "$here/plot.sh" "$out"
+    end2=$(date +%s)
+    echo "plot_wall_s=$((end2 - end))" >> "$out/meta.txt"
+    "$bin" report --dir "$out"
+    end3=$(date +%s)
+    echo "total_wall_s=$((end3 - start))" >> "$out/meta.txt"
+    echo "compare: wrote $out/report.md ($((end3 - start)) s in all)" >&2
+}
+
+if [ $mode = merge ]; then
+    merge
+    exit 0
+fi
 
 # What the calling make said: -n (print, run nothing), -jN, and whether its
 # jobserver reached us (its descriptors are open only in a `+` recipe).
@@ -58,7 +130,9 @@ if [ $dry -eq 1 ]; then
     echo "compare/run.sh: make -n: the study is not run" >&2
     exit 0
 fi
-if [ $jobserver -eq 1 ]; then
+if [ $mode = list ]; then
+    how="exported"
+elif [ $jobserver -eq 1 ]; then
     how="make's jobserver (-j$makej)"
     jobs=$makej
 else
@@ -73,7 +147,6 @@ fi
 [ -n "$scenes" ] || scenes=$("$bin" scenes "$study")
 start=$(date +%s)
 mkdir -p "$out"
-parts="$out/.parts"
 rm -rf "$parts"
 mkdir -p "$parts"
 "$bin" plan --study "$study" --scenes "$scenes" --methods "$methods" --reps "$reps" \
@@ -84,6 +157,39 @@ if [ "$nrun" -eq 0 ]; then
     echo "compare: no runs for scenes '$scenes' and methods '${methods:-all}'" >&2
     exit 1
 fi
+# What merge needs to write meta.txt (read back by --merge).
+{
+    echo "study=$(q "$study")"
+    echo "scenes=$(q "$scenes")"
+    echo "methods=$(q "$methods")"
+    echo "reps=$(q "$reps")"
+    if [ $mode = list ]; then echo "jobs=exported"; else echo "jobs=$(q "$jobs")"; fi
+    echo "start=$start"
+} > "$parts/settings"
+
+if [ $mode = list ]; then
+    # Self-contained commands: the repository (scene files are found
+    # relative to it), the binary and the directories as absolute paths.
+    repo=$(pwd)
+    case $bin in /*) abin=$bin ;; *) abin=$repo/$bin ;; esac
+    case $parts in /*) aparts=$parts ;; *) aparts=$repo/$parts ;; esac
+    run="mkdir -p $(q "$aparts") && cd $(q "$repo") && $(q "$abin") run --study $(q "$study")"
+    run="$run --scenes $(q "$scenes")"
+    run="$run --methods $(q "$methods") --reps $(q "$reps") --refdir $(q "$aparts")"
+    mkdir -p "$out/jobs"
+    awk -v run="$run" -v parts="$aparts" '$1 == "prepare" {
+        printf "%s --prepare %s --out \x27%s/p%s\x27 2>> \x27%s/p%s.log\x27\n", run, $2, parts, $2, parts, $2 }' \
+        "$parts/plan.txt" > "$out/jobs/prepare.txt"
+    awk -v run="$run" -v parts="$aparts" '$1 == "job" {
+        printf "%s --job %s --out \x27%s/j%s\x27 2>> \x27%s/j%s.log\x27\n", run, $2, parts, $2, parts, $2 }' \
+        "$parts/plan.txt" > "$out/jobs/runs.txt"
+    echo "compare: study '$study', scenes: $scenes; methods: ${methods:-all}:" \
+         "$nprep references in $out/jobs/prepare.txt, $nrun runs in $out/jobs/runs.txt." >&2
+    echo "Run the first list, then the second (e.g. parallel < $out/jobs/prepare.txt &&" \
+         "parallel < $out/jobs/runs.txt), then: sh compare/run.sh --merge --bin $bin --out $out" >&2
+    exit 0
+fi
+
 echo "compare: study '$study', scenes: $scenes; methods: ${methods:-all}; $nrun runs" \
      "($nprep references), one process each, $how; best of $reps" >&2
 
@@ -115,45 +221,4 @@ if [ $rc -ne 0 ]; then
     echo "compare: a step failed (make exit $rc); its output is above, the parts in $parts" >&2
     exit 1
 fi
-
-# Merge the parts in plan order: one header, then every part's rows.
-awk '$1 == "prepare" { print "p" $2 } $1 == "job" { print "j" $2 }' "$parts/plan.txt" \
-    > "$parts/order.txt"
-for f in runs.csv history.csv references.csv ida_probe.csv singular.csv; do
-    (cd "$parts" && awk -v name="$f" 'BEGIN {
-        while ((getline part < "order.txt") > 0) {
-            path = part "/" name; k = 0
-            while ((r = (getline line < path)) > 0) if (k++ > 0 || n == 0) print line
-            if (r < 0 || k == 0) { print "compare: cannot read " path > "/dev/stderr"; exit 1 }
-            close(path); n++
-        }
-    }') > "$out/$f.tmp"
-    mv "$out/$f.tmp" "$out/$f"
-done
-rm -rf "$parts"
-end=$(date +%s)
-{
-    echo "study=$study"
-    echo "scenes=$scenes"
-    echo "methods=${methods:-all}"
-    echo "jobs=$jobs"
-    echo "reps=$reps"
-    echo "run_wall_s=$((end - start))"
-    echo "date=$(date -u +%Y-%m-%dT%H:%M:%SZ)"
-    echo "cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -n 1)"
-    echo "cores=$(nproc 2>/dev/null || echo '?')"
-    echo "sundials=$(dpkg-query -W -f='${Version}' libsundials-dev 2>/dev/null || echo '?')"
-    echo "gsl=$(dpkg-query -W -f='${Version}' libgsl-dev 2>/dev/null || echo '?')"
-} > "$out/meta.txt"
-if [ $report -eq 0 ]; then
-    echo "compare: runs done in $((end - start)) s; CSV files in $out" >&2
-    exit 0
-fi
-echo "compare: runs done in $((end - start)) s; plotting" >&2
-sh "$here/plot.sh" "$out"
-end2=$(date +%s)
-echo "plot_wall_s=$((end2 - end))" >> "$out/meta.txt"
-"$bin" report --dir "$out"
-end3=$(date +%s)
-echo "total_wall_s=$((end3 - start))" >> "$out/meta.txt"
-echo "compare: wrote $out/report.md ($((end3 - start)) s in all)" >&2
+merge

@@ -6,6 +6,9 @@
 #   make compare SCENES="four-bar" METHODS="braun ida-ggl"
 #   make compare-quick            a short version -> results/compare-quick/
 #   make -j4 compare              4 runs at a time (one process per run)
+#   make compare-jobs             the study as a run list, one self-contained command per
+#                                 line (results/compare/jobs/prepare.txt, runs.txt) for GNU
+#                                 parallel or a Slurm array; then make compare-merge
 # Options: COMPARE_JOBS (runs at a time without -j, default 2; 1: serial),
 # COMPARE_REPS (best of K CPU times, default 3), COMPARE_OUT.
 # The recipes that call compare/run.sh are marked `+`: its sub-make takes
@@ -40,7 +43,7 @@ COMPARE_REPS ?= 3
 SCENES ?=
 METHODS ?=
 
-.PHONY: compare compare-quick deps-compare compare-bin
+.PHONY: compare compare-quick compare-jobs compare-merge deps-compare compare-bin
 
 deps-compare:
 	@tools/ensure-deps $(COMPARE_DEPS)
@@ -76,6 +79,17 @@ compare-quick: deps-compare
 	+@MAKE="$(MAKE)" sh compare/run.sh --bin $(COMPARE_BIN) --out results/compare-quick --study quick \
 	    --jobs $(COMPARE_JOBS) --reps $(COMPARE_REPS) --scenes "$(SCENES)" --methods "$(METHODS)"
 
+# The study as a run list (docs/compare.md, "Beyond one machine"): run
+# $(COMPARE_OUT)/jobs/prepare.txt, then runs.txt, anywhere that sees this
+# directory; then compare-merge assembles the CSV files and the report.
+compare-jobs: deps-compare
+	@$(MAKE) --no-print-directory $(COMPARE_BIN)
+	@sh compare/run.sh --list --bin $(COMPARE_BIN) --out $(COMPARE_OUT) --study $(or $(COMPARE_STUDY),default) \
+	    --reps $(COMPARE_REPS) --scenes "$(SCENES)" --methods "$(METHODS)"
+
+compare-merge:
+	@sh compare/run.sh --merge --bin $(COMPARE_BIN) --out $(COMPARE_OUT)
+
 # ---------------------------------------------------------------- tests
 # Harness tests need SUNDIALS and GSL, so they are not tests/test_*.c (those
 # link libbraun.a and cmocka only).
@@ -87,6 +101,8 @@ $(COMPARE_TEST): tests/compare/test_compare.c tests/test_util.h $(COMPARE_LIB_OB
 
 TEST_SUITES += "tools/run-tests $(COMPARE_TEST)" "sh tests/compare/quick.sh $(COMPARE_BIN)"
 TEST_SUITES += "sh tests/compare/parallel.sh $(COMPARE_BIN)"
+# The run list (compare/run.sh --list) under GNU parallel, merged.
+TEST_SUITES += "sh tests/compare/jobs.sh $(COMPARE_BIN)"
 # The series table's three readers: the report, plot.sh and braun-bench.
 TEST_SUITES += "sh tests/compare/series.sh $(COMPARE_BIN) $(BENCH_BIN)"
 TEST_PREREQS += $(COMPARE_TEST) $(COMPARE_BIN) $(BENCH_BIN)

@@ -80,14 +80,17 @@ check "one progress line per run ($nruns)" \
     [ "$(grep -c '^\[ *[0-9]*/[0-9]* ' "$TMP/par.log")" -eq "$nruns" ]
 check "no parts left behind" [ ! -e "$TMP/par/.parts" ]
 
-# The files with cpu_s, cpu_s_max (columns 13, 14) blanked.
+# The files with their CPU-time columns blanked: cpu_s, cpu_s_max (13, 14)
+# of runs.csv and ida_probe.csv, cpu_per_step_s, cpu_per_step_max_s (8, 9)
+# of step_cost.csv.
 blank() {
     case $1 in
-    */runs.csv|*/ida_probe.csv)
-        awk -F, -v OFS=, 'NR > 1 { if ($13 == "" || $14 == "") bad = 1; $13 = $14 = "" } { print }
-                          END { exit bad }' "$1" ;;
-    *) cat "$1" ;;
+    */runs.csv|*/ida_probe.csv) c1=13 c2=14 ;;
+    */step_cost.csv) c1=8 c2=9 ;;
+    *) cat "$1"; return ;;
     esac
+    awk -F, -v OFS=, -v a="$c1" -v b="$c2" 'NR > 1 { if ($a == "" || $b == "") bad = 1; $a = $b = "" } { print }
+                                             END { exit bad }' "$1"
 }
 same() { # same FILE DIR_A DIR_B
     [ -s "$2/$1" ] && [ -s "$3/$1" ] || { echo "#   $1 missing"; return 1; }
@@ -97,12 +100,17 @@ same() { # same FILE DIR_A DIR_B
     diff "$TMP/a" "$TMP/b" | head -n 6 | sed 's/^/#   /'
     return 1
 }
-for f in runs.csv history.csv references.csv ida_probe.csv singular.csv; do
+files=$("$BIN" files)
+check "the study writes its files (${files})" [ -n "$files" ]
+for f in $files; do
     check "$f: make -j2 = serial" same "$f" "$TMP/serial" "$TMP/par"
     check "$f: one process = serial" same "$f" "$TMP/one" "$TMP/serial"
 done
 rows() { echo $(($(wc -l < "$1") - 1)); }
-check "runs.csv has every run" [ "$(($(rows "$TMP/par/runs.csv") + $(rows "$TMP/par/ida_probe.csv")))" -eq "$nruns" ]
+# Every run is a row of runs.csv or ida_probe.csv, but the cost-per-step
+# jobs (one per paper scene: their rows are in step_cost.csv).
+ncost=$(awk -F, 'NR > 1 { print $1 }' "$TMP/par/step_cost.csv" | sort -u | wc -l)
+check "runs.csv has every run" [ "$(($(rows "$TMP/par/runs.csv") + $(rows "$TMP/par/ida_probe.csv") + ncost))" -eq "$nruns" ]
 check "one row per run" sh -c \
     "[ \"\$(cut -d, -f1-7 '$TMP/par/runs.csv' | sort -u | wc -l)\" -eq \$(wc -l < '$TMP/par/runs.csv') ]"
 check "references.csv has rows" [ "$(rows "$TMP/par/references.csv")" -ge "$ngroups" ]

@@ -10,6 +10,8 @@
 #include "cmp.h"
 #include "cmp_claims.h"
 #include "cmp_csv.h"
+#include "cmp_peer.h"
+#include "cmp_proj.h"
 #include "cmp_series.h"
 #include "cmp_study.h"
 
@@ -281,6 +283,337 @@ static void test_ida_failure_recorded(void **state)
     cmp_target_free(&tg);
 }
 
+/* ------------------------------------------------------------ peers, projection */
+/* A run of target `name` per spec against its reference: the outcome, the
+ * samples (tr, if not NULL) and the metrics. */
+static void run_measured(const char *name, const cmp_spec *sp, cmp_outcome *out, cmp_metrics *mt,
+                         cmp_traj *keep)
+{
+    cmp_target tg;
+    char err[256];
+    assert_int_equal(cmp_target_find(name, &tg, err, sizeof err), 0);
+    cmp_ref *ref = cmp_ref_new(&tg, cmp_target_ref_kind(&tg), 1e-13);
+    assert_non_null(ref);
+    cmp_traj tr;
+    assert_int_equal(cmp_traj_init(&tr, tg.sys.n, 64), 0);
+    cmp_run(&tg, sp, &tr, out);
+    assert_int_equal(cmp_metrics_compute(&tg, &tr, ref, mt, NULL, NULL) == 0 || out->status != 0, 1);
+    if (keep) {
+        cmp_traj_clear(keep);
+        for (long k = 0; k < tr.count; k++)
+            assert_int_equal(cmp_traj_push(keep, tr.t[k], tr.q + k * tg.sys.n, tr.v + k * tg.sys.n), 0);
+    }
+    cmp_traj_free(&tr);
+    cmp_ref_free(ref);
+    cmp_target_free(&tg);
+}
+
+static cmp_spec fixed_spec(cmp_method_id m, int integ, double h, double T)
+{
+    cmp_spec sp;
+    memset(&sp, 0, sizeof sp);
+    sp.method = m;
+    sp.integrator = integ;
+    sp.h = h;
+    sp.T = T;
+    sp.dt_out = 0.05;
+    return sp;
+}
+
+/* MuJoCo reproduces the pendulum's exact solution (Jacobi elliptic
+ * functions) with RK4: the MJCF model, its initial state and the map back
+ * to q, v are right. Measured over 5 s: 1.2e-10 at h = 2e-3, 6.5e-8 at
+ * h = 1e-2 (order 4: 5⁴ = 625, measured 540). The pendulum has no loop: no
+ * soft equality, so nothing but RK4's error remains. */
+static void test_mujoco_pendulum_exact(void **state)
+{
+    (void)state;
+    if (!cmp_mujoco_version()) skip();
+    cmp_outcome out;
+    cmp_metrics fine, coarse;
+    cmp_spec sp = fixed_spec(CMP_MUJOCO, CMP_MJ_RK4, 2e-3, 5);
+    run_measured("pendulum", &sp, &out, &fine, NULL);
+    assert_int_equal(out.status, 0);
+    assert_near(out.t_reached, 5.0, 0);
+    assert_true(out.cpu_self > 0);
+    assert_int_equal(out.counts.steps, 2500);
+    assert_true(fine.traj_max < 3e-10);
+    assert_true(fine.pos_max < 1e-14); /* joint coordinates: on the circle by construction */
+    sp.h = 1e-2;
+    run_measured("pendulum", &sp, &out, &coarse, NULL);
+    assert_int_equal(out.status, 0);
+    assert_true(coarse.traj_max > 100 * fine.traj_max);
+    assert_true(coarse.traj_max < 2e-7);
+    /* The four-bar's loops are soft equalities: a closed loop costs
+     * MuJoCo accuracy (solref 2h, d = 0.9999), and the softest setting
+     * (MuJoCo's defaults) is worse still. */
+    cmp_metrics best, soft;
+    sp = fixed_spec(CMP_MUJOCO, CMP_MJ_RK4, 2e-3, 5);
+    sp.peer.dampratio = 1;
+    sp.peer.solimp[0] = sp.peer.solimp[1] = 0.9999;
+    sp.peer.solimp[2] = 0.001;
+    run_measured("four-bar", &sp, &out, &best, NULL);
+    assert_int_equal(out.status, 0);
+    sp.peer.timeconst = -1;
+    sp.peer.solimp[0] = 0;
+    run_measured("four-bar", &sp, &out, &soft, NULL);
+    assert_int_equal(out.status, 0);
+    assert_true(best.pos_max > 1e-10 && best.pos_max < soft.pos_max);
+}
+
+/* A MuJoCo run that fails is a row: its warning, the time it stopped, the
+ * samples up to there. The four-bar with implicit Euler at h = 0.2 s
+ * resets its state (QACC not finite) at t = 11.8 s; a scene MuJoCo cannot
+ * express (the sleigh's knife edge) says so at t = 0. */
+static void test_mujoco_failure_recorded(void **state)
+{
+    (void)state;
+    if (!cmp_mujoco_version()) skip();
+    cmp_outcome out;
+    cmp_metrics mt;
+    cmp_traj tr;
+    assert_int_equal(cmp_traj_init(&tr, 6, 16), 0);
+    cmp_spec sp = fixed_spec(CMP_MUJOCO, CMP_MJ_IMPLICIT, 0.2, 20);
+    sp.dt_out = 0.2;
+    run_measured("four-bar", &sp, &out, &mt, &tr);
+    assert_int_not_equal(out.status, 0);
+    assert_string_equal(out.status_name, "MJ_WARN_BADQACC");
+    assert_true(out.t_reached > 1.0 && out.t_reached < 20.0);
+    assert_non_null(strstr(out.detail, "at t = "));
+    assert_non_null(strstr(out.detail, "QACC"));
+    assert_true(tr.count >= 5);
+    assert_true(tr.t[tr.count - 1] <= out.t_reached + 1e-12);
+    for (long k = 0; k < tr.count * 6; k++) assert_true(isfinite(tr.q[k]));
+    assert_true(out.counts.steps > 0);
+    cmp_traj_free(&tr);
+
+    cmp_target tg;
+    char err[256], why[256];
+    assert_int_equal(cmp_target_find("sleigh", &tg, err, sizeof err), 0);
+    assert_int_equal(cmp_mujoco_supports(&tg, why, sizeof why), 0);
+    assert_non_null(strstr(why, "knife"));
+    assert_int_equal(cmp_traj_init(&tr, tg.sys.n, 16), 0);
+    sp = fixed_spec(CMP_MUJOCO, CMP_MJ_RK4, 1e-2, 1);
+    cmp_run(&tg, &sp, &tr, &out);
+    assert_int_not_equal(out.status, 0);
+    assert_string_equal(out.status_name, "UNSUPPORTED");
+    assert_non_null(strstr(out.detail, "knife"));
+    assert_near(out.t_reached, 0.0, 0);
+    cmp_traj_free(&tr);
+    cmp_target_free(&tg);
+}
+
+/* A peer that is not built (Simbody today) or not able to express a scene
+ * still leaves a row: the runner's NOT_BUILT, or the study's UNSUPPORTED
+ * with the reason (the plan: braun-compare plan lists a run for it). */
+static void test_peer_not_built_is_a_row(void **state)
+{
+    (void)state;
+    cmp_target tg;
+    char err[256];
+    assert_int_equal(cmp_target_find("four-bar", &tg, err, sizeof err), 0);
+    cmp_traj tr;
+    cmp_outcome out;
+    assert_int_equal(cmp_traj_init(&tr, 6, 16), 0);
+    cmp_spec sp;
+    memset(&sp, 0, sizeof sp);
+    sp.method = CMP_SIMBODY;
+    sp.integrator = CMP_SB_RKM;
+    sp.rtol = sp.atol = 1e-6;
+    sp.T = 1;
+    sp.dt_out = 0.05;
+    cmp_run(&tg, &sp, &tr, &out);
+    if (cmp_simbody_version()) {
+        /* Built: it either ran or said why not. */
+        assert_true(out.status == 0 || strlen(out.status_name) > 0);
+    } else {
+        assert_int_not_equal(out.status, 0);
+        assert_string_equal(out.status_name, "NOT_BUILT");
+    }
+    cmp_traj_free(&tr);
+    cmp_target_free(&tg);
+    /* The plan of the quick study has runs of every peer on both paper scenes. */
+    cmp_study_opts o;
+    memset(&o, 0, sizeof o);
+    o.study = "quick";
+    o.scenes[0] = "four-bar";
+    o.scenes[1] = "slider-crank";
+    o.nscenes = 2;
+    o.methods[CMP_MUJOCO] = o.methods[CMP_SIMBODY] = o.methods[CMP_PROJECTION] = 1;
+    o.reps = 1;
+    o.probe = 1;
+    o.prepare = o.job = -1;
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    assert_int_equal(cmp_study_plan(&o, f), 0);
+    fclose(f);
+    int jobs = 0;
+    for (const char *p = buf; (p = strstr(p, "job ")); p++) jobs++;
+    /* mujoco: 3 integrators x 4 steps + defaults x 4 + the sweep's 10 at
+     * one step; projection 2 x 4; simbody >= 1 (NOT_BUILT: 1). */
+    assert_true(jobs >= 2 * (12 + 4 + 10 + 8 + 1));
+    free(buf);
+    /* A scene MuJoCo cannot express: one run, the UNSUPPORTED row. */
+    o.scenes[0] = "sleigh";
+    o.nscenes = 1;
+    o.methods[CMP_SIMBODY] = o.methods[CMP_PROJECTION] = 0;
+    f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    assert_int_equal(cmp_study_plan(&o, f), 0);
+    fclose(f);
+    jobs = 0;
+    for (const char *p = buf; (p = strstr(p, "job ")); p++) jobs++;
+    assert_int_equal(jobs, 1);
+    free(buf);
+}
+
+/* RK4 + projection reproduces the pendulum's exact solution with RK4's
+ * order: halving h divides the error by about 16 (measured over 5 s: h =
+ * 1e-2 4.3e-7, 5e-3 2.7e-8, 2e-3 8.5e-10). */
+static void test_projection_order(void **state)
+{
+    (void)state;
+    cmp_outcome out;
+    cmp_metrics a, b;
+    cmp_spec sp = fixed_spec(CMP_PROJECTION, BRAUN_RK4, 1e-2, 5);
+    run_measured("pendulum", &sp, &out, &a, NULL);
+    assert_int_equal(out.status, 0);
+    assert_true(out.counts.iterations > 0); /* projections happened */
+    sp.h = 5e-3;
+    run_measured("pendulum", &sp, &out, &b, NULL);
+    assert_int_equal(out.status, 0);
+    assert_true(a.traj_max < 1e-6);
+    const double ratio = a.traj_max / b.traj_max;
+    assert_true(ratio > 12 && ratio < 20);
+    /* On the constraint after every step, to the projection's tolerance. */
+    assert_true(b.pos_max <= CMP_PROJ_TOL);
+    /* The energy variant holds the energy level as well. */
+    cmp_metrics e;
+    strcpy(sp.variant, "energy");
+    run_measured("four-bar", &sp, &out, &e, NULL);
+    assert_int_equal(out.status, 0);
+    cmp_metrics ne;
+    sp.variant[0] = '\0';
+    run_measured("four-bar", &sp, &out, &ne, NULL);
+    assert_true(e.energy_max < 1e-9 && e.energy_max < 1e-3 * ne.energy_max);
+}
+
+/* The Gauss–Newton projection converges from a perturbed state: the
+ * iterations are counted, ‖Φ_q‖ ends below its tolerance, the velocity rows
+ * hold afterwards, and the correction is mass-orthogonal (the smallest in
+ * the M-norm: perturbing along the constraint manifold is not undone). */
+static void test_projection_gauss_newton(void **state)
+{
+    (void)state;
+    cmp_target tg;
+    char err[256];
+    assert_int_equal(cmp_target_find("four-bar", &tg, err, sizeof err), 0);
+    const int n = tg.sys.n, m = tg.sys.m;
+    cmp_proj *p = cmp_proj_new(&tg.sys);
+    assert_non_null(p);
+    double q[16], v[16], phi[16], A[16 * 16], b[16], res = -1;
+    for (int i = 0; i < n; i++) {
+        q[i] = tg.q0[i] + 1e-3 * sin(1.0 + 3.0 * i);
+        v[i] = tg.v0[i] + 1e-2 * cos(2.0 + i);
+    }
+    const int it = cmp_proj_positions(p, 0, q, &res);
+    assert_true(it >= 2 && it <= CMP_PROJ_MAX_ITER);
+    assert_true(res >= 0 && res <= CMP_PROJ_TOL);
+    assert_int_equal(tg.sys.holonomic(0, q, v, phi, A, b, NULL, tg.sys.user), 0);
+    double r = 0;
+    for (int k = 0; k < m; k++) r += phi[k] * phi[k];
+    assert_true(sqrt(r) <= CMP_PROJ_TOL);
+    long fact, solves, iters;
+    cmp_proj_counts(p, &fact, &solves, &iters);
+    assert_int_equal(iters, it);
+    /* A state on the constraints takes no iteration. */
+    assert_int_equal(cmp_proj_positions(p, 0, q, &res), 0);
+    assert_true(cmp_proj_velocities(p, 0, q, v) >= 1);
+    assert_int_equal(tg.sys.holonomic(0, q, v, phi, A, b, NULL, tg.sys.user), 0);
+    double rv = 0;
+    for (int k = 0; k < m; k++) {
+        double s = -b[k];
+        for (int i = 0; i < n; i++) s += A[k * n + i] * v[i];
+        rv += s * s;
+    }
+    assert_true(sqrt(rv) <= CMP_PROJ_TOL * 10);
+    cmp_proj_free(p);
+    cmp_target_free(&tg);
+}
+
+/* The closed form's second evaluation (GSL's Jacobi functions, the
+ * closed form's own error estimate) agrees with libbraun's on rotations and
+ * librations in both directions, turning points included. */
+static void test_pendulum_closed_forms(void **state)
+{
+    (void)state;
+    static const double start[][2] = {{3.14159265358979, -1.0}, {0.3, 5.0}, {-2.0, -4.5},
+                                      {1.5707963267948966, 0.0}, {-0.4, 0.0}, {0.7, -1.2},
+                                      {2.5, 0.3}};
+    for (size_t c = 0; c < sizeof start / sizeof start[0]; c++) {
+        double mx = 0;
+        for (int k = 0; k <= 200; k++) {
+            const double t = 0.37 * k;
+            double p1, d1, p2, d2;
+            assert_int_equal(braun_pendulum_exact(9.81, start[c][0], start[c][1], t, &p1, &d1), 0);
+            assert_int_equal(cmp_pendulum_gsl(9.81, start[c][0], start[c][1], t, &p2, &d2), 0);
+            mx = fmax(mx, fmax(fabs(p1 - p2), fabs(d1 - d2)));
+        }
+        if (!(mx < 1e-9)) print_message("start %zu: max difference %g\n", c, mx);
+        assert_true(mx < 1e-9);
+    }
+}
+
+/* The harness's own minimal equations of scenes (cmp_minimal.c) agree with
+ * RK4 + projection at a small step on the scenes' DAE — two formulations
+ * that share nothing but the scene: the double pendulum (an open chain of
+ * two point masses) over 2 s, and the parallelogram before its singular
+ * configuration (where the projection fails, t = 1.09 s). */
+static void test_minimal_equations(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *scene;
+        double T, bound;
+    } cases[] = {{"double-pendulum", 2.0, 1e-9}, {"parallelogram-redundant", 1.0, 1e-9},
+                 {"chain-5", 1.0, 1e-9}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        cmp_target tg;
+        char err[256];
+        assert_int_equal(cmp_target_find(cases[c].scene, &tg, err, sizeof err), 0);
+        assert_non_null(tg.minimal);
+        assert_int_equal(cmp_target_ref_kind(&tg), CMP_REF_RK8PD);
+        cmp_ref *ref = cmp_ref_new(&tg, CMP_REF_RK8PD, 1e-13);
+        cmp_ref *pr = cmp_ref_new_proj(&tg, cases[c].T, 2.5e-5, 1e-3, NULL, 0);
+        assert_non_null(ref);
+        assert_non_null(pr);
+        double w[4 * 64], mx = 0;
+        const int n = tg.sys.n;
+        for (int j = 0; j <= 20; j++) {
+            const double t = cases[c].T * j / 20.0;
+            assert_int_equal(cmp_ref_eval(ref, t, w, w + n), 0);
+            assert_int_equal(cmp_ref_eval(pr, t, w + 2 * n, w + 3 * n), 0);
+            for (int i = 0; i < n; i++) {
+                mx = fmax(mx, fabs(w[i] - w[2 * n + i]));
+                mx = fmax(mx, fabs(w[n + i] - w[3 * n + i]));
+            }
+        }
+        assert_true(mx < cases[c].bound);
+        cmp_ref_free(ref);
+        cmp_ref_free(pr);
+        cmp_target_free(&tg);
+    }
+    /* A scene that is neither keeps the projection reference. */
+    cmp_target tg;
+    char err[256];
+    assert_int_equal(cmp_target_find("damped-motor", &tg, err, sizeof err), 0);
+    assert_null(tg.minimal);
+    assert_int_equal(cmp_target_ref_kind(&tg), CMP_REF_PROJ);
+    cmp_target_free(&tg);
+}
+
 /* The fixed-step methods sample the common grid: t_j = j·dt_out. */
 static void test_common_grid(void **state)
 {
@@ -465,7 +798,11 @@ static cmp_rows paper_runs(const double pos[4])
         r->pos = pos[k];
         r->traj = 1e-4;
     }
-    return (cmp_rows){claim_rows, 4};
+    cmp_rows d;
+    memset(&d, 0, sizeof d);
+    d.r = claim_rows;
+    d.n = 4;
+    return d;
 }
 
 static const cmp_claim *claim_by_figure(const char *name)
@@ -569,6 +906,13 @@ int main(void)
         cmocka_unit_test(test_metrics_hand_made),
         cmocka_unit_test(test_references_agree),
         cmocka_unit_test(test_ida_failure_recorded),
+        cmocka_unit_test(test_mujoco_pendulum_exact),
+        cmocka_unit_test(test_mujoco_failure_recorded),
+        cmocka_unit_test(test_peer_not_built_is_a_row),
+        cmocka_unit_test(test_projection_order),
+        cmocka_unit_test(test_projection_gauss_newton),
+        cmocka_unit_test(test_minimal_equations),
+        cmocka_unit_test(test_pendulum_closed_forms),
         cmocka_unit_test(test_common_grid),
         cmocka_unit_test(test_singularity_scan),
         cmocka_unit_test(test_csv_reader),
