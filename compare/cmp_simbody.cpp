@@ -48,8 +48,9 @@
  *
  * A run fails (a recorded row, the trajectory kept up to the last good
  * sample) on any Simbody exception (an integrator step failure arrives as
- * Integrator::StepFailed: its message is kept), a non-finite state, or a
- * termination reason other than reaching the final time. */
+ * Integrator::StepFailed: its message is kept), a non-finite state, a
+ * termination reason other than reaching the final time, or more than
+ * SB_MAX_STEPS steps in one output interval (SB_TOO_MUCH_WORK). */
 #include "cmp_simbody_plugin.h"
 #include <cmath>
 #include <cstdio>
@@ -71,6 +72,12 @@ const cmp_sb_host *H;
  * tree hinge, as cmp_mech_tree requires). */
 const unsigned SB_CLOSABLE = CMP_MJ_BIT(CMP_MJ_REVOLUTE) | CMP_MJ_BIT(CMP_MJ_DISTANCE) |
                              CMP_MJ_BIT(CMP_MJ_SLIDER) | CMP_MJ_BIT(CMP_MJ_KNIFE);
+
+/* Steps one output interval may take (IDA's limit in the harness too);
+ * beyond, the run fails as SB_TOO_MUCH_WORK: near a singular configuration
+ * an error-controlled step can shrink to where its error estimate rounds
+ * to zero and grind on without end. */
+const int SB_MAX_STEPS = 5000;
 
 /* The variant's words. */
 struct sb_options {
@@ -569,6 +576,7 @@ std::unique_ptr<Integrator> make_integrator(const Model &M, const cmp_spec *sp,
     }
     if (sp->rtol > 0) in->setAccuracy(sp->rtol);
     if (sp->peer.ctol > 0) in->setConstraintTolerance(sp->peer.ctol);
+    in->setInternalStepLimit(SB_MAX_STEPS);
     in->setAllowInterpolation(o.interp);
     in->setProjectEveryStep(o.every_step);
     in->setUseInfinityNorm(o.inf_norm);
@@ -699,8 +707,18 @@ void run(cmp_mech *m, int n, const cmp_spec *sp, cmp_traj *tr, cmp_outcome *out)
             c0 = H->cpu_seconds();
             /* The first call after initialize() returns at once (start of
              * a continuous interval): step until the report time. */
-            while (in->getTime() < tj && !in->isSimulationOver()) in->stepTo(tj);
+            Integrator::SuccessfulStepStatus st = Integrator::ReachedReportTime;
+            while (in->getTime() < tj && !in->isSimulationOver() &&
+                   st != Integrator::ReachedStepLimit)
+                st = in->stepTo(tj);
             cpu += H->cpu_seconds() - c0;
+            if (st == Integrator::ReachedStepLimit) {
+                status = "SB_TOO_MUCH_WORK";
+                char b[96];
+                std::snprintf(b, sizeof b, "%d steps without reaching t = %.9g", SB_MAX_STEPS, tj);
+                msg = b;
+                break;
+            }
             const State &s = in->getState();
             if (in->isSimulationOver() &&
                 in->getTerminationReason() != Integrator::ReachedFinalTime) {

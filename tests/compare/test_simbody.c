@@ -231,6 +231,15 @@ static void test_failure_is_a_row(void **state)
     check_failed(&out, &tr, sp.T);
     assert_true(out.t_reached == 0);
     assert_int_equal(tr.count, 1);
+    /* RK3 at that accuracy shrinks its steps until their error estimate
+     * rounds to zero and would grind on (1.9 million steps for 2 s): the
+     * adapter stops it after 5000 steps in one output interval. */
+    sp = spec_of(CMP_SB_RK3, 1e-300, 0, 2.0, 0.05);
+    cmp_run(&tg, &sp, &tr, &out);
+    check_failed(&out, &tr, sp.T);
+    assert_string_equal(out.status_name, "SB_TOO_MUCH_WORK");
+    assert_true(out.t_reached < 0.05);
+    assert_true(out.counts.steps >= 5000 && out.counts.steps < 5100);
     cmp_traj_free(&tr);
     cmp_target_free(&tg);
     /* A fixed step too large for the motor's damping (τ0/ω0 on a light
@@ -347,6 +356,31 @@ static void test_elements(void **state)
     }
 }
 
+/* ------------------------------------------------------------ step cost */
+/* The per-step cost probe (cmp_peer.h): a fixed step of the chosen
+ * integrator, finite and positive; NaN with a reason when refused. */
+static void test_step_cost(void **state)
+{
+    (void)state;
+    cmp_target tg;
+    target("four-bar", &tg);
+    char why[256] = "";
+    cmp_spec sp = spec_of(CMP_SB_RKM, 1e-6, 1e-3, 1.0, 0.05);
+    const double c = cmp_simbody_step_cost(&tg, &sp, 200, why, sizeof why);
+    print_message("four-bar: %.3g s per rk-merson step (h = 1e-3)\n", c);
+    assert_true(isfinite(c) && c > 0 && c < 1e-2);
+    sp.h = 0;
+    assert_true(isnan(cmp_simbody_step_cost(&tg, &sp, 200, why, sizeof why)));
+    assert_true(strlen(why) > 10);
+    cmp_target_free(&tg);
+    target("spatial-arm", &tg);
+    sp.h = 1e-3;
+    why[0] = '\0';
+    assert_true(isnan(cmp_simbody_step_cost(&tg, &sp, 200, why, sizeof why)));
+    assert_non_null(strstr(why, "spatial"));
+    cmp_target_free(&tg);
+}
+
 /* ------------------------------------------------------------ the driver */
 static int integrator_of(const char *s)
 {
@@ -358,8 +392,19 @@ static int integrator_of(const char *s)
     return -1;
 }
 
+/* The driver's optional history: every sample's errors (CMP_SB_HISTORY). */
+static void history_row(const cmp_sample_err *e, void *user)
+{
+    fprintf((FILE *)user, "%.9g %.6e %.6e %.6e %.6e %.9g %.9g\n", e->t, e->traj, e->pos, e->vel,
+            e->energy, e->obs, e->obs_ref);
+}
+
 static int drive(int argc, char **argv)
 {
+    /* CMP_SB_HISTORY=FILE: append each run's samples (t, |q - q_ref|, |Φ_q|,
+     * |Φ̇|, |Φ_e|, x of the observed point and its reference) to FILE. */
+    const char *hist_path = getenv("CMP_SB_HISTORY");
+    FILE *hist = hist_path && *hist_path ? fopen(hist_path, "a") : NULL;
     if (argc < 3) {
         fprintf(stderr,
                 "usage: test_simbody run TARGET T[:DT] INTEGRATOR:VALUE[:VARIANT[:CTOL]]...\n");
@@ -420,7 +465,10 @@ static int drive(int argc, char **argv)
         cmp_traj_init(&tr, tg.sys.n, 1024);
         cmp_run(&tg, &sp, &tr, &out);
         if (ref) cmp_ref_restart(ref);
-        if (cmp_metrics_compute(&tg, &tr, ref, &mt, NULL, NULL)) memset(&mt, 0, sizeof mt);
+        if (hist) fprintf(hist, "# %s %s T = %g\n", tg.name, argv[k], T);
+        if (cmp_metrics_compute(&tg, &tr, ref, &mt, hist ? history_row : NULL, hist))
+            memset(&mt, 0, sizeof mt);
+        if (hist) fprintf(hist, "\n\n");
         printf("%-8s %8.2g %-12s %8.2g %-16s %12.6g %9.4g %8ld %7ld %8ld %7ld %10.3e %10.3e "
                "%10.3e %10.3e %s\n",
                f[0], value, sp.variant[0] ? sp.variant : "-", sp.peer.ctol,
@@ -433,6 +481,7 @@ static int drive(int argc, char **argv)
     }
     cmp_ref_free(ref);
     cmp_target_free(&tg);
+    if (hist) fclose(hist);
     return 0;
 }
 
@@ -446,6 +495,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_failure_is_a_row),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_elements),
+        cmocka_unit_test(test_step_cost),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
