@@ -222,8 +222,8 @@ static void test_failure_is_a_row(void **state)
     cmp_traj tr;
     cmp_outcome out;
     assert_int_equal(cmp_traj_init(&tr, tg.sys.n, 64), 0);
-    /* An accuracy no step can meet: CPodes' Newton iteration ends on a NaN
-     * inertia at once, a Simbody exception at t = 0. (Runge–Kutta–Merson
+    /* An accuracy no step can meet: CPodes' first step ends in a NaN state,
+     * a Simbody exception at t = 0. (Runge–Kutta–Merson
      * does not fail there: it shrinks its step until its error estimate
      * is exactly 0 and grinds on.) */
     cmp_spec sp = spec_of(CMP_SB_CPODES, 1e-300, 0, 2.0, 0.05);
