@@ -64,7 +64,7 @@ $(BUILD)/obj/compare/pic/cmp_simbody.o: compare/cmp_simbody.cpp | deps-compare d
 
 $(COMPARE_SB_PLUGIN): $(BUILD)/obj/compare/pic/cmp_simbody.o
 	@mkdir -p $(dir $@)
-	$(CXX) -shared -Wl,-z,defs $< $(COMPARE_SB_LDLIBS) -o $@
+	$(CXX) -shared -Wl,-z,defs $< $(COMPARE_SB_LDLIBS) $(LDLIBS) -o $@
 
 $(BUILD)/obj/compare/cmp_simbody_host.o: COMPARE_CPPFLAGS += \
 	-DCMP_SIMBODY_PLUGIN_PATH='"$(abspath $(COMPARE_SB_PLUGIN))"'
