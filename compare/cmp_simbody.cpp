@@ -1,6 +1,10 @@
 /* simbody: Simbody 3.7 (Debian libsimbody-dev) through its C++ API, on a
  * multibody model built from the target's mechanism (cmp_mech.h). Simbody
- * has no C API, so this one file is C++; it never links into libbraun.a.
+ * has no C API, so this one file is C++; it never links into libbraun.a,
+ * nor into the harness: it is the plugin $(BUILD)/lib/cmp_simbody.so that
+ * compare/cmp_simbody_host.c loads (cmp_simbody_plugin.h says why) and it
+ * calls the harness only through the host's table H. docs/compare.md,
+ * "Simbody", has the measurements.
  *
  * The model is what a Simbody user writes for a planar mechanism: the
  * spanning tree of cmp_mech_tree as mobilizers (Simbody's coordinates are
