@@ -426,6 +426,7 @@ static int drive(int argc, char **argv)
     const double dt = colon ? atof(colon + 1) : tg.dt_out;
     cmp_ref_kind kind = cmp_target_ref_kind(&tg);
     cmp_ref *ref = NULL;
+    err[0] = '\0';
     if (kind == CMP_REF_CLOSED || kind == CMP_REF_RK8PD) ref = cmp_ref_new(&tg, kind, 1e-13);
     else if (kind == CMP_REF_PROJ) {
         /* The study's RK4 + projection reference (step 2.5e-5·h_scale),
@@ -437,8 +438,9 @@ static int drive(int argc, char **argv)
         cmp_ref_free(ref);
         ref = NULL;
     }
-    printf("# %s T = %g dt_out = %g reference %s\n", tg.name, T, dt,
-           ref ? cmp_ref_kind_name(kind) : "none");
+    printf("# %s T = %g dt_out = %g reference %s%s%s\n", tg.name, T, dt,
+           ref ? cmp_ref_kind_name(kind) : "none", !ref && kind == CMP_REF_PROJ ? ": " : "",
+           !ref && kind == CMP_REF_PROJ ? err : "");
     printf("%-8s %8s %-12s %8s %-16s %12s %9s %8s %7s %8s %7s %10s %10s %10s %10s %s\n",
            "integ", "value", "variant", "ctol", "status", "t_reached", "cpu_s", "steps", "rej",
            "realiz", "proj", "traj_max", "traj_end", "pos_max", "energy_max", "detail");
