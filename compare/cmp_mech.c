@@ -109,6 +109,7 @@ typedef struct conv {
     int *owner_rod;    /* per body: massless particle: the rod link it is the end of */
     double *owner_end; /* per body: that end's x in the rod's frame */
     int *rod_link;     /* per rod */
+    unsigned flags;    /* CMP_MECH_TORQUE, ... */
 } conv;
 
 static const char *body_name(const conv *c, int i)
@@ -327,6 +328,16 @@ static int convert(conv *c, char *why, size_t whysize)
                          se->type->name);
                 return -1;
             }
+        } else if (se->type == BRAUN_EFFECT_TORQUE && (c->flags & CMP_MECH_TORQUE)) {
+            if (!(f = new_force(m, CMP_MF_TORQUE))) goto oom;
+            f->a = resolve_body(c, se->a);
+            f->b = resolve_body(c, se->b);
+            f->f = se->f[0];
+            if (f->a == -2 || f->b == -2) {
+                snprintf(why, whysize, "effect %d (%s) acts on a body without angle", i,
+                         se->type->name);
+                return -1;
+            }
         } else {
             snprintf(why, whysize, "effect %d (%s) has no counterpart in the peer model", i,
                      se->type->name);
@@ -357,7 +368,7 @@ oom:
 }
 
 static int from_scene(const braun_scene_file *sf, const double *q0, const double *v0,
-                      cmp_mech *m, char *why, size_t whysize)
+                      unsigned flags, cmp_mech *m, char *why, size_t whysize)
 {
     const braun_scene *s = &sf->scene;
     conv c;
@@ -367,6 +378,7 @@ static int from_scene(const braun_scene_file *sf, const double *q0, const double
     c.q0 = q0;
     c.v0 = v0;
     c.m = m;
+    c.flags = flags;
     const size_t nb = (size_t)s->nbodies + 1, nr = (size_t)s->nrods + 1;
     c.body_link = malloc(nb * sizeof(int));
     c.owner_rod = malloc(nb * sizeof(int));
@@ -386,9 +398,15 @@ static int from_scene(const braun_scene_file *sf, const double *q0, const double
 
 int cmp_mech_for_target(const cmp_target *tg, cmp_mech *m, char *why, size_t whysize)
 {
+    return cmp_mech_for_target_ex(tg, 0, m, why, whysize);
+}
+
+int cmp_mech_for_target_ex(const cmp_target *tg, unsigned flags, cmp_mech *m, char *why,
+                           size_t whysize)
+{
     memset(m, 0, sizeof *m);
 #ifdef CMP_HAVE_SCENES
-    if (tg->scene_file) return from_scene(tg->scene_file, tg->q0, tg->v0, m, why, whysize);
+    if (tg->scene_file) return from_scene(tg->scene_file, tg->q0, tg->v0, flags, m, why, whysize);
     if (!tg->builtin) {
         snprintf(why, whysize, "'%s' is not a scene: no peer model", tg->name);
         return -1;
@@ -406,10 +424,11 @@ int cmp_mech_for_target(const cmp_target *tg, cmp_mech *m, char *why, size_t why
         same = fabs((double)f->q0[i] - tg->q0[i]) <= 1e-12 && fabs((double)f->v0[i] - tg->v0[i]) <= 1e-12;
     int rc = -1;
     if (!same) snprintf(why, whysize, "%s does not start where the built-in '%s' does", path, tg->name);
-    else rc = from_scene(f, tg->q0, tg->v0, m, why, whysize);
+    else rc = from_scene(f, tg->q0, tg->v0, flags, m, why, whysize);
     braun_scene_free(f);
     return rc;
 #else
+    (void)flags;
     snprintf(why, whysize, "peer models need the scene library");
     return -1;
 #endif

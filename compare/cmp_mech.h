@@ -61,7 +61,9 @@ typedef enum cmp_mforce_kind {
     CMP_MF_GRAVITY = 0,  /* g on every mass */
     CMP_MF_SPRING,       /* k (|P_b - P_a| - rest) and c d|P_b - P_a|/dt along P_b - P_a */
     CMP_MF_TORSION,      /* k (θ_b - θ_a - rest), c (ω_b - ω_a), on b, minus on a */
-    CMP_MF_MOTOR         /* τ = tau0 (1 - (ω_a - ω_b)/omega0) on a (rotor), -τ on b */
+    CMP_MF_MOTOR,        /* τ = tau0 (1 - (ω_a - ω_b)/omega0) on a (rotor), -τ on b */
+    CMP_MF_TORQUE        /* τ = f(t) on a, -τ on b: only with CMP_MECH_TORQUE
+                          * (cmp_mech_for_target_ex); MuJoCo's adapter does not take it */
 } cmp_mforce_kind;
 
 typedef struct cmp_mforce {
@@ -69,6 +71,7 @@ typedef struct cmp_mforce {
     int a, b;
     double pa[2], pb[2];
     double g[2], k, c, rest, tau0, omega0;
+    braun_scene_fn f;           /* torque: τ(t) */
 } cmp_mforce;
 
 /* Coordinate i of libbraun's q: x or y of a point fixed on a link (its
@@ -92,6 +95,12 @@ typedef struct cmp_mech {
  * state). 0, or -1 with the reason in why (what cannot be expressed). */
 int cmp_mech_for_target(const cmp_target *tg, cmp_mech *m, char *why, size_t whysize);
 void cmp_mech_free(cmp_mech *m);
+/* As cmp_mech_for_target, with elements beyond those every peer takes
+ * (flags; 0: exactly cmp_mech_for_target): CMP_MECH_TORQUE, an applied
+ * torque of time (scene effect "torque") as CMP_MF_TORQUE (Simbody). */
+#define CMP_MECH_TORQUE 1u
+int cmp_mech_for_target_ex(const cmp_target *tg, unsigned flags, cmp_mech *m, char *why,
+                           size_t whysize);
 
 /* Which joint kinds a peer can use to close a loop (bits 1 << kind). */
 #define CMP_MJ_BIT(kind) (1u << (kind))
