@@ -27,6 +27,10 @@ typedef struct ifm_problem {
     double rtol_loose;     /* the DOPRI5 sweep's loosest rtol */
     double atol_scale;     /* atol = rtol x this (the size of the coordinates) */
     const char *settings_from; /* a long problem runs the settings chosen on this one */
+    /* A long run's drift targets (issue 13: A04 over 600 s): max ||Phi_q|| and
+     * max |Phi_e| over the reference's largest kinetic energy; its sweep goes on
+     * to finer settings until one holds both. 0: none. */
+    double drift_pos, drift_energy;
 } ifm_problem;
 
 extern const ifm_problem ifm_problems[];
