@@ -833,6 +833,26 @@ static void wp_caption(FILE *md, const cmp_rows *d, const char *sc, double T)
     fprintf(md, "\n\n");
 }
 
+/* The IFToMM benchmark's section (issue 13): make iftomm writes it beside
+ * this directory (results/iftomm/report-section.md, its image paths
+ * relative to results/compare/ as well); the report includes what is there. */
+static void iftomm_section(FILE *md, const char *dir)
+{
+    char path[1024], buf[4096];
+    snprintf(path, sizeof path, "%s/../iftomm/report-section.md", dir);
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(md, "## IFToMM benchmark problems A01-A05\n\n"
+                    "Not in this report: `make iftomm` (tens of minutes) writes "
+                    "results/iftomm/report-section.md, and the next report includes it.\n\n");
+        return;
+    }
+    size_t k;
+    while ((k = fread(buf, 1, sizeof buf, f)) > 0) fwrite(buf, 1, k, md);
+    fclose(f);
+    fprintf(md, "\n");
+}
+
 static void wp_section(FILE *md, const char *dir, const cmp_rows *d, const pair *pr, int np)
 {
     fprintf(md, "## Work–precision: every method on every scene\n\n"
@@ -1199,6 +1219,7 @@ int cmp_report_write(const char *dir)
     }
     references_section(md, dir, &d);
     library_failures(md, &d);
+    iftomm_section(md, dir);
 
     fprintf(md, "## Appendix: the probes\n\n");
     fprintf(md, "### MuJoCo: the softness sweep\n\n"

@@ -773,6 +773,57 @@ static void test_report_labels_from_series(void **state)
     remove(dir);
 }
 
+/* The IFToMM section: report.md carries make iftomm's section from the
+ * directory beside it, or says how to get it. */
+static char *read_whole(const char *path)
+{
+    static char md[1 << 16];
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    const size_t n = fread(md, 1, sizeof md - 1, f);
+    md[n] = '\0';
+    fclose(f);
+    return md;
+}
+
+static void test_report_iftomm_section(void **state)
+{
+    (void)state;
+    char top[512], dir[600], ifm[600], path[700], section[700];
+    scratch_dir(top, sizeof top);
+    snprintf(dir, sizeof dir, "%s/compare", top);
+    snprintf(ifm, sizeof ifm, "%s/iftomm", top);
+    assert_int_equal(cmp_mkdir_p(dir), 0);
+    snprintf(path, sizeof path, "%s/runs.csv", dir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("scene,T,method,integrator,variant,h,rtol,status,t_reached,cpu_s,steps,traj_max\n"
+          "four-bar,20,braun,rk4,-,0.01,nan,ok,20,0.01,2000,1e-6\n", f);
+    fclose(f);
+    assert_int_equal(cmp_report_write(dir), 0);
+    snprintf(path, sizeof path, "%s/report.md", dir);
+    assert_non_null(strstr(read_whole(path), "Not in this report: `make iftomm`"));
+
+    assert_int_equal(cmp_mkdir_p(ifm), 0);
+    snprintf(section, sizeof section, "%s/report-section.md", ifm);
+    f = fopen(section, "w");
+    assert_non_null(f);
+    fputs("## IFToMM benchmark problems A01-A05 (`make iftomm`)\n\nA04 marker 1.26e-10\n", f);
+    fclose(f);
+    assert_int_equal(cmp_report_write(dir), 0);
+    const char *md = read_whole(path);
+    assert_non_null(strstr(md, "\nA04 marker 1.26e-10\n"));
+    assert_null(strstr(md, "Not in this report: `make iftomm`"));
+
+    remove(section);
+    remove(ifm);
+    remove(path);
+    snprintf(path, sizeof path, "%s/runs.csv", dir);
+    remove(path);
+    remove(dir);
+    remove(top);
+}
+
 /* ------------------------------------------------------------ claims */
 /* braun RK4 at h = 1e-2 on both paper scenes and horizons, with the given
  * max ||Phi_q|| each. */
@@ -918,6 +969,7 @@ int main(void)
         cmocka_unit_test(test_csv_reader),
         cmocka_unit_test(test_series_table),
         cmocka_unit_test(test_report_labels_from_series),
+        cmocka_unit_test(test_report_iftomm_section),
         cmocka_unit_test(test_claim_thresholds),
         cmocka_unit_test(test_claims_table),
     };
