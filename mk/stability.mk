@@ -38,8 +38,9 @@ stress: $(STABILITY_BIN)
 
 # The long-run matrix (tests/stability/matrix.c): every built-in model and
 # shipped scene x RK4 h = 1e-3, 5e-3, 1e-2 and DOPRI5 rtol = 1e-6, 1e-8,
-# 1e-10. make stress runs it over 1000 s and writes the table of
-# docs/robustness.md; make test runs the same matrix over 20 s.
+# 1e-10. make stress runs it over 1000 s, the IFToMM scenes (data/iftomm)
+# too, and writes the table of docs/robustness.md; make test runs the
+# matrix of data/*.json over 20 s.
 MATRIX_BIN := $(BUILD)/tests/stability_matrix
 $(MATRIX_BIN): tests/stability/matrix.c $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a | deps-host
 	@mkdir -p $(dir $@)
@@ -50,4 +51,4 @@ TEST_SUITES += "$(MATRIX_BIN) --t-end 20 data"
 stress: stress-matrix
 stress-matrix: $(MATRIX_BIN)
 	@mkdir -p results/stability
-	$(MATRIX_BIN) --t-end $(or $(MATRIX_T),1000) --markdown results/stability/matrix.md data
+	$(MATRIX_BIN) --t-end $(or $(MATRIX_T),1000) --iftomm --markdown results/stability/matrix.md data
