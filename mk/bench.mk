@@ -29,6 +29,12 @@ BENCH_VARIANTS ?= 1
 BENCH_DOCS ?= docs/performance.md
 # 1: also make scaling (mk/scaling.mk): cost per step against N, backends, IDA+KLU.
 BENCH_SCALING ?= 1
+# 1: also MuJoCo's mj_step against braun's step in one process (braun-compare's
+# cost job on the paper's two mechanisms) and make firmware-bench (float and
+# float-fixed, with the 100 s worst case); then results/bench/headline.csv
+# (bench/headline.sh: one row per figure of issue 16, measured in this run).
+BENCH_MUJOCO ?= 1
+BENCH_FIRMWARE ?= 1
 BENCH_TARGETS ?= slider-crank four-bar pendulum andrews $(sort $(wildcard data/*.json))
 
 .PHONY: bench bench-bin deps-bench
@@ -64,3 +70,18 @@ bench: deps-bench
 	    --variants $(BENCH_VARIANTS) --docs "$(BENCH_DOCS)" --build $(BUILD) \
 	    --targets "$(BENCH_TARGETS)"
 	@if [ "$(BENCH_SCALING)" = 1 ]; then $(MAKE) --no-print-directory scaling SCALING_DOCS="$(BENCH_DOCS)"; fi
+	@if [ "$(BENCH_MUJOCO)" = 1 ]; then $(MAKE) --no-print-directory bench-mujoco; fi
+	@if [ "$(BENCH_FIRMWARE)" = 1 ]; then \
+	    $(MAKE) --no-print-directory firmware-bench; fi
+	@sh bench/headline.sh $(BENCH_OUT) $(BENCH_OUT)/mujoco $(BUILD)/firmware $(SCALING_OUT) \
+	    "$(BENCH_DOCS)"
+
+# braun's corrected RK4 step against MuJoCo's RK4 mj_step on the same
+# mechanism, in one process: the cost job of the quick study, braun only.
+.PHONY: bench-mujoco
+bench-mujoco: deps-compare
+	@$(MAKE) --no-print-directory $(COMPARE_BIN)
+	@mkdir -p $(BENCH_OUT)
+	+@MAKE="$(MAKE)" sh compare/run.sh --bin $(COMPARE_BIN) --out $(BENCH_OUT)/mujoco --study quick \
+	    --jobs 1 --reps 1 --scenes "slider-crank four-bar" --methods "braun" > $(BENCH_OUT)/mujoco.log 2>&1 \
+	    || { echo "bench: the MuJoCo cost job failed (see $(BENCH_OUT)/mujoco.log)" >&2; exit 1; }
