@@ -81,7 +81,6 @@ bench: deps-bench
 .PHONY: bench-mujoco
 bench-mujoco: deps-compare
 	@$(MAKE) --no-print-directory $(COMPARE_BIN)
-	@mkdir -p $(BENCH_OUT)
-	+@MAKE="$(MAKE)" sh compare/run.sh --bin $(COMPARE_BIN) --out $(BENCH_OUT)/mujoco --study quick \
+	@mkdir -p $(BENCH_OUT) && MAKE="$(MAKE)" sh compare/run.sh --bin $(COMPARE_BIN) --out $(BENCH_OUT)/mujoco --study quick \
 	    --jobs 1 --reps 1 --scenes "slider-crank four-bar" --methods "braun" > $(BENCH_OUT)/mujoco.log 2>&1 \
 	    || { echo "bench: the MuJoCo cost job failed (see $(BENCH_OUT)/mujoco.log)" >&2; exit 1; }
