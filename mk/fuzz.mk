@@ -5,6 +5,7 @@
 # max_steps, BRAUN_OK only with a finite state at t_end).
 #   make fuzz            each target for FUZZ_SECONDS (default 30) from its
 #                        seed corpus in tests/fuzz/corpus_*; part of make test
+#                        (15 s per target there)
 #   make fuzz-regress    replay the corpora and tests/fuzz/regressions/ only
 # A crash leaves its input in $(BUILD)/fuzz/; copy it to
 # tests/fuzz/regressions/TARGET/ (scene, args, gen_c, adaptive) so it is
@@ -41,4 +42,6 @@ fuzz: $(FUZZ_BIN)
 fuzz-regress: $(FUZZ_BIN)
 	@sh tools/fuzz-run $(BUILD)/fuzz 0
 
-TEST_SUITES += "$(MAKE) -s --no-print-directory fuzz"
+# make test fuzzes each target for 15 s (make fuzz: FUZZ_SECONDS, 30): the
+# suite is one of the two longest of make test.
+TEST_SUITES += "$(MAKE) -s --no-print-directory fuzz FUZZ_SECONDS=15"
