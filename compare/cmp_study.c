@@ -344,11 +344,12 @@ static int plan_mujoco(joblist *l, const cmp_target *tg, const plan *p, double T
  * (174 us per RK-Merson step on the four-bar), so a run on the paper's
  * scenes takes 1-7 s of CPU time, long against the clock's noise, and three
  * repetitions made the study exceed its 15 minutes on two cores. */
-/* On a long horizon (the paper scenes' 1000 s) RK3 and the fixed steps
- * below 5e-3 are left out, to keep the study within 15 minutes on two
- * cores: in the study of 2026-12-02 RK3 was not Simbody's best setting on
- * either paper scene's first horizon, and its 1000 s runs cost 175 s of CPU
- * on the slider-crank alone; a fixed step of 1e-3 is 10^6 Simbody steps. */
+/* To keep the study within 15 minutes on two cores, RK3 runs only in the
+ * first horizon's constraint-tolerance sweep below (in the study of
+ * 2026-12-02 it was not Simbody's best setting on either paper scene, and
+ * its main series cost 222 s of CPU on their 100 s horizons and 175 s on the
+ * slider-crank's 1000 s), and a long horizon (the paper scenes' 1000 s)
+ * leaves out the fixed steps below 5e-3 (1e-3 is 10^6 Simbody steps). */
 static int plan_simbody(joblist *l, const cmp_target *tg, const plan *p, double T, int first,
                         int long_horizon)
 {
@@ -359,7 +360,7 @@ static int plan_simbody(joblist *l, const cmp_target *tg, const plan *p, double 
         return unsupported(l, sc, p, T, CMP_SIMBODY, why);
     for (int k = 0; k < N_OF(SB_ADAPTIVE); k++)
         for (int i = 0; i < p->nRD; i++) {
-            if (long_horizon && SB_ADAPTIVE[k] == CMP_SB_RK3) continue;
+            if (SB_ADAPTIVE[k] == CMP_SB_RK3) continue; /* the sweep's only */
             job *j = tolerance(l, sc, p, T, CMP_SIMBODY, SB_ADAPTIVE[k], p->RD[i], NULL, 0);
             if (!j) return -1;
             j->trace = trace_scene && T == trace_T;
