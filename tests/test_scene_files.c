@@ -3,9 +3,9 @@
  * from a file that fails, the format's defaults and references work, and
  * every shipped scene in data/ loads, runs and stays on its constraints. */
 #define _POSIX_C_SOURCE 200809L /* opendir */
-#include <dirent.h>
 
 #include "test_util.h"
+#include "test_files.h"
 #include "braun_scene_file.h"
 
 static char *slurp(const char *path, size_t *len)
@@ -19,20 +19,13 @@ static char *slurp(const char *path, size_t *len)
     return buf;
 }
 
-/* Sorted list of the files in dir ending in suffix. */
+/* Sorted list of the files in dir ending in suffix, as dir/name. */
 static int list_files(const char *dir, const char *suffix, char names[][128], int max)
 {
-    DIR *d = opendir(dir);
-    int count = 0;
-    assert_non_null(d);
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL && count < max) {
-        const size_t len = strlen(e->d_name), sl = strlen(suffix);
-        if (len > sl && strcmp(e->d_name + len - sl, suffix) == 0 && len < 100)
-            snprintf(names[count++], 128, "%s/%s", dir, e->d_name);
-    }
-    closedir(d);
-    qsort(names, (size_t)count, sizeof names[0], (int (*)(const void *, const void *))strcmp);
+    char prefix[100];
+    snprintf(prefix, sizeof prefix, "%s/", dir);
+    const int count = test_list_files(dir, suffix, prefix, names[0], sizeof names[0], max);
+    assert_true(count >= 0);
     return count;
 }
 

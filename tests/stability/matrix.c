@@ -15,12 +15,11 @@
 #include <string.h>
 #include <time.h>
 
-#include <dirent.h>
-
 #include "braun.h"
 #include "braun_host.h"
 #include "braun_models.h"
 #include "braun_scene_file.h"
+#include "../test_files.h"
 
 typedef struct subject {
     char name[64];
@@ -72,23 +71,11 @@ static int documented_stop(int st)
            st == BRAUN_ERR_TOO_MANY_STEPS;
 }
 
-static int by_name(const void *a, const void *b) { return strcmp(a, b); }
-
 /* The *.json files of dir (names prefixed with prefix), sorted; at most max. */
 static int list_scenes(const char *dir, const char *prefix, char (*out)[96], int max)
 {
-    DIR *d = opendir(dir);
-    if (!d) return 0;
-    int k = 0;
-    struct dirent *e;
-    while (k < max && (e = readdir(d)) != NULL) {
-        const size_t len = strlen(e->d_name);
-        if (len > 5 && strcmp(e->d_name + len - 5, ".json") == 0)
-            snprintf(out[k++], 96, "%.8s%.80s", prefix, e->d_name);
-    }
-    closedir(d);
-    qsort(out, (size_t)k, sizeof out[0], by_name);
-    return k;
+    const int k = test_list_files(dir, ".json", prefix, out[0], sizeof out[0], max);
+    return k > 0 ? k : 0;
 }
 
 int main(int argc, char **argv)
