@@ -53,14 +53,13 @@ typedef struct study {
         char why[256];
         double agreement, ref_energy, ivp_rel;
         int ivp;
-        struct {
+        struct kept_run {
             int have;
             char setting[32];
             double err, rel, cpu, pos, energy;
             long steps;
         } best[2], rel_best[2], drift[2]; /* [0] RK4, [1] DOPRI5 */
-        char drift_finest[2][32]; /* the finest setting tried when none held the targets */
-        double drift_finest_pos[2], drift_finest_energy[2];
+        struct kept_run drift_finest[2]; /* the finest tried when none held the targets */
     } pr[32];
     int npr;
 } study;
@@ -337,17 +336,21 @@ static int chosen_of(const study *s, const char *id, double *h, double *rtol, in
     return -1;
 }
 
+static void keep_run(struct kept_run *k, const run_row *r)
+{
+    k->have = 1;
+    snprintf(k->setting, sizeof k->setting, "%s", r->setting);
+    k->err = r->max_error;
+    k->rel = r->max_rel;
+    k->cpu = r->res.cpu_s;
+    k->pos = r->res.max_pos;
+    k->energy = r->energy_rel;
+    k->steps = r->res.steps;
+}
+
 static void keep(struct pr *e, int i, const run_row *r, int rel)
 {
-    if (!r) return;
-    (rel ? e->rel_best : e->best)[i].have = 1;
-    snprintf((rel ? e->rel_best : e->best)[i].setting, sizeof e->best[i].setting, "%s", r->setting);
-    (rel ? e->rel_best : e->best)[i].err = r->max_error;
-    (rel ? e->rel_best : e->best)[i].rel = r->max_rel;
-    (rel ? e->rel_best : e->best)[i].cpu = r->res.cpu_s;
-    (rel ? e->rel_best : e->best)[i].pos = r->res.max_pos;
-    (rel ? e->rel_best : e->best)[i].energy = r->energy_rel;
-    (rel ? e->rel_best : e->best)[i].steps = r->res.steps;
+    if (r) keep_run(&(rel ? e->rel_best : e->best)[i], r);
 }
 
 /* The coarsest setting of each integrator that holds the drift targets,
@@ -357,20 +360,10 @@ static void keep_drift(struct pr *e, const run_row *rk, int nrk, const run_row *
     for (int k = 0; k < 2; k++) {
         const run_row *rows = k ? dp : rk;
         const int n = k ? ndp : nrk;
-        for (int i = 0; i < n; i++) {
-            if (!rows[i].met_drift) continue;
-            e->drift[k].have = 1;
-            snprintf(e->drift[k].setting, sizeof e->drift[k].setting, "%s", rows[i].setting);
-            e->drift[k].pos = rows[i].res.max_pos;
-            e->drift[k].energy = rows[i].energy_rel;
-            e->drift[k].cpu = rows[i].res.cpu_s;
-            break;
-        }
-        if (!e->drift[k].have && n > 0) {
-            snprintf(e->drift_finest[k], sizeof e->drift_finest[k], "%s", rows[n - 1].setting);
-            e->drift_finest_pos[k] = rows[n - 1].res.max_pos;
-            e->drift_finest_energy[k] = rows[n - 1].energy_rel;
-        }
+        int i = 0;
+        while (i < n && !rows[i].met_drift) i++;
+        if (i < n) keep_run(&e->drift[k], &rows[i]);
+        else if (n > 0) keep_run(&e->drift_finest[k], &rows[n - 1]);
     }
 }
 
@@ -561,13 +554,13 @@ static void write_report(study *s)
                         a04->p->drift_pos, a04->p->drift_energy, k ? "DOPRI5" : "RK4",
                         a04->drift[k].setting, a04->drift[k].pos, a04->drift[k].energy,
                         a04->drift[k].cpu);
-            else if (a04->drift_finest[k][0])
+            else if (a04->drift_finest[k].have)
                 fprintf(f, "**A04 over 600 s, the drift targets** (||Phi_q|| <= %.0e, |Phi_e| <= "
                            "%.0e): NOT met by %s; the finest setting tried, %s: %.2e and %.2e."
                            "\n\n",
                         a04->p->drift_pos, a04->p->drift_energy, k ? "DOPRI5" : "RK4",
-                        a04->drift_finest[k], a04->drift_finest_pos[k],
-                        a04->drift_finest_energy[k]);
+                        a04->drift_finest[k].setting, a04->drift_finest[k].pos,
+                        a04->drift_finest[k].energy);
         }
     }
     if (a02 && a02->ran && a02->best[0].have)
