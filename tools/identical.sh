@@ -10,7 +10,7 @@
 #
 # Record before the change (from a checkout of the old commit, with
 # `make all firmware-test` run there), compare after. Only timings are left
-# out (the summaries' cpu_s); everything else is compared byte for byte.
+# out (the summaries' cpu_s fields); everything else is compared byte for byte.
 # Environment: BRAUN (default build/bin/braun), FW (build/firmware; its test/
 # outputs come from `make firmware-test`), QUICK=1 (shorter runs).
 set -u
@@ -32,7 +32,7 @@ run() {
     "$BRAUN" run "$@" --out "$out/$rt.csv" --every 7 --summary "$out/$rt.json.raw" \
         > "$out/$rt.stdout" 2> "$out/$rt.stderr"
     echo "exit $?" >> "$out/$rt.stdout"
-    grep -v '"cpu_s"' "$out/$rt.json.raw" > "$out/$rt.json" 2>/dev/null
+    grep -v '"cpu_s' "$out/$rt.json.raw" > "$out/$rt.json" 2>/dev/null
     rm -f "$out/$rt.json.raw"
 }
 

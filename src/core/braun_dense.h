@@ -36,14 +36,28 @@ static inline int braun__dense_factor_mass(void *state, const braun_real *M, bra
     return braun_chol_factor(&braun__dense(state)->chol, M, sym_tol, bad_i, bad_j, bad_value);
 }
 
+/* A diagonal R (diagonal M) is solved inline: the products of
+ * braun_chol_solve_*_to's own diagonal path, without the call. */
 static inline void braun__dense_solve_rt(void *state, const braun_real *b, braun_real *x)
 {
-    braun_chol_solve_rt_to(&braun__dense(state)->chol, b, x);
+    const braun_chol *c = &braun__dense(state)->chol;
+    if (c->diagonal) {
+        const int n = BRAUN_N(c->n);
+        for (int i = 0; i < n; i++) x[i] = b[i] * c->dinv[i];
+        return;
+    }
+    braun_chol_solve_rt_to(c, b, x);
 }
 
 static inline void braun__dense_solve_r(void *state, const braun_real *b, braun_real *x)
 {
-    braun_chol_solve_r_to(&braun__dense(state)->chol, b, x);
+    const braun_chol *c = &braun__dense(state)->chol;
+    if (c->diagonal) {
+        const int n = BRAUN_N(c->n);
+        for (int i = 0; i < n; i++) x[i] = b[i] * c->dinv[i];
+        return;
+    }
+    braun_chol_solve_r_to(c, b, x);
 }
 
 static inline void braun__dense_mul_r(void *state, const braun_real *x, braun_real *y)
@@ -60,10 +74,30 @@ static inline int braun__dense_factor_c(void *state, int slot, int rows, const b
     braun_qrcp *f = braun__dense_slot(state, slot);
     const int n = BRAUN_N(s->n);
     braun_real *C = f->a;
-    for (int i = 0; i < rows; i++) {
-        braun_real *ci = C + (size_t)i * (size_t)n;
-        braun_chol_solve_rt_to(&s->chol, A + (size_t)i * (size_t)n, ci);
-        if (resid) resid[i] -= braun_dot(n, ci, atil);
+    if (s->chol.diagonal) {
+        /* Diagonal M (point masses, centroidal frames): C = A R^-1 is a
+         * column scaling, the same products as the solve without its calls. */
+        const braun_real *dinv = s->chol.dinv;
+        for (int i = 0; i < rows; i++) {
+            braun_real *ci = C + (size_t)i * (size_t)n;
+            const braun_real *ai = A + (size_t)i * (size_t)n;
+            if (resid) {
+                braun_real dot = 0; /* braun_dot(n, ci, atil), in the same pass */
+                for (int j = 0; j < n; j++) {
+                    ci[j] = ai[j] * dinv[j];
+                    dot += ci[j] * atil[j];
+                }
+                resid[i] -= dot;
+            } else {
+                for (int j = 0; j < n; j++) ci[j] = ai[j] * dinv[j];
+            }
+        }
+    } else {
+        for (int i = 0; i < rows; i++) {
+            braun_real *ci = C + (size_t)i * (size_t)n;
+            braun_chol_solve_rt_to(&s->chol, A + (size_t)i * (size_t)n, ci);
+            if (resid) resid[i] -= braun_dot(n, ci, atil);
+        }
     }
     return braun_qrcp_factor_rule(f, tol, s->tol_new[slot] > tol ? s->tol_new[slot] : tol,
                                   s->keep[slot], s->cap[slot]);

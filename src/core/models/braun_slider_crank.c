@@ -77,21 +77,19 @@ static int holonomic(braun_real t, const braun_real *q, const braun_real *v,
         phi[4] = q[4] + h * s2;
     }
     if (A) {
-        for (int i = 0; i < 30; ++i) A[i] = BRAUN_R(0.0);
-        A[0 * 6 + 0] = BRAUN_R(1.0);
-        A[0 * 6 + 2] = h * s1;
-        A[1 * 6 + 1] = BRAUN_R(1.0);
-        A[1 * 6 + 2] = -h * c1;
-        A[2 * 6 + 0] = BRAUN_R(1.0);
-        A[2 * 6 + 2] = -h * s1;
-        A[2 * 6 + 3] = BRAUN_R(-1.0);
-        A[2 * 6 + 5] = -h * s2;
-        A[3 * 6 + 1] = BRAUN_R(1.0);
-        A[3 * 6 + 2] = h * c1;
-        A[3 * 6 + 4] = BRAUN_R(-1.0);
-        A[3 * 6 + 5] = h * c2;
-        A[4 * 6 + 4] = BRAUN_R(1.0);
-        A[4 * 6 + 5] = h * c2;
+        /* Every entry written once, zeros included: no zeroing pass (a
+         * memset call per evaluation on a Cortex-M). */
+        const braun_real o = BRAUN_R(0.0), e = BRAUN_R(1.0);
+        braun_real *r = A;
+        r[0] = e; r[1] = o; r[2] = h * s1;  r[3] = o;  r[4] = o;  r[5] = o;
+        r += 6;
+        r[0] = o; r[1] = e; r[2] = -h * c1; r[3] = o;  r[4] = o;  r[5] = o;
+        r += 6;
+        r[0] = e; r[1] = o; r[2] = -h * s1; r[3] = -e; r[4] = o;  r[5] = -h * s2;
+        r += 6;
+        r[0] = o; r[1] = e; r[2] = h * c1;  r[3] = o;  r[4] = -e; r[5] = h * c2;
+        r += 6;
+        r[0] = o; r[1] = o; r[2] = o;       r[3] = o;  r[4] = e;  r[5] = h * c2;
     }
     if (b)
         for (int i = 0; i < 5; ++i) b[i] = BRAUN_R(0.0);
