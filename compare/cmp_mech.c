@@ -5,12 +5,15 @@
 #include <string.h>
 
 #include "cmp_mech.h"
+#include "cmp_mech3.h"
 #ifdef CMP_HAVE_SCENES
 #include "braun_scene_file.h"
 #endif
 
 void cmp_mech_free(cmp_mech *m)
 {
+    if (m->spatial) cmp_mech3_free(m->spatial);
+    free(m->spatial);
     free(m->links);
     free(m->joints);
     free(m->forces);
@@ -167,7 +170,7 @@ static int convert(conv *c, char *why, size_t whysize)
     const braun_scene *s = c->s;
     cmp_mech *m = c->m;
     if (s->dim != 2) {
-        snprintf(why, whysize, "spatial scenes are not translated for the peers yet");
+        snprintf(why, whysize, "a spatial scene: its peer model is cmp_mech3.h's");
         return -1;
     }
     /* Links: bodies with mass, then rods. */

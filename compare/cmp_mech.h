@@ -82,12 +82,17 @@ typedef struct cmp_mout {
     double p[2], offset;
 } cmp_mout;
 
+struct cmp_mech3;
+
 typedef struct cmp_mech {
     int nlinks, njoints, nforces, n;
     cmp_link *links;
     cmp_mjoint *joints;
     cmp_mforce *forces;
     cmp_mout *out;              /* n */
+    /* A spatial target's mechanism instead (cmp_mech3.h; nothing above is
+     * set but n): what the Simbody host hands its plugin. Freed with m. */
+    struct cmp_mech3 *spatial;
 } cmp_mech;
 
 /* The mechanism of a target: its scene file (built-in models: the scene

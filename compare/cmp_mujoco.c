@@ -20,7 +20,6 @@
  * the model does not compile (the compiler's message). */
 #include <setjmp.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,42 +27,15 @@
 #include "cmp.h"
 #include "cmp_mech.h"
 #include "cmp_peer.h"
+#include "cmp_mujoco3.h"
+#include "cmp_text.h"
 
 #ifdef CMP_HAVE_MUJOCO
 #include <mujoco/mujoco.h>
 
 /* ------------------------------------------------------------ MJCF text */
-typedef struct text {
-    char *s;
-    size_t len, cap;
-    int failed;
-} text;
-
-static void put(text *t, const char *fmt, ...)
-{
-    va_list ap;
-    for (;;) {
-        va_start(ap, fmt);
-        const int k = vsnprintf(t->s ? t->s + t->len : NULL, t->s ? t->cap - t->len : 0, fmt, ap);
-        va_end(ap);
-        if (k < 0) {
-            t->failed = 1;
-            return;
-        }
-        if (t->s && t->len + (size_t)k < t->cap) {
-            t->len += (size_t)k;
-            return;
-        }
-        const size_t cap = 2 * (t->cap + (size_t)k) + 256;
-        char *s = realloc(t->s, cap);
-        if (!s) {
-            t->failed = 1;
-            return;
-        }
-        t->s = s;
-        t->cap = cap;
-    }
-}
+typedef cmp_text text;
+#define put cmp_text_put
 
 /* Point p of link a's frame in link b's frame, both at their initial poses
  * (a, b = -1: the world). */
@@ -112,7 +84,7 @@ static void tree_points(const cmp_mech *m, int l, double *pc, double *pp)
 
 static const double CLOCK_MASS = 1e12, CLOCK_SPEED = 1.0;
 
-static void solparams(text *t, const cmp_spec *sp)
+void cmp_mujoco_solparams(text *t, const cmp_spec *sp)
 {
     const cmp_peer_opts *o = &sp->peer;
     if (o->timeconst >= 0) {
@@ -191,6 +163,24 @@ static void body_open(text *t, const cmp_mech *m, int l, int depth)
     }
 }
 
+/* The model's opening: <mujoco>, the compiler and the options (step,
+ * integrator, gravity g, solver settings; contacts off). */
+void cmp_mujoco_header(text *t, const cmp_spec *sp, const char *name, const double *g)
+{
+    static const char *const integ[] = {"Euler", "RK4", "implicit"};
+    static const char *const solver[] = {"Newton", "CG", "PGS"};
+    const int ii = sp->integrator - CMP_MJ_EULER;
+    put(t, "<mujoco model=\"%s\">\n", name);
+    put(t, "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n");
+    put(t, "  <option timestep=\"%.17g\" integrator=\"%s\" gravity=\"%.17g %.17g %.17g\" "
+            "solver=\"%s\" tolerance=\"%.17g\" iterations=\"%d\" jacobian=\"dense\">\n",
+        sp->h, integ[ii >= 0 && ii < 3 ? ii : 1], g[0], g[1], g[2],
+        solver[sp->peer.solver >= 0 && sp->peer.solver < 3 ? sp->peer.solver : 0],
+        sp->peer.tolerance > 0 ? sp->peer.tolerance : 1e-8,
+        sp->peer.iterations > 0 ? sp->peer.iterations : 100);
+    put(t, "    <flag contact=\"disable\"/>\n  </option>\n");
+}
+
 /* Joint (hinge) name of the revolute tree joint of link l. */
 static void hinge_name(int l, char *buf, size_t size)
 {
@@ -262,18 +252,8 @@ int cmp_mujoco_mjcf(const cmp_mech *m, const cmp_spec *sp, const char *name, cha
         tend_a[ntend] = add_site(&S, F->a, F->pa);
         tend_b[ntend++] = add_site(&S, F->b, F->pb);
     }
-    static const char *const integ[] = {"Euler", "RK4", "implicit"};
-    static const char *const solver[] = {"Newton", "CG", "PGS"};
-    const int ii = sp->integrator - CMP_MJ_EULER;
-    put(&t, "<mujoco model=\"%s\">\n", name);
-    put(&t, "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n");
-    put(&t, "  <option timestep=\"%.17g\" integrator=\"%s\" gravity=\"%.17g %.17g 0\" "
-            "solver=\"%s\" tolerance=\"%.17g\" iterations=\"%d\" jacobian=\"dense\">\n",
-        sp->h, integ[ii >= 0 && ii < 3 ? ii : 1], g[0], g[1],
-        solver[sp->peer.solver >= 0 && sp->peer.solver < 3 ? sp->peer.solver : 0],
-        sp->peer.tolerance > 0 ? sp->peer.tolerance : 1e-8,
-        sp->peer.iterations > 0 ? sp->peer.iterations : 100);
-    put(&t, "    <flag contact=\"disable\"/>\n  </option>\n");
+    const double g3[3] = {g[0], g[1], 0};
+    cmp_mujoco_header(&t, sp, name, g3);
     put(&t, "  <worldbody>\n");
     put_sites(&t, &S, -1, 4);
     for (int l = 0; l < m->nlinks; l++)
@@ -320,14 +300,14 @@ int cmp_mujoco_mjcf(const cmp_mech *m, const cmp_spec *sp, const char *name, cha
             put(&t, "    <connect name=\"E%d\" body1=\"L%d\"", j, b1);
             if (b2 >= 0) put(&t, " body2=\"L%d\"", b2);
             put(&t, " anchor=\"%.17g %.17g 0\"", p1[0], p1[1]);
-            solparams(&t, sp);
+            cmp_mujoco_solparams(&t, sp);
             put(&t, "/>\n");
             neq++;
         } else if (J->kind == CMP_MJ_DISTANCE) {
             int k = 0;
             for (int i = 0; i < j; i++) k += !m->joints[i].tree && m->joints[i].kind == CMP_MJ_DISTANCE;
             put(&t, "    <tendon name=\"E%d\" tendon1=\"T%d\" polycoef=\"0 0 0 0 0\"", j, k);
-            solparams(&t, sp);
+            cmp_mujoco_solparams(&t, sp);
             put(&t, "/>\n");
             neq++;
         } else if (J->kind == CMP_MJ_ANGLE) {
@@ -341,7 +321,7 @@ int cmp_mujoco_mjcf(const cmp_mech *m, const cmp_spec *sp, const char *name, cha
                     sign * (double)J->drive.b / CLOCK_SPEED);
             else
                 put(&t, " polycoef=\"0 0 0 0 0\"");
-            solparams(&t, sp);
+            cmp_mujoco_solparams(&t, sp);
             put(&t, "/>\n");
             neq++;
         } else {
@@ -427,6 +407,12 @@ static int prepare(const cmp_target *tg, cmp_mech *m, char *why, size_t whysize)
 
 int cmp_mujoco_supports(const cmp_target *tg, char *why, size_t whysize)
 {
+    if (cmp_target_is_spatial(tg)) {
+        cmp_mech3 m3;
+        if (cmp_mujoco3_prepare(tg, &m3, why, whysize)) return 0;
+        cmp_mech3_free(&m3);
+        return 1;
+    }
     cmp_mech m;
     if (prepare(tg, &m, why, whysize)) return 0;
     cmp_mech_free(&m);
@@ -440,7 +426,9 @@ const char *cmp_mujoco_version(void)
 
 /* A compiled model of the target and its bookkeeping. */
 typedef struct mj_run {
+    int spatial;      /* 1: mech3 (cmp_mujoco3.c), 0: mech */
     cmp_mech mech;
+    cmp_mech3 mech3;
     mjModel *model;
     mjData *data;
     int *body;        /* per link: MuJoCo body id */
@@ -452,6 +440,7 @@ static void mj_run_free(mj_run *r)
     if (r->model) mj_deleteModel(r->model);
     free(r->body);
     cmp_mech_free(&r->mech);
+    cmp_mech3_free(&r->mech3);
     memset(r, 0, sizeof *r);
 }
 
@@ -525,13 +514,23 @@ static void initial_qvel(const mj_run *r, int has_clock)
 static int mj_build(const cmp_target *tg, const cmp_spec *sp, mj_run *r, char *why, size_t whysize)
 {
     memset(r, 0, sizeof *r);
-    if (prepare(tg, &r->mech, why, whysize)) return -1;
+    r->spatial = cmp_target_is_spatial(tg);
     char *xml = NULL;
     int has_clock = 0;
-    if (cmp_mujoco_mjcf(&r->mech, sp, tg->name, &xml, &has_clock, why, whysize)) {
-        mj_run_free(r);
-        return -1;
+    if (r->spatial) {
+        if (cmp_mujoco3_prepare(tg, &r->mech3, why, whysize)) return -1;
+        if (cmp_mujoco3_mjcf(&r->mech3, sp, tg->name, &xml, why, whysize)) {
+            mj_run_free(r);
+            return -1;
+        }
+    } else {
+        if (prepare(tg, &r->mech, why, whysize)) return -1;
+        if (cmp_mujoco_mjcf(&r->mech, sp, tg->name, &xml, &has_clock, why, whysize)) {
+            mj_run_free(r);
+            return -1;
+        }
     }
+    const int nbodies = r->spatial ? r->mech3.nbodies : r->mech.nlinks;
     /* MuJoCo 2.2.2's mjVFS holds 2000 file names of 1000 bytes: 2 MB, on
      * the heap (valgrind took it on the stack for a stack overflow). */
     mjVFS *vfs = malloc(sizeof *vfs);
@@ -556,10 +555,10 @@ static int mj_build(const cmp_target *tg, const cmp_spec *sp, mj_run *r, char *w
     free(xml);
     if (rc == 0) {
         r->data = mj_makeData(r->model);
-        r->body = malloc(((size_t)r->mech.nlinks + 1) * sizeof(int));
+        r->body = malloc(((size_t)nbodies + 1) * sizeof(int));
         if (!r->data || !r->body) rc = -1;
     }
-    for (int l = 0; rc == 0 && l < r->mech.nlinks; l++) {
+    for (int l = 0; rc == 0 && l < nbodies; l++) {
         char nm[16];
         snprintf(nm, sizeof nm, "L%d", l);
         r->body[l] = mj_name2id(r->model, mjOBJ_BODY, nm);
@@ -570,7 +569,8 @@ static int mj_build(const cmp_target *tg, const cmp_spec *sp, mj_run *r, char *w
         mj_run_free(r);
         return -1;
     }
-    initial_qvel(r, has_clock);
+    if (r->spatial) cmp_mujoco3_qvel(&r->mech3, r->model, r->data);
+    else initial_qvel(r, has_clock);
     for (int i = 0; i < r->model->nu; i++) r->data->ctrl[i] = 1;
     return 0;
 }
@@ -690,15 +690,23 @@ void cmp_run_mujoco(const cmp_target *tg, const cmp_spec *sp, cmp_traj *tr, cmp_
     }
     /* Samples to q, v. */
     mjData *d2 = mj_makeData(mm);
-    double *pose = malloc((6 * (size_t)r.mech.nlinks + 2 * (size_t)n) * sizeof(double));
+    const size_t npose = r.spatial ? 13 * (size_t)r.mech3.nbodies : 6 * (size_t)r.mech.nlinks;
+    double *pose = malloc((npose + 2 * (size_t)n) * sizeof(double));
     if (d2 && pose) {
-        double *q = pose + 6 * r.mech.nlinks, *v = q + n;
+        double *q = pose + npose, *v = q + n;
         for (int l = 0; l < r.mech.nlinks; l++) pose[6 * l + 2] = r.mech.links[l].th;
+        /* Spatial: each quaternion takes the sign of the previous sample's. */
+        memcpy(q, tg->q0, (size_t)n * sizeof(double));
         for (long j = 0; j < ns; j++) {
             const double *row = raw + (size_t)j * (size_t)(nq + nv + 1);
             memcpy(d2->qpos, row + 1, (size_t)nq * sizeof(double));
             memcpy(d2->qvel, row + 1 + nq, (size_t)nv * sizeof(double));
-            to_state(&r, d2, pose, q, v);
+            if (r.spatial) {
+                cmp_mujoco3_pose(&r.mech3, mm, d2, r.body, pose);
+                cmp_mech3_state(&r.mech3, pose, q, v);
+            } else {
+                to_state(&r, d2, pose, q, v);
+            }
             if (cmp_traj_push(tr, row[0], q, v)) break;
         }
     }

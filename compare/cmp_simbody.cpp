@@ -55,7 +55,7 @@
  * Integrator::StepFailed: its message is kept), a non-finite state, a
  * termination reason other than reaching the final time, or more than
  * SB_MAX_STEPS steps in one output interval (SB_TOO_MUCH_WORK). */
-#include "cmp_simbody_plugin.h"
+#include "cmp_simbody_model.h"
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -67,10 +67,14 @@
 
 using namespace SimTK;
 
+namespace cmp_sb {
+const cmp_sb_host *H;
+}
+
 namespace {
 
-/* The harness (cmp_simbody_plugin.h). */
-const cmp_sb_host *H;
+using cmp_sb::H;
+using cmp_sb::Model;
 
 /* Loop-closing joints Simbody can express (angle joints are handled on the
  * tree hinge, as cmp_mech_tree requires). */
@@ -235,23 +239,6 @@ private:
 };
 
 /* ------------------------------------------------------------ the model */
-struct Model {
-    MultibodySystem system;
-    SimbodyMatterSubsystem matter;
-    GeneralForceSubsystem forces;
-    cmp_mech *mech;                   /* the host's; its tree chosen by prepare() */
-    std::vector<MobilizedBody> mob;   /* per link */
-    std::vector<MobilizedBody> mid;   /* per link: the massless frame between it and
-                                       * its parent, or an empty handle */
-    State state;                      /* the initial state, q and u set */
-
-    explicit Model(cmp_mech *m) : system(), matter(system), forces(system), mech(m) {}
-    Model(const Model &) = delete;
-    Model &operator=(const Model &) = delete;
-
-    MobilizedBody &body(int l) { return l < 0 ? matter.updGround() : mob[(size_t)l]; }
-};
-
 /* The mechanism's tree, and what Simbody cannot take. 0, or -1 with why. */
 int prepare(cmp_mech *m, char *why, size_t whysize)
 {
@@ -503,6 +490,12 @@ void add_forces(Model &M)
  * throws on Simbody's own errors. */
 std::unique_ptr<Model> make_model(cmp_mech *m, const sb_options &o, char *why, size_t whysize)
 {
+    if (m->spatial) {
+        if (cmp_sb::spatial_prepare(m->spatial, why, whysize)) return nullptr;
+        std::unique_ptr<Model> M(new Model(m));
+        cmp_sb::spatial_build(*M, o.ball);
+        return M;
+    }
     if (prepare(m, why, whysize)) return nullptr;
     std::unique_ptr<Model> M(new Model(m));
     const int nl = m->nlinks;
@@ -540,7 +533,7 @@ double link_angle(const Model &M, const State &s, int l)
 }
 
 /* Link poses (x, y, θ, vx, vy, ω of each centre of mass) from a state
- * realized through Velocity. */
+ * realized through Velocity (planar mechanisms). */
 void poses_of(const Model &M, const State &s, double *pose)
 {
     for (int l = 0; l < M.mech->nlinks; l++) {
@@ -555,6 +548,18 @@ void poses_of(const Model &M, const State &s, double *pose)
         p[4] = v[1];
         p[5] = b.getBodyAngularVelocity(s)[2];
     }
+}
+
+/* libbraun's q, v from a state realized through Velocity; pose: scratch of
+ * 6 per link (planar). */
+void sample(const Model &M, const State &s, double *pose, double *q, double *v)
+{
+    if (M.mech->spatial) {
+        cmp_sb::spatial_sample(M, s, q, v);
+        return;
+    }
+    poses_of(M, s, pose);
+    H->mech_state(M.mech, pose, q, v);
 }
 
 std::unique_ptr<Integrator> make_integrator(const Model &M, const cmp_spec *sp,
@@ -703,8 +708,8 @@ void run(cmp_mech *m, int n, const cmp_spec *sp, cmp_traj *tr, cmp_outcome *out)
         if (dq > 1e-12)
             std::snprintf(out->detail, sizeof out->detail,
                           "initialize() projected the initial state by %.3g", dq);
-        poses_of(*M, in->getState(), pose.data());
-        H->mech_state(m, pose.data(), q.data(), v.data());
+        if (m->spatial) cmp_sb::spatial_seed(m->spatial, q.data());
+        sample(*M, in->getState(), pose.data(), q.data(), v.data());
         if (H->traj_push(tr, 0, q.data(), v.data())) throw std::bad_alloc();
         for (long j = 1; j <= nout; j++) {
             const double tj = j == nout ? sp->T : (double)j * sp->dt_out;
@@ -736,8 +741,7 @@ void run(cmp_mech *m, int n, const cmp_spec *sp, cmp_traj *tr, cmp_outcome *out)
                 break;
             }
             t_good = s.getTime();
-            poses_of(*M, s, pose.data());
-            H->mech_state(m, pose.data(), q.data(), v.data());
+            sample(*M, s, pose.data(), q.data(), v.data());
             if (H->traj_push(tr, t_good, q.data(), v.data())) throw std::bad_alloc();
         }
     } catch (const std::bad_alloc &) {
@@ -768,6 +772,7 @@ void run(cmp_mech *m, int n, const cmp_spec *sp, cmp_traj *tr, cmp_outcome *out)
 
 int supports(cmp_mech *m, char *why, size_t whysize)
 {
+    if (m->spatial) return cmp_sb::spatial_prepare(m->spatial, why, whysize) == 0;
     return prepare(m, why, whysize) == 0;
 }
 
@@ -790,8 +795,8 @@ int initial_state(cmp_mech *m, const cmp_spec *sp, double *q, double *v, double 
         std::unique_ptr<Model> M = make_model(m, o, why, whysize);
         if (!M) return -1;
         std::vector<double> pose(6 * (size_t)m->nlinks + 1);
-            poses_of(*M, M->state, pose.data());
-        H->mech_state(m, pose.data(), q, v);
+        if (m->spatial) cmp_sb::spatial_seed(m->spatial, q);
+        sample(*M, M->state, pose.data(), q, v);
         if (moved_by) {
             *moved_by = NAN;
             if (sp) {
@@ -844,9 +849,9 @@ const cmp_sb_plugin table = {
 } // namespace
 
 extern "C" __attribute__((visibility("default"))) const cmp_sb_plugin *
-cmp_simbody_plugin_v1(const cmp_sb_host *host)
+cmp_simbody_plugin_v2(const cmp_sb_host *host)
 {
     if (!host || host->version != CMP_SB_PLUGIN_VERSION) return nullptr;
-    H = host;
+    cmp_sb::H = host;
     return &table;
 }

@@ -16,6 +16,7 @@
 
 #include "cmp.h"
 #include "cmp_mech.h"
+#include "cmp_mech3.h"
 #include "cmp_peer.h"
 #include "cmp_simbody_plugin.h"
 
@@ -37,6 +38,7 @@
 static const cmp_sb_host host = {
     CMP_SB_PLUGIN_VERSION, cmp_mech_tree,  cmp_mech_order,  cmp_mech_hinge, cmp_mech_state,
     cmp_mech_unwrap,       cmp_traj_push, cmp_cpu_seconds, braun_scene_fn_eval,
+    cmp_mech3_tree,        cmp_mech3_order, cmp_mech3_state,
 };
 
 static const cmp_sb_plugin *plugin;
@@ -83,6 +85,19 @@ static const cmp_sb_plugin *begin(const cmp_target *tg, cmp_mech *m, char *why, 
     if (!p) {
         snprintf(why, whysize, "%s", load_error);
         return NULL;
+    }
+    if (cmp_target_is_spatial(tg)) {
+        m->spatial = calloc(1, sizeof *m->spatial);
+        if (!m->spatial) {
+            snprintf(why, whysize, "out of memory");
+            return NULL;
+        }
+        if (cmp_mech3_for_target(tg, m->spatial, why, whysize)) {
+            cmp_mech_free(m);
+            return NULL;
+        }
+        m->n = m->spatial->n;
+        return p;
     }
     if (cmp_mech_for_target_ex(tg, CMP_MECH_TORQUE, m, why, whysize)) return NULL;
     return p;

@@ -23,13 +23,14 @@
 
 #include "cmp.h"
 #include "cmp_mech.h"
+#include "cmp_mech3.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define CMP_SB_PLUGIN_VERSION 1
-#define CMP_SB_PLUGIN_SYMBOL "cmp_simbody_plugin_v1"
+#define CMP_SB_PLUGIN_VERSION 2
+#define CMP_SB_PLUGIN_SYMBOL "cmp_simbody_plugin_v2"
 
 /* What the plugin may call in the harness. */
 typedef struct cmp_sb_host {
@@ -44,11 +45,15 @@ typedef struct cmp_sb_host {
     double (*cpu_seconds)(void);
     void (*fn_eval)(const braun_scene_fn *f, braun_real t, braun_real *value, braun_real *rate,
                     braun_real *accel);
+    /* Spatial mechanisms (m->spatial set): cmp_mech3.h. */
+    int (*mech3_tree)(cmp_mech3 *m, char *why, size_t whysize);
+    void (*mech3_order)(const cmp_mech3 *m, int *order);
+    void (*mech3_state)(const cmp_mech3 *m, const double *pose, double *q, double *v);
 } cmp_sb_host;
 
 /* What the plugin provides: the adapter's functions on a target's
  * mechanism m (built by the host, its tree chosen by the plugin; the host
- * frees it). n: libbraun's coordinates. Semantics as in cmp.h and
+ * frees it; a spatial target's is m->spatial). n: libbraun's coordinates. Semantics as in cmp.h and
  * cmp_peer.h. */
 typedef struct cmp_sb_plugin {
     int version; /* CMP_SB_PLUGIN_VERSION */

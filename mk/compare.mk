@@ -61,13 +61,16 @@ $(BUILD)/obj/compare/%.o: compare/%.c | deps-compare deps-host
 	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
 # The Simbody adapter is C++ (Simbody has no C API), built as the plugin.
-$(BUILD)/obj/compare/pic/cmp_simbody.o: compare/cmp_simbody.cpp | deps-compare deps-host
+# Its files: the planar model and the run (cmp_simbody.cpp), the spatial
+# model (cmp_simbody3.cpp).
+COMPARE_SB_OBJ := $(BUILD)/obj/compare/pic/cmp_simbody.o $(BUILD)/obj/compare/pic/cmp_simbody3.o
+$(BUILD)/obj/compare/pic/%.o: compare/%.cpp | deps-compare deps-host
 	@mkdir -p $(dir $@)
 	$(CXX) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(COMPARE_CXXFLAGS) $(CXXFLAGS) $(DEPFLAGS) -c $< -o $@
 
-$(COMPARE_SB_PLUGIN): $(BUILD)/obj/compare/pic/cmp_simbody.o
+$(COMPARE_SB_PLUGIN): $(COMPARE_SB_OBJ)
 	@mkdir -p $(dir $@)
-	$(CXX) -shared -Wl,-z,defs $< $(COMPARE_SB_LDLIBS) $(LDLIBS) -o $@
+	$(CXX) -shared -Wl,-z,defs $(COMPARE_SB_OBJ) $(COMPARE_SB_LDLIBS) $(LDLIBS) -o $@
 
 $(BUILD)/obj/compare/cmp_simbody_host.o: COMPARE_CPPFLAGS += \
 	-DCMP_SIMBODY_PLUGIN_PATH='"$(abspath $(COMPARE_SB_PLUGIN))"'

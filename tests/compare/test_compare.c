@@ -361,6 +361,71 @@ static void test_mujoco_pendulum_exact(void **state)
     assert_true(best.pos_max > 1e-10 && best.pos_max < soft.pos_max);
 }
 
+/* The spatial MJCF (cmp_mujoco3.c) on spatial-arm: an arm on a hinge, a
+ * bob on a ball joint, a spring and a torsion spring, all in MuJoCo's tree
+ * (no equality): the run starts at q0, v0 (the map back from MuJoCo's
+ * poses, quaternions and ω), stays on the constraints to round-off and
+ * converges to the harness's RK4 + projection reference. MuJoCo 2.2.2's
+ * RK4 moves a ball joint's quaternion by one averaged angular velocity per
+ * step: second order on this scene (Simbody's fourth-order fixed step
+ * converges at 2⁴ on the same mechanism, test_simbody.c). */
+static double spatial_arm_error(const cmp_spec *sp, cmp_outcome *out, double *pos_max)
+{
+    cmp_target tg;
+    char err[256];
+    assert_int_equal(cmp_target_find("spatial-arm", &tg, err, sizeof err), 0);
+    const double dt = sp->dt_out, hr = fmin(2.5e-5 * tg.h_scale, dt / 20);
+    cmp_ref *ref = cmp_ref_new_proj(&tg, sp->T, dt / ceil(dt / hr - 1e-9), dt, err, sizeof err);
+    assert_non_null(ref);
+    assert_int_equal(cmp_ref_tabulate(ref, dt, sp->T), 0);
+    cmp_traj tr;
+    assert_int_equal(cmp_traj_init(&tr, tg.sys.n, 64), 0);
+    cmp_run(&tg, sp, &tr, out);
+    if (out->status) print_error("%s %s\n", out->status_name, out->detail);
+    assert_int_equal(out->status, 0);
+    assert_true(tr.count > 2 && tr.t[0] == 0);
+    for (int i = 0; i < tg.sys.n; i++) {
+        assert_near(tr.q[i], tg.q0[i], 1e-12);
+        assert_near(tr.v[i], tg.v0[i], 1e-12);
+    }
+    cmp_metrics mt;
+    assert_int_equal(cmp_metrics_compute(&tg, &tr, ref, &mt, NULL, NULL), 0);
+    *pos_max = mt.pos_max;
+    cmp_traj_free(&tr);
+    cmp_ref_free(ref);
+    cmp_target_free(&tg);
+    return mt.traj_max;
+}
+
+static void test_mujoco_spatial(void **state)
+{
+    (void)state;
+    if (!cmp_mujoco_version()) skip();
+    cmp_target tg;
+    char err[256], why[256] = "";
+    assert_int_equal(cmp_target_find("spatial-arm", &tg, err, sizeof err), 0);
+    assert_int_equal(cmp_mujoco_supports(&tg, why, sizeof why), 1);
+    cmp_target_free(&tg);
+    cmp_outcome out;
+    double pos_fine, pos_coarse;
+    cmp_spec sp = fixed_spec(CMP_MUJOCO, CMP_MJ_RK4, 1e-3, 2);
+    const double fine = spatial_arm_error(&sp, &out, &pos_fine);
+    sp.h = 4e-3;
+    const double coarse = spatial_arm_error(&sp, &out, &pos_coarse);
+    print_message("spatial-arm, MuJoCo RK4 over 2 s: h = 1e-3 %.3g, 4e-3 %.3g (ratio %.3g); "
+                  "max |Φ_q| %.2g, %.2g\n", fine, coarse, coarse / fine, pos_fine, pos_coarse);
+    assert_true(pos_fine < 1e-13 && pos_coarse < 1e-13);
+    /* Measured 6.9e-6 and 1.1e-4: the ratio 15.9 of second order (4²). */
+    assert_true(coarse / fine > 10 && coarse / fine < 30);
+    assert_true(fine < 1.5e-5);
+    /* A scene MuJoCo's spatial model does not take says which element. */
+    assert_int_equal(cmp_target_find("data/iftomm/a05-flyball-governor.json", &tg, err, sizeof err), 0);
+    assert_int_equal(cmp_mujoco_supports(&tg, why, sizeof why), 0);
+    print_message("a05: %s\n", why);
+    assert_non_null(strstr(why, "particle3d"));
+    cmp_target_free(&tg);
+}
+
 /* A MuJoCo run that fails is a row: its warning, the time it stopped, the
  * samples up to there. The four-bar with implicit Euler at h = 0.2 s
  * resets its state (QACC not finite) at t = 11.8 s; a scene MuJoCo cannot
@@ -958,6 +1023,7 @@ int main(void)
         cmocka_unit_test(test_references_agree),
         cmocka_unit_test(test_ida_failure_recorded),
         cmocka_unit_test(test_mujoco_pendulum_exact),
+        cmocka_unit_test(test_mujoco_spatial),
         cmocka_unit_test(test_mujoco_failure_recorded),
         cmocka_unit_test(test_peer_not_built_is_a_row),
         cmocka_unit_test(test_projection_order),
