@@ -50,6 +50,19 @@ void cmp_mech3_point0(const cmp_mech3 *m, int b, const double *p, double *P)
     for (int k = 0; k < 3; k++) P[k] += B->pos[k];
 }
 
+void cmp_mech3_velocity0(const cmp_mech3 *m, int b, const double *P, double *v)
+{
+    if (b < 0) {
+        v[0] = v[1] = v[2] = 0;
+        return;
+    }
+    const cmp_body3 *B = &m->bodies[b];
+    const double *w = B->omega, r[3] = {P[0] - B->pos[0], P[1] - B->pos[1], P[2] - B->pos[2]};
+    v[0] = B->vel[0] + w[1] * r[2] - w[2] * r[1];
+    v[1] = B->vel[1] + w[2] * r[0] - w[0] * r[2];
+    v[2] = B->vel[2] + w[0] * r[1] - w[1] * r[0];
+}
+
 void cmp_mech3_free(cmp_mech3 *m)
 {
     free(m->bodies);
@@ -63,6 +76,13 @@ void cmp_mech3_state(const cmp_mech3 *m, const double *pose, double *q, double *
     for (int b = 0; b < m->nbodies; b++) {
         const double *s = pose + 13 * b;
         double *qb = q + m->bodies[b].iq, *vb = v + m->bodies[b].iq;
+        if (m->bodies[b].point_mass) {
+            for (int k = 0; k < 3; k++) {
+                qb[k] = s[k];
+                vb[k] = s[7 + k];
+            }
+            continue;
+        }
         const double dot = s[3] * qb[3] + s[4] * qb[4] + s[5] * qb[5] + s[6] * qb[6];
         const double sg = dot < 0 ? -1 : 1;
         for (int k = 0; k < 3; k++) {
@@ -94,7 +114,7 @@ int cmp_target_is_spatial(const cmp_target *tg)
 /* ------------------------------------------------------------ the tree */
 static int priority(int kind)
 {
-    return kind == CMP_J3_REVOLUTE ? 0 : kind == CMP_J3_WELD ? 1 : 2;
+    return kind == CMP_J3_REVOLUTE || kind == CMP_J3_PRISMATIC ? 0 : kind == CMP_J3_WELD ? 1 : 2;
 }
 
 int cmp_mech3_tree(cmp_mech3 *m, char *why, size_t whysize)
@@ -197,9 +217,11 @@ static int convert(const braun_scene_file *sf, const double *q0, const double *v
     for (int i = 0; i < s->nbodies; i++) {
         const braun_scene_body *b = &s->bodies[i];
         body_of[i] = -2;
-        if (b->kind != BRAUN_BODY_RIGID3D) {
-            snprintf(why, whysize, "body '%s' (%s) has no counterpart in the peer model yet",
-                     name_of(sf->body_names, i, "body"), b->kind->name);
+        const int point = b->kind == BRAUN_BODY_PARTICLE3D;
+        if ((b->kind != BRAUN_BODY_RIGID3D && !point) || !(b->mass > 0)) {
+            snprintf(why, whysize, "body '%s' (%s%s) has no counterpart in the peer model yet",
+                     name_of(sf->body_names, i, "body"), b->mass > 0 ? "" : "massless ",
+                     b->kind->name);
             return -1;
         }
         if (grow((void **)&m->bodies, m->nbodies, sizeof *m->bodies)) goto oom;
@@ -208,8 +230,19 @@ static int convert(const braun_scene_file *sf, const double *q0, const double *v
         body_of[i] = m->nbodies++;
         snprintf(B->name, sizeof B->name, "%s", name_of(sf->body_names, i, "body"));
         B->mass = b->mass;
-        for (int k = 0; k < 6; k++) B->inertia[k] = b->tensor[k];
+        B->point_mass = point;
+        B->iq = b->iq;
+        B->parent = B->joint = -1;
         const double *q = q0 + b->iq, *v = v0 + b->iq;
+        if (point) {
+            for (int k = 0; k < 3; k++) {
+                B->pos[k] = q[k];
+                B->vel[k] = v[k];
+            }
+            B->quat[0] = 1;
+            continue;
+        }
+        for (int k = 0; k < 6; k++) B->inertia[k] = b->tensor[k];
         const double norm = sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
         for (int k = 0; k < 3; k++) {
             B->pos[k] = q[k];
@@ -221,8 +254,6 @@ static int convert(const braun_scene_file *sf, const double *q0, const double *v
         B->omega[0] = 2 * (-e[1] * d[0] + e[0] * d[1] - e[3] * d[2] + e[2] * d[3]);
         B->omega[1] = 2 * (-e[2] * d[0] + e[3] * d[1] + e[0] * d[2] - e[1] * d[3]);
         B->omega[2] = 2 * (-e[3] * d[0] - e[2] * d[1] + e[1] * d[2] + e[0] * d[3]);
-        B->iq = b->iq;
-        B->parent = B->joint = -1;
     }
     if (s->nrods > 0) {
         snprintf(why, whysize, "rods have no counterpart in the spatial peer model yet");
@@ -235,6 +266,7 @@ static int convert(const braun_scene_file *sf, const double *q0, const double *v
         if (sj->type == BRAUN_JOINT_SPHERICAL) kind = CMP_J3_SPHERICAL;
         else if (sj->type == BRAUN_JOINT_REVOLUTE3D && !sj->driven) kind = CMP_J3_REVOLUTE;
         else if (sj->type == BRAUN_JOINT_WELD) kind = CMP_J3_WELD;
+        else if (sj->type == BRAUN_JOINT_PRISMATIC3D && !sj->driven) kind = CMP_J3_PRISMATIC;
         else {
             snprintf(why, whysize, "joint '%s' (%s%s) has no counterpart in the spatial peer model yet",
                      jn, sj->driven ? "driven " : "", sj->type->name);
@@ -251,8 +283,26 @@ static int convert(const braun_scene_file *sf, const double *q0, const double *v
             J->axis[k] = sj->axis[k];
             J->axis_b[k] = sj->axis_b[k];
         }
+        if (kind == CMP_J3_PRISMATIC) {
+            /* The line's axis is on b's body; a's frame sees it turned by
+             * their (fixed) relative orientation. */
+            const double *qa = J->a >= 0 ? m->bodies[J->a].quat : NULL;
+            const double *qb = J->b >= 0 ? m->bodies[J->b].quat : NULL;
+            double w[3];
+            if (qb) cmp_quat_rotate(qb, sj->axis, w);
+            else memcpy(w, sj->axis, sizeof w);
+            if (qa) cmp_quat_rotate_inv(qa, w, J->axis);
+            else memcpy(J->axis, w, sizeof w);
+            memcpy(J->axis_b, sj->axis, sizeof w);
+        }
         if (J->a == J->b) {
             snprintf(why, whysize, "joint '%s' connects a body to itself", jn);
+            return -1;
+        }
+        if (kind != CMP_J3_SPHERICAL && ((J->a >= 0 && m->bodies[J->a].point_mass) ||
+                                         (J->b >= 0 && m->bodies[J->b].point_mass))) {
+            snprintf(why, whysize, "joint '%s' (%s) holds the orientation of a particle3d, which has none",
+                     jn, sj->type->name);
             return -1;
         }
     }

@@ -2,7 +2,11 @@
  * spatial counterpart of cmp_mech.h. From a spatial scene (dim 3):
  *   bodies   rigid3d: a rigid body with mass and inertia tensor, its
  *            frame at the centre of mass (libbraun's body frame);
- *   joints   spherical, revolute3d (not driven), weld;
+ *            particle3d with mass: a point mass (its frame: the world's
+ *            orientation at the start);
+ *   joints   spherical, revolute3d and prismatic3d (not driven), weld;
+ *            a particle only on spherical joints (which hold it to the
+ *            other body's point: a peer welds it there);
  *   effects  gravity, point-to-point spring-damper, torsion3d on a
  *            revolute3d joint of the tree.
  * Anything else (particles, other joints, driven joints, applied torques)
@@ -14,7 +18,8 @@
  *
  * libbraun's coordinates of a rigid3d body are its centre of mass and its
  * Euler parameters p (w, x, y, z), its velocities their time derivatives:
- * ṗ = ½ E(p)ᵀ ω for the world angular velocity ω (cmp_mech3_state). */
+ * ṗ = ½ E(p)ᵀ ω for the world angular velocity ω (cmp_mech3_state); a
+ * particle3d's are its position and velocity. */
 #ifndef CMP_MECH3_H
 #define CMP_MECH3_H
 
@@ -29,20 +34,24 @@ typedef struct cmp_body3 {
     double pos[3], quat[4];   /* initial centre of mass, orientation (w, x, y, z) */
     double vel[3], omega[3];  /* initial velocity of the centre, world angular velocity */
     int iq;                   /* first coordinate in libbraun's q */
+    int point_mass;           /* 1: particle3d (q: x, y, z; no orientation) */
     int parent, joint;        /* the tree: parent body (-1 ground), joint (-1: free root) */
 } cmp_body3;
 
 typedef enum cmp_joint3_kind {
     CMP_J3_SPHERICAL = 0,     /* P_a = P_b */
     CMP_J3_REVOLUTE,          /* P_a = P_b, turning about axis (a's frame) = axis_b (b's) */
-    CMP_J3_WELD               /* P_a = P_b, the frames keep their initial relative orientation */
+    CMP_J3_WELD,              /* P_a = P_b, the frames keep their initial relative orientation */
+    CMP_J3_PRISMATIC          /* P_a on the line through P_b along axis_b (b's frame); the
+                               * frames keep their relative orientation (axis: the same
+                               * direction in a's frame) */
 } cmp_joint3_kind;
 
 typedef struct cmp_joint3 {
     int kind;
     int a, b;                 /* bodies, -1: ground */
     double pa[3], pb[3];      /* points in their bodies' frames (world on the ground) */
-    double axis[3], axis_b[3];/* revolute: the unit axis in a's and in b's frame */
+    double axis[3], axis_b[3];/* revolute, prismatic: the unit axis in a's and in b's frame */
     int tree;                 /* set by cmp_mech3_tree: 1 if it is a tree joint */
     char name[40];
 } cmp_joint3;
@@ -73,16 +82,18 @@ int cmp_target_is_spatial(const cmp_target *tg);
 /* The mechanism of a spatial target. 0, or -1 with the reason in why. */
 int cmp_mech3_for_target(const cmp_target *tg, cmp_mech3 *m, char *why, size_t whysize);
 void cmp_mech3_free(cmp_mech3 *m);
-/* The spanning tree: from the ground, repeatedly the first revolute, then
- * weld, then spherical joint that reaches a new body; bodies no joint
- * reaches are free roots. 0 (every other joint closes a loop). */
+/* The spanning tree: from the ground, repeatedly the first revolute or
+ * prismatic, then weld, then spherical joint that reaches a new body;
+ * bodies no joint reaches are free roots. 0 (every other joint closes a
+ * loop). */
 int cmp_mech3_tree(cmp_mech3 *m, char *why, size_t whysize);
 /* Bodies in tree order (parents first), nbodies entries. */
 void cmp_mech3_order(const cmp_mech3 *m, int *order);
 
 /* libbraun's q, v (n each) from the bodies' poses: pose[13 b ..] = centre
  * (3), quaternion (4, w first), velocity of the centre (3), world angular
- * velocity (3). Each quaternion is taken with the sign of the body's
+ * velocity (3); a particle's quaternion and ω are ignored. Each quaternion
+ * is taken with the sign of the body's
  * entry in q on input (a peer's q and -q are the same rotation; q holds
  * the previous sample). */
 void cmp_mech3_state(const cmp_mech3 *m, const double *pose, double *q, double *v);
@@ -93,5 +104,8 @@ void cmp_quat_rotate_inv(const double *p, const double *x, double *y); /* y = R(
 void cmp_quat_mul(const double *a, const double *b, double *c);        /* c = a b */
 /* World position of point p of body b at its initial pose (b = -1: p). */
 void cmp_mech3_point0(const cmp_mech3 *m, int b, const double *p, double *P);
+/* World velocity of the material point of body b (-1: ground, 0) at world
+ * position P, initial. */
+void cmp_mech3_velocity0(const cmp_mech3 *m, int b, const double *P, double *v);
 
 #endif

@@ -6,14 +6,18 @@
  * orientation), placed in its parent's frame at the initial poses. Tree
  * joints: revolute3d → hinge about the axis at the joint's point,
  * spherical → ball, weld → no joint, a free root → freejoint (its qpos are
- * libbraun's coordinates of the body: centre and quaternion). Loop-closing
- * joints: spherical → `connect`; revolute3d → two `connect`s, at the
+ * libbraun's coordinates of the body: centre and quaternion), prismatic3d
+ * → slide along the axis; a particle3d (a point mass) held by a spherical
+ * joint → welded to that point (its orientation is not a coordinate), a
+ * free particle → three slides. Loop-closing joints: spherical →
+ * `connect`; revolute3d → two `connect`s, at the
  * joint's point and one unit along its axis (six rows for five: MuJoCo's
  * soft constraints take the redundant row). Springs are spatial tendons
  * with stiffness, damping and springlength; torsion3d on a tree hinge is
  * the hinge's stiffness, damping and springref (θ = ±qpos: libbraun's
- * angle turns b relative to a; the hinge turns its child). Welded loops,
- * torsion on a loop-closing joint: refused with a sentence. */
+ * angle turns b relative to a; the hinge turns its child). Welded or
+ * prismatic loops, torsion on a loop-closing joint: refused with a
+ * sentence. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,9 +37,10 @@ int cmp_mujoco3_prepare(const cmp_target *tg, cmp_mech3 *m, char *why, size_t wh
     }
     const char *bad = NULL, *what = "";
     for (int j = 0; j < m->njoints && !bad; j++)
-        if (!m->joints[j].tree && m->joints[j].kind == CMP_J3_WELD) {
+        if (!m->joints[j].tree &&
+            (m->joints[j].kind == CMP_J3_WELD || m->joints[j].kind == CMP_J3_PRISMATIC)) {
             bad = m->joints[j].name;
-            what = "MuJoCo: a weld joint closing a loop (not translated)";
+            what = "MuJoCo: a weld or prismatic joint closing a loop (not translated)";
         }
     for (int i = 0; i < m->nforces && !bad; i++)
         if (m->forces[i].kind == CMP_F3_TORSION && !m->joints[m->forces[i].joint].tree) {
@@ -116,10 +121,22 @@ static void write_body(cmp_text *t, const cmp_mech3 *m, const sites *S, int b, i
     const int in = 2 * depth + 2;
     put(t, "%*s<body name=\"L%d\" pos=\"%.17g %.17g %.17g\" quat=\"%.17g %.17g %.17g %.17g\">\n",
         2 * depth, "", b, pos[0], pos[1], pos[2], quat[0], quat[1], quat[2], quat[3]);
-    put(t, "%*s<inertial pos=\"0 0 0\" mass=\"%.17g\" fullinertia=\"%.17g %.17g %.17g %.17g %.17g %.17g\"/>\n",
-        in, "", B->mass, B->inertia[0], B->inertia[1], B->inertia[2], B->inertia[3], B->inertia[4],
-        B->inertia[5]);
-    if (B->joint < 0) {
+    if (B->point_mass) {
+        /* MuJoCo needs an inertia: a negligible one (no joint turns it). */
+        const double I = 1e-12 * B->mass;
+        put(t, "%*s<inertial pos=\"0 0 0\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>\n", in, "",
+            B->mass, I, I, I);
+    } else {
+        put(t, "%*s<inertial pos=\"0 0 0\" mass=\"%.17g\" fullinertia=\"%.17g %.17g %.17g %.17g %.17g %.17g\"/>\n",
+            in, "", B->mass, B->inertia[0], B->inertia[1], B->inertia[2], B->inertia[3],
+            B->inertia[4], B->inertia[5]);
+    }
+    if (B->joint < 0 && B->point_mass) {
+        static const char *const xyz[3] = {"1 0 0", "0 1 0", "0 0 1"};
+        for (int k = 0; k < 3; k++)
+            put(t, "%*s<joint name=\"J%d%c\" type=\"slide\" axis=\"%s\"/>\n", in, "", b, 'x' + k,
+                xyz[k]);
+    } else if (B->joint < 0) {
         put(t, "%*s<freejoint name=\"J%d\"/>\n", in, "", b);
     } else {
         const cmp_joint3 *J = &m->joints[B->joint];
@@ -130,10 +147,13 @@ static void write_body(cmp_text *t, const cmp_mech3 *m, const sites *S, int b, i
                 in, "", b, p[0], p[1], p[2], axis[0], axis[1], axis[2]);
             put_torsion(t, m, B->joint, b);
             put(t, "/>\n");
-        } else if (J->kind == CMP_J3_SPHERICAL) {
+        } else if (J->kind == CMP_J3_PRISMATIC) {
+            put(t, "%*s<joint name=\"J%d\" type=\"slide\" axis=\"%.17g %.17g %.17g\"/>\n", in, "", b,
+                axis[0], axis[1], axis[2]);
+        } else if (J->kind == CMP_J3_SPHERICAL && !B->point_mass) {
             put(t, "%*s<joint name=\"J%d\" type=\"ball\" pos=\"%.17g %.17g %.17g\"/>\n", in, "", b,
                 p[0], p[1], p[2]);
-        } /* weld: no joint */
+        } /* weld, a particle on a spherical joint: no joint */
     }
     put_sites(t, S, b, in);
     for (int c = 0; c < m->nbodies; c++)
@@ -219,6 +239,14 @@ void cmp_mujoco3_qvel(const cmp_mech3 *m, const mjModel *mm, mjData *d)
     char nm[24];
     for (int b = 0; b < m->nbodies; b++) {
         const cmp_body3 *B = &m->bodies[b];
+        if (B->point_mass && B->joint < 0) {
+            for (int k = 0; k < 3; k++) {
+                snprintf(nm, sizeof nm, "J%d%c", b, 'x' + k);
+                const int id = mj_name2id(mm, mjOBJ_JOINT, nm);
+                if (id >= 0) d->qvel[mm->jnt_dofadr[id]] = B->vel[k];
+            }
+            continue;
+        }
         snprintf(nm, sizeof nm, "J%d", b);
         const int id = mj_name2id(mm, mjOBJ_JOINT, nm);
         if (id < 0) continue; /* welded */
@@ -237,6 +265,16 @@ void cmp_mujoco3_qvel(const cmp_mech3 *m, const mjModel *mm, mjData *d)
             const double *p, *axis;
             side(&m->joints[B->joint], b, &p, &axis);
             d->qvel[k] = local[0] * axis[0] + local[1] * axis[1] + local[2] * axis[2];
+        } else if (m->joints[B->joint].kind == CMP_J3_PRISMATIC) {
+            /* The child's origin against the parent's point there, along
+             * the axis (world). */
+            const double *p, *axis;
+            side(&m->joints[B->joint], b, &p, &axis);
+            double vp[3], u[3];
+            cmp_mech3_velocity0(m, B->parent, B->pos, vp);
+            cmp_quat_rotate(B->quat, axis, u);
+            d->qvel[k] = (B->vel[0] - vp[0]) * u[0] + (B->vel[1] - vp[1]) * u[1] +
+                         (B->vel[2] - vp[2]) * u[2];
         } else {
             for (int i = 0; i < 3; i++) d->qvel[k + i] = local[i];
         }

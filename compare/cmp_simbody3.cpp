@@ -6,7 +6,11 @@
  *   - a free root: MobilizedBody::Free on the ground (q = quaternion and
  *     position: the body's pose);
  *   - revolute3d: Pin about the joint's axis (the mobilizer frames' common
- *     Z) at the joint's point; spherical: Ball at it; weld: Weld.
+ *     Z) at the joint's point; spherical: Ball at it; weld: Weld;
+ *     prismatic3d: Slider along the axis (the frames' common X);
+ *   - a particle3d (a point mass, no inertia): Translation when free,
+ *     Weld at the point of a spherical joint (its orientation is no
+ *     coordinate).
  * Loop-closing joints are constraints: spherical → Constraint::Ball;
  * revolute3d → Ball and two ConstantAngle rows holding a's axis at 90° to
  * two directions of b normal to b's axis (libbraun's five rows); weld →
@@ -55,7 +59,30 @@ void side(const cmp_joint3 *J, int b, const double **p, const double **axis)
 Rotation m_frame(const cmp_joint3 *J, const double *axis_child)
 {
     if (J->kind == CMP_J3_REVOLUTE) return Rotation(UnitVec3(vec(axis_child)), ZAxis);
+    if (J->kind == CMP_J3_PRISMATIC) return Rotation(UnitVec3(vec(axis_child)), XAxis);
     return Rotation(0.0, ZAxis);
+}
+
+/* Where M and F sit: the joint's points, or for a slider the child's
+ * origin and the parent's point there at the start. */
+void m_f_origins(const cmp_mech3 *m, int b, const cmp_joint3 *J, Vec3 &oM, Vec3 &oF)
+{
+    const cmp_body3 *B = &m->bodies[b];
+    const double *pc, *ac, *pp, *ap;
+    side(J, b, &pc, &ac);
+    side(J, B->parent, &pp, &ap);
+    if (J->kind != CMP_J3_PRISMATIC) {
+        oM = vec(pc);
+        oF = vec(pp);
+        return;
+    }
+    oM = Vec3(0);
+    if (B->parent < 0) {
+        oF = vec(B->pos);
+        return;
+    }
+    const cmp_body3 *P = &m->bodies[B->parent];
+    oF = ~rot(P->quat) * (vec(B->pos) - vec(P->pos));
 }
 
 /* Two unit directions normal to u. */
@@ -71,23 +98,28 @@ void add_mobilizer(cmp_sb::Model &M, const cmp_mech3 *m, int b)
 {
     const cmp_body3 *B = &m->bodies[b];
     const double *I = B->inertia;
-    const Body::Rigid info(MassProperties(B->mass, Vec3(0), Inertia(I[0], I[1], I[2], I[3], I[4], I[5])));
+    const Inertia inertia = B->point_mass ? Inertia(0) : Inertia(I[0], I[1], I[2], I[3], I[4], I[5]);
+    const Body::Rigid info(MassProperties(B->mass, Vec3(0), inertia));
     MobilizedBody &parent = M.body(B->parent);
     if (B->joint < 0) {
-        M.mob[(size_t)b] = MobilizedBody::Free(parent, Transform(), info, Transform());
+        if (B->point_mass) M.mob[(size_t)b] = MobilizedBody::Translation(parent, info);
+        else M.mob[(size_t)b] = MobilizedBody::Free(parent, Transform(), info, Transform());
         return;
     }
     const cmp_joint3 *J = &m->joints[B->joint];
-    const double *pc, *ac, *pp, *ap;
+    const double *pc, *ac;
     side(J, b, &pc, &ac);
-    side(J, B->parent, &pp, &ap);
     /* M on the child at its point; F on the parent at its point, with M's
      * initial orientation (R_PF = R_Pᵀ R_C R_CM): X_FM = identity at q = 0. */
     const Rotation R_CM = m_frame(J, ac);
     const Rotation R_PF = ~orientation(m, B->parent) * orientation(m, b) * R_CM;
-    const Transform X_BM(R_CM, vec(pc)), X_PF(R_PF, vec(pp));
+    Vec3 oM, oF;
+    m_f_origins(m, b, J, oM, oF);
+    const Transform X_BM(R_CM, oM), X_PF(R_PF, oF);
     if (J->kind == CMP_J3_REVOLUTE) M.mob[(size_t)b] = MobilizedBody::Pin(parent, X_PF, info, X_BM);
-    else if (J->kind == CMP_J3_SPHERICAL) M.mob[(size_t)b] = MobilizedBody::Ball(parent, X_PF, info, X_BM);
+    else if (J->kind == CMP_J3_PRISMATIC) M.mob[(size_t)b] = MobilizedBody::Slider(parent, X_PF, info, X_BM);
+    else if (J->kind == CMP_J3_SPHERICAL && !B->point_mass)
+        M.mob[(size_t)b] = MobilizedBody::Ball(parent, X_PF, info, X_BM);
     else M.mob[(size_t)b] = MobilizedBody::Weld(parent, X_PF, info, X_BM);
 }
 
@@ -96,21 +128,32 @@ void set_initial(cmp_sb::Model &M, const cmp_mech3 *m, int b, State &s)
 {
     const cmp_body3 *B = &m->bodies[b];
     const MobilizedBody &mb = M.mob[(size_t)b];
+    if (B->joint < 0 && B->point_mass) {
+        mb.setQToFitTranslation(s, vec(B->pos));
+        mb.setUToFitLinearVelocity(s, vec(B->vel));
+        return;
+    }
     if (B->joint < 0) {
         mb.setQToFitTransform(s, Transform(rot(B->quat), vec(B->pos)));
         mb.setUToFitVelocity(s, SpatialVec(vec(B->omega), vec(B->vel)));
         return;
     }
     const cmp_joint3 *J = &m->joints[B->joint];
-    if (J->kind == CMP_J3_WELD) return;
+    if (J->kind == CMP_J3_WELD || B->point_mass) return;
     mb.setQToFitTransform(s, Transform());
-    /* ω of M in F, in F (= the child's M frame at q = 0). */
+    /* ω (or a slider's velocity) of M in F, in F (= the child's M frame at
+     * q = 0). */
     const double *pc, *ac;
     side(J, b, &pc, &ac);
-    const Rotation R_CM = m_frame(J, ac);
+    const Rotation R_F = orientation(m, b) * m_frame(J, ac);
+    if (J->kind == CMP_J3_PRISMATIC) {
+        double vp[3];
+        cmp_sb::H->mech3_velocity0(m, B->parent, B->pos, vp);
+        mb.setUToFitLinearVelocity(s, ~R_F * (vec(B->vel) - vec(vp)));
+        return;
+    }
     const Vec3 wp = B->parent >= 0 ? vec(m->bodies[B->parent].omega) : Vec3(0);
-    const Vec3 w_F = ~(orientation(m, b) * R_CM) * (vec(B->omega) - wp);
-    mb.setUToFitAngularVelocity(s, w_F);
+    mb.setUToFitAngularVelocity(s, ~R_F * (vec(B->omega) - wp));
 }
 
 } // namespace
@@ -120,6 +163,12 @@ namespace cmp_sb {
 int spatial_prepare(cmp_mech3 *m, char *why, size_t whysize)
 {
     if (H->mech3_tree(m, why, whysize)) return -1;
+    for (int j = 0; j < m->njoints; j++)
+        if (!m->joints[j].tree && m->joints[j].kind == CMP_J3_PRISMATIC) {
+            std::snprintf(why, whysize, "Simbody: prismatic joint '%s' closes a loop (not translated)",
+                          m->joints[j].name);
+            return -1;
+        }
     for (int i = 0; i < m->nforces; i++)
         if (m->forces[i].kind == CMP_F3_TORSION && !m->joints[m->forces[i].joint].tree) {
             std::snprintf(why, whysize,
@@ -190,7 +239,8 @@ void spatial_build(Model &M, bool ball_only)
 void spatial_seed(const cmp_mech3 *m, double *q)
 {
     for (int b = 0; b < m->nbodies; b++)
-        for (int k = 0; k < 4; k++) q[m->bodies[b].iq + 3 + k] = m->bodies[b].quat[k];
+        if (!m->bodies[b].point_mass)
+            for (int k = 0; k < 4; k++) q[m->bodies[b].iq + 3 + k] = m->bodies[b].quat[k];
 }
 
 void spatial_sample(const Model &M, const State &s, double *q, double *v)

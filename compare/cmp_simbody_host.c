@@ -38,7 +38,7 @@
 static const cmp_sb_host host = {
     CMP_SB_PLUGIN_VERSION, cmp_mech_tree,  cmp_mech_order,  cmp_mech_hinge, cmp_mech_state,
     cmp_mech_unwrap,       cmp_traj_push, cmp_cpu_seconds, braun_scene_fn_eval,
-    cmp_mech3_tree,        cmp_mech3_order, cmp_mech3_state,
+    cmp_mech3_tree,        cmp_mech3_order, cmp_mech3_state, cmp_mech3_velocity0,
 };
 
 static const cmp_sb_plugin *plugin;

@@ -49,6 +49,7 @@ typedef struct cmp_sb_host {
     int (*mech3_tree)(cmp_mech3 *m, char *why, size_t whysize);
     void (*mech3_order)(const cmp_mech3 *m, int *order);
     void (*mech3_state)(const cmp_mech3 *m, const double *pose, double *q, double *v);
+    void (*mech3_velocity0)(const cmp_mech3 *m, int b, const double *P, double *v);
 } cmp_sb_host;
 
 /* What the plugin provides: the adapter's functions on a target's
