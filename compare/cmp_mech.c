@@ -331,7 +331,8 @@ static int convert(conv *c, char *why, size_t whysize)
                          se->type->name);
                 return -1;
             }
-        } else if (se->type == BRAUN_EFFECT_TORQUE && (c->flags & CMP_MECH_TORQUE)) {
+        } else if (se->type == BRAUN_EFFECT_TORQUE &&
+                   ((c->flags & CMP_MECH_TORQUE) || se->f[0].kind == BRAUN_FN_CONSTANT)) {
             if (!(f = new_force(m, CMP_MF_TORQUE))) goto oom;
             f->a = resolve_body(c, se->a);
             f->b = resolve_body(c, se->b);

@@ -62,8 +62,9 @@ typedef enum cmp_mforce_kind {
     CMP_MF_SPRING,       /* k (|P_b - P_a| - rest) and c d|P_b - P_a|/dt along P_b - P_a */
     CMP_MF_TORSION,      /* k (θ_b - θ_a - rest), c (ω_b - ω_a), on b, minus on a */
     CMP_MF_MOTOR,        /* τ = tau0 (1 - (ω_a - ω_b)/omega0) on a (rotor), -τ on b */
-    CMP_MF_TORQUE        /* τ = f(t) on a, -τ on b: only with CMP_MECH_TORQUE
-                          * (cmp_mech_for_target_ex); MuJoCo's adapter does not take it */
+    CMP_MF_TORQUE        /* τ = f(t) on a, -τ on b: a constant f always, any other
+                          * only with CMP_MECH_TORQUE (cmp_mech_for_target_ex);
+                          * MuJoCo's adapter takes the constant one (an actuator) */
 } cmp_mforce_kind;
 
 typedef struct cmp_mforce {

@@ -332,11 +332,11 @@ int cmp_mujoco_mjcf(const cmp_mech *m, const cmp_spec *sp, const char *name, cha
     }
     if (!neq) put(&t, "    <!-- none -->\n");
     put(&t, "  </equality>\n");
-    /* Torsion springs, dampers and motors on tree hinges. */
+    /* Torsion springs, dampers, motors and constant torques on tree hinges. */
     int nact = 0;
     for (int i = 0; i < m->nforces; i++) {
         const cmp_mforce *F = &m->forces[i];
-        if (F->kind != CMP_MF_MOTOR) continue;
+        if (F->kind != CMP_MF_MOTOR && F->kind != CMP_MF_TORQUE) continue;
         int child, sign;
         char hn[16];
         if (cmp_mech_hinge(m, F->a, F->b, &child, &sign) < 0) {
@@ -347,10 +347,16 @@ int cmp_mujoco_mjcf(const cmp_mech *m, const cmp_spec *sp, const char *name, cha
         hinge_name(child, hn, sizeof hn);
         if (!nact++) put(&t, "  <actuator>\n");
         /* τ on the rotor a: on the hinge coordinate (child − parent) with
-         * sign −(θ_b − θ_a)'s: the hinge turns the rotor when the child is a. */
-        put(&t, "    <general joint=\"%s\" ctrllimited=\"false\" gainprm=\"%.17g\" biastype=\"affine\" "
-                "biasprm=\"0 0 %.17g\"/>\n",
-            hn, -sign * F->tau0, -F->tau0 / F->omega0);
+         * sign −(θ_b − θ_a)'s: the hinge turns the rotor when the child is a
+         * (δW = τ δθ_a − τ δθ_b = −sign·τ δq). A constant torque: the same
+         * gain, no bias (ctrl = 1). */
+        if (F->kind == CMP_MF_TORQUE)
+            put(&t, "    <general joint=\"%s\" ctrllimited=\"false\" gainprm=\"%.17g\"/>\n", hn,
+                -sign * (double)F->f.a);
+        else
+            put(&t, "    <general joint=\"%s\" ctrllimited=\"false\" gainprm=\"%.17g\" biastype=\"affine\" "
+                    "biasprm=\"0 0 %.17g\"/>\n",
+                hn, -sign * F->tau0, -F->tau0 / F->omega0);
     }
     if (nact) put(&t, "  </actuator>\n");
     put(&t, "</mujoco>\n");
@@ -395,9 +401,10 @@ static int prepare(const cmp_target *tg, cmp_mech *m, char *why, size_t whysize)
     for (int i = 0; i < m->nforces; i++) {
         const cmp_mforce *F = &m->forces[i];
         int child, sign;
-        if ((F->kind == CMP_MF_TORSION || F->kind == CMP_MF_MOTOR) &&
+        if ((F->kind == CMP_MF_TORSION || F->kind == CMP_MF_MOTOR || F->kind == CMP_MF_TORQUE) &&
             cmp_mech_hinge(m, F->a, F->b, &child, &sign) < 0) {
-            snprintf(why, whysize, "MuJoCo: a torsion spring or motor not on a hinge of the tree");
+            snprintf(why, whysize,
+                     "MuJoCo: a torsion spring, motor or torque not on a hinge of the tree");
             cmp_mech_free(m);
             return -1;
         }

@@ -109,10 +109,15 @@ static int target_scene(const char *name, cmp_target *tg, char *err, size_t errs
     }
     char path[512];
     size_t len = strlen(name);
-    if ((len >= 5 && strcmp(name + len - 5, ".json") == 0) || strchr(name, '/'))
+    if ((len >= 5 && strcmp(name + len - 5, ".json") == 0) || strchr(name, '/')) {
         snprintf(path, sizeof path, "%s", name);
-    else
+    } else {
+        /* NAME: data/NAME.json, else the IFToMM scene data/iftomm/NAME.json. */
         snprintf(path, sizeof path, "data/%s.json", name);
+        FILE *probe = fopen(path, "r");
+        if (probe) fclose(probe);
+        else snprintf(path, sizeof path, "data/iftomm/%s.json", name);
+    }
     char why[512];
     braun_scene_file *f = braun_scene_load(path, why, sizeof why);
     if (!f) {
@@ -148,6 +153,14 @@ static int target_scene(const char *name, cmp_target *tg, char *err, size_t errs
     }
     /* Chaotic chains: a reference holds for a short horizon only. */
     if (strncmp(tg->name, "chain-", 6) == 0) tg->T_reduced = 3.0;
+    /* Andrews' mechanism as a scene (IFToMM A03, absolute coordinates: the
+     * peers' Andrews): the test set's interval and step scale, as the
+     * built-in `andrews`. */
+    if (strcmp(tg->name, "a03-andrews") == 0) {
+        tg->T_reduced = BRAUN_ANDREWS_T_REF;
+        tg->dt_out = 5e-5;
+        tg->h_scale = 1e-3;
+    }
     return 0;
 oom:
     snprintf(err, errsize, "out of memory");

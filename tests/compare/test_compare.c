@@ -439,6 +439,14 @@ static void test_mujoco_spatial(void **state)
     assert_true(dq <= 1e-12 && dv <= 1e-12);
     cmp_traj_free(&tr);
     cmp_target_free(&tg);
+    /* Andrews' constant torque is an actuator; a torque of time is refused. */
+    assert_int_equal(cmp_target_find("a03-andrews", &tg, err, sizeof err), 0);
+    assert_int_equal(cmp_mujoco_supports(&tg, why, sizeof why), 1);
+    cmp_target_free(&tg);
+    assert_int_equal(cmp_target_find("tests/compare/torque-of-time.json", &tg, err, sizeof err), 0);
+    assert_int_equal(cmp_mujoco_supports(&tg, why, sizeof why), 0);
+    assert_non_null(strstr(why, "torque"));
+    cmp_target_free(&tg);
     assert_int_equal(cmp_target_find("tests/compare/universal-arm.json", &tg, err, sizeof err), 0);
     assert_int_equal(cmp_mujoco_supports(&tg, why, sizeof why), 0);
     print_message("universal-arm: %s\n", why);

@@ -333,17 +333,22 @@ static void test_refusals(void **state)
         cmp_traj_free(&tr);
         cmp_target_free(&tg);
     }
-    /* The torque of Andrews' mechanism is Simbody's only (cmp_mech_for_target_ex
-     * with CMP_MECH_TORQUE): the mechanism every peer gets still refuses it,
-     * so MuJoCo's adapter, which has no torque, says so instead of
-     * dropping it. */
+    /* A constant torque (Andrews' mechanism) is in the mechanism every peer
+     * gets (MuJoCo: an actuator); a torque of time only with
+     * CMP_MECH_TORQUE (Simbody's Force::Custom), so MuJoCo's adapter says
+     * so instead of dropping it. */
     cmp_target tg;
-    target("data/iftomm/a03-andrews.json", &tg);
+    target("tests/compare/torque-of-time.json", &tg);
     cmp_mech m;
     char why[256] = "";
     assert_int_equal(cmp_mech_for_target(&tg, &m, why, sizeof why), -1);
     assert_non_null(strstr(why, "torque"));
     assert_int_equal(cmp_mech_for_target_ex(&tg, CMP_MECH_TORQUE, &m, why, sizeof why), 0);
+    cmp_mech_free(&m);
+    assert_int_equal(cmp_simbody_supports(&tg, why, sizeof why), 1);
+    cmp_target_free(&tg);
+    target("data/iftomm/a03-andrews.json", &tg);
+    assert_int_equal(cmp_mech_for_target(&tg, &m, why, sizeof why), 0);
     int torques = 0;
     for (int i = 0; i < m.nforces; i++) torques += m.forces[i].kind == CMP_MF_TORQUE;
     assert_int_equal(torques, 1);
