@@ -412,7 +412,8 @@ int cmp_mech_for_target_ex(const cmp_target *tg, unsigned flags, cmp_mech *m, ch
 #ifdef CMP_HAVE_SCENES
     if (tg->scene_file) return from_scene(tg->scene_file, tg->q0, tg->v0, flags, m, why, whysize);
     if (!tg->builtin) {
-        snprintf(why, whysize, "'%s' is not a scene: no peer model", tg->name);
+        snprintf(why, whysize, "'%s' is not a scene: no peer model%s", tg->name,
+                 strcmp(tg->name, "andrews") == 0 ? " (the peers run it as the scene a03-andrews)" : "");
         return -1;
     }
     /* A built-in model through the scene file that reproduces it. */
