@@ -80,7 +80,7 @@ void braun_chol_solve_rt_to(const braun_chol *c, const braun_real *b, braun_real
     const int n = BRAUN_N(c->n);
     const braun_real *R = c->R;
     if (c->diagonal) {
-        for (int i = 0; i < n; i++) x[i] = b[i] * c->dinv[i];
+        braun_chol_solve_diag(c, b, x);
         return;
     }
     for (int i = 0; i < n; i++) {
@@ -94,7 +94,7 @@ void braun_chol_solve_r_to(const braun_chol *c, const braun_real *b, braun_real 
 {
     const int n = BRAUN_N(c->n);
     if (c->diagonal) {
-        for (int i = 0; i < n; i++) x[i] = b[i] * c->dinv[i];
+        braun_chol_solve_diag(c, b, x);
         return;
     }
     for (int i = n - 1; i >= 0; i--) {

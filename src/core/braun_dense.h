@@ -36,28 +36,19 @@ static inline int braun__dense_factor_mass(void *state, const braun_real *M, bra
     return braun_chol_factor(&braun__dense(state)->chol, M, sym_tol, bad_i, bad_j, bad_value);
 }
 
-/* A diagonal R (diagonal M) is solved inline: the products of
- * braun_chol_solve_*_to's own diagonal path, without the call. */
+/* A diagonal R (diagonal M) is solved inline, without the call. */
 static inline void braun__dense_solve_rt(void *state, const braun_real *b, braun_real *x)
 {
     const braun_chol *c = &braun__dense(state)->chol;
-    if (c->diagonal) {
-        const int n = BRAUN_N(c->n);
-        for (int i = 0; i < n; i++) x[i] = b[i] * c->dinv[i];
-        return;
-    }
-    braun_chol_solve_rt_to(c, b, x);
+    if (c->diagonal) braun_chol_solve_diag(c, b, x);
+    else braun_chol_solve_rt_to(c, b, x);
 }
 
 static inline void braun__dense_solve_r(void *state, const braun_real *b, braun_real *x)
 {
     const braun_chol *c = &braun__dense(state)->chol;
-    if (c->diagonal) {
-        const int n = BRAUN_N(c->n);
-        for (int i = 0; i < n; i++) x[i] = b[i] * c->dinv[i];
-        return;
-    }
-    braun_chol_solve_r_to(c, b, x);
+    if (c->diagonal) braun_chol_solve_diag(c, b, x);
+    else braun_chol_solve_r_to(c, b, x);
 }
 
 static inline void braun__dense_mul_r(void *state, const braun_real *x, braun_real *y)
@@ -89,7 +80,7 @@ static inline int braun__dense_factor_c(void *state, int slot, int rows, const b
                 }
                 resid[i] -= dot;
             } else {
-                for (int j = 0; j < n; j++) ci[j] = ai[j] * dinv[j];
+                braun_chol_solve_diag(&s->chol, ai, ci);
             }
         }
     } else {

@@ -56,6 +56,13 @@ void braun_chol_solve_rt_to(const braun_chol *c, const braun_real *b, braun_real
 void braun_chol_solve_r_to(const braun_chol *c, const braun_real *b, braun_real *x);
 /* y := R x (y and x distinct). */
 void braun_chol_mul_r(const braun_chol *c, const braun_real *x, braun_real *y);
+/* Both solves when R is diagonal (c->diagonal): one scaling by the
+ * reciprocal pivots; inline, so that hot callers skip the call. */
+static inline void braun_chol_solve_diag(const braun_chol *c, const braun_real *b, braun_real *x)
+{
+    const int n = BRAUN_N(c->n);
+    for (int i = 0; i < n; i++) x[i] = b[i] * c->dinv[i];
+}
 
 /* ---- Rank-revealing pseudoinverse of a wide matrix C (rows x n) ---------
  * Householder QR with column pivoting of C^T (n x rows):
