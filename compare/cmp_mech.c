@@ -524,24 +524,34 @@ int cmp_mech_tree(cmp_mech *m, unsigned closable, const char *peer, char *why, s
     return 0;
 }
 
-void cmp_mech_order(const cmp_mech *m, int *order)
+void cmp_parents_first(int n, const int *parent, size_t stride, int *order)
 {
-    /* Parents first: a link after the chain of its parents. */
+    /* An item after the chain of its parents. */
     int k = 0;
-    char *placed = calloc((size_t)m->nlinks + 1, 1);
+    char *placed = calloc((size_t)n + 1, 1);
     if (!placed) {
-        for (int i = 0; i < m->nlinks; i++) order[i] = i;
+        for (int i = 0; i < n; i++) order[i] = i;
         return;
     }
-    while (k < m->nlinks)
-        for (int i = 0; i < m->nlinks; i++) {
-            const int p = m->links[i].parent;
+#define PARENT(i) (*(const int *)(const void *)((const char *)parent + (size_t)(i) * stride))
+    while (k < n) {
+        const int k0 = k;
+        for (int i = 0; i < n; i++) {
+            const int p = PARENT(i);
             if (!placed[i] && (p < 0 || placed[p])) {
                 placed[i] = 1;
                 order[k++] = i;
             }
         }
+        if (k == k0) break; /* a cycle: not a tree */
+    }
+#undef PARENT
     free(placed);
+}
+
+void cmp_mech_order(const cmp_mech *m, int *order)
+{
+    if (m->nlinks > 0) cmp_parents_first(m->nlinks, &m->links[0].parent, sizeof *m->links, order);
 }
 
 /* The revolute tree joint between links a and b, its child, and the sign

@@ -119,6 +119,10 @@ int cmp_mech_for_target_ex(const cmp_target *tg, unsigned flags, cmp_mech *m, ch
 int cmp_mech_tree(cmp_mech *m, unsigned closable, const char *peer, char *why, size_t whysize);
 /* Links in tree order (parents first), nlinks entries. */
 void cmp_mech_order(const cmp_mech *m, int *order);
+/* Items 0..n-1 with each after its parent (-1: a root), n entries; the
+ * parent of item i is the int at (const char *)parent + i·stride (a field
+ * of an array of structs: cmp_mech_order, cmp_mech3_order). */
+void cmp_parents_first(int n, const int *parent, size_t stride, int *order);
 
 /* The revolute tree joint between links a and b (-1: ground): its index,
  * its child link and the sign of θ_b - θ_a in the hinge's coordinate

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cmp_mech.h"
 #include "cmp_mech3.h"
 #ifdef CMP_HAVE_SCENES
 #include "braun_scene_file.h"
@@ -163,24 +164,8 @@ int cmp_mech3_tree(cmp_mech3 *m, char *why, size_t whysize)
 
 void cmp_mech3_order(const cmp_mech3 *m, int *order)
 {
-    int k = 0;
-    char *placed = calloc((size_t)m->nbodies + 1, 1);
-    if (!placed) {
-        for (int i = 0; i < m->nbodies; i++) order[i] = i;
-        return;
-    }
-    while (k < m->nbodies) {
-        const int k0 = k;
-        for (int i = 0; i < m->nbodies; i++) {
-            const int p = m->bodies[i].parent;
-            if (!placed[i] && (p < 0 || placed[p])) {
-                placed[i] = 1;
-                order[k++] = i;
-            }
-        }
-        if (k == k0) break; /* a cycle cannot happen: the tree has none */
-    }
-    free(placed);
+    if (m->nbodies > 0)
+        cmp_parents_first(m->nbodies, &m->bodies[0].parent, sizeof *m->bodies, order);
 }
 
 /* ------------------------------------------------------------ from a scene */
