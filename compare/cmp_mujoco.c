@@ -187,34 +187,25 @@ static void hinge_name(int l, char *buf, size_t size)
     snprintf(buf, size, "J%d", l);
 }
 
-/* A site at point p of link l, written inside that link's body (or the
- * world body); returns its name in buf. Sites are collected first. */
-typedef struct site {
-    int link;
-    double p[2];
-} site;
-
-typedef struct sites {
-    site v[256];
-    int n;
-} sites;
-
-static int add_site(sites *S, int link, const double *p)
+/* Sites (cmp_mujoco3.h): collected first, each written inside its body. */
+int cmp_mujoco_add_site(cmp_mj_sites *S, int body, const double *p, int dim)
 {
-    if (S->n == 256) return -1;
-    S->v[S->n].link = link;
-    S->v[S->n].p[0] = p[0];
-    S->v[S->n].p[1] = p[1];
+    if (S->n == CMP_MJ_MAX_SITES) return -1;
+    S->body[S->n] = body;
+    for (int k = 0; k < 3; k++) S->p[S->n][k] = k < dim ? p[k] : 0;
     return S->n++;
 }
 
-static void put_sites(text *t, const sites *S, int link, int indent)
+void cmp_mujoco_put_sites(text *t, const cmp_mj_sites *S, int body, int indent)
 {
     for (int i = 0; i < S->n; i++)
-        if (S->v[i].link == link)
-            put(t, "%*s<site name=\"S%d\" pos=\"%.17g %.17g 0\"/>\n", indent, "", i, S->v[i].p[0],
-                S->v[i].p[1]);
+        if (S->body[i] == body)
+            put(t, "%*s<site name=\"S%d\" pos=\"%.17g %.17g %.17g\"/>\n", indent, "", i, S->p[i][0],
+                S->p[i][1], S->p[i][2]);
 }
+typedef cmp_mj_sites sites;
+#define put_sites cmp_mujoco_put_sites
+#define add_site(S, link, p) cmp_mujoco_add_site(S, link, p, 2)
 
 static void write_body(text *t, const cmp_mech *m, const sites *S, int l, int depth)
 {

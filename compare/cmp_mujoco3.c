@@ -79,27 +79,9 @@ static void side(const cmp_joint3 *J, int b, const double **p, const double **ax
     *axis = is_a ? J->axis : J->axis_b;
 }
 
-typedef struct sites {
-    int body[256];
-    double p[256][3];
-    int n;
-} sites;
-
-static int add_site(sites *S, int body, const double *p)
-{
-    if (S->n == 256) return -1;
-    S->body[S->n] = body;
-    memcpy(S->p[S->n], p, 3 * sizeof(double));
-    return S->n++;
-}
-
-static void put_sites(cmp_text *t, const sites *S, int body, int indent)
-{
-    for (int i = 0; i < S->n; i++)
-        if (S->body[i] == body)
-            put(t, "%*s<site name=\"S%d\" pos=\"%.17g %.17g %.17g\"/>\n", indent, "", i, S->p[i][0],
-                S->p[i][1], S->p[i][2]);
-}
+typedef cmp_mj_sites sites;
+#define put_sites cmp_mujoco_put_sites
+#define add_site(S, body, p) cmp_mujoco_add_site(S, body, p, 3)
 
 /* The torsion spring-damper on tree joint j, as hinge attributes. */
 static void put_torsion(cmp_text *t, const cmp_mech3 *m, int j, int child)

@@ -16,6 +16,18 @@
  * gravity g[3]) and an equality's softness (solref, solimp) from sp. */
 void cmp_mujoco_header(cmp_text *t, const cmp_spec *sp, const char *name, const double *g);
 void cmp_mujoco_solparams(cmp_text *t, const cmp_spec *sp);
+/* The sites of tendons (springs, distance closures): a point of a body
+ * (-1: the world) in its frame, collected before the bodies are written;
+ * add returns its index (its name S<index>) or -1 when full; put writes
+ * the sites of one body. dim: 2 (z = 0) or 3 coordinates in p. */
+#define CMP_MJ_MAX_SITES 256
+typedef struct cmp_mj_sites {
+    int body[CMP_MJ_MAX_SITES];
+    double p[CMP_MJ_MAX_SITES][3];
+    int n;
+} cmp_mj_sites;
+int cmp_mujoco_add_site(cmp_mj_sites *S, int body, const double *p, int dim);
+void cmp_mujoco_put_sites(cmp_text *t, const cmp_mj_sites *S, int body, int indent);
 
 /* The spatial mechanism of a target, its tree chosen, checked against what
  * the MJCF writer takes. 0, or -1 with why. */
