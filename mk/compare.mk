@@ -109,7 +109,7 @@ compare-merge:
 # ---------------------------------------------------------------- tests
 # Harness tests need SUNDIALS and GSL, so they are not tests/test_*.c (those
 # link libbraun.a and cmocka only).
-$(COMPARE_TEST): tests/compare/test_compare.c tests/test_util.h $(COMPARE_LIB_OBJ) \
+$(COMPARE_TEST): tests/compare/test_compare.c tests/compare/test_proj_ref.h tests/test_util.h $(COMPARE_LIB_OBJ) \
 		$(BUILD)/libbraun.a | deps-test deps-compare
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) -Itests $(CFLAGS_ALL) $< $(COMPARE_LIB_OBJ) \
@@ -128,7 +128,7 @@ TEST_PREREQS += $(COMPARE_TEST) $(COMPARE_BIN) $(BENCH_BIN)
 # refusals; with `run TARGET T SETTING...` the driver of the hand
 # measurements in docs/compare.md ("Simbody").
 COMPARE_SB_TEST := $(BUILD)/tests/compare/test_simbody
-$(COMPARE_SB_TEST): tests/compare/test_simbody.c tests/test_util.h $(COMPARE_HDR) \
+$(COMPARE_SB_TEST): tests/compare/test_simbody.c tests/compare/test_proj_ref.h tests/test_util.h $(COMPARE_HDR) \
 		$(COMPARE_LIB_OBJ) $(BUILD)/libbraun.a $(COMPARE_SB_PLUGIN) | deps-test deps-compare
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) -Itests $(CFLAGS_ALL) $< $(COMPARE_LIB_OBJ) \

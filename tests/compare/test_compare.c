@@ -14,6 +14,7 @@
 #include "cmp_proj.h"
 #include "cmp_series.h"
 #include "cmp_study.h"
+#include "test_proj_ref.h"
 
 /* An exact state of a target with a minimal model: q, v lifted from the
  * closed form or a short rk8pd run at time t, and the acceleration along
@@ -374,10 +375,9 @@ static double spatial_arm_error(const cmp_spec *sp, cmp_outcome *out, double *po
     cmp_target tg;
     char err[256];
     assert_int_equal(cmp_target_find("spatial-arm", &tg, err, sizeof err), 0);
-    const double dt = sp->dt_out, hr = fmin(2.5e-5 * tg.h_scale, dt / 20);
-    cmp_ref *ref = cmp_ref_new_proj(&tg, sp->T, dt / ceil(dt / hr - 1e-9), dt, err, sizeof err);
+    cmp_ref *ref = test_proj_ref_new(&tg, sp->T, sp->dt_out, err, sizeof err);
     assert_non_null(ref);
-    assert_int_equal(cmp_ref_tabulate(ref, dt, sp->T), 0);
+    assert_int_equal(cmp_ref_tabulate(ref, sp->dt_out, sp->T), 0);
     cmp_traj tr;
     assert_int_equal(cmp_traj_init(&tr, tg.sys.n, 64), 0);
     cmp_run(&tg, sp, &tr, out);

@@ -19,6 +19,7 @@
 #include "cmp.h"
 #include "cmp_mech.h"
 #include "cmp_peer.h"
+#include "test_proj_ref.h"
 
 /* ------------------------------------------------------------ helpers */
 static void target(const char *name, cmp_target *tg)
@@ -143,9 +144,9 @@ static double spatial_error(int integrator, double acc, double h)
 {
     cmp_target tg;
     target("spatial-arm", &tg);
-    const double T = 2, dt = 0.05, hr = fmin(2.5e-5 * tg.h_scale, dt / 20);
+    const double T = 2, dt = 0.05;
     char err[256];
-    cmp_ref *ref = cmp_ref_new_proj(&tg, T, dt / ceil(dt / hr - 1e-9), dt, err, sizeof err);
+    cmp_ref *ref = test_proj_ref_new(&tg, T, dt, err, sizeof err);
     assert_non_null(ref);
     assert_int_equal(cmp_ref_tabulate(ref, dt, T), 0);
     cmp_spec sp = spec_of(integrator, acc, h, T, dt);
@@ -485,10 +486,9 @@ static int drive(int argc, char **argv)
     err[0] = '\0';
     if (kind == CMP_REF_CLOSED || kind == CMP_REF_RK8PD) ref = cmp_ref_new(&tg, kind, 1e-13);
     else if (kind == CMP_REF_PROJ) {
-        /* The study's RK4 + projection reference (step 2.5e-5·h_scale),
-         * tabulated on the output grid, its step at most DT/20. */
-        const double h = fmin(2.5e-5 * tg.h_scale, dt / 20);
-        ref = cmp_ref_new_proj(&tg, T, dt / ceil(dt / h - 1e-9), dt, err, sizeof err);
+        /* The study's RK4 + projection reference, tabulated on the output
+         * grid. */
+        ref = test_proj_ref_new(&tg, T, dt, err, sizeof err);
     }
     if (ref && cmp_ref_tabulate(ref, dt, T)) {
         cmp_ref_free(ref);
