@@ -550,12 +550,18 @@ void poses_of(const Model &M, const State &s, double *pose)
     }
 }
 
+/* The poses sample() needs as scratch: 6 per link, 13 per spatial body. */
+size_t pose_size(const cmp_mech *m)
+{
+    return (m->spatial ? 13 * (size_t)m->spatial->nbodies : 6 * (size_t)m->nlinks) + 1;
+}
+
 /* libbraun's q, v from a state realized through Velocity; pose: scratch of
- * 6 per link (planar). */
+ * pose_size(M.mech). */
 void sample(const Model &M, const State &s, double *pose, double *q, double *v)
 {
     if (M.mech->spatial) {
-        cmp_sb::spatial_sample(M, s, q, v);
+        cmp_sb::spatial_sample(M, s, pose, q, v);
         return;
     }
     poses_of(M, s, pose);
@@ -695,7 +701,7 @@ void run(cmp_mech *m, int n, const cmp_spec *sp, cmp_traj *tr, cmp_outcome *out)
         fail(out, "UNSUPPORTED", 0, why);
         return;
     }
-    std::vector<double> pose(6 * (size_t)m->nlinks + 1), q((size_t)n + 1), v((size_t)n + 1);
+    std::vector<double> pose(pose_size(m)), q((size_t)n + 1), v((size_t)n + 1);
     const long nout = std::max(1L, (long)std::floor(sp->T / sp->dt_out + 0.5));
     double cpu = 0, t_good = 0;
     const char *status = nullptr;
@@ -794,7 +800,7 @@ int initial_state(cmp_mech *m, const cmp_spec *sp, double *q, double *v, double 
         const sb_options o = parse_variant(sp ? sp->variant : "");
         std::unique_ptr<Model> M = make_model(m, o, why, whysize);
         if (!M) return -1;
-        std::vector<double> pose(6 * (size_t)m->nlinks + 1);
+        std::vector<double> pose(pose_size(m));
         if (m->spatial) cmp_sb::spatial_seed(m->spatial, q);
         sample(*M, M->state, pose.data(), q, v);
         if (moved_by) {

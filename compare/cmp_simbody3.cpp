@@ -243,16 +243,15 @@ void spatial_seed(const cmp_mech3 *m, double *q)
             for (int k = 0; k < 4; k++) q[m->bodies[b].iq + 3 + k] = m->bodies[b].quat[k];
 }
 
-void spatial_sample(const Model &M, const State &s, double *q, double *v)
+void spatial_sample(const Model &M, const State &s, double *pose, double *q, double *v)
 {
     const cmp_mech3 *m = M.mech->spatial;
-    std::vector<double> pose(13 * (size_t)m->nbodies + 1);
     for (int b = 0; b < m->nbodies; b++) {
         const MobilizedBody &mb = M.mob[(size_t)b];
         const Transform &X = mb.getBodyTransform(s);
         const Vec4 quat = X.R().convertRotationToQuaternion().asVec4();
         const Vec3 &vo = mb.getBodyOriginVelocity(s), &w = mb.getBodyAngularVelocity(s);
-        double *p = pose.data() + 13 * b;
+        double *p = pose + 13 * b;
         for (int k = 0; k < 3; k++) {
             p[k] = X.p()[k];
             p[7 + k] = vo[k];
@@ -260,7 +259,7 @@ void spatial_sample(const Model &M, const State &s, double *q, double *v)
         }
         for (int k = 0; k < 4; k++) p[3 + k] = quat[k];
     }
-    H->mech3_state(m, pose.data(), q, v);
+    H->mech3_state(m, pose, q, v);
 }
 
 } // namespace cmp_sb

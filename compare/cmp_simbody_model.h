@@ -35,12 +35,12 @@ struct Model {
 /* cmp_simbody3.cpp, for m->spatial: the tree and what Simbody cannot take
  * (0, or -1 with why); the mobilizers, constraints, forces and initial
  * state of M (M.mob sized); libbraun's q, v from a state realized through
- * Velocity (q holds the previous sample: each quaternion keeps its sign;
- * spatial_seed sets the initial ones). */
+ * Velocity (pose: scratch of 13 per body; q holds the previous sample:
+ * each quaternion keeps its sign; spatial_seed sets the initial ones). */
 int spatial_prepare(cmp_mech3 *m, char *why, size_t whysize);
 void spatial_build(Model &M, bool ball_only);
 void spatial_seed(const cmp_mech3 *m, double *q);
-void spatial_sample(const Model &M, const SimTK::State &s, double *q, double *v);
+void spatial_sample(const Model &M, const SimTK::State &s, double *pose, double *q, double *v);
 
 } // namespace cmp_sb
 

@@ -381,7 +381,7 @@ static int plan_simbody(joblist *l, const cmp_target *tg, const plan *p, double 
     for (int k = 0; k < N_OF(SB_ADAPTIVE); k++)
         for (int i = 0; i < p->nRD; i++) {
             if (SB_ADAPTIVE[k] == CMP_SB_RK3) continue; /* the sweep's only */
-            /* the long horizon: the explicit pair every other decade */
+            /* the long horizon: the explicit pair at 1e-4 and 1e-10 only */
             if (long_horizon && SB_ADAPTIVE[k] != CMP_SB_CPODES && !sb_long_rtol(p->RD[i]))
                 continue;
             job *j = tolerance(l, sc, p, T, CMP_SIMBODY, SB_ADAPTIVE[k], p->RD[i], NULL, 0);
