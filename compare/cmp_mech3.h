@@ -56,6 +56,16 @@ typedef struct cmp_joint3 {
     char name[40];
 } cmp_joint3;
 
+/* Joint J's point and axis on body b's side (b is J->a or J->b): what the
+ * peers' tree joints and loop closures put on each body. */
+static inline void cmp_joint3_side(const cmp_joint3 *J, int b, const double **p,
+                                   const double **axis)
+{
+    const int is_a = b == J->a;
+    *p = is_a ? J->pa : J->pb;
+    *axis = is_a ? J->axis : J->axis_b;
+}
+
 typedef enum cmp_force3_kind {
     CMP_F3_GRAVITY = 0,       /* g on every mass */
     CMP_F3_SPRING,            /* k (|P_b - P_a| - rest) and c d|P_b - P_a|/dt along P_b - P_a */

@@ -71,14 +71,6 @@ static void relative_pose(const cmp_mech3 *m, int b, int p, double *pos, double 
     cmp_quat_mul(pc, B->quat, quat);
 }
 
-/* A joint's point and axis on body b's side (b is a or b of J). */
-static void side(const cmp_joint3 *J, int b, const double **p, const double **axis)
-{
-    const int is_a = b == J->a;
-    *p = is_a ? J->pa : J->pb;
-    *axis = is_a ? J->axis : J->axis_b;
-}
-
 typedef cmp_mj_sites sites;
 #define put_sites cmp_mujoco_put_sites
 #define add_site(S, body, p) cmp_mujoco_add_site(S, body, p, 3)
@@ -123,7 +115,7 @@ static void write_body(cmp_text *t, const cmp_mech3 *m, const sites *S, int b, i
     } else {
         const cmp_joint3 *J = &m->joints[B->joint];
         const double *p, *axis;
-        side(J, b, &p, &axis);
+        cmp_joint3_side(J, b, &p, &axis);
         if (J->kind == CMP_J3_REVOLUTE) {
             put(t, "%*s<joint name=\"J%d\" type=\"hinge\" pos=\"%.17g %.17g %.17g\" axis=\"%.17g %.17g %.17g\"",
                 in, "", b, p[0], p[1], p[2], axis[0], axis[1], axis[2]);
@@ -196,7 +188,7 @@ int cmp_mujoco3_mjcf(const cmp_mech3 *m, const cmp_spec *sp, const char *name, c
         if (J->tree) continue;
         const int b1 = J->a >= 0 ? J->a : J->b, b2 = J->a >= 0 ? J->b : J->a;
         const double *p, *axis;
-        side(J, b1, &p, &axis);
+        cmp_joint3_side(J, b1, &p, &axis);
         put_connect(&t, sp, j, 0, b1, b2, p);
         if (J->kind == CMP_J3_REVOLUTE) {
             const double p2[3] = {p[0] + axis[0], p[1] + axis[1], p[2] + axis[2]};
@@ -245,13 +237,13 @@ void cmp_mujoco3_qvel(const cmp_mech3 *m, const mjModel *mm, mjData *d)
             }
         } else if (m->joints[B->joint].kind == CMP_J3_REVOLUTE) {
             const double *p, *axis;
-            side(&m->joints[B->joint], b, &p, &axis);
+            cmp_joint3_side(&m->joints[B->joint], b, &p, &axis);
             d->qvel[k] = local[0] * axis[0] + local[1] * axis[1] + local[2] * axis[2];
         } else if (m->joints[B->joint].kind == CMP_J3_PRISMATIC) {
             /* The child's origin against the parent's point there, along
              * the axis (world). */
             const double *p, *axis;
-            side(&m->joints[B->joint], b, &p, &axis);
+            cmp_joint3_side(&m->joints[B->joint], b, &p, &axis);
             double vp[3], u[3];
             cmp_mech3_velocity0(m, B->parent, B->pos, vp);
             cmp_quat_rotate(B->quat, axis, u);

@@ -45,14 +45,6 @@ Rotation orientation(const cmp_mech3 *m, int b)
     return b < 0 ? Rotation(0.0, ZAxis) : rot(m->bodies[b].quat);
 }
 
-/* A joint's point and axis on body b's side. */
-void side(const cmp_joint3 *J, int b, const double **p, const double **axis)
-{
-    const bool is_a = b == J->a;
-    *p = is_a ? J->pa : J->pb;
-    *axis = is_a ? J->axis : J->axis_b;
-}
-
 /* A tree joint's mobilizer frame M on the child (at the child's point):
  * a Pin's Z along the axis; the body's orientation otherwise. (The
  * identity as a zero turn: GCC 12 warns on Rotation()'s inlined body.) */
@@ -69,8 +61,8 @@ void m_f_origins(const cmp_mech3 *m, int b, const cmp_joint3 *J, Vec3 &oM, Vec3 
 {
     const cmp_body3 *B = &m->bodies[b];
     const double *pc, *ac, *pp, *ap;
-    side(J, b, &pc, &ac);
-    side(J, B->parent, &pp, &ap);
+    cmp_joint3_side(J, b, &pc, &ac);
+    cmp_joint3_side(J, B->parent, &pp, &ap);
     if (J->kind != CMP_J3_PRISMATIC) {
         oM = vec(pc);
         oF = vec(pp);
@@ -108,7 +100,7 @@ void add_mobilizer(cmp_sb::Model &M, const cmp_mech3 *m, int b)
     }
     const cmp_joint3 *J = &m->joints[B->joint];
     const double *pc, *ac;
-    side(J, b, &pc, &ac);
+    cmp_joint3_side(J, b, &pc, &ac);
     /* M on the child at its point; F on the parent at its point, with M's
      * initial orientation (R_PF = R_Pᵀ R_C R_CM): X_FM = identity at q = 0. */
     const Rotation R_CM = m_frame(J, ac);
@@ -144,7 +136,7 @@ void set_initial(cmp_sb::Model &M, const cmp_mech3 *m, int b, State &s)
     /* ω (or a slider's velocity) of M in F, in F (= the child's M frame at
      * q = 0). */
     const double *pc, *ac;
-    side(J, b, &pc, &ac);
+    cmp_joint3_side(J, b, &pc, &ac);
     const Rotation R_F = orientation(m, b) * m_frame(J, ac);
     if (J->kind == CMP_J3_PRISMATIC) {
         double vp[3];
