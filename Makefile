@@ -125,7 +125,10 @@ $(BUILD)/tests/%: tests/%.c $(TEST_SUPPORT) $(BUILD)/libbraun_host.a $(BUILD)/li
 # M failed, K skipped", and to TEST_PREREQS what must be built first).
 CORE_SUITES = "tools/run-tests $(TEST_BIN)" "sh tests/cli/run.sh $(BUILD)/bin/braun"
 TEST_SUITES = $(CORE_SUITES) "BUILD=$(BUILD) sh tests/cli/install.sh" "$(MAKE) -s --no-print-directory test-sanitize"
-TEST_PREREQS = $(TEST_BIN) $(BUILD)/bin/braun
+CORE_PREREQS = $(TEST_BIN) $(BUILD)/bin/braun
+TEST_PREREQS = $(CORE_PREREQS)
+# The prerequisites build in parallel, one job per processor.
+TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
 
 # The unit and CLI tests again under AddressSanitizer + UBSan (own build dir).
 SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
@@ -133,13 +136,15 @@ test-sanitize: deps-test
 	@$(MAKE) --no-print-directory BUILD=build/sanitize OPT="-O1 -g $(SANITIZE)" \
 	    LDLIBS="$(SANITIZE)" test-core-suites
 
-# (prerequisites as a sub-make: mk/*.mk append to TEST_PREREQS after this point)
+# (prerequisites as a sub-make: mk/*.mk append to TEST_PREREQS and
+# CORE_PREREQS after this point; the sanitizer run builds only what its
+# core suites run — not the harness, the shared libraries or the bench)
 test-core-suites:
-	@$(MAKE) --no-print-directory $(TEST_PREREQS)
+	@$(MAKE) --no-print-directory -j$(TEST_JOBS) $(CORE_PREREQS)
 	@tools/run-suites $(CORE_SUITES)
 
 test: deps-test
-	@$(MAKE) --no-print-directory $(TEST_PREREQS)
+	@$(MAKE) --no-print-directory -j$(TEST_JOBS) $(TEST_PREREQS)
 	@tools/run-suites $(TEST_SUITES)
 
 # Runs every unit test binary; prints one closing line "N passed, M failed, K skipped".

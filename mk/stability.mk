@@ -27,7 +27,8 @@ $(BUILD)/tests/stability_float: tests/stability/test_stability.c $(BUILD)/float/
 	$(CC) $(CPPFLAGS_ALL) -DBRAUN_SINGLE -Itests $(CFLAGS_ALL) $(DEPFLAGS) -MF $@.d $< \
 	    $(BUILD)/float/libbraun_host.a $(BUILD)/float/libbraun.a -lcmocka -ljansson $(LDLIBS_ALL) -o $@
 
-TEST_PREREQS += $(STABILITY_BIN)
+# (TEST_PREREQS includes CORE_PREREQS: the sanitizer run needs these too)
+CORE_PREREQS += $(STABILITY_BIN)
 # CORE_SUITES is part of TEST_SUITES and of the sanitizer run.
 CORE_SUITES += "tools/run-tests $(STABILITY_BIN)"
 
