@@ -85,17 +85,21 @@ static void test_redundant_crossing(void **state)
     (void)state;
     double pos, energy;
     long filtered;
-    /* Measured: |Phi_q| 1.3e-11, |Phi_e| 4.7e-12, 6 stages filtered. */
+    /* Measured: |Phi_q| 1.3e-11, |Phi_e| 7.1e-15, 4 stages filtered. */
     assert_int_equal(through_crossing(0, &pos, &energy, &filtered), BRAUN_OK);
     print_message("filter on: max |Phi_q| %.3g, |Phi_e| %.3g, %ld stages filtered\n", pos, energy,
                   filtered);
     assert_le(pos, 5e-11);
     assert_le(energy, 2e-11);
     assert_true(filtered > 0);
-    /* Without it, the kick this test is about (measured: |Phi_e| 3.2e-4). */
+    /* Without it, the kick this test is about: |Phi_e| 3.2e-4 while the
+     * energy force was sized at the step's start; sized at its end it
+     * removes the kick's energy within the step (measured |Phi_e| 8.7e-10),
+     * and the kick shows in the position residual (measured 2.4e-8, 1.3e-11
+     * filtered). */
     assert_int_equal(through_crossing(-1, &pos, &energy, &filtered), BRAUN_OK);
     print_message("filter off: max |Phi_q| %.3g, |Phi_e| %.3g\n", pos, energy);
-    assert_true(energy > 1e-5);
+    assert_true(pos > 1e-9);
     assert_int_equal(filtered, 0);
 }
 

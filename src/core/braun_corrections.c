@@ -171,10 +171,65 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
         sigma = r > 0 ? smax : -smax;
         d->stats.energy_guard_hits++;
     }
+    if (pv->energy_end) {
+        /* Sized at the end of the step (braun__energy_at_end): only the
+         * direction here. */
+        pv->de_ok = xx > 0;
+        if (pv->de_ok) braun__solve_r(pv, pv->ce, pv->de);
+        return BRAUN_OK;
+    }
     if (sigma == 0) return BRAUN_OK;
     for (int i = 0; i < n; i++) pv->tmp[i] = sigma * pv->ce[i];
     braun__solve_r(pv, pv->tmp, pv->tmp);
     for (int i = 0; i < n; i++) pv->dv[i] += pv->tmp[i];
+    return BRAUN_OK;
+}
+
+/* The energy force of a fixed step sized at the ideal end z of the step:
+ * the velocity change σ·d along this step's direction d = R⁻¹N_vC_eᵀ that
+ * removes, to first order, the energy error the step would leave —
+ *   Φ_e(z) + ∂E/∂q(z)·dq + ∂E/∂v(z)·(dv + σd) = 0 —
+ * the step's own truncation error of the energy law included, where the
+ * start's first-order prediction leaves it for the next step. */
+int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
+{
+    braun_priv *pv = braun__priv(d);
+    const braun_system *s = &d->model->sys;
+    const int n = BRAUN_N(pv->n);
+    if (!pv->de_ok) return BRAUN_OK;
+    const braun_real *q = y1, *v = y1 + n;
+    braun_real E = 0, dEdt = 0;
+    int st = braun__callback(d, s->energy(t1, q, v, &E, pv->dEdq, pv->dEdv, &dEdt, s->user),
+                             "energy", t1);
+    if (st) return st;
+    st = braun__check_finite(d, 1, &E, "energy E", 0, t1);
+    if (!st) st = braun__check_finite(d, n, pv->dEdq, "energy dE/dq", 0, t1);
+    if (!st) st = braun__check_finite(d, n, pv->dEdv, "energy dE/dv", 0, t1);
+    if (st) return st;
+    const braun_real phi_e = E - d->E0 - y1[2 * n];
+    /* Kinetic energy is quadratic in v: the velocity correction dv changes
+     * E by ∂E/∂v·dv + ½dvᵀM dv exactly (M of the step's start: the
+     * difference is O(h·|dv|²)), and the slope along d is taken at v + dv. */
+    braun__mul_r(pv, pv->dv, pv->tmp);
+    braun__mul_r(pv, pv->de, pv->ce);
+    const braun_real r = -(phi_e + braun_dot(n, pv->dEdq, pv->dq) + braun_dot(n, pv->dEdv, pv->dv) +
+                           BRAUN_R(0.5) * braun_dot(n, pv->tmp, pv->tmp));
+    const braun_real g = braun_dot(n, pv->dEdv, pv->de) + braun_dot(n, pv->tmp, pv->ce);
+    /* Φ_e is a difference of E, E0 and ∫Ė: below a few ulps of them it is
+     * round-off, which a correction would only feed into the motion. */
+    const braun_real floor_e = 4 * BRAUN_EPS * (braun_fabs(E) + braun_fabs(d->E0) + braun_fabs(y1[2 * n]));
+    if (braun_fabs(r) <= floor_e) return BRAUN_OK;
+    const braun_real smax = d->model->opt.energy_max_rel > 0 ? d->model->opt.energy_max_rel
+                                                             : BRAUN_R(0.01);
+    braun_real sigma;
+    if (g > 0 && braun_fabs(r) <= smax * g) {
+        sigma = r / g;
+    } else {
+        sigma = r > 0 ? smax : -smax;
+        if (!(g > 0)) sigma = 0;
+        d->stats.energy_guard_hits++;
+    }
+    for (int i = 0; i < n; i++) pv->dv[i] += sigma * pv->de[i];
     return BRAUN_OK;
 }
 

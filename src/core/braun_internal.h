@@ -131,6 +131,9 @@ typedef struct braun_priv {
     braun_real *ep;       /* m: −(Φ_q + h Φ̇_q), the position target of Eq. 16 */
     braun_real *dEdq, *dEdv, *ce, *tmp; /* n each: energy stage scratch */
     braun_real *dq, *dv;  /* n each: h × the correction terms (Eqs. 16, 17, 20) */
+    braun_real *de;       /* n: the energy force's direction R⁻¹N_vC_eᵀ of the step (end mode) */
+    int energy_end;       /* the energy force is sized at the ideal end of the step */
+    int de_ok;            /* de holds a direction for this step */
     braun_real *phi0, *ev0; /* rows each: Φ and [Φ̇_q; Φ_v] at the step's start (adaptive) */
     /* The last state before the current one ([q; v; ∫Ė] and t), for the
      * accuracy guard: a run it stops goes back to the last state that passed. */
@@ -229,6 +232,7 @@ int braun__forward(braun_data *d, unsigned with, braun_real *vdot);
  * corrections that are off): position → velocity → energy. After
  * braun__forward(d, BRAUN_WITH_RESIDUALS | BRAUN_WITH_POWER, vdot). */
 int braun__corrections(braun_data *d, const braun_real *vdot, int guard);
+int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1);
 
 /* A stage's inputs are done at this point, else BRAUN_ERR_ARGUMENT. */
 static inline int braun__need(braun_data *d, unsigned bits, const char *stage)

@@ -56,6 +56,7 @@ typedef struct shape {
     X(yerr, (s).N)                                                                   \
     X(dq, (s).n)                                                                     \
     X(dv, (s).n)                                                                     \
+    X(de, (s).n)                                                                     \
     X(phi0, (s).rows)                                                                \
     X(ev0, (s).rows)                                                                 \
     X(enorm, (s).rows)                                                               \

@@ -41,6 +41,12 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
      * filtered stage would disturb its error estimate (parallelogram,
      * DOPRI5 rtol 1e-10: STEP_TOO_SMALL at 2.7 s with it, 254.7 s without). */
     pv->soft_on = !yerr && pv->rows > 0 && d->model->opt.soft_tol >= 0 && braun__has_soft(pv);
+    /* Per step, the energy force is sized at the step's ideal end
+     * (braun__energy_at_end): its direction comes from this first stage.
+     * Euler's ideal end is the first-order prediction itself: its step
+     * stays the paper's equation, evaluated at the start. */
+    pv->energy_end = !per_stage && tb->stages > 1;
+    pv->de_ok = 0;
     for (int s = 0; s < tb->stages; s++) {
         const braun_real *ys = y0;
         if (s > 0) {
@@ -120,6 +126,11 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
             if (e == 0) continue;
             for (int i = 0; i < N; i++) yerr[i] += e * pv->k[s][i];
         }
+    }
+    if (corr && pv->energy_end) {
+        st = diverged_if_integrated(d, 1, braun__energy_at_end(d, d->t + h, y1));
+        pv->energy_end = 0;
+        if (st) return st;
     }
     if (corr && !per_stage)
         for (int i = 0; i < n; i++) {
