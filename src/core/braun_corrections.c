@@ -165,19 +165,21 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
     const braun_real smax = d->model->opt.energy_max_rel > 0 ? d->model->opt.energy_max_rel
                                                              : BRAUN_R(0.01);
     braun_real sigma;
-    if (braun_fabs(r) <= smax * xx) {
-        sigma = xx > 0 ? r / xx : 0;
-    } else {
-        sigma = r > 0 ? smax : -smax;
-        d->stats.energy_guard_hits++;
-    }
+    const int saturated = !(braun_fabs(r) <= smax * xx);
+    if (!saturated) sigma = xx > 0 ? r / xx : 0;
+    else sigma = r > 0 ? smax : -smax;
     if (pv->energy_end) {
-        /* Sized at the end of the step (braun__energy_at_end): only the
-         * direction here. */
+        /* Sized at the end of the step (braun__energy_at_end): the
+         * direction here, and this prediction for a motion too slow to be
+         * sized at the end. */
         pv->de_ok = xx > 0;
+        pv->sigma0 = sigma;
+        pv->sat0 = saturated;
         if (pv->de_ok) braun__solve_r(pv, pv->ce, pv->de);
+        else if (saturated) d->stats.energy_guard_hits++; /* at rest: no direction */
         return BRAUN_OK;
     }
+    if (saturated) d->stats.energy_guard_hits++;
     if (sigma == 0) return BRAUN_OK;
     for (int i = 0; i < n; i++) pv->tmp[i] = sigma * pv->ce[i];
     braun__solve_r(pv, pv->tmp, pv->tmp);
@@ -212,21 +214,27 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
      * difference is O(h·|dv|²)), and the slope along d is taken at v + dv. */
     braun__mul_r(pv, pv->dv, pv->tmp);
     braun__mul_r(pv, pv->de, pv->ce);
-    const braun_real r = -(phi_e + braun_dot(n, pv->dEdq, pv->dq) + braun_dot(n, pv->dEdv, pv->dv) +
+    braun_real r = -(phi_e + braun_dot(n, pv->dEdq, pv->dq) + braun_dot(n, pv->dEdv, pv->dv) +
                            BRAUN_R(0.5) * braun_dot(n, pv->tmp, pv->tmp));
     const braun_real g = braun_dot(n, pv->dEdv, pv->de) + braun_dot(n, pv->tmp, pv->ce);
     /* Φ_e is a difference of E, E0 and ∫Ė: below a few ulps of them it is
-     * round-off, which a correction would only feed into the motion. */
+     * round-off, which a correction would only feed into the motion. A
+     * motion too slow to remove an error of that size within
+     * energy_max_rel (near rest) keeps the start's prediction: sized by
+     * round-off it would only kick the velocity by energy_max_rel. */
     const braun_real floor_e = 4 * BRAUN_EPS * (braun_fabs(E) + braun_fabs(d->E0) + braun_fabs(y1[2 * n]));
-    if (braun_fabs(r) <= floor_e) return BRAUN_OK;
     const braun_real smax = d->model->opt.energy_max_rel > 0 ? d->model->opt.energy_max_rel
                                                              : BRAUN_R(0.01);
     braun_real sigma;
-    if (g > 0 && braun_fabs(r) <= smax * g) {
+    if (!(smax * g > floor_e)) {
+        sigma = pv->sigma0;
+        if (pv->sat0) d->stats.energy_guard_hits++;
+    } else if (braun_fabs(r) <= floor_e) {
+        return BRAUN_OK;
+    } else if (braun_fabs(r) <= smax * g) {
         sigma = r / g;
     } else {
         sigma = r > 0 ? smax : -smax;
-        if (!(g > 0)) sigma = 0;
         d->stats.energy_guard_hits++;
     }
     for (int i = 0; i < n; i++) pv->dv[i] += sigma * pv->de[i];

@@ -134,6 +134,8 @@ typedef struct braun_priv {
     braun_real *de;       /* n: the energy force's direction R⁻¹N_vC_eᵀ of the step (end mode) */
     int energy_end;       /* the energy force is sized at the ideal end of the step */
     int de_ok;            /* de holds a direction for this step */
+    braun_real sigma0;    /* the force's size predicted at the start (used near rest) */
+    int sat0;             /* sigma0 was saturated at energy_max_rel */
     braun_real *phi0, *ev0; /* rows each: Φ and [Φ̇_q; Φ_v] at the step's start (adaptive) */
     /* The last state before the current one ([q; v; ∫Ė] and t), for the
      * accuracy guard: a run it stops goes back to the last state that passed. */
