@@ -75,6 +75,40 @@ static int run(const char *name, const braun_real *q0, const braun_real *v0, uns
     return st;
 }
 
+/* Smaller steps, smaller errors (issue 12): the four-bar through its
+ * singular configurations, RK4 at h = 1e-2 ... 2.5e-4 over 100 s (1000 s
+ * under stress). The energy law holds to its round-off floor at every h
+ * (the energy force is sized at each step's end; sized at its start the
+ * max |Phi_e| over 1000 s was 4.3e-7, 2.3e-8, 3.0e-8, 2.9e-8), and the
+ * trajectory error against the closed form falls as h does. */
+static void test_four_bar_in_h(void **state)
+{
+    (void)state;
+    const double T = stress() ? 1e3 : 1e2;
+    const double hs[4] = {1e-2, 1e-3, 5e-4, 2.5e-4};
+    double traj[4];
+    for (int i = 0; i < 4; i++) {
+        monitor mo;
+        assert_int_equal(run("four-bar", NULL, NULL, BRAUN_CORRECT_ALL, hs[i], T, 1, &mo, NULL), BRAUN_OK);
+        print_message("four-bar h=%g T=%g: |Phi_q| %.3g |Phi_e| %.3g traj %.3g\n", hs[i], T, mo.maxpos,
+                      mo.maxE, mo.maxtraj);
+        assert_false(mo.nonfinite);
+        /* double: E ~ 70 J, floor 4 eps (|E| + |E0|) ~ 1.2e-13 (measured
+         * 5.7e-14 ... 1.1e-13 over 1000 s); float: measured 4.6e-5 */
+        assert_le(mo.maxE, PREC(2e-13, 2e-4));
+        traj[i] = mo.maxtraj;
+#ifndef BRAUN_SINGLE
+        /* Over 1000 s (the issue's horizon; measured 5.4e-4, 5.5e-8,
+         * 2.8e-8, 1.6e-8); over 100 s it is not monotone: 5.4e-5, 8.7e-9,
+         * 1.2e-8 — a velocity-level kick at a singular crossing, not the
+         * energy, decides the last digits there (docs/method.md). */
+        if (i > 0 && stress()) assert_true(traj[i] < traj[i - 1]);
+#else
+        (void)traj;
+#endif
+    }
+}
+
 /* The four-bar through its singular configurations (all links horizontal,
  * rank 5 -> 3, twice per revolution): 1000 s (10^4 s under stress). */
 static void test_four_bar_long(void **state)
@@ -271,6 +305,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_four_bar_long),
+        cmocka_unit_test(test_four_bar_in_h),
         cmocka_unit_test(test_four_bar_at_singularity),
         cmocka_unit_test(test_slider_crank_bifurcation),
         cmocka_unit_test(test_inconsistent_start),
