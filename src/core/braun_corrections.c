@@ -204,10 +204,6 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
     int st = braun__callback(d, s->energy(t1, q, v, &E, pv->dEdq, pv->dEdv, &dEdt, s->user),
                              "energy", t1);
     if (st) return st;
-    st = braun__check_finite(d, 1, &E, "energy E", 0, t1);
-    if (!st) st = braun__check_finite(d, n, pv->dEdq, "energy dE/dq", 0, t1);
-    if (!st) st = braun__check_finite(d, n, pv->dEdv, "energy dE/dv", 0, t1);
-    if (st) return st;
     const braun_real phi_e = E - d->E0 - y1[2 * n];
     /* Kinetic energy is quadratic in v: the velocity correction dv changes
      * E by ∂E/∂v·dv + ½dvᵀM dv exactly (M of the step's start: the
@@ -217,26 +213,40 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
     braun_real r = -(phi_e + braun_dot(n, pv->dEdq, pv->dq) + braun_dot(n, pv->dEdv, pv->dv) +
                            BRAUN_R(0.5) * braun_dot(n, pv->tmp, pv->tmp));
     const braun_real g = braun_dot(n, pv->dEdv, pv->de) + braun_dot(n, pv->tmp, pv->ce);
+    if (!braun_is_finite(r) || !braun_is_finite(g)) {
+        /* A NaN/Inf of E or its gradient reaches r or g (0·Inf is NaN):
+         * only then are the callback's outputs scanned, to name it. */
+        st = braun__check_finite(d, 1, &E, "energy E", 0, t1);
+        if (!st) st = braun__check_finite(d, n, pv->dEdq, "energy dE/dq", 0, t1);
+        if (!st) st = braun__check_finite(d, n, pv->dEdv, "energy dE/dv", 0, t1);
+        if (!st) st = braun__fail(d, BRAUN_ERR_NONFINITE, "energy force (overflow)", -1, -1, 0, (double)t1);
+        return st;
+    }
     /* Φ_e is a difference of E, E0 and ∫Ė: below a few ulps of them it is
-     * round-off, which a correction would only feed into the motion. A
-     * motion too slow to remove an error of that size within
-     * energy_max_rel (near rest) keeps the start's prediction: sized by
-     * round-off it would only kick the velocity by energy_max_rel. */
+     * round-off, which a correction would only feed into the motion. */
     const braun_real floor_e = 4 * BRAUN_EPS * (braun_fabs(E) + braun_fabs(d->E0) + braun_fabs(y1[2 * n]));
     const braun_real smax = d->model->opt.energy_max_rel > 0 ? d->model->opt.energy_max_rel
                                                              : BRAUN_R(0.01);
-    braun_real sigma;
-    if (!(smax * g > floor_e)) {
-        sigma = pv->sigma0;
-        if (pv->sat0) d->stats.energy_guard_hits++;
-    } else if (braun_fabs(r) <= floor_e) {
-        return BRAUN_OK;
-    } else if (braun_fabs(r) <= smax * g) {
-        sigma = r / g;
+    braun_real sigma_end = 0;
+    int sat_end = 0;
+    if (braun_fabs(r) <= floor_e) {
+        sigma_end = 0;
+    } else if (g > 0 && braun_fabs(r) <= smax * g) {
+        sigma_end = r / g;
     } else {
-        sigma = r > 0 ? smax : -smax;
-        d->stats.energy_guard_hits++;
+        sigma_end = g > 0 ? (r > 0 ? smax : -smax) : 0;
+        sat_end = 1;
     }
+    /* Near rest, where even an error at the floor would need more than
+     * energy_max_rel (energy_max_rel·g / floor ≲ 1), sizing by Φ_e(z)
+     * only kicks the velocity by round-off: the start's prediction takes
+     * over, continuously (a switch would turn the round-off difference of
+     * two equal runs into a different branch). */
+    const braun_real rel = floor_e > 0 ? smax * g / floor_e : BRAUN_R(1e30);
+    const braun_real w = rel >= BRAUN_R(1e15) ? 1 : rel * rel / (1 + rel * rel);
+    const braun_real sigma = w * sigma_end + (1 - w) * pv->sigma0;
+    if (w >= BRAUN_R(0.5) ? sat_end : pv->sat0) d->stats.energy_guard_hits++;
+    if (sigma == 0) return BRAUN_OK;
     for (int i = 0; i < n; i++) pv->dv[i] += sigma * pv->de[i];
     return BRAUN_OK;
 }

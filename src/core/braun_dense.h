@@ -53,7 +53,9 @@ static inline void braun__dense_solve_r(void *state, const braun_real *b, braun_
 
 static inline void braun__dense_mul_r(void *state, const braun_real *x, braun_real *y)
 {
-    braun_chol_mul_r(&braun__dense(state)->chol, x, y);
+    const braun_chol *c = &braun__dense(state)->chol;
+    if (c->diagonal) braun_chol_mul_diag(c, x, y);
+    else braun_chol_mul_r(c, x, y);
 }
 
 /* C = A R^-1 row by row (row_i(C) = R^-T A_i^T), resid -= C atil fused into

@@ -64,6 +64,14 @@ static inline void braun_chol_solve_diag(const braun_chol *c, const braun_real *
     for (int i = 0; i < n; i++) x[i] = b[i] * c->dinv[i];
 }
 
+/* y := R x when R is diagonal: the loop of braun_chol_mul_r with one term
+ * per row (0 + r_ii x_i: the same result, signed zeros included). */
+static inline void braun_chol_mul_diag(const braun_chol *c, const braun_real *x, braun_real *y)
+{
+    const int n = BRAUN_N(c->n);
+    for (int i = 0; i < n; i++) y[i] = (braun_real)0 + c->R[(size_t)i * (size_t)(n + 1)] * x[i];
+}
+
 /* ---- Rank-revealing pseudoinverse of a wide matrix C (rows x n) ---------
  * Householder QR with column pivoting of C^T (n x rows):
  *     C^T P = Q [R11 R12; 0 R22],   R22 dropped when |r_kk| <= tol·|r_00|,
