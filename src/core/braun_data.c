@@ -74,6 +74,8 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->rule_keep[1] = pv->rule_cap[1] = s->m;
     pv->rule_stage = 0;
     pv->soft_on = pv->have_ref = pv->stage = pv->ref_slot = 0;
+    pv->energy_end = pv->de_ok = pv->sat0 = 0;
+    pv->sigma0 = 0;
     pv->ref_step = 0;
     pv->step_rank[0] = pv->rows;
     pv->step_rank[1] = s->m;

@@ -406,6 +406,7 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
     pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
     pv->rule_stage = 0;
     pv->soft_on = 0; /* braun_eval is the plain Udwadia–Kalaba acceleration */
+    pv->energy_end = 0; /* and the literal Eq. 20, sized at the point */
     st = braun__forward(d, (corr ? BRAUN_WITH_RESIDUALS : 0u) |
                                (corr & BRAUN_CORRECT_ENERGY ? BRAUN_WITH_POWER : 0u),
                         vdot);
