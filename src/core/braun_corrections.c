@@ -120,6 +120,13 @@ static int stage_velocity(braun_data *d)
  * turning point it would explode. The guard: the relative change σ of the
  * weighted velocity is saturated at energy_max_rel (docs/method.md). */
 
+/* The saturation of the energy force: the largest relative change of the
+ * weighted velocity per step (options.energy_max_rel, default 1 %). */
+static braun_real energy_max_rel(const braun_data *d)
+{
+    return d->model->opt.energy_max_rel > 0 ? d->model->opt.energy_max_rel : BRAUN_R(0.01);
+}
+
 static int stage_energy(braun_data *d, const braun_real *vdot)
 {
     braun_priv *pv = braun__priv(d);
@@ -162,8 +169,7 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
     braun__solve_rt(pv, pv->dEdv, pv->ce);
     if (pv->rows > 0) braun__null_project(pv, 0, pv->ce);
     const braun_real xx = braun_dot(n, pv->ce, pv->ce);
-    const braun_real smax = d->model->opt.energy_max_rel > 0 ? d->model->opt.energy_max_rel
-                                                             : BRAUN_R(0.01);
+    const braun_real smax = energy_max_rel(d);
     braun_real sigma;
     const int saturated = !(braun_fabs(r) <= smax * xx);
     if (!saturated) sigma = xx > 0 ? r / xx : 0;
@@ -187,12 +193,13 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
     return BRAUN_OK;
 }
 
-/* The energy force of a fixed step sized at the ideal end z of the step:
- * the velocity change σ·d along this step's direction d = R⁻¹N_vC_eᵀ that
- * removes, to first order, the energy error the step would leave —
- *   Φ_e(z) + ∂E/∂q(z)·dq + ∂E/∂v(z)·(dv + σd) = 0 —
- * the step's own truncation error of the energy law included, where the
- * start's first-order prediction leaves it for the next step. */
+/* The energy force of a per-step multi-stage step, sized at the step's
+ * ideal end z: the velocity change σ·d along the first stage's direction
+ * d = R⁻¹N_vC_eᵀ that removes the energy error the step would leave —
+ *   Φ_e(z) + ∂E/∂q·dq + ∂E/∂v·dv + ½dvᵀM dv + σ(∂E/∂v + M dv)·d = 0
+ * (first order in dq and σ) — the step's own truncation error of the
+ * energy law included, which the start's first-order prediction left for
+ * the next step (docs/method.md, "The energy force and its guard"). */
 int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
 {
     braun_priv *pv = braun__priv(d);
@@ -225,12 +232,11 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
     /* Φ_e is a difference of E, E0 and ∫Ė: below a few ulps of them it is
      * round-off, which a correction would only feed into the motion. */
     const braun_real floor_e = 4 * BRAUN_EPS * (braun_fabs(E) + braun_fabs(d->E0) + braun_fabs(y1[2 * n]));
-    const braun_real smax = d->model->opt.energy_max_rel > 0 ? d->model->opt.energy_max_rel
-                                                             : BRAUN_R(0.01);
+    const braun_real smax = energy_max_rel(d);
     braun_real sigma_end = 0;
     int sat_end = 0;
     if (braun_fabs(r) <= floor_e) {
-        sigma_end = 0;
+        /* round-off: sigma_end stays 0 */
     } else if (g > 0 && braun_fabs(r) <= smax * g) {
         sigma_end = r / g;
     } else {
