@@ -46,6 +46,7 @@ static braun_real house(int len, braun_real *x, braun_real normx)
     if (normx == 0) return 0;
     braun_real beta = alpha >= 0 ? -normx : normx;
     braun_real scale = 1 / (alpha - beta);
+    BRAUN_UNROLL
     for (int i = 1; i < len; i++) x[i] *= scale;
     x[0] = beta;
     return (beta - alpha) / beta;
@@ -53,9 +54,21 @@ static braun_real house(int len, braun_real *x, braun_real normx)
 
 #define reflect braun_qrcp__reflect
 
+/* The bound of a loop over indices below the rank k: with compile-time
+ * sizes the constant min(n, rows), the body skipping j >= k (BELOW; the
+ * loop then unrolls completely), else k itself (BELOW is then 1). */
+#ifdef BRAUN_FIXED_N
+#define KCAP(f, k) (BRAUN_N((f)->n) < BRAUN_ROWS((f)->rows) ? BRAUN_N((f)->n) : BRAUN_ROWS((f)->rows))
+#define BELOW(j, k) ((j) < (k))
+#else
+#define KCAP(f, k) (k)
+#define BELOW(j, k) 1
+#endif
+
 static braun_real sumsq(int len, const braun_real *x)
 {
     braun_real s = 0;
+    BRAUN_UNROLL
     for (int i = 0; i < len; i++) s += x[i] * x[i];
     return s;
 }
@@ -78,6 +91,7 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
     braun_real *norm2 = f->work, *ref = f->stau;
     braun_real r00 = 0;
 
+    BRAUN_UNROLL
     for (int j = 0; j < rows; j++) {
         f->perm[j] = j;
         norm2[j] = ref[j] = sumsq(n, a + (size_t)j * (size_t)n);
@@ -85,8 +99,11 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
     f->rank = 0;
     f->nsoft = 0;
     braun_real dmin = 0;
-    for (int k = 0; k < kmax; k++) {
+    BRAUN_UNROLL
+    for (int k = 0; k < KCAP(f, kmax); k++) {
+        if (!BELOW(k, kmax)) break;
         int best = k;
+        BRAUN_UNROLL
         for (int j = k + 1; j < rows; j++)
             if (norm2[j] > norm2[best]) best = j;
         if (best != k) {
@@ -114,6 +131,7 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
         /* |R_kk| = pivot: the smallest kept one, for the soft directions. */
         if (k == 0 || pivot < dmin) dmin = pivot;
         f->tau[k] = house(n - k, col, pivot);
+        BRAUN_UNROLL
         for (int j = k + 1; j < rows; j++) {
             braun_real *cj = COL(a, f, j, n) + k;
             reflect(n - k, col + 1, f->tau[k], cj);
@@ -132,14 +150,21 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
     const int rk = f->rank;
     if (rk > 0 && rk < rows) {
         braun_real *s = f->s;
-        for (int j = 0; j < rk; j++)
+        BRAUN_UNROLL
+        for (int j = 0; j < KCAP(f, rk); j++) {
+            if (!BELOW(j, rk)) break;
+            BRAUN_UNROLL
             for (int i = 0; i < rows; i++)
                 s[(size_t)j * (size_t)rows + (size_t)i] = i >= j ? COL(a, f, i, n)[j] : 0;
-        for (int j = 0; j < rk; j++) {
+        }
+        BRAUN_UNROLL
+        for (int j = 0; j < KCAP(f, rk); j++) {
+            if (!BELOW(j, rk)) break;
             braun_real *cj = s + (size_t)j * (size_t)rows + j;
             f->stau[j] = house(rows - j, cj, braun_nrm2(rows - j, cj));
-            for (int c = j + 1; c < rk; c++)
-                reflect(rows - j, cj + 1, f->stau[j], s + (size_t)c * (size_t)rows + j);
+            BRAUN_UNROLL
+            for (int c = j + 1; c < KCAP(f, rk); c++)
+                if (BELOW(c, rk)) reflect(rows - j, cj + 1, f->stau[j], s + (size_t)c * (size_t)rows + j);
             /* The solves use T: its diagonal is the soft directions' gate. */
             const braun_real tjj = braun_fabs(cj[0]);
             if (j == 0 || tjj < f->dmin) f->dmin = tjj;
@@ -152,6 +177,41 @@ void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
                            braun_real *x)
 {
     braun_qrcp_lsq(f, r, x, NULL);
+}
+
+/* x[n] := Q1 w = H_0 ... H_{k-1} [w; 0], k the rank. (One loop, not a
+ * zero fill and a copy: compilers turn a zero fill into a memset call,
+ * which costs a small-vector kernel more than the fill itself on a
+ * Cortex-M.) */
+static inline void apply_q1(const braun_qrcp *f, int k, const braun_real *w, braun_real *x)
+{
+    const int n = BRAUN_N(f->n);
+    BRAUN_UNROLL
+    for (int i = 0; i < n; i++) x[i] = i < k ? w[i] : 0;
+    BRAUN_UNROLL
+    for (int j = KCAP(f, k) - 1; j >= 0; j--)
+        if (BELOW(j, k)) reflect(n - j, COL(f->a, f, j, n) + j + 1, f->tau[j], x + j);
+}
+
+/* Least squares through S = U T: w = T^-1 (U^T P^T r)[0..k) (rank k < rows). */
+static void lsq_deficient(const braun_qrcp *f, braun_real *w, braun_real *resid)
+{
+    const int rows = BRAUN_ROWS(f->rows), rk = f->rank;
+    const braun_real *s = f->s;
+    BRAUN_UNROLL
+    for (int j = 0; j < KCAP(f, rk); j++)
+        if (BELOW(j, rk)) reflect(rows - j, s + (size_t)j * (size_t)rows + j + 1, f->stau[j], w + j);
+    /* U^T P^T r below the rank: the part of r outside range(C). */
+    if (resid) *resid = braun_nrm2(rows - rk, w + rk);
+    BRAUN_UNROLL
+    for (int i = KCAP(f, rk) - 1; i >= 0; i--) {
+        if (!BELOW(i, rk)) continue;
+        braun_real sum = w[i];
+        BRAUN_UNROLL
+        for (int c = i + 1; c < KCAP(f, rk); c++)
+            if (BELOW(c, rk)) sum -= s[(size_t)c * (size_t)rows + (size_t)i] * w[c];
+        w[i] = sum / s[(size_t)i * (size_t)rows + (size_t)i];
+    }
 }
 
 void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
@@ -167,47 +227,49 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
         if (resid) *resid = braun_nrm2(rows, r);
         return;
     }
+    BRAUN_UNROLL
     for (int j = 0; j < rows; j++) w[j] = r[f->perm[j]];
     if (rk == rows) {
-        /* S = R11^T is lower triangular: forward substitution. */
-        for (int i = 0; i < rk; i++) {
+        /* S = R11^T is lower triangular: forward substitution. (The bounds
+         * are `rows`, equal to the rank here: constants with compile-time
+         * sizes.) */
+        BRAUN_UNROLL
+        for (int i = 0; i < rows; i++) {
             braun_real sum = w[i];
             const braun_real *ci = COL(a, f, i, n); /* R(j,i) = ci[j] */
+            BRAUN_UNROLL
             for (int j = 0; j < i; j++) sum -= ci[j] * w[j];
             w[i] = sum / ci[i];
         }
+#ifdef BRAUN_FIXED_N
+        apply_q1(f, rows, w, x); /* a constant rank: unrolled */
+        return;
+#endif
     } else {
-        /* Least squares through S = U T: w = T^-1 (U^T P^T r)[0..k). */
-        const braun_real *s = f->s;
-        for (int j = 0; j < rk; j++)
-            reflect(rows - j, s + (size_t)j * (size_t)rows + j + 1, f->stau[j], w + j);
-        /* U^T P^T r below the rank: the part of r outside range(C). */
-        if (resid) *resid = braun_nrm2(rows - rk, w + rk);
-        for (int i = rk - 1; i >= 0; i--) {
-            braun_real sum = w[i];
-            for (int c = i + 1; c < rk; c++) sum -= s[(size_t)c * (size_t)rows + (size_t)i] * w[c];
-            w[i] = sum / s[(size_t)i * (size_t)rows + (size_t)i];
-        }
+        lsq_deficient(f, w, resid);
     }
-    /* x = Q1 w = H_0 ... H_{k-1} [w; 0]. (One loop, not a zero fill and a
-     * copy: compilers turn a zero fill into a memset call, which costs a
-     * small-vector kernel more than the fill itself on a Cortex-M.) */
-    for (int i = 0; i < n; i++) x[i] = i < rk ? w[i] : 0;
-    for (int j = rk - 1; j >= 0; j--)
-        reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], x + j);
+    apply_q1(f, rk, w, x);
+}
+
+/* z := N z with the first k reflectors (k the rank). */
+static inline void null_project_k(const braun_qrcp *f, int k, braun_real *z)
+{
+    const int n = BRAUN_N(f->n);
+    const braun_real *a = f->a;
+    BRAUN_UNROLL
+    for (int j = 0; j < KCAP(f, k); j++)
+        if (BELOW(j, k)) reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
+    /* z := Q [0; z2]: H_j touches z[j..n) only, so zeroing z[j] just before
+     * it is the same as zeroing z[0..k) first (and needs no memset). */
+    BRAUN_UNROLL
+    for (int j = KCAP(f, k) - 1; j >= 0; j--) {
+        if (!BELOW(j, k)) continue;
+        z[j] = 0;
+        reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
+    }
 }
 
 void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
 {
-    const int n = BRAUN_N(f->n), rk = f->rank;
-    const braun_real *a = f->a;
-    if (rk == 0) return;
-    for (int j = 0; j < rk; j++)
-        reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
-    /* z := Q [0; z2]: H_j touches z[j..n) only, so zeroing z[j] just before
-     * it is the same as zeroing z[0..rk) first (and needs no memset). */
-    for (int j = rk - 1; j >= 0; j--) {
-        z[j] = 0;
-        reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
-    }
+    if (f->rank > 0) null_project_k(f, f->rank, z);
 }
