@@ -47,7 +47,12 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
      * stays the paper's equation, evaluated at the start. */
     pv->energy_end = !per_stage && tb->stages > 1;
     pv->de_ok = 0;
-    for (int s = 0; s < tb->stages; s++) {
+    /* Stages of weight 0 at the end (DOPRI5's 7th, first-same-as-last)
+     * serve the error estimate only: without one they are not evaluated. */
+    int stages = tb->stages;
+    if (!yerr)
+        while (stages > 1 && tb->b[stages - 1] == 0) stages--;
+    for (int s = 0; s < stages; s++) {
         const braun_real *ys = y0;
         if (s > 0) {
             braun_real *w = pv->ys;
@@ -113,7 +118,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     pv->rule_stage = 0;
     pv->soft_on = 0;
     for (int i = 0; i < N; i++) y1[i] = y0[i];
-    for (int s = 0; s < tb->stages; s++) {
+    for (int s = 0; s < stages; s++) {
         const braun_real b = (braun_real)tb->b[s] * h;
         if (b == 0) continue;
         const braun_real *ks = pv->k[s];
