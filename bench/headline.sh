@@ -21,7 +21,9 @@ CSV=$OUT/headline.csv
 MD=$OUT/headline.md
 
 row() { # figure measured target met
-    echo "$1,$2,$3,$4" >> "$CSV"
+    # The figure and the measured value may hold commas: quoted (RFC 4180;
+    # neither holds a double quote).
+    echo "\"$1\",\"$2\",$3,$4" >> "$CSV"
     echo "| $1 | $2 | $3 | $4 |" >> "$MD"
 }
 # met when a <= b (numbers); "no" when not measured.
@@ -75,11 +77,15 @@ for p in float float-fixed; do
 done
 
 # Large mechanisms: the redundant ladder against the chain per body on
-# SuiteSparse (the largest N measured), and its slope.
+# SuiteSparse at the largest N — the median of make scaling's back-to-back
+# pairs (bench/scaling/run.sh, pairs.csv), else its one point per run —
+# and its slope.
 lr=""
 ls=""
 if [ -f "$SC/scaling.md" ]; then
-    lr=$(sed -n 's/^ladder against the chain, cost per body on SuiteSparse.*N = \([0-9]*\): \*\*\([0-9.]*\)\*\*;$/\2 (N = \1)/p' "$SC/scaling.md" | head -n 1)
+    lr=$(sed -n 's/^Ladder against the chain per body on SuiteSparse at N = \([0-9]*\), back-to-back pairs.*: \*\*\([0-9.]*\)\*\* (\(.*\))\.$/\2 (N = \1; pairs \3)/p' "$SC/scaling.md" | head -n 1)
+    [ -n "$lr" ] ||
+        lr=$(sed -n 's/^ladder against the chain, cost per body on SuiteSparse.*N = \([0-9]*\): \*\*\([0-9.]*\)\*\*;$/\2 (N = \1)/p' "$SC/scaling.md" | head -n 1)
 fi
 [ -f "$SC/slopes.csv" ] && ls=$(awk -F, '$1 == "ladder" && $2 == "suitesparse" { print $3; exit }' "$SC/slopes.csv")
 row "redundant ladder / chain, cost per body on SuiteSparse" "${lr:-not measured}" "<= 3" \

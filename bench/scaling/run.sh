@@ -10,7 +10,12 @@
 #   4. matched.csv: chain N = 1000, trajectory error vs CPU s per simulated
 #                  second for braun (suitesparse, RK4 at several h) and IDA+KLU
 #                  (several rtol); cost at equal error by log-log interpolation
-#   5. scaling.png/svg, scaling.md (copied into docs/performance.md between
+#   5. pairs.csv:  the ladder against the chain per body on SuiteSparse at the
+#                  largest N both have, from SCALING_PAIRS (3) back-to-back
+#                  chain/ladder pairs: the ratio within a pair, whose two
+#                  runs share the machine's state (a single point of each,
+#                  in separate minutes, varied 2.4-4.3 on one day)
+#   6. scaling.png/svg, scaling.md (copied into docs/performance.md between
 #      <!-- scaling:tables --> and <!-- /scaling:tables -->)
 set -eu
 BIN='' BRAUN='' OUT=results/scaling NS="10 20 50 100 200 500 1000 2000" LNS="10 30 100 300 1000 2000"
@@ -111,10 +116,37 @@ if [ "$MATCHED" = 1 ] && [ -f "$OUT/scenes/chain-1000.json" ]; then
         --href "${SCALING_HREF:-1.25e-4}" >> "$OUT/matched.csv"
 fi
 
-# 5. plot and tables.
+# 5. ladder/chain per body at the largest common N, from back-to-back pairs
+# (4 bodies per ladder cell, as tables.awk counts them).
+pn=''
+for N in $NS; do case " $LNS " in *" $N "*) pn=$N ;; esac; done
+pairs="$OUT/pairs.csv"
+echo "N,pair,chain_ns,ladder_ns,ratio_per_body" > "$pairs"
+case " $BACKENDS " in *" suitesparse "*) ;; *) pn='' ;; esac
+if [ -n "$pn" ]; then
+    p=1
+    while [ "$p" -le "${SCALING_PAIRS:-3}" ]; do
+        c=$("$BIN" step "$OUT/scenes/chain-$pn.json" suitesparse --budget 1 --reps 5 | cut -d, -f5) || c=nan
+        l=$("$BIN" step "$OUT/scenes/ladder-$pn.json" suitesparse --budget 1 --reps 5 | cut -d, -f5) || l=nan
+        awk -v N="$pn" -v p="$p" -v c="$c" -v l="$l" 'BEGIN {
+            r = (c + 0 > 0 && l + 0 > 0) ? sprintf("%.3f", l / 4 / c) : "nan"
+            printf "%s,%s,%s,%s,%s\n", N, p, c, l, r }' >> "$pairs"
+        echo "scaling: pair $p at N = $pn: chain $c, ladder $l ns/step" >&2
+        p=$((p + 1))
+    done
+fi
+
+# 6. plot and tables.
 sh "$(dirname "$0")/plot.sh" "$OUT"
 awk -f "$(dirname "$0")/tables.awk" -v out="$OUT" "$OUT/step.csv" "$OUT/slopes.csv" \
     $( [ -f "$OUT/matched.csv" ] && echo "$OUT/matched.csv" ) > "$OUT/scaling.md"
+# The pairs' median, after the tables (bench/headline.sh reads this line).
+awk -F, 'NR > 1 && $5 != "nan" { r[++n] = $5 + 0; N = $1; s = s (s == "" ? "" : " / ") $5 }
+    END { if (n == 0) exit
+          for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (r[j] < r[i]) { t = r[i]; r[i] = r[j]; r[j] = t }
+          m = (n % 2) ? r[(n + 1) / 2] : (r[n / 2] + r[n / 2 + 1]) / 2
+          printf "\nLadder against the chain per body on SuiteSparse at N = %s, back-to-back pairs (pairs.csv; the median of the ratios within each pair, which share the machine'"'"'s state): **%.2f** (%s).\n", N, m, s }' \
+    "$pairs" >> "$OUT/scaling.md"
 if [ -n "$DOCS" ] && [ -f "$DOCS" ] && grep -q '<!-- scaling:tables -->' "$DOCS"; then
     awk -v f="$OUT/scaling.md" '
         /<!-- scaling:tables -->/ { print; while ((getline l < f) > 0) print l; skip = 1; next }
