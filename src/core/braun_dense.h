@@ -58,8 +58,9 @@ static inline void braun__dense_mul_r(void *state, const braun_real *x, braun_re
     else braun_chol_mul_r(c, x, y);
 }
 
-/* C = A R^-1 row by row (row_i(C) = R^-T A_i^T), resid -= C atil fused into
- * the same pass, then the pivoted QR of C^T in place. */
+/* C = A R^-1 row by row (row_i(C) = R^-T A_i^T), resid -= C atil and the
+ * rows' squared norms (the factorization's first pass, f->norms_given)
+ * fused into the same pass, then the pivoted QR of C^T in place. */
 static inline int braun__dense_factor_c(void *state, int slot, int rows, const braun_real *A, braun_real tol,
                           const braun_real *atil, braun_real *resid)
 {
@@ -75,22 +76,36 @@ static inline int braun__dense_factor_c(void *state, int slot, int rows, const b
             braun_real *ci = C + (size_t)i * (size_t)n;
             const braun_real *ai = A + (size_t)i * (size_t)n;
             if (resid) {
-                braun_real dot = 0; /* braun_dot(n, ci, atil), in the same pass */
+                /* braun_dot(n, ci, atil) and the row's squared norm (the
+                 * factorization's first pass) in the same pass. */
+                braun_real dot = 0, nn = 0;
                 for (int j = 0; j < n; j++) {
                     ci[j] = ai[j] * dinv[j];
                     dot += ci[j] * atil[j];
+                    if (BRAUN_FUSED_NORMS) nn += ci[j] * ci[j];
                 }
                 resid[i] -= dot;
+                if (BRAUN_FUSED_NORMS) f->work[i] = nn;
             } else {
                 braun_chol_solve_diag(&s->chol, ai, ci);
             }
         }
+        f->norms_given = BRAUN_FUSED_NORMS && resid != NULL;
     } else {
         for (int i = 0; i < rows; i++) {
             braun_real *ci = C + (size_t)i * (size_t)n;
             braun_chol_solve_rt_to(&s->chol, A + (size_t)i * (size_t)n, ci);
-            if (resid) resid[i] -= braun_dot(n, ci, atil);
+            if (resid) {
+                braun_real dot = 0, nn = 0;
+                for (int j = 0; j < n; j++) {
+                    dot += ci[j] * atil[j];
+                    if (BRAUN_FUSED_NORMS) nn += ci[j] * ci[j];
+                }
+                resid[i] -= dot;
+                if (BRAUN_FUSED_NORMS) f->work[i] = nn;
+            }
         }
+        f->norms_given = BRAUN_FUSED_NORMS && resid != NULL;
     }
     return braun_qrcp_factor_rule(f, tol, s->tol_new[slot] > tol ? s->tol_new[slot] : tol,
                                   s->keep[slot], s->cap[slot]);

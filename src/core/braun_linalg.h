@@ -112,7 +112,20 @@ typedef struct braun_qrcp {
     braun_real dmin;   /* smallest |diagonal entry| of the triangle the solves use
                           (set by the factorization: the soft directions' gate) */
     braun_real soft_lam; /* λ of the soft directions found */
+    int norms_given;   /* work[0..rows) holds the rows' squared norms, summed
+                          in order while C was formed: the next factorization
+                          takes them instead of a pass of its own (and clears
+                          this) */
 } braun_qrcp;
+
+/* The dense backend forms those norms with C (braun_dense.h): −2 % of a
+ * generic step; with compile-time sizes the factorization's own unrolled
+ * pass is cheaper (+0.8 % fused), so there it does not. */
+#ifdef BRAUN_FIXED_N
+#define BRAUN_FUSED_NORMS 0
+#else
+#define BRAUN_FUSED_NORMS 1
+#endif
 
 /* Soft directions (src/braun_qrcp_soft.c): at most BRAUN_SOFT_MAX at a
  * time, below BRAUN_SOFT_GATE·λ. */

@@ -35,6 +35,7 @@ void braun_qrcp_bind(braun_qrcp *f, int n, int rows, braun_real *reals,
     f->nsoft = 0;
     f->dmin = 0;
     f->soft_lam = 0;
+    f->norms_given = 0;
     f->perm = ints;
 }
 
@@ -91,10 +92,20 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
     braun_real *norm2 = f->work, *ref = f->stau;
     braun_real r00 = 0;
 
-    BRAUN_UNROLL
-    for (int j = 0; j < rows; j++) {
-        f->perm[j] = j;
-        norm2[j] = ref[j] = sumsq(n, a + (size_t)j * (size_t)n);
+    if (BRAUN_FUSED_NORMS && f->norms_given) {
+        /* The same sums, formed with C (braun_dense.h). */
+        BRAUN_UNROLL
+        for (int j = 0; j < rows; j++) {
+            f->perm[j] = j;
+            ref[j] = norm2[j];
+        }
+        f->norms_given = 0;
+    } else {
+        BRAUN_UNROLL
+        for (int j = 0; j < rows; j++) {
+            f->perm[j] = j;
+            norm2[j] = ref[j] = sumsq(n, a + (size_t)j * (size_t)n);
+        }
     }
     f->rank = 0;
     f->nsoft = 0;
