@@ -90,7 +90,6 @@ static inline int braun__dense_factor_c(void *state, int slot, int rows, const b
                 braun_chol_solve_diag(&s->chol, ai, ci);
             }
         }
-        if (BRAUN_FUSED_NORMS) f->norms_given = resid != NULL;
     } else {
         for (int i = 0; i < rows; i++) {
             braun_real *ci = C + (size_t)i * (size_t)n;
@@ -105,8 +104,8 @@ static inline int braun__dense_factor_c(void *state, int slot, int rows, const b
                 if (BRAUN_FUSED_NORMS) f->work[i] = nn;
             }
         }
-        if (BRAUN_FUSED_NORMS) f->norms_given = resid != NULL;
     }
+    if (BRAUN_FUSED_NORMS) f->norms_given = resid != NULL;
     return braun_qrcp_factor_rule(f, tol, s->tol_new[slot] > tol ? s->tol_new[slot] : tol,
                                   s->keep[slot], s->cap[slot]);
 }

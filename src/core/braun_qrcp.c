@@ -262,25 +262,20 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
     apply_q1(f, rk, w, x);
 }
 
-/* z := N z with the first k reflectors (k the rank). */
-static inline void null_project_k(const braun_qrcp *f, int k, braun_real *z)
+void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
 {
-    const int n = BRAUN_N(f->n);
+    const int n = BRAUN_N(f->n), rk = f->rank;
     const braun_real *a = f->a;
+    if (rk == 0) return;
     BRAUN_UNROLL
-    for (int j = 0; j < KCAP(f, k); j++)
-        if (BELOW(j, k)) reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
+    for (int j = 0; j < KCAP(f, rk); j++)
+        if (BELOW(j, rk)) reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
     /* z := Q [0; z2]: H_j touches z[j..n) only, so zeroing z[j] just before
-     * it is the same as zeroing z[0..k) first (and needs no memset). */
+     * it is the same as zeroing z[0..rk) first (and needs no memset). */
     BRAUN_UNROLL
-    for (int j = KCAP(f, k) - 1; j >= 0; j--) {
-        if (!BELOW(j, k)) continue;
+    for (int j = KCAP(f, rk) - 1; j >= 0; j--) {
+        if (!BELOW(j, rk)) continue;
         z[j] = 0;
         reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
     }
-}
-
-void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
-{
-    if (f->rank > 0) null_project_k(f, f->rank, z);
 }
