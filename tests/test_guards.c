@@ -228,7 +228,7 @@ static void test_adaptive_no_free_motion(void **state)
     driven_prm p = {3.0, 0.5};
     braun_system s = {2, 2, 0, BRAUN_MASS_CONSTANT, d_mass, d_forces, d_hol, NULL, d_energy, NULL, &p, NULL};
     const double rtols[3] = {1e-6, 1e-8, 1e-10};
-    double prev = 1;
+    long prev_steps = 0;
     for (int k = 0; k < 3; k++) {
         test_sim sim;
         assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
@@ -241,8 +241,14 @@ static void test_adaptive_no_free_motion(void **state)
         print_message("driven particle, rtol %.0e: error %.3g in %ld steps (%ld rejected)\n",
                       rtols[k], err, sim.data.stats.steps, sim.data.stats.rejected_steps);
         assert_le(err, 1e3 * rtols[k]);
-        assert_true(err < prev);
-        prev = err;
+        /* The corrections at the accepted end (braun_adaptive.c) meet these
+         * linear rows exactly: measured 0 at every rtol (2.8e-8, 5.8e-11,
+         * 1.7e-13 when they were computed at the start). The normal error
+         * still sizes the step: more steps at a tighter tolerance
+         * (measured 45, 94, 200). */
+        assert_le(err, 4 * DBL_EPSILON * p.r);
+        assert_true(sim.data.stats.steps > prev_steps);
+        prev_steps = sim.data.stats.steps;
         test_sim_close(&sim);
     }
 }

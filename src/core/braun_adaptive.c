@@ -1,6 +1,12 @@
 /* Adaptive driver: Dormand–Prince 5(4) with a standard step-size controller.
  * The corrections are applied once per accepted step, whatever the model's
- * discretization option.
+ * discretization option, at its end: computed with the factorization of the
+ * last stage (the end of the ideal flow) and added there, where they
+ * remove the residuals themselves. Computed at the start and added at the
+ * end, a correction made next to a singular configuration — a velocity
+ * e/σ along a weak direction that turns fast there — was no correction at
+ * the end but a new error (four-bar, rtol 1e-10: ‖[Φ̇_q; Φ_v]‖ 5e-8 for
+ * several steps; docs/method.md, "Where the corrections are evaluated").
  *
  * The error of a step has two parts, measured separately:
  *  - along the constraint manifold: the embedded estimate of the ideal
@@ -9,14 +15,16 @@
  *    like the inverse of the small pivot, and measuring it that way shrank
  *    h without end (measured: the four-bar at rtol 1e-10 stopped with
  *    BRAUN_ERR_STEP_TOO_SMALL at t = 102.2 s).
- *  - across it: what the corrections will leave. They remove the first-order
- *    prediction Φ + hΦ̇ of the step's start, so after the step
+ *  - across it: the drift of the step in the constrained directions, the
+ *    deviation of the residuals at its end from their first-order
+ *    prediction at its start,
  *        e_q = Φ(y1) − Φ(y0) − h Φ̇(y0),   e_v = Φ̇(y1) − Φ̇(y0)
- *    remain (y1 the end of the ideal flow, the last DOPRI5 stage), as the
- *    displacements R⁻¹C⁺e_q and R⁻¹C⁺e_v in q and v units. This is the
- *    error of the constrained directions themselves: without it a mechanism
- *    with no free motion (every coordinate driven: an empty tangent space)
- *    had no error at all and its step grew without bound.
+ *    (y1 the end of the ideal flow, the last DOPRI5 stage), as the
+ *    displacements R⁻¹C⁺e_q and R⁻¹C⁺e_v in q and v units: what the
+ *    correction at the end removes, to first order. This is the error of
+ *    the constrained directions themselves: without it a mechanism with no
+ *    free motion (every coordinate driven: an empty tangent space) had no
+ *    error at all and its step grew without bound.
  * Both are scaled by atol + rtol·|y| and combined in one RMS norm. */
 #include <math.h>
 
@@ -143,14 +151,19 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
         /* Always per step: with a varying h the literal Δ = Φ/h changes
          * meaning from one trial step to the next and the error test, which
          * would see the 1/h terms, rejects without end. */
-        st = braun__rk_attempt(d, tb, hr, 0, pv->y1, pv->yerr);
-        double err;
+        st = braun__rk_attempt(d, tb, hr, BRAUN__CORR_AT_END, pv->y1, pv->yerr);
+        double err = 0;
+        if (!st) {
+            err = error_norm(d, hr, ctl->rtol, ctl->atol);
+            /* An accepted step is corrected at its end, with the last
+             * stage's factorization (DOPRI5's last stage is the end). */
+            if (err <= 1) st = braun__corrections_at_end(d, pv->k[tb->stages - 1] + pv->n, pv->y1);
+        }
         if (st == BRAUN_ERR_CALLBACK_RECOVERABLE || st == BRAUN_ERR_DIVERGED) {
             err = 1e10; /* retry smaller, as SUNDIALS does for recoverable failures */
         } else if (st) {
             break;
         } else {
-            err = error_norm(d, hr, ctl->rtol, ctl->atol);
             if (pending) {
                 pending = 0;
                 if (out(d, out_user)) return BRAUN_STOPPED;

@@ -343,3 +343,96 @@ int braun__corrections(braun_data *d, const braun_real *vdot, int guard_run)
     if (guard) pv->guard_first = 0;
     return st;
 }
+
+/* The accuracy guard alone, at the start of a step whose corrections come
+ * at its end (BRAUN__CORR_AT_END): the state the last step left, after the
+ * forward pass with residuals there. The energy residual is checked once
+ * the first correction has measured what an inconsistent start may change
+ * (guard_first, cleared by braun__corrections_at_end): one call of the
+ * energy callback, no gradient. */
+int braun__guard_start(braun_data *d, const braun_real *vdot)
+{
+    braun_priv *pv = braun__priv(d);
+    const unsigned corr = d->model->opt.corrections;
+    const braun_system *s = &d->model->sys;
+    if (d->model->opt.guard < 0) return BRAUN_OK;
+    int st = braun__need(d, BRAUN_DONE_IDEAL | BRAUN_DONE_RESIDUALS,
+                         "accuracy guard before a forward pass with residuals at the point");
+    if (st) return st;
+    if (pv->guard_pending) {
+        braun__guard_scales(d, vdot);
+        return BRAUN_OK;
+    }
+    st = guard_rows(d, corr);
+    if (st || pv->guard_first || !((corr & BRAUN_CORRECT_ENERGY) && s->energy && d->has_E0)) return st;
+    const braun_real t = pv->at.t;
+    braun_real E = 0;
+    st = braun__callback(d, s->energy(t, pv->at.q, pv->at.v, &E, NULL, NULL, NULL, s->user), "energy", t);
+    if (!st) st = braun__check_finite(d, 1, &E, "energy E", 0, t);
+    if (st) return st;
+    const braun_real phi_e = E - d->E0 - pv->at.W;
+    return guard_fails(d, phi_e * phi_e, d->guard.energy, d->guard.energy0,
+                       "accuracy guard: energy residual |Phi_e|");
+}
+
+/* The corrections of a step at its end, applied there (BRAUN__CORR_AT_END:
+ * the adaptive driver, docs/method.md "Where the corrections are
+ * evaluated"): at pv->at = y1, the end of the ideal flow, after the forward
+ * pass with residuals there (DOPRI5's last stage), y1 += [dq; dv]. Applied
+ * where they are computed, they remove the residuals themselves — Δ_q = Φ_q
+ * (no prediction over a step: h = 0 in Eq. 16), Δ_v = [Φ̇_q; Φ_v] — and the
+ * energy force is sized with both (braun__energy_at_end at the same
+ * point). vdot: the ideal acceleration at y1. */
+int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real *y1)
+{
+    braun_priv *pv = braun__priv(d);
+    const unsigned corr = d->model->opt.corrections;
+    const int n = BRAUN_N(pv->n);
+    if (!corr) return BRAUN_OK;
+    const int energy = (corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0;
+    const int guard = d->model->opt.guard >= 0;
+    int st = braun__need(d, BRAUN_DONE_IDEAL | BRAUN_DONE_RESIDUALS |
+                                (energy ? BRAUN_DONE_POWER : 0u),
+                         "corrections before a forward pass with residuals at the point");
+    if (st) return st;
+    pv->at.h = 0;
+    /* The first correction of a run measures what an inconsistent start
+     * may change in energy (stage_energy); no residual is checked here. */
+    pv->guard_on = guard && pv->guard_first;
+    const int position = pv->rows > 0 && pv->m > 0 && (corr & BRAUN_CORRECT_POSITION);
+    const int velocity = pv->rows > 0 && (corr & BRAUN_CORRECT_VELOCITY);
+    if (position) st = stage_position(d);
+    else for (int i = 0; i < n; i++) pv->dq[i] = 0;
+    if (!st && position && velocity) {
+        /* The velocity-level residual where the position correction put q:
+         * next to a singular configuration dq is large along the weak
+         * direction (Φ_q/σ) and A(q)v − b_q changes with it by
+         * ∂(A v − b)/∂q·dq, which the residual at y1 does not see (the
+         * four-bar, rtol 1e-10: ‖[Φ̇_q; Φ_v]‖ 2.4e-9 after the correction,
+         * for a few steps). One call of the constraint callbacks; C stays
+         * y1's (the difference is second order). */
+        const braun_real *q1 = pv->at.q;
+        for (int i = 0; i < n; i++) pv->tmp[i] = q1[i] + pv->dq[i];
+        pv->at.q = pv->tmp;
+        st = braun__stage_constraints(d, 1);
+        pv->at.q = q1;
+    }
+    if (!st && velocity) st = stage_velocity(d);
+    else for (int i = 0; i < n; i++) pv->dv[i] = 0;
+    if (!st && energy) {
+        pv->energy_end = 1;
+        pv->de_ok = 0;
+        st = stage_energy(d, vdot);
+        if (!st) st = braun__energy_at_end(d, pv->at.t, y1);
+        pv->energy_end = 0;
+    }
+    /* A NaN/Inf of a callback at the integrated end: the step diverged. */
+    if (st == BRAUN_ERR_NONFINITE) d->error.status = st = BRAUN_ERR_DIVERGED;
+    if (st) return st;
+    if (guard) pv->guard_first = 0;
+    for (int i = 0; i < n; i++) {
+        y1[i] += pv->dq[i];
+        y1[n + i] += pv->dv[i];
+    }
+    return BRAUN_OK;
+}

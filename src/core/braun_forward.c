@@ -322,6 +322,7 @@ static int stage_power(braun_data *d)
 /* ================================================================ */
 /* Compositions. */
 int braun__stage_mass(braun_data *d) { return stage_mass(d); }
+int braun__stage_constraints(braun_data *d, int with_residuals) { return stage_constraints(d, with_residuals); }
 
 int braun__forward(braun_data *d, unsigned with, braun_real *vdot)
 {

@@ -57,7 +57,8 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
         st = braun__time_step_ok(d, d->t, t_new, h, i == steps);
         if (st) return finish_failed(d, st, out && every > 0 && i > 1 && (i - 1) % every == 0, out, out_user);
         braun__load_state(d);
-        st = braun__rk_attempt(d, tb, hi, per_stage, pv->y1, NULL);
+        st = braun__rk_attempt(d, tb, hi, per_stage ? BRAUN__CORR_AT_STAGES : BRAUN__CORR_AT_START,
+                               pv->y1, NULL);
         if (st == BRAUN_ERR_ACCURACY) {
             braun__guard_rollback(d);
             return st;

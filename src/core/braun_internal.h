@@ -221,6 +221,10 @@ int braun__guard_final(braun_data *d);
 
 /* Stage mass alone (braun_data_init factors a constant M with it). */
 int braun__stage_mass(braun_data *d);
+/* Stage constraints alone at pv->at: A, b_v and, with residuals, Φ, b_q
+ * and [Φ̇_q; Φ_v] (the corrections at a step's end re-measure the
+ * velocity-level residual at the corrected position). */
+int braun__stage_constraints(braun_data *d, int with_residuals);
 
 /* What braun__forward computes besides the ideal acceleration. */
 enum {
@@ -235,6 +239,12 @@ int braun__forward(braun_data *d, unsigned with, braun_real *vdot);
  * braun__forward(d, BRAUN_WITH_RESIDUALS | BRAUN_WITH_POWER, vdot). */
 int braun__corrections(braun_data *d, const braun_real *vdot, int guard);
 int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1);
+/* The accuracy guard alone at a step's start (its corrections come at the
+ * end), and the corrections at the end y1 of the ideal flow, applied to y1:
+ * both after braun__forward with residuals at the point (src/core/
+ * braun_corrections.c). */
+int braun__guard_start(braun_data *d, const braun_real *vdot);
+int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real *y1);
 
 /* A stage's inputs are done at this point, else BRAUN_ERR_ARGUMENT. */
 static inline int braun__need(braun_data *d, unsigned bits, const char *stage)

@@ -19,8 +19,9 @@ static int diverged_if_integrated(braun_data *d, int stage, int st)
 }
 
 int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
-                      int per_stage, braun_real *y1, braun_real *yerr)
+                      braun__corr_at where, braun_real *y1, braun_real *yerr)
 {
+    const int per_stage = where == BRAUN__CORR_AT_STAGES, at_end = where == BRAUN__CORR_AT_END;
     braun_priv *pv = braun__priv(d);
     const int n = BRAUN_N(pv->n), N = 2 * n + 1;
     const unsigned corr = d->model->opt.corrections;
@@ -45,7 +46,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
      * (braun__energy_at_end): its direction comes from this first stage.
      * Euler's ideal end is the first-order prediction itself: its step
      * stays the paper's equation, evaluated at the start. */
-    pv->energy_end = !per_stage && tb->stages > 1;
+    pv->energy_end = where == BRAUN__CORR_AT_START && tb->stages > 1;
     pv->de_ok = 0;
     /* Stages of weight 0 at the end (DOPRI5's 7th, first-same-as-last)
      * serve the error estimate only: without one they are not evaluated. */
@@ -79,10 +80,11 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         }
         const braun_real ts = d->t + (braun_real)tb->c[s] * h;
         braun_real *k = pv->k[s];
-        const int wants_corr = corr && (per_stage || s == 0);
+        const int wants_corr = corr && (per_stage || (s == 0 && !at_end));
         /* An adaptive step measures its normal error from the residuals at
-         * its start and at its last stage (the end of the ideal flow). */
-        const int wants_res = wants_corr || (yerr && (s == 0 || s == tb->stages - 1));
+         * its start and at its last stage (the end of the ideal flow), where
+         * the corrections at the end are computed. */
+        const int wants_res = wants_corr || ((yerr || at_end) && (s == 0 || s == tb->stages - 1));
         /* Stage s of the method: the ideal flow at (ts, ys), its energy input,
          * and — at the step's start, or at every stage per stage — the
          * corrections, at the same point. */
@@ -96,7 +98,13 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
             pv->step_rank[1] = pv->rule_keep[1] = pv->rank[1];
             pv->rule_stage = 1;
         }
-        if (yerr && s == 0)
+        if (at_end && s == 0 && corr) {
+            /* The state the last step left passes the guard here; the
+             * corrections come at the end. */
+            st = diverged_if_integrated(d, s, braun__guard_start(d, k + n));
+            if (st) return st;
+        }
+        if ((yerr || at_end) && s == 0)
             for (int i = 0; i < pv->rows; i++) {
                 pv->phi0[i] = pv->phi[i];
                 pv->ev0[i] = pv->ev[i];
@@ -137,7 +145,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         pv->energy_end = 0;
         if (st) return st;
     }
-    if (corr && !per_stage)
+    if (corr && where == BRAUN__CORR_AT_START)
         for (int i = 0; i < n; i++) {
             y1[i] += pv->dq[i];
             y1[n + i] += pv->dv[i];
@@ -216,7 +224,10 @@ int braun_step(braun_data *d, braun_method method, braun_real h)
     st = braun__time_step_ok(d, d->t, t_new, h, 0);
     if (st) return st;
     braun__load_state(d);
-    st = braun__rk_attempt(d, tb, h, d->model->opt.discretization == BRAUN_PER_STAGE, pv->y1, NULL);
+    st = braun__rk_attempt(d, tb, h,
+                           d->model->opt.discretization == BRAUN_PER_STAGE ? BRAUN__CORR_AT_STAGES
+                                                                          : BRAUN__CORR_AT_START,
+                           pv->y1, NULL);
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
     if (st) return st;
     braun__commit(d, pv->y1, t_new, t_lo);

@@ -18,13 +18,28 @@ typedef struct braun_tableau {
 
 const braun_tableau *braun__tableau(braun_method method);
 
+/* Where a step evaluates the corrections (Eqs. 16, 17, 20) and applies them
+ * (docs/method.md, "Where the corrections are evaluated"). */
+typedef enum {
+    /* Once, at the step's start (the first stage's factorization), added to
+     * the end with weight h: the per-step form of fixed steps. */
+    BRAUN__CORR_AT_START = 0,
+    /* At every stage with Δ = Φ/h: BRAUN_PER_STAGE. */
+    BRAUN__CORR_AT_STAGES,
+    /* Not in the attempt: its driver applies them at the end it accepts
+     * (braun__corrections_at_end, with the last stage's factorization when
+     * that stage is the end, as DOPRI5's is). The attempt runs the
+     * accuracy guard at its start and keeps the residuals there. */
+    BRAUN__CORR_AT_END
+} braun__corr_at;
+
 /* Compute one step of size h from the start vector pv->y0 = [q; v; ∫Ė] at
- * d->t into y1 (and the embedded error estimate into yerr when non-NULL:
- * then the residuals at the start are kept in pv->phi0, pv->ev0 and those
- * at the last stage are left in pv->phi, pv->ev), without changing the state. per_stage: corrections at every stage with
- * Δ = Φ/h (BRAUN_PER_STAGE) instead of once per step. (src/braun_step.c) */
+ * d->t into y1 (and the embedded error estimate into yerr when non-NULL),
+ * without changing the state. With yerr or BRAUN__CORR_AT_END the residuals
+ * at the start are kept in pv->phi0, pv->ev0 and those at the last stage
+ * are left in pv->phi, pv->ev. (src/braun_step.c) */
 int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
-                      int per_stage, braun_real *y1, braun_real *yerr);
+                      braun__corr_at where, braun_real *y1, braun_real *yerr);
 /* pv->y0 := current state. */
 void braun__load_state(braun_data *d);
 /* Accept y1 as the state at t_new and count the step. */
