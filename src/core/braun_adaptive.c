@@ -2,11 +2,13 @@
  * The corrections are applied once per accepted step, whatever the model's
  * discretization option, at its end: computed with the factorization of the
  * last stage (the end of the ideal flow) and added there, where they
- * remove the residuals themselves. Computed at the start and added at the
- * end, a correction made next to a singular configuration — a velocity
- * e/σ along a weak direction that turns fast there — was no correction at
- * the end but a new error (four-bar, rtol 1e-10: ‖[Φ̇_q; Φ_v]‖ 5e-8 for
- * several steps; docs/method.md, "Where the corrections are evaluated").
+ * remove the residuals themselves — unless that end is next to a singular
+ * configuration, where the start's are kept (braun__corrections_at_end).
+ * Computed at a start next to a singular configuration and added at the
+ * end, a correction — a velocity e/σ along a weak direction that turns fast
+ * there — was no correction at the end but a new error (four-bar, rtol
+ * 1e-10: ‖[Φ̇_q; Φ_v]‖ up to 5e-8 for several steps; docs/method.md,
+ * "Where the corrections are evaluated").
  *
  * The error of a step has two parts, measured separately:
  *  - along the constraint manifold: the embedded estimate of the ideal
@@ -56,18 +58,43 @@ static void project_error_tangent(braun_data *d)
     }
 }
 
+/* A change of a residual below the residuals' own round-off is no error a
+ * step size controls: e shrunk towards 0 by that floor (continuously, for
+ * the controller). Next to a singular configuration R⁻¹C⁺ maps even
+ * round-off to a displacement ~ε/σ: unshrunk, the four-bar at rtol 1e-10,
+ * atol 1e-12 stopped with BRAUN_ERR_STEP_TOO_SMALL at t = 28.4 s, every
+ * trial step rejected for |Φ_q| changes of 3e-16 at σ = 6e-7‖C‖. */
+static braun_real above_roundoff(braun_real e, braun_real floor)
+{
+    if (e > floor) return e - floor;
+    if (e < -floor) return e + floor;
+    return 0;
+}
+
+/* The round-off floor of row i's residual at the end of the ideal flow:
+ * 8ε (|A_i||x| + |c|) for Φ_q (x = q, c = 0) or [Φ̇_q; Φ_v] (x = v, c =
+ * b_q): the start's and the end's round-off, a few operations each. */
+static braun_real roundoff_floor(const braun_priv *pv, int i, const braun_real *absx, braun_real c)
+{
+    return 8 * BRAUN_EPS * (braun__row_abs_dot(pv, i, absx) + braun_fabs(c));
+}
+
 /* Sum of squares of the scaled normal error (see the top of this file),
  * from the residuals the attempt kept: pv->phi0/ev0 (start), pv->phi/ev
- * (end of the ideal flow). */
+ * (end of the ideal flow, with A there). */
 static double normal_error2(braun_data *d, braun_real h, braun_real rtol, braun_real atol)
 {
     braun_priv *pv = braun__priv(d);
     const int n = pv->n, m = pv->m, rows = pv->rows;
     const braun_real *y0 = pv->y0, *y1 = pv->y1;
+    braun_real *absx = pv->ce; /* scratch until the corrections */
     double sum = 0;
     if (rows == 0) return 0;
     if (m > 0) {
-        for (int i = 0; i < m; i++) pv->enorm[i] = pv->phi[i] - pv->phi0[i] - h * pv->ev0[i];
+        for (int i = 0; i < n; i++) absx[i] = braun_fabs(y1[i]);
+        for (int i = 0; i < m; i++)
+            pv->enorm[i] = above_roundoff(pv->phi[i] - pv->phi0[i] - h * pv->ev0[i],
+                                          roundoff_floor(pv, i, absx, 0));
         braun__pinv(pv, pv->need_fq ? 1 : 0, pv->enorm, pv->tmp);
         braun__solve_r(pv, pv->tmp, pv->tmp);
         for (int i = 0; i < n; i++) {
@@ -75,7 +102,10 @@ static double normal_error2(braun_data *d, braun_real h, braun_real rtol, braun_
             sum += e * e;
         }
     }
-    for (int i = 0; i < rows; i++) pv->enorm[i] = pv->ev[i] - pv->ev0[i];
+    for (int i = 0; i < n; i++) absx[i] = braun_fabs(y1[n + i]);
+    for (int i = 0; i < rows; i++)
+        pv->enorm[i] = above_roundoff(pv->ev[i] - pv->ev0[i],
+                                      roundoff_floor(pv, i, absx, i < m ? pv->b[i] : 0));
     braun__pinv(pv, 0, pv->enorm, pv->tmp);
     braun__solve_r(pv, pv->tmp, pv->tmp);
     for (int i = 0; i < n; i++) {
@@ -155,9 +185,9 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
         double err = 0;
         if (!st) {
             err = error_norm(d, hr, ctl->rtol, ctl->atol);
-            /* An accepted step is corrected at its end, with the last
-             * stage's factorization (DOPRI5's last stage is the end). */
-            if (err <= 1) st = braun__corrections_at_end(d, pv->k[tb->stages - 1] + pv->n, pv->y1);
+            /* An accepted step is corrected at its end (DOPRI5's last
+             * stage is the end: its factorization and residuals). */
+            if (err <= 1) st = braun__corrections_at_end(d, pv->k[tb->stages - 1] + pv->n, pv->y1, hr);
         }
         if (st == BRAUN_ERR_CALLBACK_RECOVERABLE || st == BRAUN_ERR_DIVERGED) {
             err = 1e10; /* retry smaller, as SUNDIALS does for recoverable failures */

@@ -259,19 +259,6 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
 
 /* ================================================================ */
 /* Composition. */
-/* Row i of the Jacobian, in absolute value, times s (compressed or dense). */
-static braun_real row_abs_dot(const braun_priv *pv, int i, const braun_real *s)
-{
-    braun_real sum = 0;
-    if (pv->sp) {
-        for (int k = pv->sp->row_ptr[i]; k < pv->sp->row_ptr[i + 1]; k++)
-            sum += braun_fabs(pv->Avals[k]) * s[pv->sp->col[k]];
-        return sum;
-    }
-    const braun_real *a = pv->A + (size_t)i * (size_t)pv->n;
-    for (int j = 0; j < pv->n; j++) sum += braun_fabs(a[j]) * s[j];
-    return sum;
-}
 
 /* The accuracy guard's scales (braun.h, braun_data.guard), from the forward
  * pass at the state braun_set_state gave: A, the residuals, ã. */
@@ -297,8 +284,8 @@ void braun__guard_scales(braun_data *d, const braun_real *vdot)
         sv[j] = braun_fabs(v[j]) > V ? braun_fabs(v[j]) : V;
     }
     braun_real pos = 0, vel = 0;
-    for (int i = 0; i < m; i++) pos += row_abs_dot(pv, i, sq);
-    for (int i = 0; i < rows; i++) vel += row_abs_dot(pv, i, sv);
+    for (int i = 0; i < m; i++) pos += braun__row_abs_dot(pv, i, sq);
+    for (int i = 0; i < rows; i++) vel += braun__row_abs_dot(pv, i, sv);
     /* ½ s_vᵀ M s_v = ½ ‖R s_v‖². */
     braun__mul_r(pv, sv, a);
     const braun_real T = BRAUN_R(0.5) * braun_dot(n, a, a);
@@ -348,8 +335,7 @@ int braun__corrections(braun_data *d, const braun_real *vdot, int guard_run)
  * at its end (BRAUN__CORR_AT_END): the state the last step left, after the
  * forward pass with residuals there. The energy residual is checked once
  * the first correction has measured what an inconsistent start may change
- * (guard_first, cleared by braun__corrections_at_end): one call of the
- * energy callback, no gradient. */
+ * (guard_first): one call of the energy law, no gradient. */
 int braun__guard_start(braun_data *d, const braun_real *vdot)
 {
     braun_priv *pv = braun__priv(d);
@@ -375,15 +361,48 @@ int braun__guard_start(braun_data *d, const braun_real *vdot)
                        "accuracy guard: energy residual |Phi_e|");
 }
 
-/* The corrections of a step at its end, applied there (BRAUN__CORR_AT_END:
- * the adaptive driver, docs/method.md "Where the corrections are
- * evaluated"): at pv->at = y1, the end of the ideal flow, after the forward
- * pass with residuals there (DOPRI5's last stage), y1 += [dq; dv]. Applied
- * where they are computed, they remove the residuals themselves — Δ_q = Φ_q
- * (no prediction over a step: h = 0 in Eq. 16), Δ_v = [Φ̇_q; Φ_v] — and the
- * energy force is sized with both (braun__energy_at_end at the same
- * point). vdot: the ideal acceleration at y1. */
-int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real *y1)
+/* Next to a singular configuration: the step's start's corrections, as
+ * fixed steps compute them (braun__rk_attempt, BRAUN__CORR_AT_START) — the
+ * start's forward pass again, at the rank its first stage found (the same
+ * factorization), the energy force sized at the ideal end y1. One more
+ * right-hand side, in these steps only. */
+static int corrections_from_start(braun_data *d, braun_real *y1, braun_real h)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = BRAUN_N(pv->n);
+    const braun_real *y0 = pv->y0;
+    for (int slot = 0; slot < 2; slot++) pv->rule_keep[slot] = pv->rule_cap[slot] = pv->step_rank[slot];
+    pv->rule_stage = 0;
+    braun__at(pv, d->t, y0, y0 + n, y0[2 * n], h);
+    pv->stage = 0;
+    braun_real *vdot = pv->k[0] + n; /* the first stage's, recomputed */
+    int st = braun__forward(d, BRAUN_WITH_RESIDUALS | BRAUN_WITH_POWER, vdot);
+    pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
+    pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
+    if (st) return st;
+    pv->energy_end = 1;
+    pv->de_ok = 0;
+    st = braun__corrections(d, vdot, 1);
+    if (!st) st = braun__energy_at_end(d, d->t + h, y1);
+    pv->energy_end = 0;
+    return st;
+}
+
+/* The corrections of an accepted adaptive step of size h
+ * (BRAUN__CORR_AT_END, docs/method.md "Where the corrections are
+ * evaluated"), after the forward pass with residuals at its end y1 (DOPRI5's
+ * last stage): y1 += [dq; dv].
+ *
+ * Where y1's factorization has no soft direction they are computed at y1
+ * and applied there, so they remove the residuals themselves: Δ_q = Φ_q(y1)
+ * (h = 0 in Eq. 16: no prediction over a step), Δ_v = [Φ̇_q; Φ_v]
+ * re-measured where the position correction put q, and the energy force
+ * sized with both (braun__energy_at_end at the same point). Next to a
+ * singular configuration (a soft direction at y1, σ < BRAUN_SOFT_TOL·‖C‖)
+ * a minimum-norm correction of even a round-off residual is a kick e/σ
+ * along the weak direction: there the start's correction is used, as
+ * before. vdot: the ideal acceleration at y1. */
+int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real *y1, braun_real h)
 {
     braun_priv *pv = braun__priv(d);
     const unsigned corr = d->model->opt.corrections;
@@ -395,41 +414,43 @@ int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real 
                                 (energy ? BRAUN_DONE_POWER : 0u),
                          "corrections before a forward pass with residuals at the point");
     if (st) return st;
-    pv->at.h = 0;
-    /* The first correction of a run measures what an inconsistent start
-     * may change in energy (stage_energy); no residual is checked here. */
-    pv->guard_on = guard && pv->guard_first;
-    const int position = pv->rows > 0 && pv->m > 0 && (corr & BRAUN_CORRECT_POSITION);
-    const int velocity = pv->rows > 0 && (corr & BRAUN_CORRECT_VELOCITY);
-    if (position) st = stage_position(d);
-    else for (int i = 0; i < n; i++) pv->dq[i] = 0;
-    if (!st && position && velocity) {
-        /* The velocity-level residual where the position correction put q:
-         * next to a singular configuration dq is large along the weak
-         * direction (Φ_q/σ) and A(q)v − b_q changes with it by
-         * ∂(A v − b)/∂q·dq, which the residual at y1 does not see (the
-         * four-bar, rtol 1e-10: ‖[Φ̇_q; Φ_v]‖ 2.4e-9 after the correction,
-         * for a few steps). One call of the constraint callbacks; C stays
-         * y1's (the difference is second order). */
-        const braun_real *q1 = pv->at.q;
-        for (int i = 0; i < n; i++) pv->tmp[i] = q1[i] + pv->dq[i];
-        pv->at.q = pv->tmp;
-        st = braun__stage_constraints(d, 1);
-        pv->at.q = q1;
-    }
-    if (!st && velocity) st = stage_velocity(d);
-    else for (int i = 0; i < n; i++) pv->dv[i] = 0;
-    if (!st && energy) {
-        pv->energy_end = 1;
-        pv->de_ok = 0;
-        st = stage_energy(d, vdot);
-        if (!st) st = braun__energy_at_end(d, pv->at.t, y1);
-        pv->energy_end = 0;
+    if (pv->rows > 0 && braun__has_soft(pv) && BRAUN_LS_CALL(pv, soft_find, pv->ls_state, 0, BRAUN_SOFT_TOL) > 0) {
+        st = corrections_from_start(d, y1, h);
+    } else {
+        pv->at.h = 0;
+        /* The first correction of a run measures what an inconsistent start
+         * may change in energy (stage_energy); no residual is checked here. */
+        pv->guard_on = guard && pv->guard_first;
+        const int position = pv->rows > 0 && pv->m > 0 && (corr & BRAUN_CORRECT_POSITION);
+        const int velocity = pv->rows > 0 && (corr & BRAUN_CORRECT_VELOCITY);
+        if (position) st = stage_position(d);
+        else for (int i = 0; i < n; i++) pv->dq[i] = 0;
+        if (!st && position && velocity) {
+            /* The velocity-level residual where the position correction put
+             * q: A(q)v − b_q changes with q by ∂(A v − b)/∂q·dq, which the
+             * residual at y1 does not see (the four-bar, rtol 1e-10:
+             * ‖[Φ̇_q; Φ_v]‖ 2.4e-9 after the correction without this). One
+             * call of the constraint callbacks; C stays y1's. */
+            const braun_real *q1 = pv->at.q;
+            for (int i = 0; i < n; i++) pv->tmp[i] = q1[i] + pv->dq[i];
+            pv->at.q = pv->tmp;
+            st = braun__stage_constraints(d, 1);
+            pv->at.q = q1;
+        }
+        if (!st && velocity) st = stage_velocity(d);
+        else if (!st) for (int i = 0; i < n; i++) pv->dv[i] = 0;
+        if (!st && energy) {
+            pv->energy_end = 1;
+            pv->de_ok = 0;
+            st = stage_energy(d, vdot);
+            if (!st) st = braun__energy_at_end(d, pv->at.t, y1);
+            pv->energy_end = 0;
+        }
+        if (!st && guard) pv->guard_first = 0;
     }
     /* A NaN/Inf of a callback at the integrated end: the step diverged. */
     if (st == BRAUN_ERR_NONFINITE) d->error.status = st = BRAUN_ERR_DIVERGED;
     if (st) return st;
-    if (guard) pv->guard_first = 0;
     for (int i = 0; i < n; i++) {
         y1[i] += pv->dq[i];
         y1[n + i] += pv->dv[i];

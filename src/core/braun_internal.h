@@ -239,12 +239,12 @@ int braun__forward(braun_data *d, unsigned with, braun_real *vdot);
  * braun__forward(d, BRAUN_WITH_RESIDUALS | BRAUN_WITH_POWER, vdot). */
 int braun__corrections(braun_data *d, const braun_real *vdot, int guard);
 int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1);
-/* The accuracy guard alone at a step's start (its corrections come at the
- * end), and the corrections at the end y1 of the ideal flow, applied to y1:
- * both after braun__forward with residuals at the point (src/core/
- * braun_corrections.c). */
+/* The accuracy guard alone at a step's start whose corrections come at
+ * its end, and the corrections of an accepted adaptive step of size h,
+ * applied to its end y1: both after braun__forward with residuals at the
+ * point (src/core/braun_corrections.c). */
 int braun__guard_start(braun_data *d, const braun_real *vdot);
-int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real *y1);
+int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real *y1, braun_real h);
 
 /* A stage's inputs are done at this point, else BRAUN_ERR_ARGUMENT. */
 static inline int braun__need(braun_data *d, unsigned bits, const char *stage)
@@ -316,6 +316,21 @@ static inline braun_real braun__row_dot(const braun_priv *pv, int i, const braun
         return s;
     }
     return braun_dot(BRAUN_N(pv->n), pv->A + (size_t)i * (size_t)BRAUN_N(pv->n), x);
+}
+
+/* Row i of the Jacobian, in absolute value, times s ≥ 0 (compressed or
+ * dense): the scale of the row's round-off at that point. */
+static inline braun_real braun__row_abs_dot(const braun_priv *pv, int i, const braun_real *s)
+{
+    braun_real sum = 0;
+    if (pv->sp) {
+        for (int k = pv->sp->row_ptr[i]; k < pv->sp->row_ptr[i + 1]; k++)
+            sum += braun_fabs(pv->Avals[k]) * s[pv->sp->col[k]];
+        return sum;
+    }
+    const braun_real *a = pv->A + (size_t)i * (size_t)pv->n;
+    for (int j = 0; j < pv->n; j++) sum += braun_fabs(a[j]) * s[j];
+    return sum;
 }
 
 /* Where the constraint callbacks write A: row `row`'s first value. */

@@ -26,10 +26,10 @@ typedef enum {
     BRAUN__CORR_AT_START = 0,
     /* At every stage with Δ = Φ/h: BRAUN_PER_STAGE. */
     BRAUN__CORR_AT_STAGES,
-    /* Not in the attempt: its driver applies them at the end it accepts
-     * (braun__corrections_at_end, with the last stage's factorization when
-     * that stage is the end, as DOPRI5's is). The attempt runs the
-     * accuracy guard at its start and keeps the residuals there. */
+    /* Not in the attempt: its driver applies them to the end it accepts
+     * (braun__corrections_at_end, with the last stage's factorization: the
+     * end for DOPRI5). The attempt runs the accuracy guard at its start and
+     * keeps the residuals there. */
     BRAUN__CORR_AT_END
 } braun__corr_at;
 
