@@ -414,7 +414,10 @@ int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real 
                                 (energy ? BRAUN_DONE_POWER : 0u),
                          "corrections before a forward pass with residuals at the point");
     if (st) return st;
-    if (pv->rows > 0 && braun__has_soft(pv) && BRAUN_LS_CALL(pv, soft_find, pv->ls_state, 0, BRAUN_SOFT_TOL) > 0) {
+    /* (The driver corrects at the end only with a backend that has soft
+     * directions; without, nothing can be tested here.) */
+    if (pv->rows > 0 && braun__has_soft(pv) &&
+        BRAUN_LS_CALL(pv, soft_find, pv->ls_state, 0, BRAUN_SOFT_TOL) > 0) {
         st = corrections_from_start(d, y1, h);
     } else {
         pv->at.h = 0;
