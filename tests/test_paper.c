@@ -200,6 +200,24 @@ static void test_four_bar_from_singularity(void **state)
     test_sim_close(&sim);
 }
 
+/* A built-in model from its paper position and the velocity v0 under the
+ * adaptive driver at rtol = atol = 1e-10 to T, every step monitored
+ * against the reference; its statistics into *stats. */
+static void run_adaptive_tight(const braun_builtin *b, const double *v0, double T, monitor *mo,
+                               braun_stats *stats)
+{
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, v0), BRAUN_OK);
+    memset(mo, 0, sizeof *mo);
+    mo->model = b;
+    assert_int_equal(braun_reference_init(&mo->ref, b, 1e-4), 0);
+    braun_adaptive ctl = {1e-10, 1e-10, 1e-2, 0, 0, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, T, 1, monitor_out, mo), BRAUN_OK);
+    *stats = sim.data.stats;
+    test_sim_close(&sim);
+}
+
 /* The adaptive driver through singular configurations at a tight
  * tolerance: its error test sees only the error along the manifold (the
  * normal part is the corrections' job), so the step does not collapse at
@@ -217,23 +235,15 @@ static void test_adaptive_through_singularities(void **state)
     const double traj_bound[2] = {1.5e-7, 2.5e-8}, pos_bound[2] = {2e-11, 2e-11};
     for (int i = 0; i < 2; i++) {
         const braun_builtin *b = braun_builtin_find(names[i]);
-        test_sim sim;
-        assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
-        assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
         monitor mo;
-        memset(&mo, 0, sizeof mo);
-        mo.model = b;
-        assert_int_equal(braun_reference_init(&mo.ref, b, 1e-4), 0);
-        braun_adaptive ctl = {1e-10, 1e-10, 1e-2, 0, 0, 0};
-        assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 200.0, 1, monitor_out, &mo), BRAUN_OK);
+        braun_stats st;
+        run_adaptive_tight(b, b->v0, 200.0, &mo, &st);
         print_message("%s dopri5 rtol 1e-10, 200 s: %ld steps, %ld rejected, max traj %.3g, max|Phi_q| %.3g, "
                       "max|[dPhi_q; Phi_v]| %.3g\n",
-                      names[i], sim.data.stats.steps, sim.data.stats.rejected_steps, mo.maxtraj, mo.maxpos,
-                      mo.maxvel);
+                      names[i], st.steps, st.rejected_steps, mo.maxtraj, mo.maxpos, mo.maxvel);
         assert_le(mo.maxtraj, traj_bound[i]);
         assert_le(mo.maxpos, pos_bound[i]);
         assert_le(mo.maxvel, pos_bound[i]);
-        test_sim_close(&sim);
     }
 }
 
@@ -257,23 +267,16 @@ static void test_adaptive_landing_near_singularity(void **state)
         double v0[BRAUN_MODEL_MAX_N];
         for (int i = 0; i < b->sys.n; i++) v0[i] = b->v0[i];
         for (int u = 0; u < abs(ulps[k]); u++) v0[0] = nextafter(v0[0], ulps[k] > 0 ? 2.0 : 0.0);
-        test_sim sim;
-        assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
-        assert_int_equal(braun_set_state(&sim.data, 0, b->q0, v0), BRAUN_OK);
         monitor mo;
-        memset(&mo, 0, sizeof mo);
-        mo.model = b;
-        assert_int_equal(braun_reference_init(&mo.ref, b, 1e-4), 0);
-        braun_adaptive ctl = {1e-10, 1e-10, 1e-2, 0, 0, 0};
-        assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 30.0, 1, monitor_out, &mo), BRAUN_OK);
+        braun_stats st;
+        run_adaptive_tight(b, v0, 30.0, &mo, &st);
         print_message("four-bar v0[0] %+d ulps, dopri5 rtol 1e-10, 30 s: %ld rejected, max traj %.3g, "
                       "max|Phi_q| %.3g, max|[dPhi_q; Phi_v]| %.3g\n",
-                      ulps[k], sim.data.stats.rejected_steps, mo.maxtraj, mo.maxpos, mo.maxvel);
+                      ulps[k], st.rejected_steps, mo.maxtraj, mo.maxpos, mo.maxvel);
         /* measured: max|Phi_q| 6.1e-12, max velocity residual <= 9.2e-12 */
         assert_le(mo.maxpos, 2e-11);
         assert_le(mo.maxvel, 2e-11);
         assert_le(mo.maxtraj, 1.5e-7);
-        test_sim_close(&sim);
     }
 }
 

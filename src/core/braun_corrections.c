@@ -20,6 +20,13 @@ static int guard_fails(braun_data *d, braun_real r2, braun_real scale, braun_rea
                        (double)braun__priv(d)->at.t);
 }
 
+/* The energy residual Φ_e of a point against its bound. */
+static int guard_energy(braun_data *d, braun_real phi_e)
+{
+    return guard_fails(d, phi_e * phi_e, d->guard.energy, d->guard.energy0,
+                       "accuracy guard: energy residual |Phi_e|");
+}
+
 static int guard_rows(braun_data *d, unsigned corr)
 {
     braun_priv *pv = braun__priv(d);
@@ -47,9 +54,7 @@ int braun__guard_final(braun_data *d)
     if (st) return st;
     pv->at.t = d->t;
     st = guard_rows(d, corr);
-    if (!st && energy)
-        st = guard_fails(d, e * e, d->guard.energy, d->guard.energy0,
-                         "accuracy guard: energy residual |Phi_e|");
+    if (!st && energy) st = guard_energy(d, e);
     return st;
 }
 
@@ -155,8 +160,7 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
                               BRAUN_R(0.5) * braun_dot(n, pv->tmp, pv->tmp);
         d->guard.energy0 = 2 * e0;
     } else if (pv->guard_on) {
-        st = guard_fails(d, phi_e * phi_e, d->guard.energy, d->guard.energy0,
-                         "accuracy guard: energy residual |Phi_e|");
+        st = guard_energy(d, phi_e);
         if (st) return st;
     }
     const braun_real b_e = -dEdt - braun_dot(n, pv->dEdq, v) + pv->Edot;
@@ -300,11 +304,50 @@ void braun__guard_scales(braun_data *d, const braun_real *vdot)
     pv->guard_first = 1;
 }
 
+/* The guard at a step's start, on its rows: the state braun_set_state
+ * gave defines the scales and passes; any later one is checked. */
+static int guard_start_rows(braun_data *d, const braun_real *vdot, unsigned corr)
+{
+    if (braun__priv(d)->guard_pending) {
+        braun__guard_scales(d, vdot);
+        return BRAUN_OK;
+    }
+    return guard_rows(d, corr);
+}
+
+/* Position (Eq. 16) and velocity (Eq. 17) into pv->dq, pv->dv: a stage that
+ * runs writes all of its increment, one that is off leaves it zero. With
+ * remeasure (the corrections at a step's end) the velocity-level residual is
+ * measured again where the position correction put q: A(q)v − b_q changes
+ * with q by ∂(A v − b)/∂q·dq, which the residual at the point does not see
+ * (the four-bar, rtol 1e-10: ‖[Φ̇_q; Φ_v]‖ 2.4e-9 after the correction
+ * without this). One call of the constraint callbacks; C stays the
+ * point's. */
+static int position_velocity(braun_data *d, unsigned corr, int remeasure)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = BRAUN_N(pv->n);
+    const int position = pv->rows > 0 && pv->m > 0 && (corr & BRAUN_CORRECT_POSITION);
+    const int velocity = pv->rows > 0 && (corr & BRAUN_CORRECT_VELOCITY);
+    int st = BRAUN_OK;
+    if (position) st = stage_position(d);
+    else for (int i = 0; i < n; i++) pv->dq[i] = 0;
+    if (!st && remeasure && position && velocity) {
+        const braun_real *q1 = pv->at.q;
+        for (int i = 0; i < n; i++) pv->tmp[i] = q1[i] + pv->dq[i];
+        pv->at.q = pv->tmp;
+        st = braun__stage_constraints(d, 1);
+        pv->at.q = q1;
+    }
+    if (!st && velocity) st = stage_velocity(d);
+    else for (int i = 0; i < n; i++) pv->dv[i] = 0;
+    return st;
+}
+
 int braun__corrections(braun_data *d, const braun_real *vdot, int guard_run)
 {
     braun_priv *pv = braun__priv(d);
     const unsigned corr = d->model->opt.corrections;
-    const int n = BRAUN_N(pv->n);
     const int energy = (corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0;
     const int guard = guard_run && d->model->opt.guard >= 0;
     pv->guard_on = guard;
@@ -315,17 +358,10 @@ int braun__corrections(braun_data *d, const braun_real *vdot, int guard_run)
                          "corrections before a forward pass with residuals at the point");
     if (st) return st;
     if (guard) {
-        /* The state braun_set_state gave defines the scales and passes. */
-        if (pv->guard_pending) braun__guard_scales(d, vdot);
-        else st = guard_rows(d, corr);
+        st = guard_start_rows(d, vdot, corr);
         if (st) return st;
     }
-    /* A stage that runs writes all of its increment; one that is off leaves
-     * it zero. */
-    if (pv->rows > 0 && pv->m > 0 && (corr & BRAUN_CORRECT_POSITION)) st = stage_position(d);
-    else for (int i = 0; i < n; i++) pv->dq[i] = 0;
-    if (!st && pv->rows > 0 && (corr & BRAUN_CORRECT_VELOCITY)) st = stage_velocity(d);
-    else for (int i = 0; i < n; i++) pv->dv[i] = 0;
+    st = position_velocity(d, corr, 0);
     if (!st && energy) st = stage_energy(d, vdot);
     if (guard) pv->guard_first = 0;
     return st;
@@ -345,20 +381,15 @@ int braun__guard_start(braun_data *d, const braun_real *vdot)
     int st = braun__need(d, BRAUN_DONE_IDEAL | BRAUN_DONE_RESIDUALS,
                          "accuracy guard before a forward pass with residuals at the point");
     if (st) return st;
-    if (pv->guard_pending) {
-        braun__guard_scales(d, vdot);
-        return BRAUN_OK;
-    }
-    st = guard_rows(d, corr);
+    /* (Measuring the scales sets guard_first.) */
+    st = guard_start_rows(d, vdot, corr);
     if (st || pv->guard_first || !((corr & BRAUN_CORRECT_ENERGY) && s->energy && d->has_E0)) return st;
     const braun_real t = pv->at.t;
     braun_real E = 0;
     st = braun__callback(d, s->energy(t, pv->at.q, pv->at.v, &E, NULL, NULL, NULL, s->user), "energy", t);
     if (!st) st = braun__check_finite(d, 1, &E, "energy E", 0, t);
     if (st) return st;
-    const braun_real phi_e = E - d->E0 - pv->at.W;
-    return guard_fails(d, phi_e * phi_e, d->guard.energy, d->guard.energy0,
-                       "accuracy guard: energy residual |Phi_e|");
+    return guard_energy(d, E - d->E0 - pv->at.W);
 }
 
 /* Next to a singular configuration: the step's start's corrections, as
@@ -377,8 +408,7 @@ static int corrections_from_start(braun_data *d, braun_real *y1, braun_real h)
     pv->stage = 0;
     braun_real *vdot = pv->k[0] + n; /* the first stage's, recomputed */
     int st = braun__forward(d, BRAUN_WITH_RESIDUALS | BRAUN_WITH_POWER, vdot);
-    pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
-    pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
+    braun__rank_rule_plain(pv);
     if (st) return st;
     pv->energy_end = 1;
     pv->de_ok = 0;
@@ -424,24 +454,7 @@ int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real 
         /* The first correction of a run measures what an inconsistent start
          * may change in energy (stage_energy); no residual is checked here. */
         pv->guard_on = guard && pv->guard_first;
-        const int position = pv->rows > 0 && pv->m > 0 && (corr & BRAUN_CORRECT_POSITION);
-        const int velocity = pv->rows > 0 && (corr & BRAUN_CORRECT_VELOCITY);
-        if (position) st = stage_position(d);
-        else for (int i = 0; i < n; i++) pv->dq[i] = 0;
-        if (!st && position && velocity) {
-            /* The velocity-level residual where the position correction put
-             * q: A(q)v − b_q changes with q by ∂(A v − b)/∂q·dq, which the
-             * residual at y1 does not see (the four-bar, rtol 1e-10:
-             * ‖[Φ̇_q; Φ_v]‖ 2.4e-9 after the correction without this). One
-             * call of the constraint callbacks; C stays y1's. */
-            const braun_real *q1 = pv->at.q;
-            for (int i = 0; i < n; i++) pv->tmp[i] = q1[i] + pv->dq[i];
-            pv->at.q = pv->tmp;
-            st = braun__stage_constraints(d, 1);
-            pv->at.q = q1;
-        }
-        if (!st && velocity) st = stage_velocity(d);
-        else if (!st) for (int i = 0; i < n; i++) pv->dv[i] = 0;
+        st = position_velocity(d, corr, 1);
         if (!st && energy) {
             pv->energy_end = 1;
             pv->de_ok = 0;

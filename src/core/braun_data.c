@@ -70,9 +70,7 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->done = 0;
     pv->rank[0] = pv->rows;
     pv->rank[1] = s->m;
-    pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
-    pv->rule_keep[1] = pv->rule_cap[1] = s->m;
-    pv->rule_stage = 0;
+    braun__rank_rule_plain(pv);
     pv->soft_on = pv->have_ref = pv->stage = pv->ref_slot = 0;
     pv->energy_end = pv->de_ok = pv->sat0 = 0;
     pv->sigma0 = 0;

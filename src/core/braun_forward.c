@@ -403,9 +403,7 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
     braun_priv *pv = braun__priv(d);
     braun__at(pv, t, q, v, d->work_in, h);
     /* An evaluation on its own: the plain rank tolerance. */
-    pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
-    pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
-    pv->rule_stage = 0;
+    braun__rank_rule_plain(pv);
     pv->soft_on = 0; /* braun_eval is the plain Udwadia–Kalaba acceleration */
     pv->energy_end = 0; /* and the literal Eq. 20, sized at the point */
     st = braun__forward(d, (corr ? BRAUN_WITH_RESIDUALS : 0u) |

@@ -333,6 +333,15 @@ static inline braun_real braun__row_abs_dot(const braun_priv *pv, int i, const b
     return sum;
 }
 
+/* The rank rule outside a step: both slots at their row counts (the plain
+ * tolerance), no stage rule. */
+static inline void braun__rank_rule_plain(braun_priv *pv)
+{
+    pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
+    pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
+    pv->rule_stage = 0;
+}
+
 /* Where the constraint callbacks write A: row `row`'s first value. */
 static inline braun_real *braun__A_out(const braun_priv *pv, int row)
 {

@@ -121,9 +121,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
                 }
         }
     }
-    pv->rule_keep[0] = pv->rule_cap[0] = pv->rows;
-    pv->rule_keep[1] = pv->rule_cap[1] = pv->m;
-    pv->rule_stage = 0;
+    braun__rank_rule_plain(pv);
     pv->soft_on = 0;
     for (int i = 0; i < N; i++) y1[i] = y0[i];
     for (int s = 0; s < stages; s++) {
