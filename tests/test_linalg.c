@@ -329,6 +329,74 @@ static void test_soft_directions(void **state)
     soft_case(edge, 4, 0, 1); /* w between 0 and 1: σ = 1e-4, λ ~ 1e-4 */
 }
 
+/* braun_qrcp_factor_ordered (the later stages of a step): C close to the
+ * last factorized matrix is factored in its column order, and C^+ is the
+ * pivoted factorization's to round-off; a dependent row, a rank-deficient
+ * last factorization or a NaN is refused (-1), never a wrong factor. */
+static void test_factor_ordered(void **state)
+{
+    (void)state;
+    enum { M = 5, N = 6 };
+    braun_real reals[2 * NMAX * NMAX + 12 * NMAX], reals2[2 * NMAX * NMAX + 12 * NMAX];
+    int ints[NMAX], ints2[NMAX];
+    braun_qrcp f, g;
+    unsigned seed = 11;
+    int skipped = 0;
+    for (int trial = 0; trial < 50; trial++) {
+        pinv_case c = {M, N, {0}}, c2 = {M, N, {0}};
+        /* Rows of very different norms: the pivoted order is not 0..4. */
+        for (int i = 0; i < M; i++)
+            for (int j = 0; j < N; j++) c.C[i * N + j] = frand(&seed) * (1 + 3 * (i == (trial % M)));
+        for (int i = 0; i < M * N; i++) c2.C[i] = c.C[i] + 1e-3 * frand(&seed);
+        assert_int_equal(factor(&c, &f, reals, ints, 1e-14), M);
+        int perm[M];
+        for (int j = 0; j < M; j++) perm[j] = f.perm[j];
+        for (int i = 0; i < M * N; i++) f.a[i] = c2.C[i];
+        const int rank = braun_qrcp_factor_ordered(&f, 1e-2);
+        if (rank < 0) { skipped++; continue; } /* a pivot below 1e-2: allowed, rare */
+        assert_int_equal(rank, M);
+        for (int j = 0; j < M; j++) assert_int_equal(f.perm[j], perm[j]); /* no pivoting */
+        assert_int_equal(factor(&c2, &g, reals2, ints2, 1e-14), M);
+        braun_real X[NMAX * NMAX], Y[NMAX * NMAX], z[NMAX], nz[NMAX], nz2[NMAX];
+        pinv_matrix(&f, M, N, X);
+        pinv_matrix(&g, M, N, Y);
+        for (int i = 0; i < M * N; i++) assert_near(X[i], Y[i], 1e-12 * (1 + fabs(Y[i])));
+        for (int i = 0; i < N; i++) nz[i] = nz2[i] = z[i] = frand(&seed);
+        braun_qrcp_null_project(&f, nz);
+        braun_qrcp_null_project(&g, nz2);
+        for (int i = 0; i < N; i++) assert_near(nz[i], nz2[i], 1e-13);
+        /* C C^+ = I (full row rank). */
+        braun_real CX[NMAX * NMAX];
+        matmul(M, N, M, c2.C, X, CX);
+        for (int i = 0; i < M; i++)
+            for (int j = 0; j < M; j++) assert_near(CX[i * M + j], i == j, 1e-13);
+    }
+    assert_true(skipped <= 10); /* the path is taken, not skipped */
+    /* A row dependent on two others: some pivot is round-off in any order. */
+    pinv_case c = {M, N, {0}};
+    for (int i = 0; i < M * N; i++) c.C[i] = frand(&seed);
+    assert_int_equal(factor(&c, &f, reals, ints, 1e-14), M);
+    for (int j = 0; j < N; j++) c.C[4 * N + j] = 0.5 * c.C[j] - 2 * c.C[2 * N + j];
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    assert_int_equal(braun_qrcp_factor_ordered(&f, 1e-2), -1);
+    /* The last factorization rank-deficient (f.rank is now 0): refused. */
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    assert_int_equal(braun_qrcp_factor(&f, 1e-14), 4);
+    assert_int_equal(braun_qrcp_factor_ordered(&f, 1e-2), -1);
+    /* A NaN entry: refused, not factored. */
+    for (int i = 0; i < M * N; i++) c.C[i] = frand(&seed);
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    assert_int_equal(braun_qrcp_factor(&f, 1e-14), M);
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    f.a[7] = NAN;
+    assert_int_equal(braun_qrcp_factor_ordered(&f, 1e-2), -1);
+    /* More rows than columns: never full row rank. */
+    pinv_case t = {N, M, {0}};
+    for (int i = 0; i < M * N; i++) t.C[i] = frand(&seed);
+    factor(&t, &g, reals2, ints2, 1e-14);
+    assert_int_equal(braun_qrcp_factor_ordered(&g, 1e-2), -1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -341,6 +409,7 @@ int main(void)
         cmocka_unit_test(test_pinv_zero_and_rank_one),
         cmocka_unit_test(test_rank_tolerance),
         cmocka_unit_test(test_soft_directions),
+        cmocka_unit_test(test_factor_ordered),
     };
     return cmocka_run_group_tests_name("linalg", tests, NULL, NULL);
 }

@@ -38,6 +38,7 @@ static int dense_bind(void **state, void *memory, const braun_model *model)
     int *ints = (int *)(void *)(base + round_up(sizeof *s) +
                                 round_up(dense_reals(model) * sizeof(braun_real)));
     s->n = n;
+    s->stage_order = 0;
     for (int k = 0; k < 2; k++) {
         s->keep[k] = s->cap[k] = k ? m : rows; /* the plain tolerance */
         s->tol_new[k] = 0;

@@ -20,6 +20,7 @@ typedef struct braun_dense {
     /* The rank rule of each slot's next factorization (rank_rule). */
     int keep[2], cap[2];
     braun_real tol_new[2];
+    int stage_order; /* a step's later stages: try the last column order */
 } braun_dense;
 
 static inline braun_dense *braun__dense(void *state) { return (braun_dense *)state; }
@@ -60,12 +61,10 @@ static inline void braun__dense_mul_r(void *state, const braun_real *x, braun_re
 
 /* C = A R^-1 row by row (row_i(C) = R^-T A_i^T), resid -= C atil and the
  * rows' squared norms (the factorization's first pass, f->norms_given)
- * fused into the same pass, then the pivoted QR of C^T in place. */
-static inline int braun__dense_factor_c(void *state, int slot, int rows, const braun_real *A, braun_real tol,
-                          const braun_real *atil, braun_real *resid)
+ * fused into the same pass. */
+static inline void braun__dense_form_c(braun_dense *s, braun_qrcp *f, int rows, const braun_real *A,
+                                       const braun_real *atil, braun_real *resid)
 {
-    braun_dense *s = braun__dense(state);
-    braun_qrcp *f = braun__dense_slot(state, slot);
     const int n = BRAUN_N(s->n);
     braun_real *C = f->a;
     if (s->chol.diagonal) {
@@ -106,8 +105,44 @@ static inline int braun__dense_factor_c(void *state, int slot, int rows, const b
         }
     }
     if (BRAUN_FUSED_NORMS) f->norms_given = resid != NULL;
-    return braun_qrcp_factor_rule(f, tol, s->tol_new[slot] > tol ? s->tol_new[slot] : tol,
-                                  s->keep[slot], s->cap[slot]);
+}
+
+/* C, then the pivoted QR of C^T in place. At a step's later stages
+ * (braun__dense_stage_order) the rank is known: where the slot's last
+ * factorization (the step's first stage, or the stage before) had full rank
+ * and no pivot below the gate, C is factored in that one's column order
+ * without pivoting (braun_qrcp_factor_ordered), accepted if every pivot
+ * clears the gate again — BRAUN_ORDER_GATE of the largest column norm, or
+ * 10 rank tolerances if that is larger: far from every rank and
+ * soft-direction decision, where any column order gives C⁺ to round-off.
+ * Else C is formed again and factored with pivoting. Between singular
+ * neighbourhoods that is every later stage: −5 % instructions per corrected
+ * slider-crank step (docs/performance.md, Optimisations). */
+#define BRAUN_ORDER_GATE BRAUN_R(1e-2)
+static inline int braun__dense_factor_c(void *state, int slot, int rows, const braun_real *A, braun_real tol,
+                          const braun_real *atil, braun_real *resid)
+{
+    braun_dense *s = braun__dense(state);
+    braun_qrcp *f = braun__dense_slot(state, slot);
+    const braun_real tol_new = s->tol_new[slot] > tol ? s->tol_new[slot] : tol;
+    const braun_real gate = 10 * tol_new > BRAUN_ORDER_GATE ? 10 * tol_new : BRAUN_ORDER_GATE;
+    /* The last factorization (read before C overwrites it) had full rank
+     * and its smallest pivot cleared the gate too. */
+    const int in_order = s->stage_order && s->cap[slot] >= rows && f->rank == rows &&
+                         f->dmin > gate * braun_fabs(f->a[(size_t)f->perm[0] * (size_t)BRAUN_N(s->n)]);
+    braun__dense_form_c(s, f, rows, A, atil, resid);
+    if (in_order) {
+        const int rank = braun_qrcp_factor_ordered(f, gate);
+        if (rank >= 0) return rank;
+        braun__dense_form_c(s, f, rows, A, NULL, NULL);
+    }
+    return braun_qrcp_factor_rule(f, tol, tol_new, s->keep[slot], s->cap[slot]);
+}
+
+/* The next factorizations are a step's later stages (1) or its first (0). */
+static inline void braun__dense_stage_order(void *state, int later)
+{
+    braun__dense(state)->stage_order = later;
 }
 
 static inline void braun__dense_rank_rule(void *state, int slot, int keep, int cap,

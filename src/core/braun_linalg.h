@@ -163,6 +163,11 @@ int braun_qrcp_factor(braun_qrcp *f, braun_real tol);
  * the first `keep` counts only above tol_new·|r_00| too, and at most `cap`
  * pivots count. */
 int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, int keep, int cap);
+/* The same matrix shape factored again in the last factorization's column
+ * order, without pivoting, when that one had full rank rows <= n: accepted
+ * only if every pivot exceeds gate·r00 (r00 the largest column norm), else
+ * -1 and f->a is spent (form C again and call braun_qrcp_factor_rule). */
+int braun_qrcp_factor_ordered(braun_qrcp *f, braun_real gate);
 /* x[n] := C^+ r, r[rows] (r is not modified). */
 void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
                            braun_real *x);

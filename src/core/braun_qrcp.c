@@ -184,6 +184,52 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
     return rk;
 }
 
+/* The factorization in the column order of the last one, without pivoting:
+ * no pivot search, no swaps, no norm downdates. Valid while every pivot
+ * clears gate·r00 (r00 the largest column norm, as the pivoted
+ * factorization's first pivot): then the rank is full whatever the order,
+ * and the solves give C⁺ to round-off. Returns the rank (= rows), or -1 when
+ * a pivot falls below the gate; then f->a is spent and the caller forms C
+ * again for braun_qrcp_factor_rule. */
+int braun_qrcp_factor_ordered(braun_qrcp *f, braun_real gate)
+{
+    const int n = BRAUN_N(f->n), rows = BRAUN_ROWS(f->rows);
+    braun_real *a = f->a, *norm2 = f->work;
+    if (rows > n || f->rank != rows || !(gate < 1)) {
+        f->norms_given = 0;
+        return -1;
+    }
+    /* The rows' squared norms: the largest is r00² (the same sums as the
+     * pivoted factorization's first pass). */
+    if (!(BRAUN_FUSED_NORMS && f->norms_given)) {
+        BRAUN_UNROLL
+        for (int j = 0; j < rows; j++) norm2[j] = sumsq(n, a + (size_t)j * (size_t)n);
+    }
+    f->norms_given = 0;
+    braun_real big = 0;
+    BRAUN_UNROLL
+    for (int j = 0; j < rows; j++)
+        if (norm2[j] > big) big = norm2[j];
+    const braun_real floor = gate * braun_sqrt(big);
+    braun_real dmin = 0;
+    f->nsoft = 0;
+    BRAUN_UNROLL
+    for (int k = 0; k < rows; k++) {
+        braun_real *col = COL(a, f, k, n) + k;
+        const braun_real pivot = braun_sqrt(k == 0 ? norm2[f->perm[0]] : sumsq(n - k, col));
+        if (!(pivot > floor)) { /* NaN too */
+            f->rank = 0;
+            return -1;
+        }
+        if (k == 0 || pivot < dmin) dmin = pivot;
+        f->tau[k] = house(n - k, col, pivot);
+        BRAUN_UNROLL
+        for (int j = k + 1; j < rows; j++) reflect(n - k, col + 1, f->tau[k], COL(a, f, j, n) + k);
+    }
+    f->dmin = dmin;
+    return rows;
+}
+
 void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
                            braun_real *x)
 {
