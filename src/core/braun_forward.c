@@ -274,19 +274,26 @@ static int stage_ideal(braun_data *d, int with_residuals, braun_real *vdot)
     const int n = BRAUN_N(pv->n), m = pv->m, rows = BRAUN_ROWS(pv->rows);
     const int with_rows = rows > 0;
     int soft = 0;
+    braun_real z0 = 0; /* Σ z·0, braun_all_finite in the pass that forms z */
     if (with_rows) {
         braun__pinv(pv, 0, pv->rv, pv->u);
         if (pv->soft_on) soft = soft_filter(d);
-        for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i] + pv->u[i];
+        for (int i = 0; i < n; i++) {
+            pv->z[i] = pv->atil[i] + pv->u[i];
+            z0 += pv->z[i] * 0;
+        }
     } else {
-        for (int i = 0; i < n; i++) pv->z[i] = pv->atil[i];
+        for (int i = 0; i < n; i++) {
+            pv->z[i] = pv->atil[i];
+            z0 += pv->z[i] * 0;
+        }
     }
     /* NaN and Inf propagate through every operation above, so one check of
      * the results covers all callback outputs; only on failure are they
      * scanned, to name the culprit. r_v carries the Jacobian: an infinite
      * entry of A makes every QR pivot "small" (rank 0, u = 0, z finite) but
      * not this residual. */
-    if (!braun_all_finite(n, pv->z) || (with_rows && !braun_all_finite(rows, pv->rv)) ||
+    if (!(z0 == 0) || (with_rows && !braun_all_finite(rows, pv->rv)) ||
         (with_residuals && with_rows &&
          (!braun_all_finite(rows, pv->ev) || !braun_all_finite(m, pv->phi))))
         return nonfinite_culprit(d, with_residuals);

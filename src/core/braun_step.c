@@ -57,25 +57,37 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         const braun_real *ys = y0;
         if (s > 0) {
             braun_real *w = pv->ys;
-            int started = 0;
-            for (int j = 0; j < s; j++) {
+            int last = -1;
+            for (int j = 0; j < s; j++)
+                if ((braun_real)tb->a[s][j] * h != 0) last = j;
+            /* The last nonzero term's pass also sums w·0 (braun_all_finite):
+             * the check costs no pass of its own. The first term reads y0:
+             * no copy pass. */
+            braun_real nonfinite = 0;
+            const braun_real *base = y0;
+            for (int j = 0; j <= last; j++) {
                 const braun_real a = (braun_real)tb->a[s][j] * h;
                 if (a == 0) continue;
                 const braun_real *kj = pv->k[j];
-                if (!started) {
-                    /* the first term writes w = y0 + a·k_j: no copy pass */
-                    for (int i = 0; i < N; i++) w[i] = y0[i] + a * kj[i];
-                    started = 1;
+                if (j == last) {
+                    for (int i = 0; i < N; i++) {
+                        w[i] = base[i] + a * kj[i];
+                        nonfinite += w[i] * 0;
+                    }
                 } else {
-                    for (int i = 0; i < N; i++) w[i] += a * kj[i];
+                    for (int i = 0; i < N; i++) w[i] = base[i] + a * kj[i];
                 }
+                base = w;
             }
-            if (!started)
-                for (int i = 0; i < N; i++) w[i] = y0[i];
+            if (base == y0)
+                for (int i = 0; i < N; i++) {
+                    w[i] = y0[i];
+                    nonfinite += w[i] * 0;
+                }
             ys = w;
             /* A stage state that overflowed means the step diverged: say so,
              * rather than let a callback report the NaN it was handed. */
-            if (!braun_all_finite(N, w))
+            if (!(nonfinite == 0))
                 return braun__fail(d, BRAUN_ERR_DIVERGED, "step stage", s, -1, (double)h, (double)d->t);
         }
         const braun_real ts = d->t + (braun_real)tb->c[s] * h;
