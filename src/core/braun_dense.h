@@ -71,23 +71,28 @@ static inline void braun__dense_form_c(braun_dense *s, braun_qrcp *f, int rows, 
         /* Diagonal M (point masses, centroidal frames): C = A R^-1 is a
          * column scaling, the same products as the solve without its calls. */
         const braun_real *dinv = s->chol.dinv;
-        for (int i = 0; i < rows; i++) {
-            braun_real *ci = C + (size_t)i * (size_t)n;
-            const braun_real *ai = A + (size_t)i * (size_t)n;
-            if (resid) {
-                /* braun_dot(n, ci, atil) and the row's squared norm (the
-                 * factorization's first pass) in the same pass. */
-                braun_real dot = 0, nn = 0;
-                for (int j = 0; j < n; j++) {
-                    ci[j] = ai[j] * dinv[j];
-                    dot += ci[j] * atil[j];
-                    if (BRAUN_FUSED_NORMS) nn += ci[j] * ci[j];
-                }
-                resid[i] -= dot;
-                if (BRAUN_FUSED_NORMS) f->work[i] = nn;
-            } else {
-                braun_chol_solve_diag(&s->chol, ai, ci);
-            }
+        if (resid) {
+            /* braun_dot(n, ci, atil) and the row's squared norm (the
+             * factorization's first pass) in the same pass; one dispatch on
+             * n for all rows (braun_linalg.h). */
+#define FORM_BODY(N, UNROLL)                                     \
+    for (int i = 0; i < rows; i++) {                             \
+        braun_real *ci = C + (size_t)i * (size_t)(N);            \
+        const braun_real *ai = A + (size_t)i * (size_t)(N);      \
+        braun_real dot = 0, nn = 0;                              \
+        UNROLL for (int j = 0; j < (N); j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+            ci[j] = ai[j] * dinv[j];                             \
+            dot += ci[j] * atil[j];                              \
+            if (BRAUN_FUSED_NORMS) nn += ci[j] * ci[j];          \
+        }                                                        \
+        resid[i] -= dot;                                         \
+        if (BRAUN_FUSED_NORMS) f->work[i] = nn;                  \
+    }
+            BRAUN_SMALL_DISPATCH(n, FORM_BODY)
+#undef FORM_BODY
+        } else {
+            for (int i = 0; i < rows; i++)
+                braun_chol_solve_diag(&s->chol, A + (size_t)i * (size_t)n, C + (size_t)i * (size_t)n);
         }
     } else {
         for (int i = 0; i < rows; i++) {

@@ -134,20 +134,101 @@ typedef struct braun_qrcp {
 #define BRAUN_QRCP_SOFT_REALS(n, rows) \
     ((size_t)BRAUN_SOFT_MAX * (size_t)(rows) + BRAUN_SOFT_MAX + (size_t)(rows) + (size_t)(n))
 
+/* The generic build dispatches the short lengths of the small kernels
+ * (2..8, a planar or spatial mechanism's n - k) to bodies with a constant
+ * trip count, unrolled: the loop overhead of run-time lengths was a fifth
+ * of a step (docs/performance.md). Same operations in the same order: the
+ * results are bit for bit those of the loop. A build with compile-time
+ * sizes unrolls the loops themselves. */
+/* A helper whose length argument must fold into a dispatched body. */
+#if defined(__GNUC__)
+#define BRAUN_FORCE_INLINE static inline __attribute__((always_inline))
+#else
+#define BRAUN_FORCE_INLINE static inline
+#endif
+/* BRAUN_SMALL_MAX (default 8, at most 8): the largest length with a body of
+ * its own. Each one costs code: on the host the dispatch adds ≈ 35 KB of
+ * text to the library, on the Cortex-M4F ≈ 40 KB (docs/firmware.md);
+ * -DBRAUN_SMALL_MAX=0 builds the loops alone, the smallest image. */
+#ifndef BRAUN_SMALL_MAX
+#define BRAUN_SMALL_MAX 8
+#endif
+#ifdef BRAUN_FIXED_N
+#define BRAUN_SMALL_DISPATCH(len, BODY) BODY(len, BRAUN_UNROLL);
+#else
+#if defined(__GNUC__) && !defined(__clang__)
+#define BRAUN_UNROLL_SMALL _Pragma("GCC unroll 8")
+#else
+#define BRAUN_UNROLL_SMALL
+#endif
+#define BRAUN__SMALL_CASE(L, BODY) \
+    case L: BODY(L, BRAUN_UNROLL_SMALL); break;
+#if BRAUN_SMALL_MAX >= 2
+#define BRAUN__SMALL_CASE2(BODY) BRAUN__SMALL_CASE(2, BODY)
+#else
+#define BRAUN__SMALL_CASE2(BODY)
+#endif
+#if BRAUN_SMALL_MAX >= 3
+#define BRAUN__SMALL_CASE3(BODY) BRAUN__SMALL_CASE(3, BODY)
+#else
+#define BRAUN__SMALL_CASE3(BODY)
+#endif
+#if BRAUN_SMALL_MAX >= 4
+#define BRAUN__SMALL_CASE4(BODY) BRAUN__SMALL_CASE(4, BODY)
+#else
+#define BRAUN__SMALL_CASE4(BODY)
+#endif
+#if BRAUN_SMALL_MAX >= 5
+#define BRAUN__SMALL_CASE5(BODY) BRAUN__SMALL_CASE(5, BODY)
+#else
+#define BRAUN__SMALL_CASE5(BODY)
+#endif
+#if BRAUN_SMALL_MAX >= 6
+#define BRAUN__SMALL_CASE6(BODY) BRAUN__SMALL_CASE(6, BODY)
+#else
+#define BRAUN__SMALL_CASE6(BODY)
+#endif
+#if BRAUN_SMALL_MAX >= 7
+#define BRAUN__SMALL_CASE7(BODY) BRAUN__SMALL_CASE(7, BODY)
+#else
+#define BRAUN__SMALL_CASE7(BODY)
+#endif
+#if BRAUN_SMALL_MAX >= 8
+#define BRAUN__SMALL_CASE8(BODY) BRAUN__SMALL_CASE(8, BODY)
+#else
+#define BRAUN__SMALL_CASE8(BODY)
+#endif
+#define BRAUN_SMALL_DISPATCH(len, BODY) \
+    switch (len) {                      \
+    BRAUN__SMALL_CASE2(BODY)            \
+    BRAUN__SMALL_CASE3(BODY)            \
+    BRAUN__SMALL_CASE4(BODY)            \
+    BRAUN__SMALL_CASE5(BODY)            \
+    BRAUN__SMALL_CASE6(BODY)            \
+    BRAUN__SMALL_CASE7(BODY)            \
+    BRAUN__SMALL_CASE8(BODY)            \
+    default: BODY(len, ); break;        \
+    }
+#endif
+
 /* y[0..len) := (I - tau v v^T) y with v = (1, vtail[0..len-1)): one
  * Householder reflector of the factorization (vtail, another column or
  * another array, never overlaps y). */
+#define BRAUN_REFLECT_BODY(L, UNROLL)                                          \
+    do {                                                                       \
+        braun_real w_ = y[0];                                                  \
+        UNROLL /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        for (int i_ = 1; i_ < (L); i_++) w_ += vtail[i_ - 1] * y[i_];          \
+        w_ *= tau;                                                             \
+        y[0] -= w_;                                                            \
+        UNROLL /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        for (int i_ = 1; i_ < (L); i_++) y[i_] -= w_ * vtail[i_ - 1];          \
+    } while (0)
 static inline void braun_qrcp__reflect(int len, const braun_real *restrict vtail, braun_real tau,
                                        braun_real *restrict y)
 {
     if (tau == 0) return;
-    braun_real w = y[0];
-    BRAUN_UNROLL
-    for (int i = 1; i < len; i++) w += vtail[i - 1] * y[i];
-    w *= tau;
-    y[0] -= w;
-    BRAUN_UNROLL
-    for (int i = 1; i < len; i++) y[i] -= w * vtail[i - 1];
+    BRAUN_SMALL_DISPATCH(len, BRAUN_REFLECT_BODY)
 }
 
 /* Bytes of the reals and ints a braun_qrcp of this size needs. */

@@ -41,14 +41,16 @@ void braun_qrcp_bind(braun_qrcp *f, int n, int rows, braun_real *reals,
 
 /* Householder reflector for x[0..len): on return x[0] = beta, x[1..] = v[1..]
  * (v[0] = 1 implied) and H = I - tau v v^T maps x to beta e1. */
-static braun_real house(int len, braun_real *x, braun_real normx)
+BRAUN_FORCE_INLINE braun_real house_n(int len, braun_real *x, braun_real normx)
 {
     braun_real alpha = x[0];
     if (normx == 0) return 0;
     braun_real beta = alpha >= 0 ? -normx : normx;
     braun_real scale = 1 / (alpha - beta);
-    BRAUN_UNROLL
-    for (int i = 1; i < len; i++) x[i] *= scale;
+#define SCALE_BODY(L, UNROLL) \
+    UNROLL for (int i = 1; i < (L); i++) x[i] *= scale /* NOLINT(bugprone-macro-parentheses): a pragma */
+    BRAUN_SMALL_DISPATCH(len, SCALE_BODY)
+#undef SCALE_BODY
     x[0] = beta;
     return (beta - alpha) / beta;
 }
@@ -66,12 +68,34 @@ static braun_real house(int len, braun_real *x, braun_real normx)
 #define BELOW(j, k) 1
 #endif
 
-static braun_real sumsq(int len, const braun_real *x)
+BRAUN_FORCE_INLINE braun_real sumsq_n(int len, const braun_real *x)
 {
     braun_real s = 0;
-    BRAUN_UNROLL
-    for (int i = 0; i < len; i++) s += x[i] * x[i];
+#define SUMSQ_BODY(L, UNROLL) \
+    UNROLL for (int i = 0; i < (L); i++) s += x[i] * x[i] /* NOLINT(bugprone-macro-parentheses): a pragma */
+    BRAUN_SMALL_DISPATCH(len, SUMSQ_BODY)
+#undef SUMSQ_BODY
     return s;
+}
+
+/* Out of line where the length is not a constant; the dispatched bodies
+ * inline house_n and sumsq_n, their lengths folded. */
+static braun_real house(int len, braun_real *x, braun_real normx) { return house_n(len, x, normx); }
+static braun_real sumsq(int len, const braun_real *x) { return sumsq_n(len, x); }
+
+/* Reflector k applied to the columns after it (the factorization's update;
+ * column j at a + perm[j]·n + k): one length dispatch for all of them. */
+BRAUN_FORCE_INLINE void reflect_cols(int len, const braun_real *restrict vtail, braun_real tau,
+                         braun_real *a, const int *perm, int ncols, int n, int k)
+{
+    if (tau == 0) return;
+#define COLS_BODY(L, UNROLL)                                                   \
+    for (int c_ = 0; c_ < ncols; c_++) {                                       \
+        braun_real *restrict y = a + (size_t)perm[c_] * (size_t)n + k;         \
+        BRAUN_REFLECT_BODY(L, UNROLL);                                         \
+    }
+    BRAUN_SMALL_DISPATCH(len, COLS_BODY)
+#undef COLS_BODY
 }
 
 int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
@@ -213,19 +237,22 @@ int braun_qrcp_factor_ordered(braun_qrcp *f, braun_real gate)
     const braun_real floor = gate * braun_sqrt(big);
     braun_real dmin = 0;
     f->nsoft = 0;
-    BRAUN_UNROLL
-    for (int k = 0; k < rows; k++) {
-        braun_real *col = COL(a, f, k, n) + k;
-        const braun_real pivot = braun_sqrt(k == 0 ? norm2[f->perm[0]] : sumsq(n - k, col));
-        if (!(pivot > floor)) { /* NaN too */
-            f->rank = 0;
-            return -1;
-        }
-        if (k == 0 || pivot < dmin) dmin = pivot;
-        f->tau[k] = house(n - k, col, pivot);
-        BRAUN_UNROLL
-        for (int j = k + 1; j < rows; j++) reflect(n - k, col + 1, f->tau[k], COL(a, f, j, n) + k);
+    /* One dispatch on n (braun_linalg.h): every length n - k a constant. */
+#define ORDERED_BODY(N, UNROLL)                                                              \
+    UNROLL for (int k = 0; k < (N); k++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        if (k >= rows) break;                                                                \
+        braun_real *col = COL(a, f, k, n) + k;                                               \
+        const braun_real pivot = braun_sqrt(k == 0 ? norm2[f->perm[0]] : sumsq_n((N) - k, col)); \
+        if (!(pivot > floor)) { /* NaN too */                                                \
+            f->rank = 0;                                                                     \
+            return -1;                                                                       \
+        }                                                                                    \
+        if (k == 0 || pivot < dmin) dmin = pivot;                                            \
+        f->tau[k] = house_n((N) - k, col, pivot);                                              \
+        reflect_cols((N) - k, col + 1, f->tau[k], a, f->perm + k + 1, rows - k - 1, n, k);  \
     }
+    BRAUN_SMALL_DISPATCH(n, ORDERED_BODY)
+#undef ORDERED_BODY
     f->dmin = dmin;
     return rows;
 }
@@ -243,11 +270,26 @@ void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
 static inline void apply_q1(const braun_qrcp *f, int k, const braun_real *w, braun_real *x)
 {
     const int n = BRAUN_N(f->n);
+#ifdef BRAUN_FIXED_N
     BRAUN_UNROLL
     for (int i = 0; i < n; i++) x[i] = i < k ? w[i] : 0;
     BRAUN_UNROLL
     for (int j = KCAP(f, k) - 1; j >= 0; j--)
         if (BELOW(j, k)) reflect(n - j, COL(f->a, f, j, n) + j + 1, f->tau[j], x + j);
+#else
+    /* One dispatch on n: every reflector's length n - j a constant. */
+#define Q1_BODY(N, UNROLL)                                                          \
+    UNROLL for (int i = 0; i < (N); i++) x[i] = i < k ? w[i] : 0; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+    UNROLL for (int j = (N) - 1; j >= 0; j--) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        if (j >= k || f->tau[j] == 0) continue;                                     \
+        const braun_real *restrict vtail = COL(f->a, f, j, n) + j + 1;              \
+        const braun_real tau = f->tau[j];                                           \
+        braun_real *restrict y = x + j;                                             \
+        BRAUN_REFLECT_BODY((N) - j, UNROLL);                                        \
+    }
+    BRAUN_SMALL_DISPATCH(n, Q1_BODY)
+#undef Q1_BODY
+#endif
 }
 
 /* Least squares through S = U T: w = T^-1 (U^T P^T r)[0..k) (rank k < rows). */
@@ -290,14 +332,15 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
         /* S = R11^T is lower triangular: forward substitution. (The bounds
          * are `rows`, equal to the rank here: constants with compile-time
          * sizes.) */
-        BRAUN_UNROLL
-        for (int i = 0; i < rows; i++) {
-            braun_real sum = w[i];
-            const braun_real *ci = COL(a, f, i, n); /* R(j,i) = ci[j] */
-            BRAUN_UNROLL
-            for (int j = 0; j < i; j++) sum -= ci[j] * w[j];
-            w[i] = sum / ci[i];
-        }
+#define FORWARD_BODY(R, UNROLL)                                  \
+    UNROLL for (int i = 0; i < (R); i++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        braun_real sum = w[i];                                   \
+        const braun_real *ci = COL(a, f, i, n); /* R(j,i) = ci[j] */ \
+        UNROLL for (int j = 0; j < i; j++) sum -= ci[j] * w[j]; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        w[i] = sum / ci[i];                                      \
+    }
+        BRAUN_SMALL_DISPATCH(rows, FORWARD_BODY)
+#undef FORWARD_BODY
 #ifdef BRAUN_FIXED_N
         apply_q1(f, rows, w, x); /* a constant rank: unrolled */
         return;
