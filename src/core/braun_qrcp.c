@@ -166,10 +166,12 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
         /* |R_kk| = pivot: the smallest kept one, for the soft directions. */
         if (k == 0 || pivot < dmin) dmin = pivot;
         f->tau[k] = house(n - k, col, pivot);
+        /* All later columns reflected with one length dispatch, then their
+         * norms downdated (each column's operations as before). */
+        reflect_cols(n - k, col + 1, f->tau[k], a, f->perm + k + 1, rows - k - 1, n, k);
         BRAUN_UNROLL
         for (int j = k + 1; j < rows; j++) {
             braun_real *cj = COL(a, f, j, n) + k;
-            reflect(n - k, col + 1, f->tau[k], cj);
             norm2[j] -= cj[0] * cj[0];
             /* Cancellation: recompute once the downdated value has lost
              * more than half of its digits (LAPACK's sqrt(eps) test). */

@@ -135,13 +135,67 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     }
     braun__rank_rule_plain(pv);
     pv->soft_on = 0;
-    for (int i = 0; i < N; i++) y1[i] = y0[i];
+    /* y1 = y0 + Σ_s (b_s h) k_s, up to four terms per pass: the same sums
+     * in the same order as a pass per stage, without re-reading y1. The
+     * finiteness check of y1 rides on the last pass that writes it. */
+    const int add_corr = corr && where == BRAUN__CORR_AT_START;
+    const braun_real *kt[BRAUN_MAX_STAGES];
+    braun_real bt[BRAUN_MAX_STAGES];
+    int nt = 0;
+    kt[0] = y0; /* (never read: a tableau has a nonzero weight) */
+    bt[0] = 0;
     for (int s = 0; s < stages; s++) {
         const braun_real b = (braun_real)tb->b[s] * h;
         if (b == 0) continue;
-        const braun_real *ks = pv->k[s];
-        for (int i = 0; i < N; i++) y1[i] += b * ks[i];
+        kt[nt] = pv->k[s];
+        bt[nt++] = b;
     }
+    braun_real y1_0 = 0; /* Σ y1·0: braun_all_finite's test */
+    const braun_real *src = y0;
+    int t = 0;
+    do {
+        const int terms = nt - t > 4 ? 4 : nt - t;
+        const braun_real *k0 = kt[t], *k1 = kt[t + 1 < nt ? t + 1 : t],
+                         *k2 = kt[t + 2 < nt ? t + 2 : t], *k3 = kt[t + 3 < nt ? t + 3 : t];
+        const braun_real b0 = terms > 0 ? bt[t] : 0, b1 = terms > 1 ? bt[t + 1] : 0,
+                         b2 = terms > 2 ? bt[t + 2] : 0, b3 = terms > 3 ? bt[t + 3] : 0;
+        braun_real chk = 0;
+        switch (terms) {
+        case 4:
+            for (int i = 0; i < N; i++) {
+                y1[i] = src[i] + b0 * k0[i] + b1 * k1[i] + b2 * k2[i] + b3 * k3[i];
+                chk += y1[i] * 0;
+            }
+            break;
+        case 3:
+            for (int i = 0; i < N; i++) {
+                y1[i] = src[i] + b0 * k0[i] + b1 * k1[i] + b2 * k2[i];
+                chk += y1[i] * 0;
+            }
+            break;
+        case 2:
+            for (int i = 0; i < N; i++) {
+                y1[i] = src[i] + b0 * k0[i] + b1 * k1[i];
+                chk += y1[i] * 0;
+            }
+            break;
+        case 1:
+            for (int i = 0; i < N; i++) {
+                y1[i] = src[i] + b0 * k0[i];
+                chk += y1[i] * 0;
+            }
+            break;
+        default:
+            for (int i = 0; i < N; i++) {
+                y1[i] = src[i];
+                chk += y1[i] * 0;
+            }
+            break;
+        }
+        y1_0 = chk;
+        src = y1;
+        t += terms;
+    } while (t < nt);
     if (yerr) {
         for (int i = 0; i < N; i++) yerr[i] = 0;
         for (int s = 0; s < tb->stages; s++) {
@@ -155,12 +209,15 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         pv->energy_end = 0;
         if (st) return st;
     }
-    if (corr && where == BRAUN__CORR_AT_START)
+    if (add_corr) {
+        y1_0 = 0;
         for (int i = 0; i < n; i++) {
             y1[i] += pv->dq[i];
             y1[n + i] += pv->dv[i];
+            y1_0 += y1[i] * 0 + y1[n + i] * 0;
         }
-    if (!braun_all_finite(N, y1) || (yerr && !braun_all_finite(N, yerr))) {
+    }
+    if (!(y1_0 == 0) || (yerr && !braun_all_finite(N, yerr))) {
         int bad = 0;
         while (bad < N && braun_is_finite(y1[bad])) bad++;
         return braun__fail(d, BRAUN_ERR_DIVERGED, "step", bad, -1, (double)h, (double)d->t);
