@@ -142,11 +142,17 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
     int st = braun__callback(d, s->energy(t, q, v, &E, pv->dEdq, pv->dEdv, &dEdt, s->user), "energy",
                          t);
     if (st) return st;
-    st = braun__check_finite(d, 1, &E, "energy E", 0, t);
-    if (!st) st = braun__check_finite(d, n, pv->dEdq, "energy dE/dq", 0, t);
-    if (!st) st = braun__check_finite(d, n, pv->dEdv, "energy dE/dv", 0, t);
-    if (!st) st = braun__check_finite(d, 1, &dEdt, "energy dE/dt", 0, t);
-    if (st) return st;
+    /* The outputs' finiteness in one pass (braun_all_finite's test); only
+     * a failure scans them one by one, to name the culprit. */
+    braun_real z0 = E * 0 + dEdt * 0;
+    for (int i = 0; i < n; i++) z0 += pv->dEdq[i] * 0 + pv->dEdv[i] * 0;
+    if (!(z0 == 0)) {
+        st = braun__check_finite(d, 1, &E, "energy E", 0, t);
+        if (!st) st = braun__check_finite(d, n, pv->dEdq, "energy dE/dq", 0, t);
+        if (!st) st = braun__check_finite(d, n, pv->dEdv, "energy dE/dv", 0, t);
+        if (!st) st = braun__check_finite(d, 1, &dEdt, "energy dE/dt", 0, t);
+        if (st) return st;
+    }
 
     /* Eq. 18 and Eq. 19. */
     const braun_real phi_e = E - d->E0 - pv->at.W;
@@ -330,6 +336,18 @@ static int position_velocity(braun_data *d, unsigned corr, int remeasure)
     const int position = pv->rows > 0 && pv->m > 0 && (corr & BRAUN_CORRECT_POSITION);
     const int velocity = pv->rows > 0 && (corr & BRAUN_CORRECT_VELOCITY);
     int st = BRAUN_OK;
+    if (position && velocity && !remeasure && !pv->need_fq && pv->rank[0] >= pv->rows) {
+        /* Eqs. 16 and 17 with one factorization (C_q is C_v, full rank):
+         * stage_position and stage_velocity's operations, the two
+         * pseudoinverse applies in one walk of the factor. */
+        const braun_real h = pv->at.h;
+        for (int i = 0; i < pv->m; i++) pv->ep[i] = -(pv->phi[i] + h * pv->ev[i]);
+        braun__pinv2(pv, 0, pv->ep, pv->ev, pv->dq, pv->dv);
+        braun__solve_r(pv, pv->dq, pv->dq);
+        braun__solve_r(pv, pv->dv, pv->dv);
+        for (int i = 0; i < n; i++) pv->dv[i] = -pv->dv[i];
+        return BRAUN_OK;
+    }
     if (position) st = stage_position(d);
     else for (int i = 0; i < n; i++) pv->dq[i] = 0;
     if (!st && remeasure && position && velocity) {

@@ -164,6 +164,12 @@ static inline void braun__dense_pinv(void *state, int slot, const braun_real *r,
     braun_qrcp_pinv_apply(braun__dense_slot(state, slot), r, x);
 }
 
+static inline void braun__dense_pinv2(void *state, int slot, const braun_real *r1, const braun_real *r2,
+                                      braun_real *x1, braun_real *x2)
+{
+    braun_qrcp_pinv2(braun__dense_slot(state, slot), r1, r2, x1, x2);
+}
+
 static inline void braun__dense_lsq(void *state, int slot, const braun_real *r, braun_real *x,
                       braun_real *resid_norm)
 {

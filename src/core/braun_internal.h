@@ -296,6 +296,22 @@ static inline void braun__pinv(const braun_priv *pv, int slot, const braun_real 
 {
     BRAUN_LS_CALL(pv, pinv, pv->ls_state, slot, r, x);
 }
+/* Two right-hand sides: the dense kernels walk the factor once; another
+ * backend is called twice (the table has no such entry). */
+static inline void braun__pinv2(const braun_priv *pv, int slot, const braun_real *r1,
+                                const braun_real *r2, braun_real *x1, braun_real *x2)
+{
+#ifdef BRAUN_NO_LINSOLVER
+    braun__dense_pinv2(pv->ls_state, slot, r1, r2, x1, x2);
+#else
+    if (pv->ls == &braun__dense_linsolver) {
+        braun__dense_pinv2(pv->ls_state, slot, r1, r2, x1, x2);
+    } else {
+        pv->ls->pinv(pv->ls_state, slot, r1, x1);
+        pv->ls->pinv(pv->ls_state, slot, r2, x2);
+    }
+#endif
+}
 static inline void braun__lsq(const braun_priv *pv, int slot, const braun_real *r,
                               braun_real *x, braun_real *resid)
 {

@@ -256,6 +256,10 @@ void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
  * (0 when the rows are independent). */
 void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
                     braun_real *resid);
+/* x1 := C^+ r1 and x2 := C^+ r2 in one walk of the factor (full row rank;
+ * else two braun_qrcp_lsq calls): bit for bit the two applies. */
+void braun_qrcp_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_real *r2,
+                      braun_real *x1, braun_real *x2);
 /* z[n] := N z = z - C^+ C z (projection onto the null space of C). */
 void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z);
 /* The soft directions of the last factorization: the right singular

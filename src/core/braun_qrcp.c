@@ -353,6 +353,61 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
     apply_q1(f, rk, w, x);
 }
 
+/* Two right-hand sides with full row rank (the position and velocity
+ * corrections share C): each the operations of braun_qrcp_lsq in the same
+ * order, the permutation, the triangle and the reflectors walked once. The
+ * second work vector is f->s, scratch unless the rank is deficient. */
+void braun_qrcp_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_real *r2,
+                      braun_real *x1, braun_real *x2)
+{
+    const int n = BRAUN_N(f->n), rows = BRAUN_ROWS(f->rows), rk = f->rank;
+    if (rk != rows || rk == 0) {
+        braun_qrcp_lsq(f, r1, x1, NULL);
+        braun_qrcp_lsq(f, r2, x2, NULL);
+        return;
+    }
+    const braun_real *a = f->a;
+    braun_real *w = f->work, *w2 = f->s;
+    BRAUN_UNROLL
+    for (int j = 0; j < rows; j++) {
+        w[j] = r1[f->perm[j]];
+        w2[j] = r2[f->perm[j]];
+    }
+#define FORWARD2_BODY(R, UNROLL)                                                    \
+    UNROLL for (int i = 0; i < (R); i++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        braun_real sum = w[i], sum2 = w2[i];                                        \
+        const braun_real *ci = COL(a, f, i, n);                                     \
+        UNROLL for (int j = 0; j < i; j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+            sum -= ci[j] * w[j];                                                    \
+            sum2 -= ci[j] * w2[j];                                                  \
+        }                                                                           \
+        w[i] = sum / ci[i];                                                         \
+        w2[i] = sum2 / ci[i];                                                       \
+    }
+    BRAUN_SMALL_DISPATCH(rows, FORWARD2_BODY)
+#undef FORWARD2_BODY
+#define Q1_2_BODY(N, UNROLL)                                                        \
+    UNROLL for (int i = 0; i < (N); i++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        x1[i] = i < rk ? w[i] : 0;                                                  \
+        x2[i] = i < rk ? w2[i] : 0;                                                 \
+    }                                                                               \
+    UNROLL for (int j = (N) - 1; j >= 0; j--) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        if (j >= rk || f->tau[j] == 0) continue;                                    \
+        const braun_real *restrict vtail = COL(a, f, j, n) + j + 1;                 \
+        const braun_real tau = f->tau[j];                                           \
+        {                                                                           \
+            braun_real *restrict y = x1 + j;                                        \
+            BRAUN_REFLECT_BODY((N) - j, UNROLL);                                    \
+        }                                                                           \
+        {                                                                           \
+            braun_real *restrict y = x2 + j;                                        \
+            BRAUN_REFLECT_BODY((N) - j, UNROLL);                                    \
+        }                                                                           \
+    }
+    BRAUN_SMALL_DISPATCH(n, Q1_2_BODY)
+#undef Q1_2_BODY
+}
+
 void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
 {
     const int n = BRAUN_N(f->n), rk = f->rank;
