@@ -413,6 +413,7 @@ void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
     const int n = BRAUN_N(f->n), rk = f->rank;
     const braun_real *a = f->a;
     if (rk == 0) return;
+#ifdef BRAUN_FIXED_N
     BRAUN_UNROLL
     for (int j = 0; j < KCAP(f, rk); j++)
         if (BELOW(j, rk)) reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
@@ -424,4 +425,26 @@ void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
         z[j] = 0;
         reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
     }
+#else
+    /* The same with one dispatch on n (apply_q1). */
+#define NULL_BODY(N, UNROLL)                                                        \
+    UNROLL for (int j = 0; j < (N); j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        if (j >= rk || f->tau[j] == 0) continue;                                    \
+        const braun_real *restrict vtail = COL(a, f, j, n) + j + 1;                 \
+        const braun_real tau = f->tau[j];                                           \
+        braun_real *restrict y = z + j;                                             \
+        BRAUN_REFLECT_BODY((N) - j, UNROLL);                                        \
+    }                                                                               \
+    UNROLL for (int j = (N) - 1; j >= 0; j--) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        if (j >= rk) continue;                                                      \
+        z[j] = 0;                                                                   \
+        if (f->tau[j] == 0) continue;                                               \
+        const braun_real *restrict vtail = COL(a, f, j, n) + j + 1;                 \
+        const braun_real tau = f->tau[j];                                           \
+        braun_real *restrict y = z + j;                                             \
+        BRAUN_REFLECT_BODY((N) - j, UNROLL);                                        \
+    }
+    BRAUN_SMALL_DISPATCH(n, NULL_BODY)
+#undef NULL_BODY
+#endif
 }

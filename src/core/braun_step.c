@@ -155,33 +155,31 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     int t = 0;
     do {
         const int terms = nt - t > 4 ? 4 : nt - t;
-        const braun_real *k0 = kt[t], *k1 = kt[t + 1 < nt ? t + 1 : t],
-                         *k2 = kt[t + 2 < nt ? t + 2 : t], *k3 = kt[t + 3 < nt ? t + 3 : t];
-        const braun_real b0 = terms > 0 ? bt[t] : 0, b1 = terms > 1 ? bt[t + 1] : 0,
-                         b2 = terms > 2 ? bt[t + 2] : 0, b3 = terms > 3 ? bt[t + 3] : 0;
+        const braun_real *const *kp = kt + t; /* this pass's terms */
+        const braun_real *bp = bt + t;
         braun_real chk = 0;
         switch (terms) {
         case 4:
             for (int i = 0; i < N; i++) {
-                y1[i] = src[i] + b0 * k0[i] + b1 * k1[i] + b2 * k2[i] + b3 * k3[i];
+                y1[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i] + bp[2] * kp[2][i] + bp[3] * kp[3][i];
                 chk += y1[i] * 0;
             }
             break;
         case 3:
             for (int i = 0; i < N; i++) {
-                y1[i] = src[i] + b0 * k0[i] + b1 * k1[i] + b2 * k2[i];
+                y1[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i] + bp[2] * kp[2][i];
                 chk += y1[i] * 0;
             }
             break;
         case 2:
             for (int i = 0; i < N; i++) {
-                y1[i] = src[i] + b0 * k0[i] + b1 * k1[i];
+                y1[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i];
                 chk += y1[i] * 0;
             }
             break;
         case 1:
             for (int i = 0; i < N; i++) {
-                y1[i] = src[i] + b0 * k0[i];
+                y1[i] = src[i] + bp[0] * kp[0][i];
                 chk += y1[i] * 0;
             }
             break;
