@@ -39,3 +39,5 @@ test-valgrind: $(VALGRIND_TESTS) $(BUILD)/bin/braun
 	done; echo "$$pass passed, $$fail failed"; [ $$fail -eq 0 ]
 
 TEST_SUITES += "$(MAKE) -s --no-print-directory lint" "$(MAKE) -s --no-print-directory test-valgrind"
+# The generic kernels' length dispatch off and partial (BRAUN_SMALL_MAX).
+TEST_SUITES += "sh tests/core/small_max.sh $(BUILD)"
