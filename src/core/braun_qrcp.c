@@ -56,6 +56,15 @@ BRAUN_FORCE_INLINE braun_real house_n(int len, braun_real *x, braun_real normx)
 }
 
 #define reflect braun_qrcp__reflect
+/* Reflector j of f applied to vec[j..N) inside a dispatched body (its
+ * length N - j a constant there); the caller skips tau_j = 0. */
+#define REFLECT_J(N, UNROLL, j, vec)                                        \
+    do {                                                                    \
+        const braun_real *restrict vtail = COL(f->a, f, j, n) + (j) + 1;    \
+        const braun_real tau = f->tau[j];                                   \
+        braun_real *restrict y = (vec) + (j);                               \
+        BRAUN_REFLECT_BODY((N) - (j), UNROLL);                              \
+    } while (0)
 
 /* The bound of a loop over indices below the rank k: with compile-time
  * sizes the constant min(n, rows), the body skipping j >= k (BELOW; the
@@ -284,10 +293,7 @@ static inline void apply_q1(const braun_qrcp *f, int k, const braun_real *w, bra
     UNROLL for (int i = 0; i < (N); i++) x[i] = i < k ? w[i] : 0; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
     UNROLL for (int j = (N) - 1; j >= 0; j--) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
         if (j >= k || f->tau[j] == 0) continue;                                     \
-        const braun_real *restrict vtail = COL(f->a, f, j, n) + j + 1;              \
-        const braun_real tau = f->tau[j];                                           \
-        braun_real *restrict y = x + j;                                             \
-        BRAUN_REFLECT_BODY((N) - j, UNROLL);                                        \
+        REFLECT_J(N, UNROLL, j, x);                                                 \
     }
     BRAUN_SMALL_DISPATCH(n, Q1_BODY)
 #undef Q1_BODY
@@ -393,16 +399,8 @@ void braun_qrcp_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_rea
     }                                                                               \
     UNROLL for (int j = (N) - 1; j >= 0; j--) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
         if (j >= rk || f->tau[j] == 0) continue;                                    \
-        const braun_real *restrict vtail = COL(a, f, j, n) + j + 1;                 \
-        const braun_real tau = f->tau[j];                                           \
-        {                                                                           \
-            braun_real *restrict y = x1 + j;                                        \
-            BRAUN_REFLECT_BODY((N) - j, UNROLL);                                    \
-        }                                                                           \
-        {                                                                           \
-            braun_real *restrict y = x2 + j;                                        \
-            BRAUN_REFLECT_BODY((N) - j, UNROLL);                                    \
-        }                                                                           \
+        REFLECT_J(N, UNROLL, j, x1);                                                \
+        REFLECT_J(N, UNROLL, j, x2);                                                \
     }
     BRAUN_SMALL_DISPATCH(n, Q1_2_BODY)
 #undef Q1_2_BODY
@@ -411,9 +409,9 @@ void braun_qrcp_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_rea
 void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
 {
     const int n = BRAUN_N(f->n), rk = f->rank;
-    const braun_real *a = f->a;
     if (rk == 0) return;
 #ifdef BRAUN_FIXED_N
+    const braun_real *a = f->a;
     BRAUN_UNROLL
     for (int j = 0; j < KCAP(f, rk); j++)
         if (BELOW(j, rk)) reflect(n - j, COL(a, f, j, n) + j + 1, f->tau[j], z + j);
@@ -430,19 +428,13 @@ void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
 #define NULL_BODY(N, UNROLL)                                                        \
     UNROLL for (int j = 0; j < (N); j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
         if (j >= rk || f->tau[j] == 0) continue;                                    \
-        const braun_real *restrict vtail = COL(a, f, j, n) + j + 1;                 \
-        const braun_real tau = f->tau[j];                                           \
-        braun_real *restrict y = z + j;                                             \
-        BRAUN_REFLECT_BODY((N) - j, UNROLL);                                        \
+        REFLECT_J(N, UNROLL, j, z);                                                 \
     }                                                                               \
     UNROLL for (int j = (N) - 1; j >= 0; j--) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
         if (j >= rk) continue;                                                      \
         z[j] = 0;                                                                   \
         if (f->tau[j] == 0) continue;                                               \
-        const braun_real *restrict vtail = COL(a, f, j, n) + j + 1;                 \
-        const braun_real tau = f->tau[j];                                           \
-        braun_real *restrict y = z + j;                                             \
-        BRAUN_REFLECT_BODY((N) - j, UNROLL);                                        \
+        REFLECT_J(N, UNROLL, j, z);                                                 \
     }
     BRAUN_SMALL_DISPATCH(n, NULL_BODY)
 #undef NULL_BODY
