@@ -69,16 +69,22 @@ int braun__guard_final(braun_data *d)
  * with BRAUN_ERR_INCONSISTENT; only rank-deficient factorizations pay for
  * that check. */
 
+/* The right-hand side of Eq. 16: ep = −(Φ_q + h·Φ̇_q). */
+static void position_rhs(braun_priv *pv)
+{
+    const braun_real h = pv->at.h;
+    for (int i = 0; i < pv->m; i++) pv->ep[i] = -(pv->phi[i] + h * pv->ev[i]);
+}
+
 static int stage_position(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
     const int m = pv->m;
-    const braun_real h = pv->at.h;
     /* C_q is its own factorization (slot 1) when there are nonholonomic
      * rows too; otherwise it is C_v. */
     const int slot = pv->need_fq ? 1 : 0;
     const int deficient = pv->need_fq ? pv->rank[1] < m : pv->rank[0] < pv->rows;
-    for (int i = 0; i < m; i++) pv->ep[i] = -(pv->phi[i] + h * pv->ev[i]);
+    position_rhs(pv);
     if (deficient) {
         braun_real resid;
         braun__lsq(pv, slot, pv->ep, pv->dq, &resid);
@@ -102,13 +108,19 @@ static int stage_position(braun_data *d)
  * error of both kinds of rows. The pseudoinverse is linear, so the sign is
  * applied to the result (exactly: IEEE negation is sign-symmetric). */
 
+/* dv := −R⁻¹ dv, dv holding C_v⁺[Φ̇_q; Φ_v]. */
+static void velocity_finish(braun_priv *pv)
+{
+    const int n = BRAUN_N(pv->n);
+    braun__solve_r(pv, pv->dv, pv->dv);
+    for (int i = 0; i < n; i++) pv->dv[i] = -pv->dv[i];
+}
+
 static int stage_velocity(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
-    const int n = BRAUN_N(pv->n);
     braun__pinv(pv, 0, pv->ev, pv->dv);
-    braun__solve_r(pv, pv->dv, pv->dv);
-    for (int i = 0; i < n; i++) pv->dv[i] = -pv->dv[i];
+    velocity_finish(pv);
     return BRAUN_OK;
 }
 
@@ -340,12 +352,10 @@ static int position_velocity(braun_data *d, unsigned corr, int remeasure)
         /* Eqs. 16 and 17 with one factorization (C_q is C_v, full rank):
          * stage_position and stage_velocity's operations, the two
          * pseudoinverse applies in one walk of the factor. */
-        const braun_real h = pv->at.h;
-        for (int i = 0; i < pv->m; i++) pv->ep[i] = -(pv->phi[i] + h * pv->ev[i]);
+        position_rhs(pv);
         braun__pinv2(pv, 0, pv->ep, pv->ev, pv->dq, pv->dv);
         braun__solve_r(pv, pv->dq, pv->dq);
-        braun__solve_r(pv, pv->dv, pv->dv);
-        for (int i = 0; i < n; i++) pv->dv[i] = -pv->dv[i];
+        velocity_finish(pv);
         return BRAUN_OK;
     }
     if (position) st = stage_position(d);

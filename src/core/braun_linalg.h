@@ -147,9 +147,9 @@ typedef struct braun_qrcp {
 #define BRAUN_FORCE_INLINE static inline
 #endif
 /* BRAUN_SMALL_MAX (default 8, at most 8): the largest length with a body of
- * its own. Each one costs code: on the host the dispatch adds ≈ 35 KB of
- * text to the library, on the Cortex-M4F ≈ 40 KB (docs/firmware.md);
- * -DBRAUN_SMALL_MAX=0 builds the loops alone, the smallest image. */
+ * its own. Each one costs code: the dispatched bodies take a small
+ * Cortex-M4F float image from 32 to 81 KB (docs/firmware.md, "Flash and
+ * RAM"); -DBRAUN_SMALL_MAX=0 builds the loops alone, the smallest image. */
 #ifndef BRAUN_SMALL_MAX
 #define BRAUN_SMALL_MAX 8
 #endif

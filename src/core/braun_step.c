@@ -18,6 +18,68 @@ static int diverged_if_integrated(braun_data *d, int stage, int st)
     return st;
 }
 
+/* dst = src + Σ_t c_t k_t over the nonzero coefficients of coef[0..count)
+ * times h, in passes of up to four terms: the same sums in the same order
+ * as one pass per term, without re-reading dst. Returns Σ dst·0 of the last
+ * pass (braun_all_finite's test: 0 unless dst holds a NaN or an Inf). The
+ * stage states and the step's end both take it. */
+BRAUN_FORCE_INLINE braun_real combine(int N, const braun_real *src, braun_real *dst, const braun_real *coef,
+                          int count, braun_real h, braun_real *const *k)
+{
+    const braun_real *kt[BRAUN_MAX_STAGES];
+    braun_real bt[BRAUN_MAX_STAGES];
+    int nt = 0;
+    for (int s = 0; s < count; s++) {
+        const braun_real b = coef[s] * h;
+        if (b == 0) continue;
+        kt[nt] = k[s];
+        bt[nt++] = b;
+    }
+    braun_real chk = 0;
+    int t = 0;
+    do {
+        const int terms = nt - t > 4 ? 4 : nt - t;
+        const braun_real *const *kp = kt + t; /* this pass's terms */
+        const braun_real *bp = bt + t;
+        chk = 0;
+        switch (terms) {
+        case 4:
+            for (int i = 0; i < N; i++) {
+                dst[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i] + bp[2] * kp[2][i] + bp[3] * kp[3][i];
+                chk += dst[i] * 0;
+            }
+            break;
+        case 3:
+            for (int i = 0; i < N; i++) {
+                dst[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i] + bp[2] * kp[2][i];
+                chk += dst[i] * 0;
+            }
+            break;
+        case 2:
+            for (int i = 0; i < N; i++) {
+                dst[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i];
+                chk += dst[i] * 0;
+            }
+            break;
+        case 1:
+            for (int i = 0; i < N; i++) {
+                dst[i] = src[i] + bp[0] * kp[0][i];
+                chk += dst[i] * 0;
+            }
+            break;
+        default: /* no nonzero coefficient: dst = src */
+            for (int i = 0; i < N; i++) {
+                dst[i] = src[i];
+                chk += dst[i] * 0;
+            }
+            break;
+        }
+        src = dst;
+        t += terms;
+    } while (t < nt);
+    return chk;
+}
+
 int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
                       braun__corr_at where, braun_real *y1, braun_real *yerr)
 {
@@ -57,33 +119,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
         const braun_real *ys = y0;
         if (s > 0) {
             braun_real *w = pv->ys;
-            int last = -1;
-            for (int j = 0; j < s; j++)
-                if ((braun_real)tb->a[s][j] * h != 0) last = j;
-            /* The last nonzero term's pass also sums w·0 (braun_all_finite):
-             * the check costs no pass of its own. The first term reads y0:
-             * no copy pass. */
-            braun_real nonfinite = 0;
-            const braun_real *base = y0;
-            for (int j = 0; j <= last; j++) {
-                const braun_real a = (braun_real)tb->a[s][j] * h;
-                if (a == 0) continue;
-                const braun_real *kj = pv->k[j];
-                if (j == last) {
-                    for (int i = 0; i < N; i++) {
-                        w[i] = base[i] + a * kj[i];
-                        nonfinite += w[i] * 0;
-                    }
-                } else {
-                    for (int i = 0; i < N; i++) w[i] = base[i] + a * kj[i];
-                }
-                base = w;
-            }
-            if (base == y0)
-                for (int i = 0; i < N; i++) {
-                    w[i] = y0[i];
-                    nonfinite += w[i] * 0;
-                }
+            const braun_real nonfinite = combine(N, y0, w, tb->a[s], s, h, pv->k);
             ys = w;
             /* A stage state that overflowed means the step diverged: say so,
              * rather than let a callback report the NaN it was handed. */
@@ -135,65 +171,10 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     }
     braun__rank_rule_plain(pv);
     pv->soft_on = 0;
-    /* y1 = y0 + Σ_s (b_s h) k_s, up to four terms per pass: the same sums
-     * in the same order as a pass per stage, without re-reading y1. The
-     * finiteness check of y1 rides on the last pass that writes it. */
+    /* y1 = y0 + Σ_s (b_s h) k_s; its finiteness check rides on the pass
+     * that last writes y1. */
     const int add_corr = corr && where == BRAUN__CORR_AT_START;
-    const braun_real *kt[BRAUN_MAX_STAGES];
-    braun_real bt[BRAUN_MAX_STAGES];
-    int nt = 0;
-    kt[0] = y0; /* (never read: a tableau has a nonzero weight) */
-    bt[0] = 0;
-    for (int s = 0; s < stages; s++) {
-        const braun_real b = (braun_real)tb->b[s] * h;
-        if (b == 0) continue;
-        kt[nt] = pv->k[s];
-        bt[nt++] = b;
-    }
-    braun_real y1_0 = 0; /* Σ y1·0: braun_all_finite's test */
-    const braun_real *src = y0;
-    int t = 0;
-    do {
-        const int terms = nt - t > 4 ? 4 : nt - t;
-        const braun_real *const *kp = kt + t; /* this pass's terms */
-        const braun_real *bp = bt + t;
-        braun_real chk = 0;
-        switch (terms) {
-        case 4:
-            for (int i = 0; i < N; i++) {
-                y1[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i] + bp[2] * kp[2][i] + bp[3] * kp[3][i];
-                chk += y1[i] * 0;
-            }
-            break;
-        case 3:
-            for (int i = 0; i < N; i++) {
-                y1[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i] + bp[2] * kp[2][i];
-                chk += y1[i] * 0;
-            }
-            break;
-        case 2:
-            for (int i = 0; i < N; i++) {
-                y1[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i];
-                chk += y1[i] * 0;
-            }
-            break;
-        case 1:
-            for (int i = 0; i < N; i++) {
-                y1[i] = src[i] + bp[0] * kp[0][i];
-                chk += y1[i] * 0;
-            }
-            break;
-        default:
-            for (int i = 0; i < N; i++) {
-                y1[i] = src[i];
-                chk += y1[i] * 0;
-            }
-            break;
-        }
-        y1_0 = chk;
-        src = y1;
-        t += terms;
-    } while (t < nt);
+    braun_real y1_0 = combine(N, y0, y1, tb->b, stages, h, pv->k);
     if (yerr) {
         for (int i = 0; i < N; i++) yerr[i] = 0;
         for (int s = 0; s < tb->stages; s++) {
