@@ -159,6 +159,14 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
     const braun__corr_at where = braun__has_soft(pv) ? BRAUN__CORR_AT_END : BRAUN__CORR_AT_START;
     /* The step limit counts this call's attempts, accepted and rejected. */
     long accepted = 0, rejected = 0;
+    /* The next attempt's first stage is known: after a rejection it is the
+     * rejected attempt's (the same start); after an accepted step that no
+     * correction changed, the last stage's (DOPRI5's 7th is evaluated at
+     * the end, first same as last). An end that the corrections move is
+     * another point: its first stage is evaluated anew. */
+    int first_known = 0;
+    const int fsal = braun__tableau_fsal(tb) && !d->model->opt.corrections;
+    const int last_stage = tb->stages - 1;
 
     if (out && out(d, out_user)) return BRAUN_STOPPED;
     /* An accepted state is reported once the next attempt's start has
@@ -188,7 +196,8 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
         /* Always per step: with a varying h the literal Δ = Φ/h changes
          * meaning from one trial step to the next and the error test, which
          * would see the 1/h terms, rejects without end. */
-        st = braun__rk_attempt(d, tb, hr, where, pv->y1, pv->yerr);
+        st = braun__rk_attempt(d, tb, hr, where, pv->y1, pv->yerr, first_known);
+        first_known = pv->first_done;
         double err = 0;
         if (!st) {
             err = error_norm(d, hr, ctl->rtol, ctl->atol);
@@ -208,6 +217,24 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
             }
         }
         if (err <= 1) {
+            /* First same as last: the last stage was evaluated at d->t + hr
+             * (c = 1), which is t_new unless hr lost a bit, under the rank
+             * rule of a step's later stages (a rank can fall there, not
+             * rise): taken when it had full rank, which a new first stage
+             * would find too. */
+            first_known = fsal && d->t + hr == t_new && pv->rank[0] == pv->rows &&
+                          (!pv->need_fq || pv->rank[1] == pv->m);
+            if (first_known) {
+                braun_real *k0 = pv->k[0];
+                pv->k[0] = pv->k[last_stage];
+                pv->k[last_stage] = k0;
+                for (int i = 0; i < pv->rows; i++) {
+                    pv->phi0[i] = pv->phi[i];
+                    pv->ev0[i] = pv->ev[i];
+                }
+                pv->step_rank[0] = pv->rank[0];
+                pv->step_rank[1] = pv->rank[1];
+            }
             braun__commit(d, pv->y1, t_new, 0);
             d->error.status = BRAUN_OK;
             st = BRAUN_OK;

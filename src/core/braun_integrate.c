@@ -58,7 +58,7 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
         if (st) return finish_failed(d, st, out && every > 0 && i > 1 && (i - 1) % every == 0, out, out_user);
         braun__load_state(d);
         st = braun__rk_attempt(d, tb, hi, per_stage ? BRAUN__CORR_AT_STAGES : BRAUN__CORR_AT_START,
-                               pv->y1, NULL);
+                               pv->y1, NULL, 0);
         if (st == BRAUN_ERR_ACCURACY) {
             braun__guard_rollback(d);
             return st;

@@ -81,7 +81,7 @@ BRAUN_FORCE_INLINE braun_real combine(int N, const braun_real *src, braun_real *
 }
 
 int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
-                      braun__corr_at where, braun_real *y1, braun_real *yerr)
+                      braun__corr_at where, braun_real *y1, braun_real *yerr, int first_known)
 {
     const int per_stage = where == BRAUN__CORR_AT_STAGES, at_end = where == BRAUN__CORR_AT_END;
     braun_priv *pv = braun__priv(d);
@@ -115,7 +115,19 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     int stages = tb->stages;
     if (!yerr)
         while (stages > 1 && tb->b[stages - 1] == 0) stages--;
+    /* The first stage is known (first_known) unless it computes the
+     * corrections, which depend on h (every placement but the end). */
+    const int reuse_first = first_known && !(corr && !at_end);
+    if (!reuse_first) pv->first_done = 0;
     for (int s = 0; s < stages; s++) {
+        if (s == 0 && reuse_first) {
+            /* k[0], phi0, ev0 and step_rank are this start's already. */
+            pv->rule_keep[0] = pv->step_rank[0];
+            pv->rule_keep[1] = pv->step_rank[1];
+            pv->rule_stage = 1;
+            pv->first_done = 1;
+            continue;
+        }
         const braun_real *ys = y0;
         if (s > 0) {
             braun_real *w = pv->ys;
@@ -159,6 +171,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
             }
         for (int i = 0; i < n; i++) k[i] = ys[n + i];
         k[2 * n] = pv->Edot;
+        if (s == 0) pv->first_done = !wants_corr;
         if (wants_corr) {
             st = diverged_if_integrated(d, s, braun__corrections(d, k + n, s == 0));
             if (st) return st;
@@ -273,7 +286,7 @@ int braun_step(braun_data *d, braun_method method, braun_real h)
     st = braun__rk_attempt(d, tb, h,
                            d->model->opt.discretization == BRAUN_PER_STAGE ? BRAUN__CORR_AT_STAGES
                                                                           : BRAUN__CORR_AT_START,
-                           pv->y1, NULL);
+                           pv->y1, NULL, 0);
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
     if (st) return st;
     braun__commit(d, pv->y1, t_new, t_lo);

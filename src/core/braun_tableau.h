@@ -37,9 +37,24 @@ typedef enum {
  * d->t into y1 (and the embedded error estimate into yerr when non-NULL),
  * without changing the state. With yerr or BRAUN__CORR_AT_END the residuals
  * at the start are kept in pv->phi0, pv->ev0 and those at the last stage
- * are left in pv->phi, pv->ev. (src/braun_step.c) */
+ * are left in pv->phi, pv->ev. first_known: pv->k[0] already holds the
+ * first stage at this start, with phi0, ev0 and step_rank (the adaptive
+ * driver's reuse); it is then not evaluated again, unless the first stage
+ * computes corrections (they depend on h). pv->first_done tells whether
+ * k[0] holds it on return. (src/braun_step.c) */
 int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
-                      braun__corr_at where, braun_real *y1, braun_real *yerr);
+                      braun__corr_at where, braun_real *y1, braun_real *yerr, int first_known);
+/* Whether the last stage of tb is evaluated at the step's end, with the
+ * weights b (c = 1, a_last = b): its value there is the next step's first
+ * stage when nothing changes the end (first same as last). */
+static inline int braun__tableau_fsal(const braun_tableau *tb)
+{
+    const int l = tb->stages - 1;
+    if (l < 1 || tb->c[l] != 1) return 0;
+    for (int j = 0; j < l; j++)
+        if (tb->a[l][j] != tb->b[j]) return 0;
+    return tb->b[l] == 0;
+}
 /* pv->y0 := current state. */
 void braun__load_state(braun_data *d);
 /* Accept y1 as the state at t_new and count the step. */
