@@ -309,10 +309,21 @@ static int stage_ideal(braun_data *d, int with_residuals, braun_real *vdot)
 /* ================================================================ */
 /* Stage power: the energy input rate Ė of Eq. 18 at the point — the
  * system's power() (dampers, motors, applied forces; BRAUN_ENERGY_INPUT)
- * plus the power of the ideal constraint force Q_c⊥ = Rᵀu, Q_c·v = u·(R v),
- * unless the system is declared scleronomic (its constraints then do no
- * work). Moving (rheonomic) constraints are accounted for without any
- * flag: docs/method.md, "Work of moving constraints". */
+ * plus the work rate of the moving constraints, unless the system is
+ * declared scleronomic (its constraints then do no work). Moving
+ * (rheonomic) constraints are accounted for without any flag:
+ * docs/method.md, "Work of moving constraints".
+ *
+ * That rate is λᵀb_q (λ the multipliers, Q_c⊥ = Aᵀλ = Rᵀu): on the
+ * velocity manifold it equals Q_c·v = u·(R v), but a stage state is off
+ * the manifold by its velocity error e = [A_q v − b_q; Φ_v], and u·(R v)
+ * = λᵀ(b_q + e) would count λᵀe as work done — a drift of ∫Ė (and, through
+ * the energy force, of E) on a system that does no work at all (a
+ * pendulum written without the flag: 3e-6 J over 100 s of RK4 at
+ * h = 1e-2). So the velocity is taken on the manifold first: with
+ * λ = C⁺ᵀu, λᵀe = u·(C⁺e) and the rate is u·(R v − C⁺e) = λᵀ(A v − e):
+ * λᵀb_q for the holonomic rows, λᵀ(A_vv v − Φ_v) for the nonholonomic
+ * ones (−λᵀc for Φ_v = A_vv v + c). */
 
 static int stage_power(braun_data *d)
 {
@@ -326,8 +337,14 @@ static int stage_power(braun_data *d)
         if (st) return st;
     }
     if (!(s->flags & BRAUN_SCLERONOMIC) && pv->rows > 0) {
+        const int n = BRAUN_N(pv->n);
         braun__mul_r(pv, pv->at.v, pv->tmp);
-        Edot += braun_dot(pv->n, pv->u, pv->tmp);
+        braun__pinv(pv, 0, pv->ev, pv->ce);
+        for (int i = 0; i < n; i++) pv->tmp[i] -= pv->ce[i];
+        Edot += braun_dot(n, pv->u, pv->tmp);
+        /* The residuals' callback outputs enter only here: a NaN among
+         * them is named, not integrated. */
+        if (!braun_is_finite(Edot)) return nonfinite_culprit(d, 1);
     }
     pv->Edot = Edot;
     return BRAUN_OK;
@@ -344,14 +361,19 @@ int braun__forward(braun_data *d, unsigned with, braun_real *vdot)
     const int res = (with & BRAUN_WITH_RESIDUALS) != 0;
     d->stats.rhs_evals++;
     /* A constant M was factored once (stage mass is then done). */
+    const braun_system *sys = &d->model->sys;
+    /* The work rate of moving constraints needs the velocity error at the
+     * point (stage power): the residuals, without C_q's factorization. */
+    const int power_rows = (with & BRAUN_WITH_POWER) && !(sys->flags & BRAUN_SCLERONOMIC) &&
+                           ((sys->flags & BRAUN_ENERGY_INPUT) || sys->energy);
     int st = pv->done & BRAUN_DONE_MASS ? BRAUN_OK : stage_mass(d);
     if (!st) st = stage_forces(d);
-    if (!st && pv->rows > 0) st = stage_constraints(d, res);
+    if (!st && pv->rows > 0) st = stage_constraints(d, res || power_rows);
     if (!st && pv->rows > 0) st = stage_factor(d, res);
     if (!st) st = stage_ideal(d, res, vdot);
     /* Without energy input and constraint work Ė is 0: no stage to run. */
     if (!st && (with & BRAUN_WITH_POWER)) {
-        const braun_system *s = &d->model->sys;
+        const braun_system *s = sys;
         if ((s->flags & BRAUN_ENERGY_INPUT) || (s->energy && !(s->flags & BRAUN_SCLERONOMIC)))
             st = stage_power(d);
         else
