@@ -81,9 +81,13 @@ static void test_guard_last_state_and_outputs(void **state)
     assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1.0, 1.0, 1, NULL, NULL), BRAUN_ERR_ACCURACY);
     assert_true(sim.data.t == 0);
     assert_int_equal(sim.data.stats.steps, 0);
-    /* stop after 1, 3 and 24 steps (h = 0.1 ran to 50 s within its bounds
-     * once the energy force was sized at the end of the step) */
-    const double hs[3] = {0.18, 0.12, 0.115};
+    /* stop at the first, second and third step's end (h = 0.1 ran to 50 s
+     * within its bounds once the energy force was sized at the end of the
+     * step; 0.12 and 0.115, which stopped after 3 and 24 steps, do since
+     * the scales grow with the motion: the pendulum, released at rest,
+     * swings faster than the fall over L the start's velocity scale
+     * assumes, and its residuals stay within 1e-3 of the motion's) */
+    const double hs[3] = {0.2, 0.18, 0.127};
     for (int k = 0; k < 3; k++) {
         assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
         seen w = {0, 0, 0, -1, 0};
@@ -253,6 +257,98 @@ static void test_adaptive_no_free_motion(void **state)
     }
 }
 
+/* A start at rest with no force yet: a bar pinned at one end, no gravity,
+ * driven by a torque that ramps from zero, τ = t. The guard's scales,
+ * measured at that start, were all zero (no speed, no acceleration, no
+ * energy): the first round-off residual, 9.4e-17, "exceeded" a bound of 0
+ * and a valid scene stopped with BRAUN_ERR_ACCURACY at t = 0.001 (RK4 and
+ * DOPRI5; found by a hostile-input audit). The scales now grow with the
+ * motion. Exact: J_A θ'' = t with J_A = 1/3, θ = t³/2, and the work done
+ * ∫τθ' = 3t⁴/8. */
+static int bar_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t; (void)q; (void)u;
+    for (int i = 0; i < 9; i++) M[i] = 0;
+    M[0] = M[4] = 1;
+    M[8] = 1.0 / 12;
+    return 0;
+}
+static int bar_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q, void *u)
+{
+    (void)q; (void)v; (void)u;
+    Q[0] = Q[1] = 0;
+    Q[2] = t;
+    return 0;
+}
+/* end A = centre - ½(cos θ, sin θ) pinned at the origin */
+static int bar_hol(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                   braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    const double c = cos(q[2]), s = sin(q[2]);
+    (void)t; (void)u;
+    if (phi) { phi[0] = q[0] - 0.5 * c; phi[1] = q[1] - 0.5 * s; }
+    if (A) { A[0] = 1; A[1] = 0; A[2] = 0.5 * s; A[3] = 0; A[4] = 1; A[5] = -0.5 * c; }
+    if (b) b[0] = b[1] = 0;
+    if (bv) { bv[0] = -0.5 * c * v[2] * v[2]; bv[1] = -0.5 * s * v[2] * v[2]; }
+    return 0;
+}
+static int bar_energy(braun_real t, const braun_real *q, const braun_real *v, braun_real *E,
+                      braun_real *dq, braun_real *dv, braun_real *dt, void *u)
+{
+    (void)t; (void)q; (void)u;
+    if (E) *E = 0.5 * (v[0] * v[0] + v[1] * v[1]) + v[2] * v[2] / 24;
+    if (dq) dq[0] = dq[1] = dq[2] = 0;
+    if (dv) { dv[0] = v[0]; dv[1] = v[1]; dv[2] = v[2] / 12; }
+    if (dt) *dt = 0;
+    return 0;
+}
+static int bar_power(braun_real t, const braun_real *q, const braun_real *v, braun_real *P, void *u)
+{
+    (void)q; (void)u;
+    *P = t * v[2];
+    return 0;
+}
+
+static void test_guard_start_at_rest(void **state)
+{
+    (void)state;
+    braun_system s = {3, 2, 0, BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC | BRAUN_ENERGY_INPUT, bar_mass,
+                      bar_forces, bar_hol, NULL, bar_energy, bar_power, NULL, NULL};
+    const double T = 2.0;
+    for (int adaptive = 0; adaptive < 2; adaptive++) {
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+        const double q0[3] = {0.5, 0, 0}, v0[3] = {0, 0, 0};
+        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+        int st;
+        if (adaptive) {
+            braun_adaptive ctl = {1e-10, 1e-12, 0, 0, 0, 0};
+            st = braun_integrate_adaptive(&sim.data, &ctl, T, 0, NULL, NULL);
+        } else {
+            st = braun_integrate(&sim.data, BRAUN_RK4, 1e-3, T, 0, NULL, NULL);
+        }
+        print_message("bar from rest, %s: status %d, theta %.17g (exact %g), work %.17g (exact %g), "
+                      "scales %.3g %.3g %.3g\n", adaptive ? "DOPRI5" : "RK4", st, (double)sim.data.q[2],
+                      T * T * T / 2, (double)sim.data.work_in, 3 * T * T * T * T / 8,
+                      (double)sim.data.guard.pos, (double)sim.data.guard.vel, (double)sim.data.guard.energy);
+        assert_int_equal(st, BRAUN_OK);
+        assert_near(sim.data.q[2], T * T * T / 2, 1e-9);
+        assert_near(sim.data.work_in, 3 * T * T * T * T / 8, 1e-8);
+        /* the velocity and energy scales grew with the motion */
+        assert_true(sim.data.guard.vel > 0 && sim.data.guard.energy > 1e-6);
+        test_sim_close(&sim);
+    }
+    /* and the guard still stops what it is for: a step far too large */
+    test_sim big;
+    assert_int_equal(test_sim_open(&big, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    const double q0[3] = {0.5, 0, 0}, v0[3] = {0, 0, 0};
+    assert_int_equal(braun_set_state(&big.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&big.data, BRAUN_RK4, 1.0, 20.0, 0, NULL, NULL), BRAUN_ERR_ACCURACY);
+    print_message("bar, h = 1: stopped at t = %g (%s, %.3g)\n", (double)big.data.error.t, big.data.error.where,
+                  big.data.error.value);
+    test_sim_close(&big);
+}
+
 /* braun_set_state starts a new run: statistics from zero. */
 static void test_set_state_resets_statistics(void **state)
 {
@@ -305,6 +401,7 @@ int main(void)
         cmocka_unit_test(test_guard_allows_inconsistent_start),
         cmocka_unit_test(test_time_resolution),
         cmocka_unit_test(test_adaptive_no_free_motion),
+        cmocka_unit_test(test_guard_start_at_rest),
         cmocka_unit_test(test_set_state_resets_statistics),
         cmocka_unit_test(test_eval_aliasing_refused),
     };

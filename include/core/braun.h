@@ -256,8 +256,9 @@ typedef struct braun_options {
      * whose start finds a residual above its bound stops the run with
      * BRAUN_ERR_ACCURACY, the state back at the last step that passed and
      * d->error naming the residual, its value, the bound and the time. The
-     * bounds are this relative value times the system's scales, measured by
-     * braun_set_state (braun_data.guard): ‖Φ_q‖ <= guard·S_pos,
+     * bounds are this relative value times the system's scales, measured at
+     * the first step (braun_data.guard) and raised to the motion's at a
+     * state whose residual exceeds them: ‖Φ_q‖ <= guard·S_pos,
      * ‖[Φ̇_q; Φ_v]‖ <= guard·S_vel, |Φ_e| <= guard·S_energy; a residual no
      * larger than it was at braun_set_state (an inconsistent start the
      * corrections are still removing) passes. Each is checked where the
@@ -340,15 +341,17 @@ typedef struct braun_data {
     int has_E0;
     braun_stats stats;
     braun_error_info error;
-    /* The accuracy guard's scales (options.guard), measured by
-     * braun_set_state at the initial state, in the residuals' own units:
+    /* The accuracy guard's scales (options.guard), measured at the first
+     * step's state (and again at a state whose residual exceeds its bound,
+     * each kept when larger: the motion may start from rest), in the
+     * residuals' own units:
      *   pos    = Σ_i Σ_j |A_ij| s_q,j over the holonomic rows, s_q,j =
      *            max(|q_j|, L) with L = max(‖q‖_∞, 1e-6): the size of Φ_q a
      *            displacement of the whole mechanism's size would make;
      *   vel    = the same with s_v,j = max(|v_j|, V), over all rows, V =
      *            max(‖v‖_∞, sqrt(L·‖M⁻¹Q‖_∞)): the speed of the motion or
      *            of a fall over L;
-     *   energy = max(|E0|, ½ Σ_j M_jj s_v,j², 1e-300);
+     *   energy = max(|E0|, ½ s_vᵀ M s_v, |∫Ė|, 1e-30);
      * and the residuals at the initial state (pos0, vel0, energy0). A
      * program may set its own scales after braun_set_state. */
     struct {

@@ -9,33 +9,52 @@
 /* The accuracy guard (braun.h, options.guard) on the residuals this step's
  * start has computed: the state the last step left. A residual above both
  * its bound and its size at braun_set_state stops the run. */
-static int guard_fails(braun_data *d, braun_real r2, braun_real scale, braun_real r0,
-                       const char *what)
+enum { GUARD_POS, GUARD_VEL, GUARD_ENERGY };
+
+static void guard_rescale(braun_data *d, int accel);
+
+static int guard_exceeds(const braun_data *d, braun_real r2, braun_real scale, braun_real r0)
 {
     const braun_real g = d->model->opt.guard > 0 ? d->model->opt.guard : BRAUN_R(1e-3);
     braun_real bound = g * scale;
     if (r0 > bound) bound = r0;
-    if (r2 <= bound * bound) return BRAUN_OK;
+    return !(r2 <= bound * bound);
+}
+
+/* r2: the squared residual; which: its scale; accel: a forward pass at the
+ * point has ã (the forces' acceleration enters the velocity scale). */
+static int guard_fails(braun_data *d, braun_real r2, int which, int accel, const char *what)
+{
+    braun_real *scale = which == GUARD_POS ? &d->guard.pos
+                        : which == GUARD_VEL ? &d->guard.vel : &d->guard.energy;
+    const braun_real r0 = which == GUARD_POS ? d->guard.pos0
+                          : which == GUARD_VEL ? d->guard.vel0 : d->guard.energy0;
+    if (!guard_exceeds(d, r2, *scale, r0)) return BRAUN_OK;
+    /* The scales are the start's; a start at rest with no force yet (a load
+     * or a drive that begins at zero, no gravity) has none, and every later
+     * round-off would fail. They grow with the motion: measured again at
+     * this point, the larger kept, before the residual is judged. */
+    guard_rescale(d, accel);
+    if (!guard_exceeds(d, r2, *scale, r0)) return BRAUN_OK;
     return braun__fail(d, BRAUN_ERR_ACCURACY, what, -1, -1, (double)braun_sqrt(r2),
                        (double)braun__priv(d)->at.t);
 }
 
 /* The energy residual Φ_e of a point against its bound. */
-static int guard_energy(braun_data *d, braun_real phi_e)
+static int guard_energy(braun_data *d, braun_real phi_e, int accel)
 {
-    return guard_fails(d, phi_e * phi_e, d->guard.energy, d->guard.energy0,
-                       "accuracy guard: energy residual |Phi_e|");
+    return guard_fails(d, phi_e * phi_e, GUARD_ENERGY, accel, "accuracy guard: energy residual |Phi_e|");
 }
 
-static int guard_rows(braun_data *d, unsigned corr)
+static int guard_rows(braun_data *d, unsigned corr, int accel)
 {
     braun_priv *pv = braun__priv(d);
     int st = BRAUN_OK;
     if ((corr & BRAUN_CORRECT_POSITION) && pv->m > 0)
-        st = guard_fails(d, braun_dot(pv->m, pv->phi, pv->phi), d->guard.pos, d->guard.pos0,
+        st = guard_fails(d, braun_dot(pv->m, pv->phi, pv->phi), GUARD_POS, accel,
                          "accuracy guard: position residual |Phi_q|");
     if (!st && (corr & BRAUN_CORRECT_VELOCITY) && pv->rows > 0)
-        st = guard_fails(d, braun_dot(pv->rows, pv->ev, pv->ev), d->guard.vel, d->guard.vel0,
+        st = guard_fails(d, braun_dot(pv->rows, pv->ev, pv->ev), GUARD_VEL, accel,
                          "accuracy guard: velocity residual |[dPhi_q; Phi_v]|");
     return st;
 }
@@ -53,8 +72,9 @@ int braun__guard_final(braun_data *d)
     int st = braun_residuals(d, d->t, d->q, d->v, &p, &v, energy ? &e : NULL);
     if (st) return st;
     pv->at.t = d->t;
-    st = guard_rows(d, corr);
-    if (!st && energy) st = guard_energy(d, e);
+    /* No forward pass here: the scales may grow with q and v only. */
+    st = guard_rows(d, corr, 0);
+    if (!st && energy) st = guard_energy(d, e, 0);
     return st;
 }
 
@@ -178,7 +198,7 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
                               BRAUN_R(0.5) * braun_dot(n, pv->tmp, pv->tmp);
         d->guard.energy0 = 2 * e0;
     } else if (pv->guard_on) {
-        st = guard_energy(d, phi_e);
+        st = guard_energy(d, phi_e, 1);
         if (st) return st;
     }
     const braun_real b_e = -dEdt - braun_dot(n, pv->dEdq, v) + pv->Edot;
@@ -282,25 +302,29 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
 /* ================================================================ */
 /* Composition. */
 
-/* The accuracy guard's scales (braun.h, braun_data.guard), from the forward
- * pass at the state braun_set_state gave: A, the residuals, ã. */
-void braun__guard_scales(braun_data *d, const braun_real *vdot)
+/* The accuracy guard's scales (braun.h, braun_data.guard) at the point
+ * pv->at, from A (and, with accel, ã of a forward pass there): into
+ * pos, vel, energy. Scratch: pv->ce, pv->tmp (free wherever the guard
+ * runs). */
+static void measure_scales(braun_data *d, int accel, braun_real *pos_out, braun_real *vel_out,
+                           braun_real *energy_out)
 {
     braun_priv *pv = braun__priv(d);
     const int n = pv->n, m = pv->m, rows = pv->rows;
     const braun_real *q = pv->at.q, *v = pv->at.v;
-    braun_real *sq = pv->ce, *sv = pv->tmp, *a = pv->dEdq;
+    braun_real *sq = pv->ce, *sv = pv->tmp;
     braun_real L = BRAUN_R(1e-6), V = 0, amax = 0;
-    (void)vdot;
     for (int j = 0; j < n; j++) {
         if (braun_fabs(q[j]) > L) L = braun_fabs(q[j]);
         if (braun_fabs(v[j]) > V) V = braun_fabs(v[j]);
     }
-    /* a = M⁻¹Q = R⁻¹ã: the unconstrained acceleration (gravity, springs). */
-    braun__solve_r(pv, pv->atil, a);
-    for (int j = 0; j < n; j++)
-        if (braun_fabs(a[j]) > amax) amax = braun_fabs(a[j]);
-    if (braun_sqrt(L * amax) > V) V = braun_sqrt(L * amax);
+    if (accel) {
+        /* a = M⁻¹Q = R⁻¹ã: the unconstrained acceleration (gravity, springs). */
+        braun__solve_r(pv, pv->atil, sq);
+        for (int j = 0; j < n; j++)
+            if (braun_fabs(sq[j]) > amax) amax = braun_fabs(sq[j]);
+        if (braun_sqrt(L * amax) > V) V = braun_sqrt(L * amax);
+    }
     for (int j = 0; j < n; j++) {
         sq[j] = braun_fabs(q[j]) > L ? braun_fabs(q[j]) : L;
         sv[j] = braun_fabs(v[j]) > V ? braun_fabs(v[j]) : V;
@@ -309,17 +333,38 @@ void braun__guard_scales(braun_data *d, const braun_real *vdot)
     for (int i = 0; i < m; i++) pos += braun__row_abs_dot(pv, i, sq);
     for (int i = 0; i < rows; i++) vel += braun__row_abs_dot(pv, i, sv);
     /* ½ s_vᵀ M s_v = ½ ‖R s_v‖². */
-    braun__mul_r(pv, sv, a);
-    const braun_real T = BRAUN_R(0.5) * braun_dot(n, a, a);
-    d->guard.pos = pos;
-    d->guard.vel = vel;
-    d->guard.energy = braun_fabs(d->E0) > T ? braun_fabs(d->E0) : T;
-    if (!(d->guard.energy > 0)) d->guard.energy = BRAUN_R(1e-30);
-    d->guard.pos0 = braun_sqrt(braun_dot(m, pv->phi, pv->phi));
-    d->guard.vel0 = braun_sqrt(braun_dot(rows, pv->ev, pv->ev));
+    braun__mul_r(pv, sv, sq);
+    const braun_real T = BRAUN_R(0.5) * braun_dot(n, sq, sq);
+    /* The energy the scene holds: E0, the kinetic scale, the work done. */
+    braun_real energy = braun_fabs(d->E0) > T ? braun_fabs(d->E0) : T;
+    if (braun_fabs(pv->at.W) > energy) energy = braun_fabs(pv->at.W);
+    *pos_out = pos;
+    *vel_out = vel;
+    *energy_out = energy > 0 ? energy : BRAUN_R(1e-30);
+}
+
+/* The scales at the state braun_set_state gave (the first step's forward
+ * pass: A, the residuals, ã), and the residuals there. */
+void braun__guard_scales(braun_data *d, const braun_real *vdot)
+{
+    braun_priv *pv = braun__priv(d);
+    (void)vdot;
+    measure_scales(d, 1, &d->guard.pos, &d->guard.vel, &d->guard.energy);
+    d->guard.pos0 = braun_sqrt(braun_dot(pv->m, pv->phi, pv->phi));
+    d->guard.vel0 = braun_sqrt(braun_dot(pv->rows, pv->ev, pv->ev));
     d->guard.energy0 = 0; /* Φ_e = 0 where E0 was taken; see stage_energy */
     pv->guard_pending = 0;
     pv->guard_first = 1;
+}
+
+/* The scales measured again at the point, each kept when larger. */
+static void guard_rescale(braun_data *d, int accel)
+{
+    braun_real pos, vel, energy;
+    measure_scales(d, accel, &pos, &vel, &energy);
+    if (pos > d->guard.pos) d->guard.pos = pos;
+    if (vel > d->guard.vel) d->guard.vel = vel;
+    if (energy > d->guard.energy) d->guard.energy = energy;
 }
 
 /* The guard at a step's start, on its rows: the state braun_set_state
@@ -330,7 +375,7 @@ static int guard_start_rows(braun_data *d, const braun_real *vdot, unsigned corr
         braun__guard_scales(d, vdot);
         return BRAUN_OK;
     }
-    return guard_rows(d, corr);
+    return guard_rows(d, corr, 1);
 }
 
 /* Position (Eq. 16) and velocity (Eq. 17) into pv->dq, pv->dv: a stage that
@@ -417,7 +462,7 @@ int braun__guard_start(braun_data *d, const braun_real *vdot)
     st = braun__callback(d, s->energy(t, pv->at.q, pv->at.v, &E, NULL, NULL, NULL, s->user), "energy", t);
     if (!st) st = braun__check_finite(d, 1, &E, "energy E", 0, t);
     if (st) return st;
-    return guard_energy(d, E - d->E0 - pv->at.W);
+    return guard_energy(d, E - d->E0 - pv->at.W, 1);
 }
 
 /* Next to a singular configuration: the step's start's corrections, as

@@ -174,10 +174,13 @@ static void describe(msg *w, const braun_data *d)
         } else if (where && strstr(where, "energy")) {
             scale = (double)d->guard.energy; r0 = (double)d->guard.energy0; what = "energy residual |Phi_e|";
         }
-        const double bound = g * scale > r0 ? g * scale : r0;
         /* e->t: the state whose residual failed; d->t: the one kept. */
-        put(w, "%s = %.3g exceeds the accuracy guard %.3g (guard %.3g x scale %.3g)", what, e->value,
-            bound, g, scale);
+        if (g * scale >= r0)
+            put(w, "%s = %.3g exceeds the accuracy guard %.3g (guard %.3g x scale %.3g)", what, e->value,
+                g * scale, g, scale);
+        else /* an inconsistent start: its own residual is the bound */
+            put(w, "%s = %.3g exceeds the accuracy guard %.3g (the residual at the start; guard %.3g x "
+                   "scale %.3g is smaller)", what, e->value, r0, g, scale);
         put_time(w, e->t);
         put(w, "; the state kept is the last one that passed, at t = %.10g", (double)d->t);
         return;
