@@ -313,7 +313,7 @@ static void measure_scales(braun_data *d, int accel, braun_real *pos_out, braun_
     const int n = pv->n, m = pv->m, rows = pv->rows;
     const braun_real *q = pv->at.q, *v = pv->at.v;
     braun_real *sq = pv->ce, *sv = pv->tmp;
-    braun_real L = BRAUN_R(1e-6), V = 0, amax = 0;
+    braun_real L = BRAUN_R(1e-6), V = 0;
     for (int j = 0; j < n; j++) {
         if (braun_fabs(q[j]) > L) L = braun_fabs(q[j]);
         if (braun_fabs(v[j]) > V) V = braun_fabs(v[j]);
@@ -321,6 +321,7 @@ static void measure_scales(braun_data *d, int accel, braun_real *pos_out, braun_
     if (accel) {
         /* a = M⁻¹Q = R⁻¹ã: the unconstrained acceleration (gravity, springs). */
         braun__solve_r(pv, pv->atil, sq);
+        braun_real amax = 0;
         for (int j = 0; j < n; j++)
             if (braun_fabs(sq[j]) > amax) amax = braun_fabs(sq[j]);
         if (braun_sqrt(L * amax) > V) V = braun_sqrt(L * amax);
