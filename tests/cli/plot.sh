@@ -166,10 +166,66 @@ check "the CSV's columns are the bodies' x, y, theta: crank.A = rod.A and rod.B 
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 5 --points rod.B -o run.svg
 check "--traj: the CSV of a run draws the same configurations as the run" sh -c '
     [ "$1" -eq 0 ] && grep -v "<title>\|<text" traj.svg > a && grep -v "<title>\|<text" run.svg > b && cmp -s a b' sh "$rc"
+# A CSV longer than the 2000 states kept: sampled evenly from its first row
+# as the run is (not from -inf, whose spacing was NaN: the first 1999 rows).
+"$BRAUN" run slider-crank --dt 1e-3 --t-end 5 --out long.csv --summary /dev/null
+"$BRAUN" plot slider-crank --traj long.csv --points rod.B -o long-traj.svg; rc=$?
+"$BRAUN" plot slider-crank --dt 1e-3 --t-end 5 --points rod.B -o long-run.svg
+check "--traj: a CSV of 5001 rows draws the same configurations and path as its run" sh -c '
+    [ "$1" -eq 0 ] && grep -v "<title>\|<text" long-traj.svg > a && grep -v "<title>\|<text" long-run.svg > b && cmp -s a b' sh "$rc"
 printf 't [s],x\n0,1\n' > wrong.csv
 "$BRAUN" plot slider-crank.json --traj wrong.csv -o w.svg > /dev/null 2> err.txt; rc=$?
 check "--traj with the wrong columns: exit 2 naming the column" sh -c '
     [ "$1" -eq 2 ] && grep -q "^braun: --traj wrong.csv:1: column 2 is .x., .slider-crank. has .crank.x. there" err.txt && [ ! -e w.svg ]' sh "$rc"
+
+# ------------------------------------------------------------------ --traj: numbers a picture cannot place
+# A value that is not finite (nan, inf, 1e999 which reads as inf) is refused
+# at its line and column; finite values whose span overflows (1e308 and
+# -1e308) would make the scale and every position NaN: refused too, and
+# nothing is written, whatever the picture.
+cp "$TOP/data/pendulum.json" .
+ph='t [s],bob.x [m],bob.y [m],bob.vx [m/s],bob.vy [m/s],pos_err [Phi_q],vel_err [Phi_q/s],energy_err [J],traj_err [q]'
+printf '%s\n0,1,0,0,0,0,0,0,\n0.1,nan,0,0,0,0,0,0,\n' "$ph" > nan.csv
+printf '%s\n0,1,0,0,0,0,0,0,\n0.1,0,1e999,0,0,0,0,0,\n' "$ph" > over.csv
+printf '%s\n0,1,0,0,0,0,0,0,\n0.1,1,0,0,0,0,0,-inf,\n' "$ph" > minf.csv
+printf '%s\n0,1,0,0,0,0,0,0,\ninf,1,0,0,0,0,0,0,\n' "$ph" > tinf.csv
+printf '%s\n0,1,0,0,0,0,0,0,\nnan,1,0,0,0,0,0,0,\n' "$ph" > tnan.csv
+printf '%s\n0,1e308,0,0,0,0,0,0,\n0.1,-1e308,0,0,0,0,0,0,\n' "$ph" > span.csv
+printf '%s\n-1e308,1,0,0,0,0,0,0,\n1e308,1,0,0,0,0,0,0,\n' "$ph" > tspan.csv
+refused_traj() { name=$1; csv=$2; want=$3; shift 3
+    for o in svg html; do
+        "$BRAUN" plot pendulum.json --traj "$csv" "$@" -o "nf.$o" > nf.out 2> nf.err; rc=$?
+        if [ "$rc" -eq 2 ] && [ ! -e "nf.$o" ] && [ ! -s nf.out ] && [ "$(wc -l < nf.err)" -eq 1 ] &&
+            grep -q "^braun: $want" nf.err
+        then ok "--traj $name (.$o): exit 2, nothing written ($(cut -c1-100 nf.err))"
+        else not_ok "--traj $name (.$o): exit 2, nothing written" "exit $rc: $(cat nf.err); $(grep -c 'nan\|inf' "nf.$o" 2> /dev/null) nan/inf"; fi
+        rm -f "nf.$o"
+    done
+}
+refused_traj "a nan" nan.csv "--traj nan.csv:3: column 2 (bob.x) is nan: not a finite number$"
+refused_traj "1e999 (overflows to inf)" over.csv "--traj over.csv:3: column 3 (bob.y) is 1e999: beyond the range of a double$"
+refused_traj "-inf in energy_err" minf.csv "--traj minf.csv:3: column 8 (energy_err) is -inf"
+refused_traj "the last row's t = inf" tinf.csv "--traj tinf.csv:3: column 1 (t) is inf: not a finite number$"
+refused_traj "the last row's t = nan" tnan.csv "--traj tnan.csv:3: column 1 (t) is nan: not a finite number$"
+refused_traj "x from 1e308 to -1e308 (a span past a double)" span.csv "the drawing's points span more than the range of a double"
+refused_traj "x from 1e308 to -1e308, --plot bob.x" span.csv "--plot: the values .* span more than the range of a double" --plot bob.x
+refused_traj "t from -1e308 to 1e308" tspan.csv "--traj tspan.csv: t runs from -1e+308 to 1e+308, a span beyond the range of a double$"
+# A run whose states pass but fly apart (two particles at -+1e12 m/s for
+# 1.5e296 s: 1.5e308 m each way) cannot be drawn either: exit 1, no file.
+printf '{"name": "fly", "bodies": [
+  {"name": "a", "type": "particle", "mass": 1, "position": [0, 0], "velocity": [1e12, 0]},
+  {"name": "b", "type": "particle", "mass": 1, "position": [0, 0], "velocity": [-1e12, 0]}]}\n' > fly.json
+for o in fly.svg fly.html; do
+    "$BRAUN" plot fly.json --dt 1e295 --t-end 1.5e296 -o "$o" 2> fly.err; rc=$?
+    check "a run whose points span past a double: exit 1, no $o, one message" sh -c '
+        [ "$1" -eq 1 ] && [ ! -e "$2" ] && grep -q "^braun: the drawing.s points span more than the range of a double" fly.err' sh "$rc" "$o"
+done
+"$BRAUN" plot fly.json --dt 1e295 --t-end 1.5e296 --plot a.x,b.x -o flyc.svg 2> fly.err; rc=$?
+check "... its chart (--plot a.x,b.x) too: exit 1, no file" sh -c '
+    [ "$1" -eq 1 ] && [ ! -e flyc.svg ] && grep -q "^braun: --plot: the values .* span more than the range of a double" fly.err' sh "$rc"
+"$BRAUN" plot fly.json --dt 1e295 --t-end 1e295 -o flyok.svg 2> fly.err; rc=$?
+check "... while 1e307 m each way is drawn, with no nan or inf in it" sh -c '
+    [ "$1" -eq 0 ] && [ -s flyok.svg ] && ! grep -qi "nan\|inf" flyok.svg' sh "$rc"
 
 # ------------------------------------------------------------------ refused
 bad() { name=$1; shift

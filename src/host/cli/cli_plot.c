@@ -208,10 +208,16 @@ int braun_cli_plot(int argc, char **argv)
         if (!a.plot_columns && fmt != FMT_HTML && len < sizeof caption)
             snprintf(caption + len, sizeof caption - len, ", %ld configurations (earlier fainter)", frames);
         job.caption = caption;
-        int wrc = braun_cli_output_begin(&out);
         /* With --plot the job has series and the writers draw the chart;
          * the drawing (if any) gives the points' coordinates. */
         job.drawing = want_drawing ? &dr : NULL;
+        /* A picture that would place NaN is not written: bad input for
+         * --traj, a failed run otherwise. */
+        if (plot_job_fits(&job)) {
+            rc = a.traj_path ? BRAUN_CLI_USAGE : BRAUN_CLI_FAILED;
+            goto finish;
+        }
+        int wrc = braun_cli_output_begin(&out);
         if (!wrc)
             wrc = fmt == FMT_SVG ? plot_write_svg(out.f, &job)
                   : fmt == FMT_HTML ? plot_write_html(out.f, &job)

@@ -147,6 +147,13 @@ void plot_xml_text(FILE *f, const char *s);
 /* The paths of the traced points (polylines), the time chart of --plot. */
 void plot_svg_paths(FILE *f, const plot_job *job, const plot_canvas *cv, const char *style);
 int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, int inline_html);
+/* The chart's values (range[0], range[1], at whole ticks) and times
+ * (range[2], range[3]); pos, qr: scratch for the points' series (pos NULL
+ * without a drawing). 0, or -1 when a span is beyond a double. */
+int plot_chart_range(const plot_job *job, double *pos, braun_real *qr, double range[4]);
+/* Whether every number the picture places is finite (cli_plot_fits.c):
+ * 0, or BRAUN_CLI_USAGE after one message. */
+int plot_job_fits(const plot_job *job);
 /* <svg ...><title/><rect/> (inline_html: without the namespace attribute). */
 void plot_svg_header(FILE *f, double width, double height, const char *title, int inline_html);
 /* The caption line, the traced points' names, the scale bar. */

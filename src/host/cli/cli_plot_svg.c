@@ -406,6 +406,28 @@ static double series_value(const plot_job *job, const plot_series *sr, const dou
     return pos[3 * sr->anchor + sr->axis];
 }
 
+int plot_chart_range(const plot_job *job, double *pos, braun_real *qr, double range[4])
+{
+    const plot_samples *s = job->samples;
+    double t0 = s->rows[0], t1 = s->rows[(size_t)(s->count - 1) * (size_t)s->cols];
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (int k = 0; k < job->nseries; k++)
+        for (long r = 0; r < s->count; r++) {
+            const double y = series_value(job, &job->series[k], s->rows + (size_t)r * (size_t)s->cols, pos, qr);
+            if (isfinite(y) && y < lo) lo = y;
+            if (isfinite(y) && y > hi) hi = y;
+        }
+    if (!(lo <= hi)) lo = hi = 0;
+    if (hi - lo < 1e-12 * (fabs(lo) + fabs(hi)) || hi == lo) lo -= 0.5 + fabs(lo) * 0.1, hi += 0.5 + fabs(hi) * 0.1;
+    if (!(t1 > t0)) t1 = t0 + 1;
+    const double ty = tick_step(lo, hi);
+    lo = floor(lo / ty) * ty, hi = ceil(hi / ty) * ty;
+    range[0] = lo, range[1] = hi, range[2] = t0, range[3] = t1;
+    /* A span past the largest double (1e308 and -1e308) would place every
+     * point at NaN. */
+    return isfinite(hi - lo) && hi > lo && isfinite(t1 - t0) && t1 > t0 ? 0 : -1;
+}
+
 int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, int inline_html)
 {
     const plot_samples *s = job->samples;
@@ -419,19 +441,16 @@ int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, in
         return -1;
     }
     const double ml = 70, mr = 20, mt = 20 + 16.0 * job->nseries, mb = 50;
-    double t0 = s->rows[0], t1 = s->rows[(size_t)(s->count - 1) * (size_t)s->cols];
-    double lo = HUGE_VAL, hi = -HUGE_VAL;
-    for (int k = 0; k < job->nseries; k++)
-        for (long r = 0; r < s->count; r++) {
-            const double y = series_value(job, &job->series[k], s->rows + (size_t)r * (size_t)s->cols, pos, qr);
-            if (isfinite(y) && y < lo) lo = y;
-            if (isfinite(y) && y > hi) hi = y;
-        }
-    if (!(lo <= hi)) lo = hi = 0;
-    if (hi - lo < 1e-12 * (fabs(lo) + fabs(hi)) || hi == lo) lo -= 0.5 + fabs(lo) * 0.1, hi += 0.5 + fabs(hi) * 0.1;
-    if (!(t1 > t0)) t1 = t0 + 1;
+    double range[4];
+    if (plot_chart_range(job, pos, qr, range)) {
+        free(pos);
+        free(qr);
+        braun_cli_error("--plot: the values or times span more than a double holds");
+        return -1;
+    }
+    const double lo = range[0], hi = range[1];
+    const double t0 = range[2], t1 = range[3];
     const double ty = tick_step(lo, hi), tt = tick_step(t0, t1);
-    lo = floor(lo / ty) * ty, hi = ceil(hi / ty) * ty;
     const double pw = width - ml - mr, ph = height - mt - mb;
 #define X(t) (ml + ((t) - t0) / (t1 - t0) * pw)
 #define Y(v) (mt + ph - ((v) - lo) / (hi - lo) * ph)

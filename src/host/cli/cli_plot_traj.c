@@ -2,6 +2,7 @@
  * --out FILE`, drawn without simulating again. The header must name the
  * model's columns (with or without their units); every row is numbers,
  * traj_err may be empty, times never decrease. Errors name FILE:LINE. */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +27,40 @@ static const char *header_cell(const char *p, const char *end, char *name, size_
     char *br = strstr(name, " [");
     if (br) *br = '\0';
     return p;
+}
+
+/* One row into row (cols numbers; an empty traj_err is NaN): 0, or
+ * BRAUN_CLI_USAGE after "FILE:LINE: ..." naming the column. A value must be
+ * a finite double: nan, inf and what overflows one (1e999) are refused, as
+ * a picture cannot place them. */
+static int read_row(const char *p, const char *eol, const braun_cli_target *t, int cols,
+                    double *row, const char *path, long line)
+{
+    const int n = t->sys.n;
+    for (int j = 0; j < cols; j++) {
+        char name[160];
+        const char *unit, *start = p;
+        char *stop;
+        if (j == cols - 1 && (p >= eol || *p == '\r')) {
+            row[j] = NAN; /* traj_err: empty without a reference */
+            break;
+        }
+        braun_cli_column_name(t, n, j, name, sizeof name, &unit);
+        errno = 0;
+        row[j] = strtod(p, &stop);
+        const int last = j == cols - 1;
+        if (stop == p || stop > eol || (!last && *stop != ',') ||
+            (last && stop < eol && *stop != '\r'))
+            return braun_cli_error("--traj %s:%ld: column %d (%s) is not a number (or the row "
+                                   "has fewer than %d columns)", path, line, j + 1, name, cols);
+        if (!isfinite(row[j]))
+            return braun_cli_error("--traj %s:%ld: column %d (%s) is %.*s: %s", path, line, j + 1,
+                                   name, (int)(stop - start > 40 ? 40 : stop - start), start,
+                                   errno == ERANGE ? "beyond the range of a double"
+                                                   : "not a finite number");
+        p = stop < eol ? stop + 1 : eol;
+    }
+    return 0;
 }
 
 int plot_traj_read(const char *path, const braun_cli_target *t, plot_samples *s)
@@ -67,57 +102,42 @@ int plot_traj_read(const char *path, const braun_cli_target *t, plot_samples *s)
     }
     if (!rc && p < eol && *p != '\r')
         rc = braun_cli_error("--traj %s:1: more columns than '%s' has (%d)", path, t->name, cols);
-    /* The last row's time sets the window of the samples. */
-    double t_last = NAN;
-    for (const char *q = end; !rc && q > eol;) {
-        const char *start = q;
-        while (start > eol + 1 && start[-1] != '\n') start--;
-        if (start < q && *start != '\n' && *start != '\r') {
-            t_last = strtod(start, NULL);
-            break;
-        }
-        q = start - 1;
-    }
-    if (!rc && !(isfinite(t_last)))
-        rc = braun_cli_error("--traj %s: no rows after the header", path);
-    if (!rc) {
-        const double from = isnan(s->from) ? -HUGE_VAL : s->from;
-        const long cap = s->cap;
-        if (plot_samples_init(s, n, cap, from, t_last)) rc = braun_cli_error("out of memory");
-    }
-    p = eol < end ? eol + 1 : end;
-    double t_prev = -HUGE_VAL;
+    /* Two passes over the rows: the first checks every one and finds the
+     * last time (the window of the samples), the second keeps them. */
+    const char *body = eol < end ? eol + 1 : end;
+    double t_first = NAN, t_last = NAN;
     long rows = 0;
-    while (!rc && p < end) {
-        line++;
-        eol = memchr(p, '\n', (size_t)(end - p));
-        if (!eol) eol = end;
-        if (eol == p || (eol == p + 1 && *p == '\r')) {
-            p = eol + 1;
-            continue;
-        }
-        for (int j = 0; j < cols && !rc; j++) {
-            char *stop;
-            if (j == cols - 1 && (p >= eol || *p == '\r')) {
-                row[j] = NAN; /* traj_err: empty without a reference */
-                break;
-            }
-            row[j] = strtod(p, &stop);
-            const int last = j == cols - 1;
-            if (stop == p || stop > eol || (!last && *stop != ',') ||
-                (last && stop < eol && *stop != '\r'))
-                rc = braun_cli_error("--traj %s:%ld: column %d is not a number (or the row has "
-                                     "fewer than %d columns)", path, line, j + 1, cols);
-            p = stop < eol ? stop + 1 : eol;
-        }
-        if (!rc && !(row[0] >= t_prev))
-            rc = braun_cli_error("--traj %s:%ld: t = %g comes after t = %g", path, line, row[0], t_prev);
-        if (!rc) {
+    for (int pass = 0; !rc && pass < 2; pass++) {
+        double t_prev = -HUGE_VAL;
+        line = 1;
+        for (p = body; !rc && p < end; p = eol + 1) {
+            line++;
+            eol = memchr(p, '\n', (size_t)(end - p));
+            if (!eol) eol = end;
+            if (eol == p || (eol == p + 1 && *p == '\r')) continue;
+            rc = read_row(p, eol, t, cols, row, path, line);
+            if (!rc && !(row[0] >= t_prev))
+                rc = braun_cli_error("--traj %s:%ld: t = %g comes after t = %g", path, line, row[0],
+                                     t_prev);
+            if (rc) break;
             t_prev = row[0];
-            plot_samples_add(s, row);
-            rows++;
+            if (pass == 0 && rows++ == 0) t_first = row[0];
+            if (pass == 0) t_last = row[0];
+            else plot_samples_add(s, row);
         }
-        p = eol + 1;
+        if (!rc && pass == 0 && rows == 0)
+            rc = braun_cli_error("--traj %s: no rows after the header", path);
+        /* The samples' spacing is a fraction of the span of times. */
+        if (!rc && pass == 0 && !isfinite(t_last - t_first))
+            rc = braun_cli_error("--traj %s: t runs from %g to %g, a span beyond the range of a "
+                                 "double", path, t_first, t_last);
+        if (!rc && pass == 0) {
+            /* Without --from the window starts at the first row (not at
+             * -inf, whose span would make the spacing NaN). */
+            const double from = isnan(s->from) ? t_first : s->from;
+            const long cap = s->cap;
+            if (plot_samples_init(s, n, cap, from, t_last)) rc = braun_cli_error("out of memory");
+        }
     }
     if (!rc) plot_samples_finish(s);
     if (!rc && s->count == 0)
