@@ -178,6 +178,48 @@ printf 't [s],x\n0,1\n' > wrong.csv
 check "--traj with the wrong columns: exit 2 naming the column" sh -c '
     [ "$1" -eq 2 ] && grep -q "^braun: --traj wrong.csv:1: column 2 is .x., .slider-crank. has .crank.x. there" err.txt && [ ! -e w.svg ]' sh "$rc"
 
+# ------------------------------------------------------------------ --traj: every shipped scene's CSV
+# The round trip run --out -> plot --traj holds for every shipped scene,
+# those with reported points (report: NAME.x, NAME.y, NAME.z after the
+# other columns) included, and --plot takes those columns too.
+rt_bad=""
+rt_n=0
+for scene in "$TOP"/data/*.json "$TOP"/data/iftomm/*.json; do
+    b=$(basename "$scene" .json)
+    "$BRAUN" run "$scene" --dt 1e-2 --t-end 0.2 --out "rt-$b.csv" --summary /dev/null 2> /dev/null
+    "$BRAUN" plot "$scene" --traj "rt-$b.csv" -o "rt-$b.svg" 2> rt.err || rt_bad="$rt_bad $b($(tr '\n' ' ' < rt.err))"
+    [ -s "rt-$b.svg" ] || rt_bad="$rt_bad $b(no svg)"
+    rt_n=$((rt_n + 1))
+done
+check "--traj draws the CSV of run --out for each of the $rt_n shipped scenes (data/, data/iftomm/)" \
+    sh -c '[ -z "$1" ] && [ "$2" -ge 15 ]' sh "$rt_bad" "$rt_n"
+[ -z "$rt_bad" ] || echo "#   failed:$rt_bad"
+check "... spatial-arm's CSV has its reported point's columns tip.x, tip.y, tip.z" \
+    sh -c 'head -n 1 rt-spatial-arm.csv | grep -q ",traj_err \[q\],tip.x \[m\],tip.y \[m\],tip.z \[m\]$"'
+"$BRAUN" plot "$TOP/data/spatial-arm.json" --dt 1e-2 --t-end 0.2 --plot tip.x,tip.z -o tip-run.svg 2> tip.err; rc=$?
+check "--plot tip.x,tip.z: a reported point's CSV columns are charted" sh -c '
+    [ "$1" -eq 0 ] && [ "$(grep -c "<polyline" tip-run.svg)" -eq 2 ] &&
+    grep -q ">tip.x \[m\]<" tip-run.svg && grep -q ">tip.z \[m\]<" tip-run.svg' sh "$rc"
+"$BRAUN" plot "$TOP/data/spatial-arm.json" --traj rt-spatial-arm.csv --plot tip.x,tip.z -o tip-traj.svg; rc=$?
+check "... from --traj as from the run" sh -c '
+    [ "$1" -eq 0 ] && grep -v "<title>\|<text" tip-traj.svg > a && grep -v "<title>\|<text" tip-run.svg > b && cmp -s a b' sh "$rc"
+# tip.x from the chart's scale: its polyline's first and last values are the
+# CSV's first and last tip.x (to the 0.01 px the chart is written at).
+check "... and the chart's tip.x is the CSV's tip.x (first and last row, to 1e-3 of the range)" \
+    awk -F, -v svg=tip-run.svg '
+        NR == 1 { for (i = 1; i <= NF; i++) if ($i == "tip.x [m]") c = i; next }
+        NR == 2 { first = $c } { last = $c; if (NR > 1 && (lo == "" || $c < lo)) lo = $c; if (NR > 1 && (hi == "" || $c > hi)) hi = $c }
+        END {
+            while ((getline l < svg) > 0) if (l ~ /<polyline/ && !done) { sub(/.*points="/, "", l); sub(/".*/, "", l); n = split(l, p, " "); done = 1 }
+            split(p[1], a, ","); split(p[n], z, ",")
+            ymin = 1e9; ymax = -1e9
+            for (i = 1; i <= n; i++) { split(p[i], q, ","); if (q[2] < ymin) ymin = q[2]; if (q[2] > ymax) ymax = q[2] }
+            # screen y is linear in the value: map the extremes onto lo, hi
+            f0 = (ymax - a[2]) / (ymax - ymin) * (hi - lo) + lo
+            f1 = (ymax - z[2]) / (ymax - ymin) * (hi - lo) + lo
+            d0 = f0 - first; d1 = f1 - last; tol = 1e-3 * (hi - lo)
+            exit !(c > 0 && n > 10 && hi > lo && d0 * d0 <= tol * tol && d1 * d1 <= tol * tol) }' rt-spatial-arm.csv
+
 # ------------------------------------------------------------------ --traj: numbers a picture cannot place
 # A value that is not finite (nan, inf, 1e999 which reads as inf) is refused
 # at its line and column; finite values whose span overflows (1e308 and

@@ -245,11 +245,17 @@ void braun_cli_monitor_accept(braun_cli_monitor *mon, const braun_cli_errors *e)
 const char *braun_cli_coord_name(const braun_cli_target *t, int i, int velocity, char *name,
                                  size_t size, const char **unit);
 /* Columns of the trajectory CSV: t, q (n), v (n), pos_err, vel_err,
- * energy_err, traj_err. Name and unit of column j (NULL past the end). */
+ * energy_err, traj_err (braun_cli_column_count: the state's columns, what
+ * braun plot keeps), then a scene's reported points NAME.x, NAME.y (NAME.z
+ * when spatial; braun_cli_report_dim: 0 without any). Name and unit of
+ * column j (NULL past the end). */
 int braun_cli_column_count(int n);
+int braun_cli_csv_column_count(const braun_cli_target *t, int n);
+int braun_cli_report_dim(const braun_cli_target *t);
 const char *braun_cli_column_name(const braun_cli_target *t, int n, int j, char *name,
                                   size_t size, const char **unit);
-/* Index of the column called want (its " [unit]" optional), or -1. */
+/* Index of the state column called want (its " [unit]" optional), or -1;
+ * reported points are not among them (braun plot draws them as points). */
 int braun_cli_column_find(const braun_cli_target *t, int n, const char *want);
 
 /* --------------------------------------------------------- CSV (cli_csv.c) */

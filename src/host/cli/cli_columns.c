@@ -64,8 +64,22 @@ const char *braun_cli_coord_name(const braun_cli_target *t, int i, int velocity,
     return name;
 }
 
+/* The scene's reported points (docs/scene-format.md, "Reported points"):
+ * NAME.x, NAME.y (and NAME.z in a spatial scene) after the other columns. */
+int braun_cli_report_dim(const braun_cli_target *t)
+{
+    const braun_scene_file *s = t ? t->scene : NULL;
+    return s && s->nreports > 0 ? (s->scene.dim == 3 ? 3 : 2) : 0;
+}
+
+int braun_cli_csv_column_count(const braun_cli_target *t, int n)
+{
+    const int dim = braun_cli_report_dim(t);
+    return braun_cli_column_count(n) + (dim ? dim * t->scene->nreports : 0);
+}
+
 /* Column j of the trajectory CSV: t, the n coordinates, the n velocities,
- * then the residuals. */
+ * the residuals, then the reported points. */
 const char *braun_cli_column_name(const braun_cli_target *t, int n, int j, char *name,
                                   size_t size, const char **unit)
 {
@@ -79,6 +93,13 @@ const char *braun_cli_column_name(const braun_cli_target *t, int n, int j, char 
     }
     if (j <= 2 * n) return braun_cli_coord_name(t, (j - 1) % n, j > n, name, size, unit);
     j -= 2 * n + 1;
+    const int dim = braun_cli_report_dim(t);
+    if (j >= 4 && dim && j - 4 < dim * t->scene->nreports) {
+        *unit = "m";
+        snprintf(name, size, "%.120s.%c", t->scene->report_names[(j - 4) / dim],
+                 "xyz"[(j - 4) % dim]);
+        return name;
+    }
     if (j < 0 || j >= 4) return NULL;
     /* A scene's energy is in joules; a C system's in its own units. */
     *unit = j == 2 && t->drawing ? "J" : tail_unit[j];

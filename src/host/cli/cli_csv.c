@@ -26,31 +26,15 @@ static void cell(FILE *f, const char *name, const char *unit)
     if (quote) fputc('"', f);
 }
 
-/* The scene's reported points (docs/scene-format.md, "Reported points"):
- * NAME.x, NAME.y (and NAME.z in a spatial scene) after the other columns. */
-static int report_dim(const braun_cli_target *t)
-{
-    const braun_scene_file *s = t ? t->scene : NULL;
-    return s && s->nreports > 0 ? (s->scene.dim == 3 ? 3 : 2) : 0;
-}
-
 int braun_cli_csv_header(FILE *f, const braun_cli_target *t, int n)
 {
     char name[160];
     const char *unit;
-    static const char *const axis[3] = {"x", "y", "z"};
-    for (int j = 0; j < braun_cli_column_count(n); j++) {
+    for (int j = 0; j < braun_cli_csv_column_count(t, n); j++) {
         if (j) fputc(',', f);
         braun_cli_column_name(t, n, j, name, sizeof name, &unit);
         cell(f, name, unit);
     }
-    const int dim = report_dim(t);
-    for (int k = 0; dim && k < t->scene->nreports; k++)
-        for (int c = 0; c < dim; c++) {
-            snprintf(name, sizeof name, "%.120s.%s", t->scene->report_names[k], axis[c]);
-            fputc(',', f);
-            cell(f, name, "m");
-        }
     fputc('\n', f);
     return ferror(f) ? -1 : 0;
 }
@@ -66,7 +50,7 @@ int braun_cli_csv_row(FILE *f, const braun_cli_target *tg, int n, double t, cons
     fputc(',', f), braun_cli_put_number(f, e->energy);
     fputc(',', f);
     if (has_ref) braun_cli_put_number(f, e->traj);
-    const int dim = report_dim(tg);
+    const int dim = braun_cli_report_dim(tg);
     if (dim) {
 #ifdef BRAUN_SINGLE
         /* The scene evaluates braun_reals; the rows hold doubles. */

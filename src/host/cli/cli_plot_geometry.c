@@ -371,9 +371,18 @@ static int body_index(const braun_scene_file *f, const char *name, size_t len)
     return -1;
 }
 
-/* "body.point", "body" (its centre, or the particle), "ground.NAME". */
+/* "body.point", "body" (its centre, or the particle), "ground.NAME", or a
+ * reported point's NAME (its CSV columns NAME.x, ...: a name without '.'
+ * that no body has, docs/scene-format.md). */
 int plot_drawing_point(plot_drawing *dr, const braun_cli_target *t, const char *ref)
 {
+    const braun_scene_file *sf = t->scene;
+    for (int k = 0; sf && k < sf->nreports; k++)
+        if (strcmp(sf->report_names[k], ref) == 0) {
+            const int i = add_anchor(dr, sf->report_points[k], 0, 0, 0);
+            if (i < 0) braun_cli_error("out of memory");
+            return i;
+        }
     const char *dot = strchr(ref, '.');
     const size_t blen = dot ? (size_t)(dot - ref) : strlen(ref);
     const int ground = blen == 6 && strncmp(ref, "ground", 6) == 0;

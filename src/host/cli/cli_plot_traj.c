@@ -29,36 +29,40 @@ static const char *header_cell(const char *p, const char *end, char *name, size_
     return p;
 }
 
-/* One row into row (cols numbers; an empty traj_err is NaN): 0, or
- * BRAUN_CLI_USAGE after "FILE:LINE: ..." naming the column. A value must be
- * a finite double: nan, inf and what overflows one (1e999) are refused, as
- * a picture cannot place them. */
+/* One row into row (cols numbers, the CSV's columns; an empty traj_err is
+ * NaN): 0, or BRAUN_CLI_USAGE after "FILE:LINE: ..." naming the column. A
+ * value must be a finite double: nan, inf and what overflows one (1e999)
+ * are refused, as a picture cannot place them. */
 static int read_row(const char *p, const char *eol, const braun_cli_target *t, int cols,
                     double *row, const char *path, long line)
 {
-    const int n = t->sys.n;
+    const int n = t->sys.n, traj = braun_cli_column_count(n) - 1;
+    if (eol > p && eol[-1] == '\r') eol--;
     for (int j = 0; j < cols; j++) {
         char name[160];
         const char *unit, *start = p;
-        char *stop;
-        if (j == cols - 1 && (p >= eol || *p == '\r')) {
-            row[j] = NAN; /* traj_err: empty without a reference */
-            break;
-        }
+        char *stop = (char *)p;
+        const int last = j == cols - 1;
         braun_cli_column_name(t, n, j, name, sizeof name, &unit);
         errno = 0;
-        row[j] = strtod(p, &stop);
-        const int last = j == cols - 1;
-        if (stop == p || stop > eol || (!last && *stop != ',') ||
-            (last && stop < eol && *stop != '\r'))
+        if (j == traj && (p >= eol || *p == ','))
+            row[j] = NAN; /* traj_err: empty without a reference */
+        else if (row[j] = strtod(p, &stop), stop == p)
             return braun_cli_error("--traj %s:%ld: column %d (%s) is not a number (or the row "
                                    "has fewer than %d columns)", path, line, j + 1, name, cols);
-        if (!isfinite(row[j]))
+        /* The cell ends at the comma before the next one, or the line's end. */
+        if (last ? stop != eol : stop >= eol || *stop != ',')
+            return braun_cli_error("--traj %s:%ld: column %d (%s) %s", path, line, j + 1, name,
+                                   last && stop < eol && *stop == ','
+                                       ? "is followed by more columns than the header's"
+                                   : !last && stop >= eol ? "ends the row: fewer columns than the header's"
+                                                          : "is not a number");
+        if (!isfinite(row[j]) && stop != p)
             return braun_cli_error("--traj %s:%ld: column %d (%s) is %.*s: %s", path, line, j + 1,
                                    name, (int)(stop - start > 40 ? 40 : stop - start), start,
                                    errno == ERANGE ? "beyond the range of a double"
                                                    : "not a finite number");
-        p = stop < eol ? stop + 1 : eol;
+        p = last ? eol : stop + 1;
     }
     return 0;
 }
@@ -69,7 +73,9 @@ int plot_traj_read(const char *path, const braun_cli_target *t, plot_samples *s)
     size_t len;
     char *text = braun_cli_read_file(path, (size_t)1 << 30, &len, err, sizeof err);
     if (!text) return braun_cli_error("--traj %s", err);
-    const int n = t->sys.n, cols = braun_cli_column_count(n);
+    /* Every column of the CSV is read and checked; the samples keep the
+     * state's (the reported points are drawn from q). */
+    const int n = t->sys.n, cols = braun_cli_csv_column_count(t, n);
     double *row = calloc((size_t)cols, sizeof *row);
     if (!row) {
         free(text);
