@@ -282,6 +282,28 @@ refused "--sparse on four-bar.json: rods have no sparsity" \
 refused "--sparse on a built-in model" \
     "braun: --sparse: 'slider-crank': a built-in model has no sparsity (scene files without rods have one)" \
     run slider-crank --dt 1e-3 --t-end 0.01 --sparse
+# A reported point named as a body would give the CSV two bob.x columns:
+# refused at the report's key, for run and check alike, no CSV written.
+printf '{"name": "dup", "bodies": [
+  {"name": "bob", "type": "particle", "mass": 1, "position": [1, 0]},
+  {"name": "arm", "type": "rigid", "mass": 1, "inertia": 1, "position": [0, 1]}],
+ "joints": [{"type": "distance", "a": [0, 0], "b": "bob", "length": 1}],
+ "report": {"end": [1, 1],
+            "bob": [5, 5]}}\n' > "$TMP/dup.json"
+refused "report named as a body (bob): FILE:LINE:COLUMN at the key, naming the clash" \
+    "braun: $TMP/dup.json:6:13: reported point 'bob': body 0 is named 'bob' too: the trajectory CSV's columns bob.x, bob.y would name both; give the point a name no body has" \
+    run "$TMP/dup.json" --dt 1e-2 --t-end 0.1 --out "$TMP/dup.csv"
+check "... and no CSV written" test ! -e "$TMP/dup.csv"
+sed 's/"bob": \[5, 5\]/"arm": "bob"/' "$TMP/dup.json" > "$TMP/dup2.json"
+refused "report named as a rigid body (arm), braun check" \
+    "braun: $TMP/dup2.json:6:13: reported point 'arm': body 1 is named 'arm' too: the trajectory CSV's columns arm.x, arm.y would name both; give the point a name no body has" \
+    check "$TMP/dup2.json"
+sed 's/"bob": \[5, 5\]/"tip": "bob"/' "$TMP/dup.json" > "$TMP/dup3.json"
+"$BRAUN" run "$TMP/dup3.json" --dt 1e-2 --t-end 0.1 --out "$TMP/dup3.csv" --summary /dev/null; rc=$?
+check "a report name no body has still runs, each CSV column once" sh -c '
+    [ "$1" -eq 0 ] && [ "$(head -n 1 "$2" | tr , "\n" | sort | uniq -d | wc -l)" -eq 0 ] &&
+    head -n 1 "$2" | grep -q ",end.x \[m\],end.y \[m\],tip.x \[m\],tip.y \[m\]$"' sh "$rc" "$TMP/dup3.csv"
+
 "$BRAUN" run data/four-bar.json --dt 1e-3 --t-end 0.01 --backend suitesparse > "$TMP/r.out" 2> "$TMP/r.err"; rc=$?
 if [ "$ss_built" -eq 1 ]; then
     check "--backend suitesparse on four-bar.json (rods): exit 2, one line naming why" sh -c '

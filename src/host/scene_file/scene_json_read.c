@@ -753,6 +753,22 @@ static int read_corrections(sj_reader *r, json_t *root)
 }
 
 /* ------------------------------------------------------------- report */
+/* The body whose CSV name (its "name", or "body[i]" without one) is a
+ * reported point's, or -1. */
+static int report_clash(const braun_scene_file *out, const char *key)
+{
+    for (int b = 0; b < out->scene.nbodies; b++) {
+        char own[32];
+        const char *bn = out->body_names ? out->body_names[b] : NULL;
+        if (!bn) {
+            snprintf(own, sizeof own, "body[%d]", b);
+            bn = own;
+        }
+        if (strcmp(bn, key) == 0) return b;
+    }
+    return -1;
+}
+
 /* "report": {"NAME": point, ...}: named points for the trajectory CSV. */
 static int read_report(sj_reader *r, json_t *report)
 {
@@ -773,6 +789,18 @@ static int read_report(sj_reader *r, json_t *report)
         }
         int point = -1;
         if (point_ref(r, report, key, &point)) return -1;
+        /* NAME.x, NAME.y would repeat a body's columns of the CSV (body.x,
+         * body.y; "body[3]" names an unnamed body there), and --plot
+         * NAME.x could mean either: refused, but for the body itself
+         * ({"P1": "P1"}, the IFToMM scenes), whose columns agree. */
+        const int clash = report_clash(out, key);
+        const braun_scene_point *pt = &out->scene.points[point];
+        if (clash >= 0 && !(pt->body == clash && pt->x == 0 && pt->y == 0 && pt->z == 0)) {
+            sj_push_key(r, key);
+            return sj_fail(r, SJ_AT_KEY, "%s: body %d is named '%.120s' too: the trajectory CSV's "
+                                         "columns %.120s.x, %.120s.y would name both; give the "
+                                         "point a name no body has", r->who, clash, key, key, key);
+        }
         out->report_names[out->nreports] = key;
         out->report_points[out->nreports++] = point;
     }
