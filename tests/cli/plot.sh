@@ -346,6 +346,44 @@ check "... and the CSV ends at the state kept (t = 0), the JSON's final_t too" s
     [ "$(tail -n 1 pend.csv | cut -d, -f1)" = 0 ] && grep -q "^  \"final_t\": 0,$" pend.json &&
     grep -q "^  \"refused_state_t\": 1,$" pend.json'
 
+# ------------------------------------------------------------------ a scene's name is data
+# A hostile "name" (ESC [31m, CR, LF and a forged "n: 999") is printed as
+# braun check prints it — control bytes as \xNN, a backslash as \\ — on the
+# progress line, the summary line and in a picture's titles (XML-escaped
+# there too), never raw.
+sed 's/"name": "pendulum"/"name": "p\\u001b[31mRED\\u001b[0m\\r\\nn: 999 <\&> \\"q\\" \\\\"/' pendulum.json > hostile.json
+want='p\x1B[31mRED\x1B[0m\x0D\x0An: 999 <&> "q" \\'
+"$BRAUN" check hostile.json > hcheck.txt 2>&1
+check "braun check shows the hostile name escaped (the reference)" sh -c '
+    [ "$(sed -n "s/^scene: //p" hcheck.txt)" = "$1" ]' sh "$want"
+"$BRAUN" run hostile.json --dt 1e-2 --t-end 0.5 --summary /dev/null --progress 2> hprog.txt; rc=$?
+esc=$(printf '\033'); cr=$(printf '\r')
+check "run --progress: the progress and summary lines escape the name as check does, no ESC or CR" sh -c '
+    [ "$1" -eq 0 ] && ! grep -q "$2\|$3" hprog.txt && [ "$(wc -l < hprog.txt)" -eq 5 ] &&
+    [ "$(grep -cF "braun: $4: t = 0.5 of 0.5 s" hprog.txt)" -eq 2 ] &&
+    [ "$(grep -cF "braun: $4: BRAUN_OK at t = 0.5 s" hprog.txt)" -eq 1 ] && ! grep -q "^n: 999" hprog.txt' \
+    sh "$rc" "$esc" "$cr" "$want"
+if have script; then
+    script -qec "$BRAUN run $TMP/hostile.json --dt 1e-2 --t-end 0.5 --summary /dev/null" /dev/null > htty.txt 2>&1
+    check "on a terminal: the only ESC bytes are the progress line's own erase (ESC [K)" sh -c '
+        grep -qF "$2" htty.txt && ! grep -q "$1\[3\|$1\[0m" htty.txt' sh "$esc" "$want"
+else
+    skip "hostile name on a terminal" "script (util-linux) not found"
+fi
+xml_want='p\x1B[31mRED\x1B[0m\x0D\x0An: 999 &lt;&amp;&gt; &quot;q&quot; \\'
+for o in hostile.svg hostile.html; do
+    "$BRAUN" plot hostile.json --dt 1e-2 --t-end 0.5 -o "$o"; rc=$?
+    check "$o: the title and caption escape the name (\\xNN, then XML), no control byte in the file" sh -c '
+        [ "$1" -eq 0 ] && ! LC_ALL=C tr -d "\n" < "$2" | LC_ALL=C grep -q "[[:cntrl:]]" &&
+        grep -qF "<title>$3: rk4" "$2" && grep -qF ">$3: rk4, h = 0.01 s" "$2"' sh "$rc" "$o" "$xml_want"
+done
+if have xmllint; then
+    check "the SVG with the hostile name is well-formed XML" xmllint --noout hostile.svg
+fi
+"$BRAUN" plot hostile.json --dt 1e-2 --t-end 0.5 --plot bob.x -o hchart.svg; rc=$?
+check "the chart's title and caption escape it too" sh -c '
+    [ "$1" -eq 0 ] && grep -qF "<title>$2: rk4" hchart.svg && ! LC_ALL=C tr -d "\n" < hchart.svg | LC_ALL=C grep -q "[[:cntrl:]]"' sh "$rc" "$xml_want"
+
 # ------------------------------------------------------------------ from anywhere
 mkdir elsewhere && cd elsewhere || exit 1
 "$BRAUN" run damped-motor.json --dt 1e-3 --t-end 1 --summary s.json; rc=$?

@@ -27,6 +27,13 @@ int braun_cli_error(const char *fmt, ...)
 const char *braun_cli_number(double x, char *buf);
 void braun_cli_put_number(FILE *f, double x);
 
+/* ------------------------------------------------------------ texts (cli_text.c) */
+/* A scene's text (name, description) as printed on a line people or
+ * scripts read: control bytes as \xNN, a backslash as \\ (what braun check
+ * prints); braun_cli_text_byte: one byte so escaped into buf (5 bytes). */
+void braun_cli_put_text(FILE *f, const char *s);
+const char *braun_cli_text_byte(unsigned char c, char *buf);
+
 /* ---------------------------------------------------------- files (cli_files.c) */
 /* A file's identity (device, inode) when it is a regular file. */
 typedef struct braun_cli_id {

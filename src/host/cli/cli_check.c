@@ -97,17 +97,13 @@ static int weight_rows(int rows, int n, const double *M, double *A)
     return 0;
 }
 
-/* A text of the scene on one "key: value" line: control bytes as \xNN and
- * a backslash as \\, so a name or description with a newline cannot add
- * a line (a forged "n: 999") to what scripts read. */
+/* A text of the scene on one "key: value" line (braun_cli_put_text), so a
+ * name or description with a newline cannot add a line (a forged "n:
+ * 999") to what scripts read. */
 static void text_value(const char *key, const char *s)
 {
     printf("%s: ", key);
-    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
-        if (*p < 0x20 || *p == 0x7f) printf("\\x%02X", *p);
-        else if (*p == '\\') fputs("\\\\", stdout);
-        else putchar(*p);
-    }
+    braun_cli_put_text(stdout, s);
     putchar('\n');
 }
 

@@ -30,7 +30,9 @@ void braun_cli_write_human(FILE *f, const braun_cli_result *r)
     const braun_cli_bounds *b = &r->stop.bounds;
     char st[64], p[16], v[16], e[16];
     status_name(r->status, st, sizeof st);
-    fprintf(f, "braun: %s: %s", r->scene, st);
+    fputs("braun: ", f);
+    braun_cli_put_text(f, r->scene); /* the scene's name, escaped as braun check does */
+    fprintf(f, ": %s", st);
     if (r->status == BRAUN_OK) {
         fprintf(f, " at t = %.6g s", r->final_t);
     } else if (r->stop.dropped) {

@@ -16,13 +16,10 @@ static void scene_line(const char *path, void *user)
         printf("%-22s (does not load: %s)\n", file, err);
         return;
     }
-    /* The scene's texts are data: control bytes shown as '?'. */
-    char desc[256];
-    size_t k = 0;
-    for (const char *p = f->description; p && *p && k + 1 < sizeof desc; p++)
-        desc[k++] = (unsigned char)*p < 0x20 || *p == 0x7f ? '?' : *p;
-    desc[k] = '\0';
-    printf("%-22s n=%d m=%d p=%d  %s\n", file, f->scene.n, f->scene.m, f->scene.p, desc);
+    /* The scene's texts are data: escaped as braun check shows them. */
+    printf("%-22s n=%d m=%d p=%d  ", file, f->scene.n, f->scene.m, f->scene.p);
+    braun_cli_put_text(stdout, f->description);
+    putchar('\n');
     braun_scene_free(f);
 }
 

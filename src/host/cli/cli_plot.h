@@ -142,7 +142,8 @@ enum {
 };
 void plot_svg_items(FILE *f, const plot_job *job, const plot_canvas *cv, const double *pos,
                     int layer, const char *indent);
-/* XML text: &, <, >, " escaped, control bytes as '?'. */
+/* XML text: &, <, >, " as entities, control bytes and backslashes as
+ * braun_cli_put_text shows them (\xNN, \\). */
 void plot_xml_text(FILE *f, const char *s);
 /* The paths of the traced points (polylines), the time chart of --plot. */
 void plot_svg_paths(FILE *f, const plot_job *job, const plot_canvas *cv, const char *style);

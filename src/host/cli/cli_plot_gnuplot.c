@@ -3,7 +3,7 @@
  * chart. gnuplot reads the script and its data on a pipe and writes the
  * image to the output file's descriptor, so no file name ever goes into
  * the script; names in titles are single-quoted with quotes doubled and
- * control bytes as '?'. POSIX (fork, exec, pipe), confined to this file. */
+ * control bytes as \xNN (braun_cli_text_byte). POSIX (fork, exec, pipe), confined to this file. */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
 #endif
@@ -21,10 +21,11 @@
 /* A single-quoted gnuplot string. */
 static void gp_string(FILE *g, const char *s)
 {
+    char buf[5];
     fputc('\'', g);
     for (const unsigned char *p = (const unsigned char *)s; p && *p; p++) {
         if (*p == '\'') fputs("''", g);
-        else fputc(*p < 0x20 || *p == 0x7f ? '?' : *p, g);
+        else fputs(braun_cli_text_byte(*p, buf), g); /* control bytes as \xNN */
     }
     fputc('\'', g);
 }

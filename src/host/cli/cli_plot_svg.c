@@ -26,13 +26,13 @@ const char *plot_colour(int i)
 
 void plot_xml_text(FILE *f, const char *s)
 {
+    char buf[5];
     for (const unsigned char *p = (const unsigned char *)s; p && *p; p++) {
         if (*p == '&') fputs("&amp;", f);
         else if (*p == '<') fputs("&lt;", f);
         else if (*p == '>') fputs("&gt;", f);
         else if (*p == '"') fputs("&quot;", f);
-        else if (*p < 0x20 || *p == 0x7f) fputc('?', f);
-        else fputc(*p, f);
+        else fputs(braun_cli_text_byte(*p, buf), f); /* control bytes as \xNN */
     }
 }
 

@@ -67,8 +67,11 @@ static void show(braun_cli_progress *p, double t, long steps, double wall)
     human((double)steps, count, sizeof count);
     /* The time left at the simulated-time rate so far. */
     duration(frac > 0 ? elapsed * (1 - frac) / frac : NAN, left, sizeof left);
-    fprintf(stderr, "%sbraun: %s: t = %.6g of %.6g s (%.0f%%), %s steps, %s steps/s, %s left%s%s%s",
-            p->terminal ? "\r" : "", p->name, t, p->t_end, 100 * frac, count, rate, left,
+    /* The scene's name escaped: a CR or ESC in it would rewrite the line. */
+    fprintf(stderr, "%sbraun: ", p->terminal ? "\r" : "");
+    braun_cli_put_text(stderr, p->name);
+    fprintf(stderr, ": t = %.6g of %.6g s (%.0f%%), %s steps, %s steps/s, %s left%s%s%s",
+            t, p->t_end, 100 * frac, count, rate, left,
             p->phase ? " [" : "", p->phase ? p->phase : "", p->phase ? "]" : "");
     fputs(p->terminal ? "\033[K" : "\n", stderr);
     fflush(stderr);
