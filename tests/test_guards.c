@@ -349,6 +349,60 @@ static void test_guard_start_at_rest(void **state)
     test_sim_close(&big);
 }
 
+/* The adaptive step limits (a docs-only client's finding): h_min above
+ * h_max was accepted and every step taken below the "minimum"; NaN in h0
+ * selected the default; h_min was looked at only after a rejection. And a
+ * tolerance of 0 where y = 0 (atol 0, rtol 1e-290) made the error norm 0/0
+ * and the step NaN ("the step h = -nan cannot advance time"). */
+typedef struct { double t, hmin_seen, pending; long n; } step_seen;
+/* The smallest step but the last (pending when the run ends: it lands on
+ * t_end). */
+static int step_out(const braun_data *d, void *u)
+{
+    step_seen *w = u;
+    if (w->n > 1 && w->pending < w->hmin_seen) w->hmin_seen = w->pending;
+    if (w->n > 0) w->pending = (double)d->t - w->t;
+    w->t = (double)d->t;
+    w->n++;
+    return 0;
+}
+
+static void test_adaptive_step_limits(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    const braun_adaptive contradictory = {1e-8, 1e-8, 0, 0.5, 0.1, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &contradictory, 1.0, 0, NULL, NULL),
+                     BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(sim.data.error.where, "h_min > h_max"));
+    const double bad[3] = {NAN, INFINITY, -INFINITY};
+    for (int k = 0; k < 3; k++)
+        for (int f = 0; f < 3; f++) {
+            braun_adaptive c = {1e-8, 1e-8, 0, 0, 0, 0};
+            if (f == 0) c.h0 = bad[k];
+            if (f == 1) c.h_min = bad[k];
+            if (f == 2) c.h_max = bad[k];
+            assert_int_equal(braun_integrate_adaptive(&sim.data, &c, 1.0, 0, NULL, NULL), BRAUN_ERR_ARGUMENT);
+            assert_true(sim.data.t == 0);
+        }
+    /* every step but the last at least h_min, though the tolerance would
+     * take smaller ones at the start (h0 1e-6) */
+    const braun_adaptive floor = {1e-6, 1e-8, 1e-6, 1e-2, 0, 0};
+    step_seen w = {0, 1e300, 0, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &floor, 1.0, 1, step_out, &w), BRAUN_OK);
+    print_message("pendulum DOPRI5 h_min 1e-2: %ld steps, smallest %.3g\n", sim.data.stats.steps, w.hmin_seen);
+    assert_true(w.hmin_seen >= 1e-2 * (1 - 1e-9));
+    /* a zero tolerance where y = 0: STEP_TOO_SMALL, no NaN step */
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    const braun_adaptive zero = {1e-290, 0, 0, 0, 0, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &zero, 1.0, 0, NULL, NULL), BRAUN_ERR_STEP_TOO_SMALL);
+    assert_true(isfinite(sim.data.error.value));
+    test_sim_close(&sim);
+}
+
 /* braun_set_state starts a new run: statistics from zero. */
 static void test_set_state_resets_statistics(void **state)
 {
@@ -402,6 +456,7 @@ int main(void)
         cmocka_unit_test(test_time_resolution),
         cmocka_unit_test(test_adaptive_no_free_motion),
         cmocka_unit_test(test_guard_start_at_rest),
+        cmocka_unit_test(test_adaptive_step_limits),
         cmocka_unit_test(test_set_state_resets_statistics),
         cmocka_unit_test(test_eval_aliasing_refused),
     };

@@ -451,7 +451,8 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
 typedef struct braun_adaptive {
     braun_real rtol, atol;  /* mixed error test on q, v */
     braun_real h0;          /* first trial step (<= 0: 1e-3·(t_end - t)) */
-    braun_real h_min, h_max;/* <= 0: 1e-12·|span|, span */
+    braun_real h_min, h_max;/* <= 0: 1e-12·|span|, span; every step but the last in
+                             * [h_min, h_max]; not finite or h_min > h_max: refused */
     long max_steps;         /* attempts (accepted + rejected steps) of one call;
                                <= 0: 10^8. Counted per call: the same call from
                                the same state always behaves the same. */

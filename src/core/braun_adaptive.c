@@ -36,6 +36,8 @@ static double scaled(double e, double y0, double y1, braun_real rtol, braun_real
 {
     const double a = fabs(y0), b = fabs(y1);
     const double sc = (double)atol + (double)rtol * (a > b ? a : b);
+    /* atol = 0 where y is 0: no error is allowed, and none is none. */
+    if (sc == 0) return e == 0 ? 0 : HUGE_VAL;
     return e / sc;
 }
 
@@ -143,12 +145,22 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "tolerances", -1, -1, (double)ctl->rtol, (double)d->t);
     if (!braun_is_finite(t_end) || !(t_end > d->t))
         return braun__fail(d, BRAUN_ERR_TIME, "t_end", -1, -1, (double)t_end, (double)d->t);
+    /* The step limits: <= 0 selects a default; NaN and Inf mean nothing. */
+    if (!braun_is_finite(ctl->h0) || !braun_is_finite(ctl->h_min) || !braun_is_finite(ctl->h_max))
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "adaptive step limits h0, h_min, h_max (not finite)", -1, -1,
+                           0, (double)d->t);
     const braun_tableau *tb = braun__tableau(BRAUN_DOPRI5);
     braun_priv *pv = braun__priv(d);
     const double span = (double)(t_end - d->t);
     double h = ctl->h0 > 0 ? (double)ctl->h0 : 1e-3 * span;
     const double hmin = ctl->h_min > 0 ? (double)ctl->h_min : 1e-12 * span;
     const double hmax = ctl->h_max > 0 ? (double)ctl->h_max : span;
+    /* No step can lie between a minimum above the maximum. */
+    if (hmin > hmax)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "adaptive step limits (h_min > h_max)", -1, -1, hmin,
+                           (double)d->t);
+    /* Every step but the last, which lands on t_end, lies in [h_min, h_max]. */
+    if (h < hmin) h = hmin;
     const long max_steps = ctl->max_steps > 0 ? ctl->max_steps : 100000000L;
     /* Corrections at each accepted end where the backend can tell the ends
      * next to a singular configuration (soft directions: the built-in dense
@@ -242,14 +254,23 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
             pending = out && every > 0 && accepted % every == 0;
             double fac = err > 0 ? 0.9 * pow(err, -0.2) : 5.0;
             h *= fac > 5.0 ? 5.0 : (fac < 0.2 ? 0.2 : fac);
+            if (h < hmin) h = hmin;
         } else {
             d->stats.rejected_steps++;
             rejected++;
-            double fac = 0.9 * pow(err, -0.2);
+            /* (NaN: an error the tolerances cannot measure, e.g. rtol tiny
+             * and atol 0 where y = 0, is a rejection too.) */
+            double fac = err == err ? 0.9 * pow(err, -0.2) : 0.1;
+            const double tried = h;
             h *= fac < 0.1 ? 0.1 : (fac > 0.9 ? 0.9 : fac);
             if (h < hmin) {
-                if (!st) st = braun__fail(d, BRAUN_ERR_STEP_TOO_SMALL, "adaptive", -1, -1, h, (double)d->t);
-                break;
+                /* Once more at h_min, unless that is what failed (or the
+                 * last step, shorter, to t_end). */
+                if (tried <= hmin) {
+                    if (!st) st = braun__fail(d, BRAUN_ERR_STEP_TOO_SMALL, "adaptive", -1, -1, h, (double)d->t);
+                    break;
+                }
+                h = hmin;
             }
         }
     }
