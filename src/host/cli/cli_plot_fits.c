@@ -37,16 +37,21 @@ static int drawing_fits(const plot_job *job)
     double *pos = malloc((size_t)dr->nanchors * 3 * sizeof *pos + 1);
     braun_real *qr = malloc((size_t)s->n * sizeof *qr + 1);
     char *use = calloc((size_t)dr->nanchors + 1, 1);
-    int rc = 0;
-    if (!pos || !qr || !use) rc = braun_cli_error("out of memory");
-    for (int i = 0; !rc && i < dr->nitems; i++) {
+    if (!pos || !qr || !use) {
+        free(pos);
+        free(qr);
+        free(use);
+        return braun_cli_error("out of memory");
+    }
+    for (int i = 0; i < dr->nitems; i++) {
         int a[3];
         const int k = item_anchors(&dr->items[i], a);
         for (int j = 0; j < k; j++) use[a[j]] = 1;
         if (dr->items[i].kind == PLOT_OUTLINE)
             for (int j = 0; j < dr->items[i].count; j++) use[dr->items[i].a + j] = 1;
     }
-    for (int i = 0; !rc && i < dr->ntraces; i++) use[dr->traces[i].anchor] = 1;
+    for (int i = 0; i < dr->ntraces; i++) use[dr->traces[i].anchor] = 1;
+    int rc = 0;
     for (long r = 0; !rc && r < s->count; r++) {
         const double *row = s->rows + (size_t)r * (size_t)s->cols;
         plot_drawing_eval(dr, row + 1, qr, pos);

@@ -51,12 +51,12 @@ static int read_row(const char *p, const char *eol, const braun_cli_target *t, i
             return braun_cli_error("--traj %s:%ld: column %d (%s) is not a number (or the row "
                                    "has fewer than %d columns)", path, line, j + 1, name, cols);
         /* The cell ends at the comma before the next one, or the line's end. */
-        if (last ? stop != eol : stop >= eol || *stop != ',')
-            return braun_cli_error("--traj %s:%ld: column %d (%s) %s", path, line, j + 1, name,
-                                   last && stop < eol && *stop == ','
-                                       ? "is followed by more columns than the header's"
-                                   : !last && stop >= eol ? "ends the row: fewer columns than the header's"
-                                                          : "is not a number");
+        if (last ? stop != eol : stop >= eol || *stop != ',') {
+            const char *why = "is not a number";
+            if (last && stop < eol && *stop == ',') why = "is followed by more columns than the header's";
+            else if (!last && stop >= eol) why = "ends the row: fewer columns than the header's";
+            return braun_cli_error("--traj %s:%ld: column %d (%s) %s", path, line, j + 1, name, why);
+        }
         if (!isfinite(row[j]) && stop != p)
             return braun_cli_error("--traj %s:%ld: column %d (%s) is %.*s: %s", path, line, j + 1,
                                    name, (int)(stop - start > 40 ? 40 : stop - start), start,
@@ -83,7 +83,6 @@ int plot_traj_read(const char *path, const braun_cli_target *t, plot_samples *s)
     }
     int rc = 0;
     const char *p = text, *end = text + len;
-    long line = 1;
     /* The header. */
     const char *eol = memchr(p, '\n', (size_t)(end - p));
     if (!eol) eol = end;
@@ -115,7 +114,7 @@ int plot_traj_read(const char *path, const braun_cli_target *t, plot_samples *s)
     long rows = 0;
     for (int pass = 0; !rc && pass < 2; pass++) {
         double t_prev = -HUGE_VAL;
-        line = 1;
+        long line = 1;
         for (p = body; !rc && p < end; p = eol + 1) {
             line++;
             eol = memchr(p, '\n', (size_t)(end - p));
