@@ -86,6 +86,7 @@ bad "every = 0" $run --dt 1e-3 --out "$TMP/x.csv" --every 0
 bad "every not an integer" $run --dt 1e-3 --out "$TMP/x.csv" --every 2.5
 bad "negative rank-tol" $run --dt 1e-3 --rank-tol -1
 bad "both tolerances 0" $run --dt 1e-3 --integrator dopri5 --rtol 0 --atol 0
+bad "rtol >= 1" $run --dt 1e-3 --integrator dopri5 --rtol 2
 bad "per-stage with dopri5" $run --dt 1e-3 --integrator dopri5 --discretization per-stage
 bad "csv and summary both on stdout" $run --dt 1e-3 --out -
 bad "unwritable summary" $run --dt 1e-3 --summary "$TMP/no/such/dir/s.json"

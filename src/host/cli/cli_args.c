@@ -320,6 +320,9 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
                                "(the adaptive driver corrects per step)");
     if (a->method == BRAUN_DOPRI5 && a->rtol == 0 && a->atol == 0)
         return braun_cli_error("--rtol and --atol cannot both be 0");
+    /* rtol >= 1 asks for no correct digit (the library refuses it too). */
+    if (a->method == BRAUN_DOPRI5 && a->rtol >= 1)
+        return braun_cli_error("--rtol %g: must be < 1 (a relative tolerance of 1 asks for no digit)", a->rtol);
     if (a->out_path && strcmp(a->out_path, "-") == 0 && a->summary_path &&
         strcmp(a->summary_path, "-") == 0)
         return braun_cli_error("--out - and the summary both write to stdout; give --summary FILE");

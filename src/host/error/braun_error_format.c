@@ -82,7 +82,8 @@ static void describe(msg *w, const braun_data *d)
         if (where && strcmp(where, "method") == 0)
             put(w, "unknown integration method %d", e->index);
         else if (where && strcmp(where, "tolerances") == 0)
-            put(w, "invalid tolerances (rtol = %.3g; need rtol, atol >= 0, not both 0)", e->value);
+            put(w, "invalid tolerances (rtol = %.3g; need 0 <= rtol < 1, atol >= 0 and finite, not both 0)",
+                e->value);
         else if (where)
             put(w, "invalid argument '%s'", where);
         else
