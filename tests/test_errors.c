@@ -51,6 +51,48 @@ static void test_model_validation(void **state)
     free(buf);
 }
 
+/* braun_system_check: braun_model_init's status, and a constant string
+ * naming the field and the rule (a docs-only client found only the status
+ * text, "a callback the sizes require is NULL", which does not say which). */
+static void test_system_check_names_the_problem(void **state)
+{
+    (void)state;
+    pendulum_params prm = pend(0);
+    const braun_system s = pendulum_system(&prm);
+    const char *why = "x";
+    assert_int_equal(braun_system_check(&s, &why), BRAUN_OK);
+    assert_null(why);
+    assert_int_equal(braun_system_check(NULL, &why), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(why, "NULL"));
+    struct { braun_system sys; int status; const char *names; } cases[9];
+    for (int i = 0; i < 9; i++) cases[i].sys = s;
+    cases[0].sys.n = 0, cases[0].status = BRAUN_ERR_SIZE, cases[0].names = "n <= 0";
+    cases[1].sys.m = -1, cases[1].status = BRAUN_ERR_SIZE, cases[1].names = "m or p < 0";
+    cases[2].sys.n = 5000, cases[2].status = BRAUN_ERR_SIZE, cases[2].names = "BRAUN_MAX_DENSE";
+    cases[3].sys.mass = NULL, cases[3].status = BRAUN_ERR_MISSING_CALLBACK, cases[3].names = "mass";
+    cases[4].sys.forces = NULL, cases[4].status = BRAUN_ERR_MISSING_CALLBACK, cases[4].names = "forces";
+    cases[5].sys.holonomic = NULL, cases[5].status = BRAUN_ERR_MISSING_CALLBACK, cases[5].names = "holonomic";
+    cases[6].sys.p = 1, cases[6].status = BRAUN_ERR_MISSING_CALLBACK, cases[6].names = "nonholonomic";
+    cases[7].sys.flags |= BRAUN_ENERGY_INPUT, cases[7].status = BRAUN_ERR_MISSING_CALLBACK,
+        cases[7].names = "power";
+    cases[8].sys.flags = 1u << 7, cases[8].status = BRAUN_ERR_ARGUMENT, cases[8].names = "flags";
+    for (int i = 0; i < 9; i++) {
+        braun_model m;
+        assert_int_equal(braun_system_check(&cases[i].sys, &why), cases[i].status);
+        assert_int_equal(braun_model_init(&m, &cases[i].sys), cases[i].status);
+        print_message("case %d: %s\n", i, why);
+        assert_non_null(why);
+        assert_non_null(strstr(why, cases[i].names));
+    }
+    /* a sparsity that does not tile M */
+    braun_sparsity sp = {NULL, NULL, 0, NULL};
+    braun_system sparse = s;
+    sparse.sparsity = &sp;
+    assert_int_equal(braun_system_check(&sparse, &why), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(why, "sparsity"));
+    assert_int_equal(braun_system_check(&s, NULL), BRAUN_OK);
+}
+
 /* Misaligned buffers are fine: the data is carved from an aligned offset. */
 static void test_misaligned_buffer(void **state)
 {
@@ -352,6 +394,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_model_validation),
+        cmocka_unit_test(test_system_check_names_the_problem),
         cmocka_unit_test(test_misaligned_buffer),
         cmocka_unit_test(test_bad_mass_matrices),
         cmocka_unit_test(test_bad_state_and_steps),

@@ -299,8 +299,13 @@ typedef struct braun_model {
 #define BRAUN_MAX_SPARSE (1 << 20)
 
 /* Copy the system, validate sizes and callbacks, set default options.
- * Returns BRAUN_OK, BRAUN_ERR_ARGUMENT, BRAUN_ERR_SIZE or BRAUN_ERR_MISSING_CALLBACK. */
+ * Returns BRAUN_OK, BRAUN_ERR_ARGUMENT, BRAUN_ERR_SIZE or BRAUN_ERR_MISSING_CALLBACK
+ * (braun_system_check names the problem). */
 int braun_model_init(braun_model *model, const braun_system *sys);
+/* The validation of braun_model_init, with its status; *problem (when not
+ * NULL) is NULL or a constant string naming the field and the rule broken
+ * ("holonomic is NULL but m > 0", "sparsity: row_ptr[0] != 0", ...). */
+int braun_system_check(const braun_system *sys, const char **problem);
 
 /* ------------------------------------------------------------------ */
 /* Data: state, statistics, scratch                                    */
