@@ -335,7 +335,7 @@ static void test_guard_start_at_rest(void **state)
         assert_near(sim.data.q[2], T * T * T / 2, 1e-9);
         assert_near(sim.data.work_in, 3 * T * T * T * T / 8, 1e-8);
         /* the velocity and energy scales grew with the motion */
-        assert_true(sim.data.guard.vel > 0 && sim.data.guard.energy > 1e-6);
+        assert_true(sim.data.guard.vel > 0 && sim.data.guard.energy > 1e-20); /* from 0 and 1e-30 */
         test_sim_close(&sim);
     }
     /* and the guard still stops what it is for: a step far too large */

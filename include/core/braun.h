@@ -356,7 +356,8 @@ typedef struct braun_data {
      *   vel    = the same with s_v,j = max(|v_j|, V), over all rows, V =
      *            max(‖v‖_∞, sqrt(L·‖M⁻¹Q‖_∞)): the speed of the motion or
      *            of a fall over L;
-     *   energy = max(|E0|, ½ s_vᵀ M s_v, |∫Ė|, 1e-30);
+     *   energy = max(|E0|, ½ s_vᵀ M s_v, |∫Ė|, 1e-30) (measured again:
+     *            ½ vᵀ M v in place of ½ s_vᵀ M s_v);
      * and the residuals at the initial state (pos0, vel0, energy0). A
      * program may set its own scales after braun_set_state. */
     struct {
