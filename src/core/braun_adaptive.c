@@ -177,6 +177,9 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
      * the end, first same as last). An end that the corrections move is
      * another point: its first stage is evaluated anew. */
     int first_known = 0;
+    /* The first stage holds no correction unless they are computed there
+     * (at the start: every placement but the end). */
+    const int first_pure = !(d->model->opt.corrections && where != BRAUN__CORR_AT_END);
     const int fsal = braun__tableau_fsal(tb) && !d->model->opt.corrections;
     const int last_stage = tb->stages - 1;
 
@@ -209,7 +212,9 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
          * meaning from one trial step to the next and the error test, which
          * would see the 1/h terms, rejects without end. */
         st = braun__rk_attempt(d, tb, hr, where, pv->y1, pv->yerr, first_known);
-        first_known = pv->first_done;
+        /* k[0] is this start's first stage if it was kept or if a later
+         * stage was reached (pv->stage is set before a stage's evaluation). */
+        first_known = first_pure && (first_known || pv->stage > 0);
         double err = 0;
         if (!st) {
             err = error_norm(d, hr, ctl->rtol, ctl->atol);

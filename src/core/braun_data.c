@@ -62,6 +62,8 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->p = s->p;
     pv->rows = s->m + s->p;
     pv->need_fq = s->p > 0 && s->m > 0;
+    pv->work_rows = s->m + s->p > 0 && !(s->flags & BRAUN_SCLERONOMIC) &&
+                    ((s->flags & BRAUN_ENERGY_INPUT) || s->energy);
     pv->R_is_constant = 0;
     pv->state_integrated = 0;
     pv->state_set = 0;

@@ -325,6 +325,17 @@ static int stage_ideal(braun_data *d, int with_residuals, braun_real *vdot)
  * λᵀb_q for the holonomic rows, λᵀ(A_vv v − Φ_v) for the nonholonomic
  * ones (−λᵀc for Φ_v = A_vv v + c). */
 
+/* u·(R v − C⁺e) (above). Out of line: only systems not declared
+ * scleronomic run it. */
+static BRAUN_NOINLINE braun_real constraint_work_rate(braun_priv *pv)
+{
+    const int n = BRAUN_N(pv->n);
+    braun__mul_r(pv, pv->at.v, pv->tmp);
+    braun__pinv(pv, 0, pv->ev, pv->ce);
+    for (int i = 0; i < n; i++) pv->tmp[i] -= pv->ce[i];
+    return braun_dot(n, pv->u, pv->tmp);
+}
+
 static int stage_power(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
@@ -336,12 +347,8 @@ static int stage_power(braun_data *d)
         if (!st) st = braun__check_finite(d, 1, &Edot, "power", 0, t);
         if (st) return st;
     }
-    if (!(s->flags & BRAUN_SCLERONOMIC) && pv->rows > 0) {
-        const int n = BRAUN_N(pv->n);
-        braun__mul_r(pv, pv->at.v, pv->tmp);
-        braun__pinv(pv, 0, pv->ev, pv->ce);
-        for (int i = 0; i < n; i++) pv->tmp[i] -= pv->ce[i];
-        Edot += braun_dot(n, pv->u, pv->tmp);
+    if (pv->work_rows) {
+        Edot += constraint_work_rate(pv);
         /* The residuals' callback outputs enter only here: a NaN among
          * them is named, not integrated. */
         if (!braun_is_finite(Edot)) return nonfinite_culprit(d, 1);
@@ -361,19 +368,17 @@ int braun__forward(braun_data *d, unsigned with, braun_real *vdot)
     const int res = (with & BRAUN_WITH_RESIDUALS) != 0;
     d->stats.rhs_evals++;
     /* A constant M was factored once (stage mass is then done). */
-    const braun_system *sys = &d->model->sys;
     /* The work rate of moving constraints needs the velocity error at the
      * point (stage power): the residuals, without C_q's factorization. */
-    const int power_rows = (with & BRAUN_WITH_POWER) && !(sys->flags & BRAUN_SCLERONOMIC) &&
-                           ((sys->flags & BRAUN_ENERGY_INPUT) || sys->energy);
+    const int res_rows = res | (pv->work_rows & ((with & BRAUN_WITH_POWER) != 0));
     int st = pv->done & BRAUN_DONE_MASS ? BRAUN_OK : stage_mass(d);
     if (!st) st = stage_forces(d);
-    if (!st && pv->rows > 0) st = stage_constraints(d, res || power_rows);
+    if (!st && pv->rows > 0) st = stage_constraints(d, res_rows);
     if (!st && pv->rows > 0) st = stage_factor(d, res);
     if (!st) st = stage_ideal(d, res, vdot);
     /* Without energy input and constraint work Ė is 0: no stage to run. */
     if (!st && (with & BRAUN_WITH_POWER)) {
-        const braun_system *s = sys;
+        const braun_system *s = &d->model->sys;
         if ((s->flags & BRAUN_ENERGY_INPUT) || (s->energy && !(s->flags & BRAUN_SCLERONOMIC)))
             st = stage_power(d);
         else

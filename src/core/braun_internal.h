@@ -80,6 +80,7 @@ enum braun_stage_bits {
 typedef struct braun_priv {
     int n, m, p, rows;
     int need_fq;          /* separate C_q factorization (p > 0 and m > 0) */
+    int work_rows;        /* rows whose work rate stage power adds (not scleronomic, a law or input) */
     int R_is_constant;    /* R computed once in braun_data_init */
     int state_integrated; /* the state came from a step, not braun_set_state */
     int state_set;        /* braun_set_state was called */
@@ -110,7 +111,6 @@ typedef struct braun_priv {
     int rule_keep[2], rule_cap[2];
     int rule_stage;       /* a step's later stages: a rank rises only past BRAUN_RANK_TOL_STAGE */
     int step_rank[2];     /* the last step's first-stage rank (the rows: none yet) */
-    int first_done;       /* braun__rk_attempt: the attempt's first stage is in k[0] (pv->y0, d->t) */
     /* The soft-direction filter (braun_forward.c, soft_filter): on for the
      * stages of a fixed step (stage: the one being evaluated, its v' at
      * k[stage] + n); the reference is the v' of the last stage that had no

@@ -143,8 +143,11 @@ typedef struct braun_qrcp {
 /* A helper whose length argument must fold into a dispatched body. */
 #if defined(__GNUC__)
 #define BRAUN_FORCE_INLINE static inline __attribute__((always_inline))
+/* Kept out of its (hot) caller: a rare path that would crowd its registers. */
+#define BRAUN_NOINLINE __attribute__((noinline))
 #else
 #define BRAUN_FORCE_INLINE static inline
+#define BRAUN_NOINLINE
 #endif
 /* BRAUN_SMALL_MAX (default 8, at most 8): the largest length with a body of
  * its own. Each one costs code: the dispatched bodies take a small

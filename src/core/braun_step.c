@@ -115,19 +115,15 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     int stages = tb->stages;
     if (!yerr)
         while (stages > 1 && tb->b[stages - 1] == 0) stages--;
-    /* The first stage is known (first_known) unless it computes the
-     * corrections, which depend on h (every placement but the end). */
-    const int reuse_first = first_known && !(corr && !at_end);
-    if (!reuse_first) pv->first_done = 0;
-    for (int s = 0; s < stages; s++) {
-        if (s == 0 && reuse_first) {
-            /* k[0], phi0, ev0 and step_rank are this start's already. */
-            pv->rule_keep[0] = pv->step_rank[0];
-            pv->rule_keep[1] = pv->step_rank[1];
-            pv->rule_stage = 1;
-            pv->first_done = 1;
-            continue;
-        }
+    int s0 = 0;
+    if (first_known) {
+        /* k[0], phi0, ev0 and step_rank are this start's already. */
+        pv->rule_keep[0] = pv->step_rank[0];
+        pv->rule_keep[1] = pv->step_rank[1];
+        pv->rule_stage = 1;
+        s0 = 1;
+    }
+    for (int s = s0; s < stages; s++) {
         const braun_real *ys = y0;
         if (s > 0) {
             braun_real *w = pv->ys;
@@ -171,7 +167,6 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
             }
         for (int i = 0; i < n; i++) k[i] = ys[n + i];
         k[2 * n] = pv->Edot;
-        if (s == 0) pv->first_done = !wants_corr;
         if (wants_corr) {
             st = diverged_if_integrated(d, s, braun__corrections(d, k + n, s == 0));
             if (st) return st;

@@ -39,9 +39,9 @@ typedef enum {
  * at the start are kept in pv->phi0, pv->ev0 and those at the last stage
  * are left in pv->phi, pv->ev. first_known: pv->k[0] already holds the
  * first stage at this start, with phi0, ev0 and step_rank (the adaptive
- * driver's reuse); it is then not evaluated again, unless the first stage
- * computes corrections (they depend on h). pv->first_done tells whether
- * k[0] holds it on return. (src/braun_step.c) */
+ * driver's reuse; never where the first stage computes corrections, which
+ * depend on h): it is not evaluated again. On return pv->stage is the last
+ * stage evaluated (set before its evaluation). (src/braun_step.c) */
 int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
                       braun__corr_at where, braun_real *y1, braun_real *yerr, int first_known);
 /* Whether the last stage of tb is evaluated at the step's end, with the
