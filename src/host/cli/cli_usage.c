@@ -138,6 +138,7 @@ void braun_cli_usage(FILE *f)
 "are two outputs that are one file and an output that is the input scene.\n"
 "\n"
 "Exit status: 0 success; 1 the solver failed (message on stderr, summary and\n"
-"CSV written up to the last good step); 2 bad arguments or a bad scene file.\n",
+"CSV written up to the last good step), the library refused the system, or an\n"
+"output could not be written; 2 bad arguments or a bad scene file.\n",
         f);
 }
