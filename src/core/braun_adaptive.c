@@ -245,10 +245,7 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
                 braun_real *k0 = pv->k[0];
                 pv->k[0] = pv->k[last_stage];
                 pv->k[last_stage] = k0;
-                for (int i = 0; i < pv->rows; i++) {
-                    pv->phi0[i] = pv->phi[i];
-                    pv->ev0[i] = pv->ev[i];
-                }
+                braun__keep_start_residuals(pv); /* the end's: the next start's */
                 pv->step_rank[0] = pv->rank[0];
                 pv->step_rank[1] = pv->rank[1];
             }

@@ -9,8 +9,6 @@
 /* The accuracy guard (braun.h, options.guard) on the residuals this step's
  * start has computed: the state the last step left. A residual above both
  * its bound and its size at braun_set_state stops the run. */
-enum { GUARD_POS, GUARD_VEL, GUARD_ENERGY };
-
 static void guard_rescale(braun_data *d, int accel);
 
 BRAUN_FORCE_INLINE int guard_exceeds(const braun_data *d, braun_real r2, braun_real scale, braun_real r0)
@@ -26,33 +24,30 @@ BRAUN_FORCE_INLINE int guard_exceeds(const braun_data *d, braun_real r2, braun_r
  * that begins at zero, no gravity) has none, and every later round-off
  * would fail. They grow with the motion: measured again at this point,
  * the larger kept, before the residual is judged. */
-static int guard_fails_again(braun_data *d, braun_real r2, int which, int accel, const char *what)
+static int guard_fails_again(braun_data *d, braun_real r2, const braun_real *scale, braun_real r0,
+                             int accel, const char *what)
 {
     guard_rescale(d, accel);
-    const braun_real scale = which == GUARD_POS ? d->guard.pos
-                             : which == GUARD_VEL ? d->guard.vel : d->guard.energy;
-    const braun_real r0 = which == GUARD_POS ? d->guard.pos0
-                          : which == GUARD_VEL ? d->guard.vel0 : d->guard.energy0;
-    if (!guard_exceeds(d, r2, scale, r0)) return BRAUN_OK;
+    if (!guard_exceeds(d, r2, *scale, r0)) return BRAUN_OK;
     return braun__fail(d, BRAUN_ERR_ACCURACY, what, -1, -1, (double)braun_sqrt(r2),
                        (double)braun__priv(d)->at.t);
 }
 
-/* r2: the squared residual; scale, r0: its scale and its value at the
- * start (which: the scale's name); accel: a forward pass at the point has
- * ã (the forces' acceleration enters the velocity scale). Inline: the
- * check runs at every step, the slow path almost never. */
-BRAUN_FORCE_INLINE int guard_fails(braun_data *d, braun_real r2, braun_real scale, braun_real r0,
-                                   int which, int accel, const char *what)
+/* r2: the squared residual; scale: its scale in d->guard (the slow path
+ * may raise it); r0: its value at the start; accel: a forward pass at the
+ * point has ã (the forces' acceleration enters the velocity scale).
+ * Inline: the check runs at every step, the slow path almost never. */
+BRAUN_FORCE_INLINE int guard_fails(braun_data *d, braun_real r2, const braun_real *scale, braun_real r0,
+                                   int accel, const char *what)
 {
-    if (!guard_exceeds(d, r2, scale, r0)) return BRAUN_OK;
-    return guard_fails_again(d, r2, which, accel, what);
+    if (!guard_exceeds(d, r2, *scale, r0)) return BRAUN_OK;
+    return guard_fails_again(d, r2, scale, r0, accel, what);
 }
 
 /* The energy residual Φ_e of a point against its bound. */
 static int guard_energy(braun_data *d, braun_real phi_e, int accel)
 {
-    return guard_fails(d, phi_e * phi_e, d->guard.energy, d->guard.energy0, GUARD_ENERGY, accel,
+    return guard_fails(d, phi_e * phi_e, &d->guard.energy, d->guard.energy0, accel,
                        "accuracy guard: energy residual |Phi_e|");
 }
 
@@ -61,10 +56,10 @@ static int guard_rows(braun_data *d, unsigned corr, int accel)
     braun_priv *pv = braun__priv(d);
     int st = BRAUN_OK;
     if ((corr & BRAUN_CORRECT_POSITION) && pv->m > 0)
-        st = guard_fails(d, braun_dot(pv->m, pv->phi, pv->phi), d->guard.pos, d->guard.pos0, GUARD_POS, accel,
+        st = guard_fails(d, braun_dot(pv->m, pv->phi, pv->phi), &d->guard.pos, d->guard.pos0, accel,
                          "accuracy guard: position residual |Phi_q|");
     if (!st && (corr & BRAUN_CORRECT_VELOCITY) && pv->rows > 0)
-        st = guard_fails(d, braun_dot(pv->rows, pv->ev, pv->ev), d->guard.vel, d->guard.vel0, GUARD_VEL, accel,
+        st = guard_fails(d, braun_dot(pv->rows, pv->ev, pv->ev), &d->guard.vel, d->guard.vel0, accel,
                          "accuracy guard: velocity residual |[dPhi_q; Phi_v]|");
     return st;
 }

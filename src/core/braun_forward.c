@@ -367,10 +367,10 @@ int braun__forward(braun_data *d, unsigned with, braun_real *vdot)
     braun_priv *pv = braun__priv(d);
     const int res = (with & BRAUN_WITH_RESIDUALS) != 0;
     d->stats.rhs_evals++;
-    /* A constant M was factored once (stage mass is then done). */
     /* The work rate of moving constraints needs the velocity error at the
      * point (stage power): the residuals, without C_q's factorization. */
     const int res_rows = res | (pv->work_rows & ((with & BRAUN_WITH_POWER) != 0));
+    /* A constant M was factored once (stage mass is then done). */
     int st = pv->done & BRAUN_DONE_MASS ? BRAUN_OK : stage_mass(d);
     if (!st) st = stage_forces(d);
     if (!st && pv->rows > 0) st = stage_constraints(d, res_rows);

@@ -160,11 +160,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
             st = diverged_if_integrated(d, s, braun__guard_start(d, k + n));
             if (st) return st;
         }
-        if ((yerr || at_end) && s == 0)
-            for (int i = 0; i < pv->rows; i++) {
-                pv->phi0[i] = pv->phi[i];
-                pv->ev0[i] = pv->ev[i];
-            }
+        if ((yerr || at_end) && s == 0) braun__keep_start_residuals(pv);
         for (int i = 0; i < n; i++) k[i] = ys[n + i];
         k[2 * n] = pv->Edot;
         if (wants_corr) {

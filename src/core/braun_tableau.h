@@ -55,6 +55,15 @@ static inline int braun__tableau_fsal(const braun_tableau *tb)
         if (tb->a[l][j] != tb->b[j]) return 0;
     return tb->b[l] == 0;
 }
+/* The residuals at a step's start (pv->phi, pv->ev there) kept as
+ * pv->phi0, pv->ev0 for the adaptive error test. */
+static inline void braun__keep_start_residuals(braun_priv *pv)
+{
+    for (int i = 0; i < pv->rows; i++) {
+        pv->phi0[i] = pv->phi[i];
+        pv->ev0[i] = pv->ev[i];
+    }
+}
 /* pv->y0 := current state. */
 void braun__load_state(braun_data *d);
 /* Accept y1 as the state at t_new and count the step. */
