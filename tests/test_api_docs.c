@@ -649,6 +649,48 @@ static void test_per_stage_order(void **state)
     }
 }
 
+/* braun.h: BRAUN_ENERGY_INPUT without an energy law still integrates
+ * ∫Ė into d->work_in (the work of the applied forces) and nothing else
+ * uses it. A particle of mass 2 pushed by F = 3 from rest: x = ¾t²,
+ * work F·x = (9/4)t², exact for RK4 (polynomials of degree ≤ 4). */
+static int push_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t; (void)q; (void)u;
+    M[0] = 2;
+    return 0;
+}
+static int push_force(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q, void *u)
+{
+    (void)t; (void)q; (void)v; (void)u;
+    Q[0] = 3;
+    return 0;
+}
+static int push_power(braun_real t, const braun_real *q, const braun_real *v, braun_real *Edot, void *u)
+{
+    (void)t; (void)q; (void)u;
+    *Edot = 3 * v[0];
+    return 0;
+}
+
+static void test_energy_input_without_energy_law(void **state)
+{
+    (void)state;
+    const braun_system s = {1, 0, 0, BRAUN_MASS_CONSTANT | BRAUN_ENERGY_INPUT, push_mass, push_force,
+                            NULL, NULL, NULL, push_power, NULL, NULL};
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, 0), BRAUN_OK);
+    const braun_real q0[1] = {0}, v0[1] = {0};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 0.1, 2.0, 0, NULL, NULL), BRAUN_OK);
+    assert_near(sim.data.q[0], 3.0, 1e-12);        /* ¾·2² */
+    assert_near(sim.data.work_in, 9.0, 1e-12);     /* (9/4)·2² */
+    test_sim_close(&sim);
+    /* energy correction without the law is refused, not ignored */
+    sim.buffer = NULL;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ENERGY), BRAUN_ERR_NO_ENERGY_LAW);
+    free(sim.buffer);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -661,6 +703,7 @@ int main(void)
         cmocka_unit_test(test_time_dependent_potential),
         cmocka_unit_test(test_energy_correction_on_a_driven_scene),
         cmocka_unit_test(test_per_stage_order),
+        cmocka_unit_test(test_energy_input_without_energy_law),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,6 +2,7 @@
  * step leaves the last good state in place. */
 #include "test_util.h"
 #include "test_systems.h"
+#include "braun_host.h" /* braun_error_format */
 
 static pendulum_params pend(int bad_mass)
 {
@@ -323,12 +324,53 @@ static void test_inconsistent_constraints(void **state)
     assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
     assert_string_equal(sim.data.error.where, "holonomic constraints");
     assert_near(sim.data.error.value, sqrt(0.5), 1e-12); /* |(Φ1 - Φ2)|/sqrt(2) */
+    /* the two rows that disagree are named, for the program to name its joints */
+    assert_true((sim.data.error.index == 0 && sim.data.error.index2 == 1) ||
+                (sim.data.error.index == 1 && sim.data.error.index2 == 0));
+    {
+        char what[256];
+        braun_error_format(&sim.data, what, sizeof what);
+        assert_non_null(strstr(what, "rows"));
+    }
     assert_true(sim.data.t == 0);
     /* the same rows agreeing (gap 0) are merely redundant: fine */
     gap = 0;
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
     assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 0, NULL, NULL), BRAUN_OK);
     assert_near(sim.data.q[0], 0, 1e-12);
+    test_sim_close(&sim);
+}
+
+/* Three rows, x = 0, y = 0 and x = gap: rows 0 and 2 disagree, row 1
+ * is consistent and independent — the error names 0 and 2, not 1. */
+static int contradict3(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                       braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    const double gap = *(const double *)u;
+    (void)t; (void)v;
+    if (phi) { phi[0] = q[0]; phi[1] = q[1]; phi[2] = q[0] - gap; }
+    if (A) { A[0] = 1; A[1] = 0; A[2] = 0; A[3] = 1; A[4] = 1; A[5] = 0; }
+    if (b) b[0] = b[1] = b[2] = 0;
+    if (bv) bv[0] = bv[1] = bv[2] = 0;
+    return 0;
+}
+
+static void test_inconsistent_rows_named(void **state)
+{
+    (void)state;
+    double gap = 0.25;
+    braun_system s = {2, 3, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, contradict3, NULL,
+                      NULL, NULL, &gap, NULL};
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION), BRAUN_OK);
+    const double q0[2] = {0.1, 0.3}, v0[2] = {0, 0};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
+    const int a = sim.data.error.index, b = sim.data.error.index2;
+    assert_true((a == 0 && b == 2) || (a == 2 && b == 0));
+    char what[256];
+    braun_error_format(&sim.data, what, sizeof what);
+    assert_true(strstr(what, "rows 0 and 2") || strstr(what, "rows 2 and 0"));
     test_sim_close(&sim);
 }
 
@@ -401,6 +443,7 @@ int main(void)
         cmocka_unit_test(test_callback_failures),
         cmocka_unit_test(test_divergence_is_reported),
         cmocka_unit_test(test_inconsistent_constraints),
+        cmocka_unit_test(test_inconsistent_rows_named),
         cmocka_unit_test(test_infinite_jacobian_is_named),
         cmocka_unit_test(test_nonfinite_callback_outputs_are_named),
         cmocka_unit_test(test_status_names),

@@ -133,7 +133,9 @@ typedef int (*braun_energy_fn)(braun_real t, const braun_real *q,
  * while ∫Ė keeps Φ_e = 0); alternatively leave it out of E, and its force
  * is an applied force whose power −(∂V/∂q)·v goes here (docs/api.md,
  * "Driven and dissipative systems"). Only called when the system sets
- * BRAUN_ENERGY_INPUT; ∫Ė dτ is part of the integrated state. */
+ * BRAUN_ENERGY_INPUT; ∫Ė dτ is part of the integrated state. Without an
+ * energy law the flag is still allowed: ∫Ė is integrated into d->work_in
+ * (the work the applied forces did) and used for nothing else. */
 typedef int (*braun_power_fn)(braun_real t, const braun_real *q,
                               const braun_real *v, braun_real *Edot, void *user);
 
@@ -330,7 +332,9 @@ typedef struct braun_error_info {
     int status;
     const char *where;  /* static string: "mass", "forces", "state q", ... */
     int index;          /* row/entry involved, or -1 */
-    int index2;         /* column, or -1 */
+    int index2;         /* column, or -1; BRAUN_ERR_INCONSISTENT: index and
+                         * index2 are the two holonomic rows that disagree
+                         * most (largest least-squares residual), -1 if none */
     double value;       /* offending value (pivot, asymmetry, ...) */
     double t;           /* time of the failing evaluation */
 } braun_error_info;

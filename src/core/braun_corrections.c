@@ -101,6 +101,32 @@ static void position_rhs(braun_priv *pv)
     for (int i = 0; i < pv->m; i++) pv->ep[i] = -(pv->phi[i] + h * pv->ev[i]);
 }
 
+/* The failure of Eq. 16's dependent rows, naming the two rows that
+ * disagree most: the largest entries of the least-squares residual
+ * A·dq − ep (a rare path: the user's program can name the joints). */
+static BRAUN_NOINLINE int inconsistent(braun_data *d, braun_real resid)
+{
+    braun_priv *pv = braun__priv(d);
+    braun_real *dq = pv->dq;
+    int worst = -1, next = -1;
+    braun_real rw = -1, rn = -1;
+    braun__solve_r(pv, dq, dq);
+    for (int i = 0; i < pv->m; i++) {
+        const braun_real r = braun_fabs(braun__row_dot(pv, i, dq) - pv->ep[i]);
+        if (r > rw) {
+            next = worst;
+            rn = rw;
+            worst = i;
+            rw = r;
+        } else if (r > rn) {
+            next = i;
+            rn = r;
+        }
+    }
+    return braun__fail(d, BRAUN_ERR_INCONSISTENT, "holonomic constraints", worst, next, (double)resid,
+                       (double)pv->at.t);
+}
+
 static int stage_position(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
@@ -115,9 +141,7 @@ static int stage_position(braun_data *d)
         braun__lsq(pv, slot, pv->ep, pv->dq, &resid);
         const braun_real tol = d->model->opt.inconsistency_tol > 0 ? d->model->opt.inconsistency_tol
                                                                    : braun_sqrt(BRAUN_EPS);
-        if (resid > tol)
-            return braun__fail(d, BRAUN_ERR_INCONSISTENT, "holonomic constraints", -1, -1,
-                               (double)resid, (double)pv->at.t);
+        if (resid > tol) return inconsistent(d, resid);
     } else {
         braun__pinv(pv, slot, pv->ep, pv->dq);
     }
