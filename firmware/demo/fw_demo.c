@@ -476,6 +476,29 @@ static int cmd_long(int argc, char **argv, const fw_workspace *ws)
     return st != 0;
 }
 
+/* ------------------------------------------------------------ limits */
+
+/* `limits`: braun_integrate refuses a span of more steps than its counter
+ * (a long: 32 bits here) holds — 1e10 steps of 1e-10 s — with
+ * BRAUN_ERR_TOO_MANY_STEPS and the state untouched, instead of running
+ * 2^31 steps and a last one of most of the span. */
+static int cmd_limits(const fw_workspace *ws)
+{
+    braun_model model;
+    braun_data d;
+    subject sub;
+    memset(&d, 0, sizeof d);
+    int st = setup("pendulum", BRAUN_CORRECT_ALL, ws, &model, &d, &sub);
+    if (!st) st = braun_integrate(&d, BRAUN_RK4, BRAUN_R(1e-10), BRAUN_R(1.0), 0, NULL, NULL);
+    fw_puts("limits");
+    fw_kv_long("long_bits", (long)(sizeof(long) * 8));
+    fw_kv_long("status", st);
+    fw_kv_long("t_untouched", d.priv ? d.t == 0 : 0);
+    fw_putc('\n');
+    fw_flush();
+    return 0;
+}
+
 /* ------------------------------------------------------------ dadd */
 
 /* `dadd`: how many of 20000 sums 1 + b, b uniform in -[2^-33, 2^-32), this
@@ -613,13 +636,15 @@ int fw_demo_main(int argc, char **argv, const fw_workspace *ws)
         rc = cmd_long(argc, argv, ws);
     else if (strcmp(cmd, "dadd") == 0)
         rc = cmd_dadd();
+    else if (strcmp(cmd, "limits") == 0)
+        rc = cmd_limits(ws);
     else if (strcmp(cmd, "sizes") == 0)
         rc = cmd_sizes(0);
     else if (strcmp(cmd, "sizes-header") == 0)
         rc = cmd_sizes(1);
     else
         rc = 2;
-    if (rc == 2) fw_puts("usage: test [builtin|scenes] | run NAME H STEPS [CORR] | trace NAME STEPS [CORR] | bench STEPS [MODEL [CORR]] | long MODEL H STEPS EVERY | dadd | sizes | sizes-header\n");
+    if (rc == 2) fw_puts("usage: test [builtin|scenes] | run NAME H STEPS [CORR] | trace NAME STEPS [CORR] | bench STEPS [MODEL [CORR]] | long MODEL H STEPS EVERY | dadd | limits | sizes | sizes-header\n");
     fw_flush();
     return rc;
 }

@@ -1,4 +1,5 @@
 /* Fixed-step driver: from d->t to t_end with an output callback. */
+#include <limits.h>
 #include <math.h>
 
 #include "braun_tableau.h"
@@ -33,7 +34,10 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
     const int per_stage = d->model->opt.discretization == BRAUN_PER_STAGE;
     const double t0 = (double)d->t, span = (double)t_end - t0;
     const double ratio = span / (double)h;
-    if (ratio > 9.0e18) return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "step count", -1, -1, ratio, t0);
+    /* The step counter is a long: 32 bits on a Cortex-M (and Windows), where
+     * a span of more than ~2.1e9 steps would overflow it. */
+    const double most = LONG_MAX > 2147483647L ? 9.0e18 : (double)LONG_MAX - 1.0;
+    if (ratio > most) return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "step count", -1, -1, ratio, t0);
     /* A span that is a whole number of steps up to round-off takes exactly
      * that many; otherwise the last step is shortened to land on t_end. */
     /* (h itself carries the working precision's rounding: a float h makes

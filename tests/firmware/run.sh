@@ -173,6 +173,16 @@ dt=$(sed -n 's/^dadd .*misrounded=\([0-9]*\).*/\1/p' "$OUT/dadd-target.txt")
 dh=$(sed -n 's/^dadd .*misrounded=\([0-9]*\).*/\1/p' "$OUT/dadd-host.txt")
 echo "#   double addition 1 + b, b in -[2^-33, 2^-32): target (libgcc __adddf3) misrounds ${dt:-?} of 20000, host ${dh:-?}"
 check "dadd probe: the host's double addition rounds all 20000 sums correctly (the probe is exact)" [ "${dh:-x}" = 0 ]
+# A fixed-step span of more steps than a 32-bit long holds is refused
+# (BRAUN_ERR_TOO_MANY_STEPS, code -13 in braun.h), the state untouched.
+TOO_MANY=$(sed -n 's/.*BRAUN_ERR_TOO_MANY_STEPS = \(-[0-9]*\),.*/\1/p' include/core/braun.h)
+for p in float double; do
+    emu "$FW/$p/demo.elf" "$OUT/limits-$p.txt" limits
+    lst=$(sed -n 's/^limits .*status=\([-0-9]*\).*/\1/p' "$OUT/limits-$p.txt")
+    lun=$(sed -n 's/^limits .*t_untouched=\([0-9]*\).*/\1/p' "$OUT/limits-$p.txt")
+    check "$p: braun_integrate refuses 1e10 fixed steps with a 32-bit step counter (status ${lst:-?}, want $TOO_MANY)" \
+        [ "${lst:-x},${lun:-0}" = "$TOO_MANY,1" ]
+done
 check "fw_compare: compared all $runs runs of each precision" sh -c '
     [ "$1" -gt 0 ] && [ "$(grep -c ": same run header$" "$2")" -eq $((2 * $1)) ]' sh "$runs" "$OUT/compare.txt"
 
