@@ -9,6 +9,8 @@
  * elliptic functions; here: an oscillator with a ramp force, a particle on
  * a string of prescribed length) or quadrature done here. Bounds are a few
  * times the values measured on x86-64, gcc 12, -O2 (beside each). */
+#include <limits.h>
+
 #include "test_util.h"
 #include "braun_reference.h"
 #include "braun_scene_file.h"
@@ -211,6 +213,15 @@ static void test_statistics(void **state)
     const braun_stats zero = {0, 0, 0, 1, 0, 0, 0, 0};
     assert_memory_equal(&sim.data.stats, &zero, sizeof zero);
     assert_true(sim.data.work_in == 0 && sim.data.t == 0);
+    /* braun.h: a counter stops at LONG_MAX, never wraps (a long run on a
+     * 32-bit target; signed overflow would be undefined: UBSan's run of
+     * this test would report it) */
+    sim.data.stats.steps = LONG_MAX - 1;
+    sim.data.stats.rhs_evals = LONG_MAX - 2;
+    sim.data.stats.constraint_factorizations = LONG_MAX;
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 0.03, 0, NULL, NULL), BRAUN_OK);
+    assert_true(sim.data.stats.steps == LONG_MAX && sim.data.stats.rhs_evals == LONG_MAX &&
+                sim.data.stats.constraint_factorizations == LONG_MAX);
     test_sim_close(&sim);
 
     /* The adaptive driver: 7 per attempt (6 when it repeats a rejected

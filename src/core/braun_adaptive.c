@@ -258,7 +258,7 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
             h *= fac > 5.0 ? 5.0 : (fac < 0.2 ? 0.2 : fac);
             if (h < hmin) h = hmin;
         } else {
-            d->stats.rejected_steps++;
+            BRAUN__COUNT(d->stats.rejected_steps);
             rejected++;
             /* (NaN: an error the tolerances cannot measure, e.g. rtol tiny
              * and atol 0 where y = 0, is a rejection too.) */

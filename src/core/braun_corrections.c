@@ -45,13 +45,13 @@ BRAUN_FORCE_INLINE int guard_fails(braun_data *d, braun_real r2, const braun_rea
 }
 
 /* The energy residual Φ_e of a point against its bound. */
-static int guard_energy(braun_data *d, braun_real phi_e, int accel)
+BRAUN_FORCE_INLINE int guard_energy(braun_data *d, braun_real phi_e, int accel)
 {
     return guard_fails(d, phi_e * phi_e, &d->guard.energy, d->guard.energy0, accel,
                        "accuracy guard: energy residual |Phi_e|");
 }
 
-static int guard_rows(braun_data *d, unsigned corr, int accel)
+BRAUN_FORCE_INLINE int guard_rows(braun_data *d, unsigned corr, int accel)
 {
     braun_priv *pv = braun__priv(d);
     int st = BRAUN_OK;
@@ -253,10 +253,10 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
         pv->sigma0 = sigma;
         pv->sat0 = saturated;
         if (pv->de_ok) braun__solve_r(pv, pv->ce, pv->de);
-        else if (saturated) d->stats.energy_guard_hits++; /* at rest: no direction */
+        else if (saturated) BRAUN__COUNT(d->stats.energy_guard_hits); /* at rest: no direction */
         return BRAUN_OK;
     }
-    if (saturated) d->stats.energy_guard_hits++;
+    if (saturated) BRAUN__COUNT(d->stats.energy_guard_hits);
     if (sigma == 0) return BRAUN_OK;
     for (int i = 0; i < n; i++) pv->tmp[i] = sigma * pv->ce[i];
     braun__solve_r(pv, pv->tmp, pv->tmp);
@@ -322,7 +322,7 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
     const braun_real rel = floor_e > 0 ? smax * g / floor_e : BRAUN_R(1e30);
     const braun_real w = rel >= BRAUN_R(1e15) ? 1 : rel * rel / (1 + rel * rel);
     const braun_real sigma = w * sigma_end + (1 - w) * pv->sigma0;
-    if (w >= BRAUN_R(0.5) ? sat_end : pv->sat0) d->stats.energy_guard_hits++;
+    if (w >= BRAUN_R(0.5) ? sat_end : pv->sat0) BRAUN__COUNT(d->stats.energy_guard_hits);
     if (sigma == 0) return BRAUN_OK;
     for (int i = 0; i < n; i++) pv->dv[i] += sigma * pv->de[i];
     return BRAUN_OK;

@@ -56,7 +56,7 @@ static int stage_mass(braun_data *d)
         M = dst;
     }
     st = BRAUN_LS_CALL(pv, factor_mass, pv->ls_state, M, tol, &bi, &bj, &bad);
-    d->stats.mass_factorizations++;
+    BRAUN__COUNT(d->stats.mass_factorizations);
     if (st) return braun__fail(d, st, "mass", bi, bj, (double)bad, (double)t);
     pv->done |= BRAUN_DONE_MASS;
     return BRAUN_OK;
@@ -132,8 +132,8 @@ static int stage_constraints(braun_data *d, int with_residuals)
 static void record_rank(braun_data *d, int slot, int rank, int rows)
 {
     braun__priv(d)->rank[slot] = rank;
-    d->stats.constraint_factorizations++;
-    if (rank < rows) d->stats.rank_deficient++;
+    BRAUN__COUNT(d->stats.constraint_factorizations);
+    if (rank < rows) BRAUN__COUNT(d->stats.rank_deficient);
 }
 
 /* The dense A of a sparse system (entries off the pattern stay zero). */
@@ -264,7 +264,7 @@ static int soft_filter(braun_data *d)
     for (int i = 0; i < n; i++) pv->tmp[i] -= pv->atil[i] + pv->u[i];
     BRAUN_LS_CALL(pv, soft_project, pv->ls_state, 0, pv->tmp, pv->ce, rate);
     for (int i = 0; i < n; i++) pv->u[i] += pv->ce[i];
-    d->stats.soft_filtered++;
+    BRAUN__COUNT(d->stats.soft_filtered);
     return 1;
 }
 
@@ -366,7 +366,7 @@ int braun__forward(braun_data *d, unsigned with, braun_real *vdot)
 {
     braun_priv *pv = braun__priv(d);
     const int res = (with & BRAUN_WITH_RESIDUALS) != 0;
-    d->stats.rhs_evals++;
+    BRAUN__COUNT(d->stats.rhs_evals);
     /* The work rate of moving constraints needs the velocity error at the
      * point (stage power): the residuals, without C_q's factorization. */
     const int res_rows = res | (pv->work_rows & ((with & BRAUN_WITH_POWER) != 0));

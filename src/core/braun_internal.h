@@ -32,10 +32,16 @@
 #ifndef BRAUN_INTERNAL_H
 #define BRAUN_INTERNAL_H
 
+#include <limits.h>
 #include "braun.h"
 #include "braun_dense.h"
 #include "braun_linalg.h"
 #include "braun_linsolver.h"
+
+/* One more in a braun_stats counter, stopping at LONG_MAX (a long is 32
+ * bits on a Cortex-M: a controller calling braun_step for days reaches it;
+ * signed overflow would be undefined). */
+#define BRAUN__COUNT(c) ((void)((c) += (c) < LONG_MAX))
 
 /* Firmware builds with compile-time sizes run the built-in kernels only:
  * no backend dispatch, not even an indirect call. */

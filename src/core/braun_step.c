@@ -253,7 +253,7 @@ void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new, braun_
     }
     d->work_in = y1[2 * n];
     d->t = t_new;
-    d->stats.steps++;
+    BRAUN__COUNT(d->stats.steps);
     braun__priv(d)->state_integrated = 1;
 }
 
