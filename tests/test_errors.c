@@ -374,6 +374,38 @@ static void test_inconsistent_rows_named(void **state)
     test_sim_close(&sim);
 }
 
+/* x = 0 and y² = 0.01 started at y = 0: the second row's gradient
+ * vanishes while its error does not — one row that cannot be met, not two
+ * that disagree: index 1, no index2. */
+static int singular_row(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                        braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    (void)t; (void)u;
+    if (phi) { phi[0] = q[0]; phi[1] = q[1] * q[1] - 0.01; }
+    if (A) { A[0] = 1; A[1] = 0; A[2] = 0; A[3] = 2 * q[1]; }
+    if (b) b[0] = b[1] = 0;
+    if (bv) { bv[0] = 0; bv[1] = -2 * v[1] * v[1]; }
+    return 0;
+}
+
+static void test_inconsistent_single_row(void **state)
+{
+    (void)state;
+    braun_system s = {2, 2, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, singular_row, NULL,
+                      NULL, NULL, NULL, NULL};
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION), BRAUN_OK);
+    const double q0[2] = {0.2, 0}, v0[2] = {0, 0};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
+    assert_int_equal(sim.data.error.index, 1);
+    assert_int_equal(sim.data.error.index2, -1);
+    char what[256];
+    braun_error_format(&sim.data, what, sizeof what);
+    assert_non_null(strstr(what, "(row 1"));
+    test_sim_close(&sim);
+}
+
 /* A NaN from a callback at the user's state is named with its entry. The
  * library checks only the results and scans the outputs on failure. */
 static int nan_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,
@@ -444,6 +476,7 @@ int main(void)
         cmocka_unit_test(test_divergence_is_reported),
         cmocka_unit_test(test_inconsistent_constraints),
         cmocka_unit_test(test_inconsistent_rows_named),
+        cmocka_unit_test(test_inconsistent_single_row),
         cmocka_unit_test(test_infinite_jacobian_is_named),
         cmocka_unit_test(test_nonfinite_callback_outputs_are_named),
         cmocka_unit_test(test_status_names),

@@ -336,7 +336,9 @@ typedef struct braun_error_info {
     int index;          /* row/entry involved, or -1 */
     int index2;         /* column, or -1; BRAUN_ERR_INCONSISTENT: index and
                          * index2 are the two holonomic rows that disagree
-                         * most (largest least-squares residual), -1 if none */
+                         * most (largest least-squares residual); index2 is
+                         * -1 when no other row's residual exceeds the
+                         * tolerance (one row that cannot be met alone) */
     double value;       /* offending value (pivot, asymmetry, ...) */
     double t;           /* time of the failing evaluation */
 } braun_error_info;

@@ -103,8 +103,11 @@ static void position_rhs(braun_priv *pv)
 
 /* The failure of Eq. 16's dependent rows, naming the two rows that
  * disagree most: the largest entries of the least-squares residual
- * A·dq − ep (a rare path: the user's program can name the joints). */
-static BRAUN_NOINLINE int inconsistent(braun_data *d, braun_real resid)
+ * A·dq − ep (a rare path: the user's program can name the joints). A
+ * second row is named only if its own entry exceeds the tolerance: a row
+ * whose gradient depends on the others' while its error does not (a joint
+ * started at a singular configuration) is alone in the residual. */
+static BRAUN_NOINLINE int inconsistent(braun_data *d, braun_real resid, braun_real tol)
 {
     braun_priv *pv = braun__priv(d);
     braun_real *dq = pv->dq;
@@ -123,6 +126,7 @@ static BRAUN_NOINLINE int inconsistent(braun_data *d, braun_real resid)
             rn = r;
         }
     }
+    if (!(rn > tol)) next = -1;
     return braun__fail(d, BRAUN_ERR_INCONSISTENT, "holonomic constraints", worst, next, (double)resid,
                        (double)pv->at.t);
 }
@@ -141,7 +145,7 @@ static int stage_position(braun_data *d)
         braun__lsq(pv, slot, pv->ep, pv->dq, &resid);
         const braun_real tol = d->model->opt.inconsistency_tol > 0 ? d->model->opt.inconsistency_tol
                                                                    : braun_sqrt(BRAUN_EPS);
-        if (resid > tol) return inconsistent(d, resid);
+        if (resid > tol) return inconsistent(d, resid, tol);
     } else {
         braun__pinv(pv, slot, pv->ep, pv->dq);
     }

@@ -190,7 +190,8 @@ static void describe(msg *w, const braun_data *d)
         put(w, "dependent %s disagree by %.3g: the constraints have no solution here",
             where ? where : "constraints", e->value);
         if (e->index >= 0 && e->index2 >= 0) put(w, " (rows %d and %d disagree most)", e->index, e->index2);
-        else if (e->index >= 0) put(w, " (row %d disagrees most)", e->index);
+        else if (e->index >= 0)
+            put(w, " (row %d: its gradient depends on the other rows' here, its error does not)", e->index);
         break;
     default:
         put(w, "unknown status %d", e->status);
