@@ -254,12 +254,15 @@ static void perpendicular(const braun_real *u, braun_real *r)
     braun_scene__normalize3(r);
 }
 
-/* x minus its part along the unit vector u, normalised. */
+/* The unit vector x minus its part along the unit vector u, normalised;
+ * 0 when x lies within 1e-6 of ±u (no direction left but round-off: the
+ * check then refuses the frame). */
 static void orthogonalize(braun_real *x, const braun_real *u)
 {
     const braun_real d = braun_scene__dot3(x, u);
     for (int i = 0; i < 3; i++) x[i] -= d * u[i];
-    braun_scene__normalize3(x);
+    if (braun_scene__normalize3(x) < BRAUN_R(1e-6))
+        for (int i = 0; i < 3; i++) x[i] = 0;
 }
 
 void braun_scene__frame_defaults(const braun_scene *s, braun_scene_joint *j, int body1,
@@ -296,6 +299,12 @@ const char *braun_scene__frame_check(const braun_scene *s, const braun_scene_joi
     if (braun_fabs(braun_scene__dot3(j->axis, j->ref_a)) > BRAUN_SCENE__UNIT_TOL)
         return "the joint's reference direction must be perpendicular to its axis";
     if (need_b) {
+        /* braun_scene__frame_defaults leaves ref_b 0 when the reference
+         * direction, as it lies initially, is along the given axis_b. */
+        if (braun_scene__is_unit3(j->axis_b) && braun_scene__dot3(j->ref_b, j->ref_b) == 0)
+            return "the joint's axis_b is perpendicular to its axis as the bodies lie initially: "
+                   "ref_b cannot be taken from the initial state (start the bodies with the "
+                   "axes nearly parallel)";
         if (!braun_scene__is_unit3(j->axis_b) || !braun_scene__is_unit3(j->ref_b))
             return "the joint's axis_b and ref_b must be unit vectors (scene files and "
                    "braun_scene_defaults() fill them from the initial state)";

@@ -103,8 +103,9 @@ static const char *rigid3d_check(const braun_scene *s, const braun_scene_body *b
     const braun_real nn = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
     /* In float a normalised quaternion is off by a few ε (2·0.70710677f² − 1 = −6e-8). */
     if (!(braun_fabs(nn - 1) <= (BRAUN_EPS > BRAUN_R(1e-10) ? BRAUN_R(16.0) * BRAUN_EPS : BRAUN_R(2e-9))))
-        return "the orientation of a rigid3d body must be a unit quaternion (|q| within 1e-9 "
-               "of 1, 1e-6 in float)";
+        return "the orientation of a rigid3d body must be a unit quaternion (a scene file's "
+               "is normalised if |q| is within 1e-6 of 1; braun_scene_build itself needs |q| "
+               "within 1e-9 of 1, 1e-6 in float)";
     return NULL;
 }
 
