@@ -105,6 +105,25 @@ static int fake_factor_mass(void *s, const braun_real *M, braun_real tol, int *i
     return BRAUN_ERR_MASS_NOT_SPD; /* always fails: after create */
 }
 
+/* The operations this test never reaches (braun_data_init refuses a table
+ * without them). */
+static void fake_vec(void *s, const braun_real *b, braun_real *x) { (void)s; (void)b; (void)x; }
+static int fake_factor_c(void *s, int slot, int rows, const braun_real *A, braun_real tol,
+                         const braun_real *atil, braun_real *resid)
+{
+    (void)s; (void)slot; (void)rows; (void)A; (void)tol; (void)atil; (void)resid;
+    return 0;
+}
+static void fake_pinv(void *s, int slot, const braun_real *r, braun_real *x)
+{
+    (void)s; (void)slot; (void)r; (void)x;
+}
+static void fake_lsq(void *s, int slot, const braun_real *r, braun_real *x, braun_real *res)
+{
+    (void)s; (void)slot; (void)r; (void)x; (void)res;
+}
+static void fake_null(void *s, int slot, braun_real *z) { (void)s; (void)slot; (void)z; }
+
 /* A failed braun_data_init leaves nothing to release: options are checked
  * before the backend's state is created, and a failure after it (factoring
  * a constant M) destroys it again. */
@@ -112,10 +131,19 @@ static void test_failed_init_releases(void **state)
 {
     (void)state;
     static braun_linsolver fake = {"fake", BRAUN_LS_DENSE, fake_create, fake_destroy,
-                                   fake_factor_mass, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
-                                   NULL, NULL, NULL, NULL, NULL, NULL};
+                                   fake_factor_mass, fake_vec, fake_vec, fake_vec, fake_factor_c,
+                                   fake_pinv, fake_lsq, fake_null, NULL, NULL, NULL, NULL, NULL, NULL};
+    /* A table without an operation the core calls is refused, naming it. */
+    static braun_linsolver partial = {"partial", BRAUN_LS_DENSE, fake_create, fake_destroy,
+                                      fake_factor_mass, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
+                                      NULL, NULL, NULL, NULL, NULL, NULL};
     fixture f;
     open_fixture(&f);
+    f.model.opt.linsolver = &partial;
+    creates = destroys = 0;
+    assert_int_equal(braun_data_init(&f.d, &f.model, f.buf, sizeof f.buf), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(f.d.error.where, "solve_rt"));
+    assert_int_equal(creates, 0);
     f.model.opt.linsolver = &fake;
     f.model.opt.rank_tol = (braun_real)NAN; /* invalid: refused before create */
     creates = destroys = 0;

@@ -131,13 +131,10 @@ static double error_norm(braun_data *d, braun_real h, braun_real rtol, braun_rea
     return sqrt(sum / (2 * n));
 }
 
-int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
-                             braun_real t_end, long every, braun_output_fn out,
-                             void *out_user)
+static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_real t_end, long every,
+                              braun_output_fn out, void *out_user)
 {
-    if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = braun__check_ready(d, "braun_integrate_adaptive");
-    if (st) return st;
+    int st;
     if (!ctl) return braun__fail(d, BRAUN_ERR_ARGUMENT, "adaptive control (NULL)", -1, -1, 0, (double)d->t);
     /* rtol >= 1 asks for no digit at all; NaN and Inf for nothing. */
     if (!(ctl->rtol >= 0) || !(ctl->rtol < 1) || !(ctl->atol >= 0) || !braun_is_finite(ctl->atol) ||
@@ -290,4 +287,19 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
     if (failed) d->error = failure;
     if (out && (pending || !failed) && out(d, out_user)) return BRAUN_STOPPED;
     return failed;
+}
+
+/* Busy while it runs, its output callback included (braun_priv.busy). */
+int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
+                             braun_real t_end, long every, braun_output_fn out,
+                             void *out_user)
+{
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    int st = braun__check_ready(d, "braun_integrate_adaptive");
+    if (st) return st;
+    braun_priv *pv = braun__priv(d);
+    pv->busy = 1;
+    st = integrate_adaptive(d, ctl, t_end, every, out, out_user);
+    pv->busy = 0;
+    return st;
 }

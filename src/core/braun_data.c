@@ -21,6 +21,21 @@ size_t braun_data_size(const braun_model *model)
     return braun__layout(model, NULL, NULL, NULL, NULL) + BRAUN_ALIGN;
 }
 
+/* A backend table (braun_linsolver.h) without an operation the core calls. */
+static const char *linsolver_problem(const braun_linsolver *ls)
+{
+    if (!ls->factor_mass || !ls->solve_rt || !ls->solve_r || !ls->mul_r || !ls->factor_c || !ls->pinv ||
+        !ls->lsq || !ls->null_project)
+        return "options.linsolver lacks a required operation (factor_mass, solve_rt, solve_r, mul_r, "
+               "factor_c, pinv, lsq, null_project)";
+    if (ls->create && !ls->destroy) return "options.linsolver has create but no destroy";
+    if (!ls->create && (!ls->state_bytes != !ls->bind))
+        return "options.linsolver needs both state_bytes and bind (or create and destroy)";
+    if (!ls->soft_find != !ls->soft_project)
+        return "options.linsolver has only one of soft_find and soft_project";
+    return NULL;
+}
+
 /* Nothing is left to release when this fails (a backend's state is
  * created after every check, and freed again if what follows fails). */
 int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
@@ -33,6 +48,15 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     if (!model || !buffer)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, model ? "buffer (NULL)" : "model (NULL)", -1,
                            -1, 0, 0);
+    {
+        /* A model filled in by hand, or edited after braun_model_init, gets
+         * braun_model_init's checks too. */
+        const char *why = NULL;
+        const int sc = braun_system_check(&model->sys, &why);
+        if (sc) return braun__fail(d, sc, why, -1, -1, 0, 0);
+        if ((why = linsolver_problem(braun__model_linsolver(model))) != NULL)
+            return braun__fail(d, BRAUN_ERR_ARGUMENT, why, -1, -1, 0, 0);
+    }
     size_t need = braun_data_size(model);
     if (need == 0)
         return braun__fail(d, BRAUN_ERR_SIZE, "sizes (dense limit)", -1, -1,
@@ -67,6 +91,8 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->R_is_constant = 0;
     pv->state_integrated = 0;
     pv->state_set = 0;
+    pv->flags = s->flags;
+    pv->busy = 0;
     pv->has_prev = 0;
     pv->t_lo = 0;
     pv->done = 0;
@@ -122,13 +148,26 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
     if (!d->priv || !d->model) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_set_state (data not initialised)", -1, -1, 0, 0);
+    if (braun__priv(d)->busy)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "braun_set_state: a driver is running on this data (called from its callback)",
+                           -1, -1, 0, (double)d->t);
     if (!q || !v) return braun__fail(d, BRAUN_ERR_ARGUMENT, q ? "state v (NULL)" : "state q (NULL)", -1, -1, 0, (double)t);
     const int n = d->model->sys.n;
     if (!braun_is_finite(t)) return braun__fail(d, BRAUN_ERR_NONFINITE, "state t", -1, -1, (double)t, (double)t);
-    int st = braun__check_finite(d, n, q, "state q", 0, t);
+    int st = braun__check_system(d);
+    if (st) return st;
+    st = braun__check_finite(d, n, q, "state q", 0, t);
     if (st) return st;
     st = braun__check_finite(d, n, v, "state v", 0, t);
     if (st) return st;
+    /* E0 first: a start whose energy cannot be evaluated changes nothing
+     * (the last run's state stays, and so does whether one is set). */
+    braun_real E0 = 0;
+    if (d->model->sys.energy) {
+        st = braun_energy(d, t, q, v, &E0);
+        if (st) return st;
+    }
     for (int i = 0; i < n; i++) {
         d->q[i] = q[i];
         d->v[i] = v[i];
@@ -147,15 +186,8 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     /* A new run decides its first rank by the plain tolerance. */
     pv->step_rank[0] = pv->rows;
     pv->step_rank[1] = pv->m;
-    d->has_E0 = 0;
-    d->E0 = 0;
-    if (d->model->sys.energy) {
-        braun_real E;
-        st = braun_energy(d, t, q, v, &E);
-        if (st) return st;
-        d->E0 = E;
-        d->has_E0 = 1;
-    }
+    d->E0 = E0;
+    d->has_E0 = d->model->sys.energy != NULL;
     /* The guard's scales come from the first step's start (its forward pass
      * is at this state): no evaluation here. */
     pv->guard_pending = 1;

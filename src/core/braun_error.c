@@ -36,8 +36,14 @@ int braun__check_ready(braun_data *d, const char *where)
 {
     if (!d->priv || !d->model)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, where, -1, -1, 0, 0);
-    if (!braun__priv(d)->state_set)
+    const braun_priv *pv = braun__priv(d);
+    if (pv->busy)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "re-entrant call: a driver is running on this data (called from its callback)",
+                           -1, -1, 0, (double)d->t);
+    if (!pv->state_set)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "no state: call braun_set_state first", -1, -1,
                            0, (double)d->t);
-    return braun__check_options(d);
+    const int st = braun__check_system(d);
+    return st ? st : braun__check_options(d);
 }

@@ -407,8 +407,18 @@ static int check_state(braun_data *d, braun_real t, const braun_real *q,
 static int check_call(braun_data *d, const braun_real *q, const braun_real *v, const char *where)
 {
     if (!d->priv || !d->model) return braun__fail(d, BRAUN_ERR_ARGUMENT, where, -1, -1, 0, 0);
-    if (!q || !v) return braun__fail(d, BRAUN_ERR_ARGUMENT, where, -1, -1, 0, (double)d->t);
-    return BRAUN_OK;
+    /* From a system callback while a step's stages run: the call would
+     * overwrite the scratch the step is using. (From an output callback,
+     * between steps, it is fine: docs/api.md.) */
+    if (braun__priv(d)->busy == 2)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "re-entrant call: a step's stages are running on this data (called from a "
+                           "system callback)",
+                           -1, -1, 0, (double)d->t);
+    if (!q || !v)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, !q ? "state q (NULL)" : "state v (NULL)", -1, -1, 0,
+                           (double)d->t);
+    return braun__check_system(d);
 }
 
 int braun_eval(braun_data *d, braun_real t, const braun_real *q,
@@ -455,12 +465,15 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
     if (!corr) return BRAUN_OK;
     st = braun__corrections(d, vdot, 0);
     if (st) return st;
-    /* Continuous form: the increments are h times the correction terms. */
+    /* Continuous form: the increments are h times the correction terms
+     * (with a tiny h they can overflow: say so rather than return Inf). */
     for (int i = 0; i < n; i++) {
         qdot[i] += pv->dq[i] / h;
         vdot[i] += pv->dv[i] / h;
     }
-    return BRAUN_OK;
+    st = braun__check_finite(d, n, qdot, "braun_eval qdot (the correction over h)", 0, t);
+    if (!st) st = braun__check_finite(d, n, vdot, "braun_eval vdot (the correction over h)", 0, t);
+    return st;
 }
 
 int braun_energy(braun_data *d, braun_real t, const braun_real *q,
@@ -496,8 +509,17 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
         if (st) return st;
     }
     pv->done |= BRAUN_DONE_CONSTRAINTS | BRAUN_DONE_RESIDUALS;
-    if (pos) *pos = m > 0 ? braun_nrm2(m, pv->phi) : 0;
-    if (vel) *vel = rows > 0 ? braun_nrm2(rows, pv->ev) : 0;
+    /* Finite rows can still have a norm beyond the largest number. */
+    if (pos) {
+        *pos = m > 0 ? braun_nrm2(m, pv->phi) : 0;
+        st = braun__check_finite(d, 1, pos, "position residual norm", 0, t);
+        if (st) return st;
+    }
+    if (vel) {
+        *vel = rows > 0 ? braun_nrm2(rows, pv->ev) : 0;
+        st = braun__check_finite(d, 1, vel, "velocity residual norm", 0, t);
+        if (st) return st;
+    }
     if (energy) {
         braun_real E = 0;
         *energy = 0;
@@ -505,6 +527,8 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
             st = braun_energy(d, t, q, v, &E);
             if (st) return st;
             *energy = braun_fabs(E - d->E0 - d->work_in);
+            st = braun__check_finite(d, 1, energy, "energy residual", 0, t);
+            if (st) return st;
         }
     }
     return BRAUN_OK;

@@ -17,13 +17,10 @@ static int finish_failed(braun_data *d, int failed, int due, braun_output_fn out
     return failed;
 }
 
-int braun_integrate(braun_data *d, braun_method method, braun_real h,
-                    braun_real t_end, long every, braun_output_fn out,
-                    void *out_user)
+static int integrate(braun_data *d, braun_method method, braun_real h, braun_real t_end, long every,
+                     braun_output_fn out, void *out_user)
 {
-    if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = braun__check_ready(d, "braun_integrate");
-    if (st) return st;
+    int st;
     const braun_tableau *tb = braun__tableau(method);
     if (!tb) return braun__fail(d, BRAUN_ERR_ARGUMENT, "method", (int)method, -1, 0, (double)d->t);
     if (!(h > 0) || !braun_is_finite(h))
@@ -80,4 +77,19 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
     if (st) return st;
     if (out && out(d, out_user)) return BRAUN_STOPPED;
     return BRAUN_OK;
+}
+
+/* Busy while it runs, its output callback included (braun_priv.busy). */
+int braun_integrate(braun_data *d, braun_method method, braun_real h,
+                    braun_real t_end, long every, braun_output_fn out,
+                    void *out_user)
+{
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    int st = braun__check_ready(d, "braun_integrate");
+    if (st) return st;
+    braun_priv *pv = braun__priv(d);
+    pv->busy = 1;
+    st = integrate(d, method, h, t_end, every, out, out_user);
+    pv->busy = 0;
+    return st;
 }

@@ -90,6 +90,13 @@ typedef struct braun_priv {
     int R_is_constant;    /* R computed once in braun_data_init */
     int state_integrated; /* the state came from a step, not braun_set_state */
     int state_set;        /* braun_set_state was called */
+    unsigned flags;       /* sys.flags at braun_data_init (braun__check_system) */
+    /* A driver runs on this data (1: braun_step, braun_integrate or
+     * braun_integrate_adaptive, its output callback included), or a step's
+     * stages call the system's callbacks (2). Calls that would change the
+     * state or the scratch under it are refused (braun__check_ready,
+     * braun_eval, braun_residuals, braun_energy). */
+    int busy;
     /* Where the stages are. */
     braun_point at;
     unsigned done;        /* braun_stage_bits at `at` */
@@ -198,6 +205,9 @@ int braun__check_options(braun_data *d);
 /* The data block is usable (initialised, state set): BRAUN_OK or an error
  * recorded in d->error; `where` names the calling function. */
 int braun__check_ready(braun_data *d, const char *where);
+/* The system the data was made for is still model->sys: sizes, flags,
+ * sparsity and the callbacks they require (a few compares per call). */
+int braun__check_system(braun_data *d);
 
 /* ------------------------------------------------------------ stages */
 /* Store the evaluation point; no stage is done there yet. */

@@ -51,3 +51,30 @@ int braun__check_options(braun_data *d)
                            "options.linsolver changed after braun_data_init", -1, -1, 0, (double)t);
     return BRAUN_OK;
 }
+
+/* Out of line: the message of a required callback made NULL after
+ * braun_data_init, in braun_system_check's words. */
+static BRAUN_NOINLINE int system_callback_missing(braun_data *d)
+{
+    const char *why = NULL;
+    (void)braun_system_check(&d->model->sys, &why);
+    return braun__fail(d, BRAUN_ERR_MISSING_CALLBACK, why ? why : "a required callback is NULL", -1, -1, 0,
+                       (double)d->t);
+}
+
+int braun__check_system(braun_data *d)
+{
+    const braun_system *s = &d->model->sys;
+    const braun_priv *pv = braun__priv(d);
+    /* The buffers were laid out, and the per-system decisions taken, for
+     * these (docs/api.md: the system may not change after braun_data_init). */
+    if (s->n != pv->n || s->m != pv->m || s->p != pv->p || s->flags != pv->flags ||
+        s->sparsity != pv->sp)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "model->sys changed after braun_data_init (n, m, p, flags or sparsity)", -1,
+                           -1, 0, (double)d->t);
+    if (!s->mass || !s->forces || (pv->m > 0 && !s->holonomic) || (pv->p > 0 && !s->nonholonomic) ||
+        ((s->flags & BRAUN_ENERGY_INPUT) && !s->power))
+        return system_callback_missing(d);
+    return BRAUN_OK;
+}

@@ -80,8 +80,8 @@ BRAUN_FORCE_INLINE braun_real combine(int N, const braun_real *src, braun_real *
     return chk;
 }
 
-int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
-                      braun__corr_at where, braun_real *y1, braun_real *yerr, int first_known)
+static int rk_stages(braun_data *d, const braun_tableau *tb, braun_real h, braun__corr_at where,
+                     braun_real *y1, braun_real *yerr, int first_known)
 {
     const int per_stage = where == BRAUN__CORR_AT_STAGES, at_end = where == BRAUN__CORR_AT_END;
     braun_priv *pv = braun__priv(d);
@@ -255,6 +255,19 @@ void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new, braun_
     d->t = t_new;
     BRAUN__COUNT(d->stats.steps);
     braun__priv(d)->state_integrated = 1;
+}
+
+/* The stages call the system's callbacks: a call from one of them back
+ * into this data is refused while they run (braun_priv.busy = 2). */
+int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
+                      braun__corr_at where, braun_real *y1, braun_real *yerr, int first_known)
+{
+    braun_priv *pv = braun__priv(d);
+    const int outer = pv->busy;
+    pv->busy = 2;
+    const int st = rk_stages(d, tb, h, where, y1, yerr, first_known);
+    pv->busy = outer;
+    return st;
 }
 
 int braun_step(braun_data *d, braun_method method, braun_real h)

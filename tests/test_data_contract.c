@@ -1,0 +1,266 @@
+/* The data block's contract with its caller (docs/api.md, braun.h): the
+ * system may not change after braun_data_init (a change is refused, never
+ * followed into a buffer sized for the old one); braun_set_state changes
+ * nothing unless it succeeds; a callback may not call back into a driver
+ * running on the same data (refused, the driver's run goes on); an output
+ * callback may read residuals and energy between steps. The system: a
+ * particle of mass 1 on the unit circle under gravity (n = 2, m = 1), with
+ * an energy law whose callback can be made to fail and a forces callback
+ * that can call into the data. */
+#include <math.h>
+
+#include "test_util.h"
+#include "braun_host.h" /* braun_error_format */
+
+typedef struct ring {
+    braun_data *d;       /* the data the callbacks call into, or NULL */
+    int fail_energy;     /* energy() returns -1 */
+    int inner_status;    /* what the call from forces() returned */
+    int inner_calls;
+} ring;
+
+static int ring_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t; (void)q; (void)u;
+    M[0] = M[3] = 1;
+    M[1] = M[2] = 0;
+    return 0;
+}
+static int ring_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q, void *u)
+{
+    ring *r = u;
+    (void)t; (void)q; (void)v;
+    Q[0] = 0;
+    Q[1] = -9.81;
+    if (r->d && r->inner_calls == 0) {
+        r->inner_calls++;
+        r->inner_status = braun_step(r->d, BRAUN_RK4, 1e-3);
+    }
+    return 0;
+}
+static int ring_holonomic(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                          braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    (void)t; (void)u;
+    if (phi) phi[0] = 0.5 * (q[0] * q[0] + q[1] * q[1] - 1);
+    if (A) { A[0] = q[0]; A[1] = q[1]; }
+    if (b) b[0] = 0;
+    if (bv) bv[0] = -(v[0] * v[0] + v[1] * v[1]);
+    return 0;
+}
+static int ring_energy(braun_real t, const braun_real *q, const braun_real *v, braun_real *E,
+                       braun_real *dq, braun_real *dv, braun_real *dt, void *u)
+{
+    const ring *r = u;
+    (void)t;
+    if (r->fail_energy) return -1;
+    if (E) *E = 0.5 * (v[0] * v[0] + v[1] * v[1]) + 9.81 * q[1];
+    if (dq) { dq[0] = 0; dq[1] = 9.81; }
+    if (dv) { dv[0] = v[0]; dv[1] = v[1]; }
+    if (dt) *dt = 0;
+    return 0;
+}
+
+static braun_system ring_system(ring *r)
+{
+    braun_system s = {2, 1, 0, BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC, ring_mass, ring_forces,
+                      ring_holonomic, NULL, ring_energy, NULL, r, NULL};
+    return s;
+}
+
+static const braun_real q0[2] = {1, 0}, v0[2] = {0, 0};
+
+/* Sizes, flags or a required callback changed after braun_data_init: every
+ * entry refuses, naming it, and the state is untouched; put back, it runs. */
+static void test_system_changed_after_init(void **state)
+{
+    (void)state;
+    ring r = {0};
+    const braun_system s = ring_system(&r);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_OK);
+    const braun_real qa = sim.data.q[0];
+
+    sim.model.sys.n = 3; /* the buffers are for n = 2 */
+    braun_real big[3] = {1, 0, 0}, out[3], E;
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(sim.data.error.where, "changed after braun_data_init"));
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, 1, 0, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_set_state(&sim.data, 0, big, big), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_eval(&sim.data, 0, big, big, 1e-3, out, out + 1), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_residuals(&sim.data, 0, big, big, &E, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    sim.model.sys.n = 2;
+    sim.model.sys.m = -1;
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT);
+    sim.model.sys.m = 1;
+    sim.model.sys.flags |= BRAUN_ENERGY_INPUT;
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT);
+    sim.model.sys.flags = s.flags;
+    sim.model.sys.holonomic = NULL;
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_MISSING_CALLBACK);
+    assert_string_equal(sim.data.error.where, "holonomic is NULL but m > 0");
+    sim.model.sys.holonomic = ring_holonomic;
+    sim.model.sys.mass = NULL;
+    assert_int_equal(braun_energy(&sim.data, 0, q0, v0, &E), BRAUN_ERR_MISSING_CALLBACK);
+    sim.model.sys.mass = ring_mass;
+    assert_true(sim.data.q[0] == qa && sim.data.stats.steps == 1);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_OK);
+    test_sim_close(&sim);
+}
+
+/* A model filled in by hand, never given to braun_model_init: its system is
+ * checked by braun_data_init all the same. */
+static void test_hand_filled_model(void **state)
+{
+    (void)state;
+    ring r = {0};
+    braun_model model;
+    memset(&model, 0, sizeof model);
+    model.sys = ring_system(&r);
+    model.sys.p = -1;
+    static unsigned char buf[1 << 14];
+    braun_data d;
+    assert_int_equal(braun_data_init(&d, &model, buf, sizeof buf), BRAUN_ERR_SIZE);
+    assert_string_equal(d.error.where, "m or p < 0");
+    model.sys.p = 0;
+    model.sys.forces = NULL;
+    assert_int_equal(braun_data_init(&d, &model, buf, sizeof buf), BRAUN_ERR_MISSING_CALLBACK);
+    assert_string_equal(d.error.where, "forces is NULL");
+    model.sys.forces = ring_forces;
+    assert_int_equal(braun_data_init(&d, &model, buf, sizeof buf), BRAUN_OK); /* options all 0: defaults */
+    braun_data_release(&d);
+}
+
+/* braun_set_state whose energy cannot be evaluated changes nothing: the
+ * last run goes on; a data that never had a state still refuses to step. */
+static void test_failed_set_state_changes_nothing(void **state)
+{
+    (void)state;
+    ring r = {0};
+    const braun_system s = ring_system(&r);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    r.fail_energy = 1;
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_ERR_CALLBACK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT); /* no state */
+    r.fail_energy = 0;
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, 0.5, 0, NULL, NULL), BRAUN_OK);
+    const braun_real t = sim.data.t, q = sim.data.q[1], E0 = sim.data.E0;
+    const long steps = sim.data.stats.steps;
+    const braun_real other[2] = {0, -1};
+    r.fail_energy = 1;
+    assert_int_equal(braun_set_state(&sim.data, 0, other, v0), BRAUN_ERR_CALLBACK);
+    r.fail_energy = 0;
+    assert_true(sim.data.t == t && sim.data.q[1] == q && sim.data.E0 == E0 && sim.data.has_E0);
+    assert_int_equal(sim.data.stats.steps, steps);
+    /* ... and it continues with its energy law */
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, 1.0, 0, NULL, NULL), BRAUN_OK);
+    braun_real pos, vel, en;
+    assert_int_equal(braun_residuals(&sim.data, sim.data.t, sim.data.q, sim.data.v, &pos, &vel, &en),
+                     BRAUN_OK);
+    assert_true(en < 1e-12);
+    test_sim_close(&sim);
+}
+
+/* A system callback that calls braun_step on the data whose step is
+ * running: refused (the running step's scratch is in use); the outer step
+ * completes as if nothing happened. */
+static void test_reentry_from_system_callback(void **state)
+{
+    (void)state;
+    ring r = {0}, plain = {0};
+    const braun_system s = ring_system(&r), s2 = ring_system(&plain);
+    test_sim sim, ref;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(test_sim_open(&ref, &s2, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_set_state(&ref.data, 0, q0, v0), BRAUN_OK);
+    r.d = &sim.data;
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_OK);
+    assert_int_equal(r.inner_calls, 1);
+    assert_int_equal(r.inner_status, BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_step(&ref.data, BRAUN_RK4, 1e-2), BRAUN_OK);
+    assert_true(sim.data.t == ref.data.t && sim.data.stats.steps == 1);
+    assert_memory_equal(sim.data.q, ref.data.q, 2 * sizeof(braun_real));
+    assert_memory_equal(sim.data.v, ref.data.v, 2 * sizeof(braun_real));
+    test_sim_close(&sim);
+    test_sim_close(&ref);
+}
+
+/* An output callback: braun_set_state and the drivers refused (a run in
+ * progress), braun_residuals and braun_energy allowed. */
+typedef struct watcher {
+    int calls, set_state, step, adaptive, residuals, energy;
+} watcher;
+
+static int watch(const braun_data *cd, void *u)
+{
+    watcher *w = u;
+    braun_data *d = (braun_data *)cd; /* what a careless program might do */
+    braun_real p, E;
+    const braun_adaptive ctl = {1e-8, 1e-8, 0, 0, 0, 0};
+    w->calls++;
+    w->set_state |= braun_set_state(d, 0, q0, v0) != BRAUN_ERR_ARGUMENT;
+    w->step |= braun_step(d, BRAUN_RK4, 1e-3) != BRAUN_ERR_ARGUMENT;
+    w->adaptive |= braun_integrate_adaptive(d, &ctl, 100, 0, NULL, NULL) != BRAUN_ERR_ARGUMENT;
+    w->residuals |= braun_residuals(d, d->t, d->q, d->v, &p, NULL, NULL) != BRAUN_OK;
+    w->energy |= braun_energy(d, d->t, d->q, d->v, &E) != BRAUN_OK;
+    return 0;
+}
+
+static void test_reentry_from_output_callback(void **state)
+{
+    (void)state;
+    ring r = {0};
+    const braun_system s = ring_system(&r);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    for (int adaptive = 0; adaptive < 2; adaptive++) {
+        watcher w = {0};
+        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+        const braun_adaptive ctl = {1e-8, 1e-8, 0, 0, 0, 0};
+        const int st = adaptive ? braun_integrate_adaptive(&sim.data, &ctl, 1.0, 10, watch, &w)
+                                : braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 10, watch, &w);
+        assert_int_equal(st, BRAUN_OK);
+        assert_true(sim.data.t == 1.0);
+        assert_true(w.calls > 2);
+        assert_int_equal(w.set_state + w.step + w.adaptive + w.residuals + w.energy, 0);
+    }
+    /* After the run the data is free again. */
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_OK);
+    test_sim_close(&sim);
+}
+
+/* braun_eval at a state off the constraints with a tiny h: the corrections
+ * over h overflow — an error, not Inf with BRAUN_OK. */
+static void test_eval_overflow_refused(void **state)
+{
+    (void)state;
+    ring r = {0};
+    const braun_system s = ring_system(&r);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    const braun_real off[2] = {1.01, 0};
+    braun_real qd[2], vd[2];
+    assert_int_equal(braun_eval(&sim.data, 0, off, v0, 4.9e-324, qd, vd), BRAUN_ERR_NONFINITE);
+    assert_non_null(strstr(sim.data.error.where, "braun_eval"));
+    assert_int_equal(braun_eval(&sim.data, 0, off, v0, 1e-3, qd, vd), BRAUN_OK);
+    test_sim_close(&sim);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_system_changed_after_init),
+        cmocka_unit_test(test_hand_filled_model),
+        cmocka_unit_test(test_failed_set_state_changes_nothing),
+        cmocka_unit_test(test_reentry_from_system_callback),
+        cmocka_unit_test(test_reentry_from_output_callback),
+        cmocka_unit_test(test_eval_overflow_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
