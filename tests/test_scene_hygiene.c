@@ -209,7 +209,61 @@ static void test_smallest_values_work(void **state)
     assert_non_null(strstr(err, "field 'length' is too small"));
     /* Subnormal anywhere: refused. */
     assert_int_equal(run_pendulum(1e-310, 1, &x, &y, err, sizeof err), -100);
-    assert_non_null(strstr(err, "field 'mass' is out of range (1e-310 is below the smallest normal"));
+    assert_non_null(strstr(err, "field 'mass' underflows: "));
+    assert_non_null(strstr(err, "e-311 is below the smallest normal number"));
+}
+
+/* A number too small for a double: jansson reads "1e-400" as 0 without an
+ * error (and "1e-999" in any field, a vector's entry or a function's).
+ * Each is refused at its field with what it would have read as, and the
+ * least magnitude the field takes; a zero written as such still loads. */
+static void test_underflow_refused(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *field, *want;
+    } cases[] = {
+        {"\"mass\": 1e-400", "t.json:1:68: body 'b': field 'mass' underflows: 1e-400 is below the "
+                             "smallest normal number 2.22507e-308 and would read as 0; the least "
+                             "nonzero magnitude it accepts is 1e-150 (BRAUN_SCENE_MIN_SCALE"},
+        {"\"mass\": -2.5E-999", "field 'mass' underflows: -2.5E-999 is below"},
+        {"\"mass\": 0.00000000000000000000000000000000000000000000000000000000000000000000000000000000"
+         "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+         "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+         "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+         "00000000000000000001", "field 'mass' underflows: 0.00000000000000000000000000000000000000..."},
+        {"\"mass\": 1, \"velocity\": [0, 1e-400]",
+         "field 'velocity' underflows: 1e-400 is below the smallest normal number 2.22507e-308 and "
+         "would read as 0; the least nonzero magnitude it accepts is 2.22507e-308 "
+         "(BRAUN_SCENE_MIN_NORMAL)"},
+    };
+    char text[1024], err[512];
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(text, sizeof text,
+                 "{\"name\": \"u\", \"bodies\": [{\"name\": \"b\", \"type\": \"particle\", %s, "
+                 "\"position\": [1, 0]}], \"joints\": [{\"type\": \"distance\", \"a\": [0, 0], "
+                 "\"b\": \"b\"}]}",
+                 cases[i].field);
+        err[0] = '\0';
+        braun_scene_file *f = load(text, err, sizeof err);
+        if (f || !strstr(err, cases[i].want))
+            fail_msg("case %zu: %s", i, f ? "loaded" : err);
+    }
+    /* In a function of t, and in a field with no domain of its own. */
+    const char *fn = "{\"name\": \"u\", \"bodies\": [{\"name\": \"b\", \"type\": \"particle\", "
+                     "\"mass\": 1, \"position\": [1, 0]}], \"joints\": [{\"name\": \"rod\", \"type\": "
+                     "\"distance\", \"a\": [0, 0], \"b\": \"b\", \"drive\": {\"type\": \"sine\", "
+                     "\"offset\": 1, \"amplitude\": 0.1, \"omega\": 1, \"phase\": 1e-330}}], "
+                     "\"effects\": [{\"type\": \"gravity\", \"g\": [0, -9.81]}]}";
+    assert_null(load(fn, err, sizeof err));
+    assert_non_null(strstr(err, "joint 'rod', field 'drive': field 'phase' underflows: 1e-330"));
+    /* Zeros written as such are zeros: 0.0, -0e-999, 0.000e5. */
+    const char *zeros = "{\"name\": \"z\", \"bodies\": [{\"name\": \"b\", \"type\": \"particle\", "
+                        "\"mass\": 1, \"position\": [1, 0.0], \"velocity\": [-0e-999, 0.000e5]}], "
+                        "\"joints\": [{\"type\": \"distance\", \"a\": [0, 0], \"b\": \"b\"}]}";
+    braun_scene_file *f = load(zeros, err, sizeof err);
+    if (!f) fail_msg("%s", err);
+    braun_scene_free(f);
 }
 
 /* A particle on a slider whose axis has the given length (measured: below
@@ -380,6 +434,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_gen_c_escapes),        cmocka_unit_test(test_gen_c_names_and_symbols),
         cmocka_unit_test(test_smallest_values_work), cmocka_unit_test(test_axis_limits),
+        cmocka_unit_test(test_underflow_refused),
         cmocka_unit_test(test_mass_pivots),          cmocka_unit_test(test_zero_length_spring),
         cmocka_unit_test(test_references),           cmocka_unit_test(test_special_files),
     };

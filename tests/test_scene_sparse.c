@@ -18,8 +18,10 @@
 
 /* ------------------------------------------ the generator of `braun gen` */
 #include "../src/host/cli/cli_gen.c"
-/* ... which writes its file through cli_files.c (braun gen -o). */
+/* ... which writes its file through cli_files.c (braun gen -o) and reads
+ * --angle as every real option is read. */
 #include "../src/host/cli/cli_files.c"
+#include "../src/host/cli/cli_real.c"
 
 /* What cli_gen.c needs from the rest of the tool. */
 int braun_cli_error(const char *fmt, ...)

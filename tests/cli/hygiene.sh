@@ -153,8 +153,33 @@ scene() { # scene FILE BODY [JOINT]: one particle body on an optional joint
 scene "$TMP/m320.json" '{"name": "b", "type": "particle", "mass": 1e-320, "position": [1, 0]}' \
     '{"type": "distance", "a": [0, 0], "b": "b"}'
 expect "mass 1e-320 (subnormal): refused at load, names the field" 2 \
-    "m320.json:1:[0-9]+: body 'b': field 'mass' is out of range \(1e-320 is below the smallest normal" \
+    "m320.json:1:[0-9]+: body 'b': field 'mass' underflows: 1e-320 is below the smallest normal" \
     run "$TMP/m320.json" --dt 1e-3 --t-end 1
+# Below a double's range jansson reads 0 without an error: "1e-400" must
+# not become a particle without mass, nor a position, a drive's phase or a
+# gravity entry of 0. Refused at the field, saying it underflows and what
+# the field takes at least (a field with a domain: BRAUN_SCENE_MIN_SCALE).
+scene "$TMP/m400.json" '{"name": "b", "type": "particle", "mass": 1e-400, "position": [1, 0]}' \
+    '{"type": "distance", "a": [0, 0], "b": "b"}'
+expect "mass 1e-400 (reads as 0): refused at load as an underflow, with the least mass" 2 \
+    "m400.json:1:68: body 'b': field 'mass' underflows: 1e-400 is below the smallest normal number 2.22507e-308 and would read as 0; the least nonzero magnitude it accepts is 1e-150 \(BRAUN_SCENE_MIN_SCALE" \
+    run "$TMP/m400.json" --dt 1e-3 --t-end 1
+scene "$TMP/p400.json" '{"name": "b", "type": "particle", "mass": 1, "position": [1, -1E-400]}' \
+    '{"type": "distance", "a": [0, 0], "b": "b"}'
+expect "position entry -1E-400: refused at load, FILE:LINE and the key" 2 \
+    "p400.json:1:[0-9]+: body 'b': field 'position' underflows: -1E-400 is below .* the least nonzero magnitude it accepts is 2.22507e-308 \(BRAUN_SCENE_MIN_NORMAL\)" \
+    check "$TMP/p400.json"
+scene "$TMP/ph400.json" '{"name": "b", "type": "particle", "mass": 1, "position": [1, 0]}' \
+    '{"name": "rod", "type": "distance", "a": [0, 0], "b": "b", "drive": {"type": "sine", "offset": 1, "amplitude": 0.1, "omega": 1, "phase": 0.1e-399}}'
+expect "a drive's phase 0.1e-399: refused at load" 2 \
+    "ph400.json:1:[0-9]+: joint 'rod', field 'drive': field 'phase' underflows: 0.1e-399" check "$TMP/ph400.json"
+scene "$TMP/z400.json" '{"name": "b", "type": "particle", "mass": 1, "position": [1, 0.0], "velocity": [0e-400, -0.000e-999]}' \
+    '{"type": "distance", "a": [0, 0], "b": "b"}'
+expect "zeros written as 0.0, 0e-400, -0.000e-999: still zeros, the scene loads" 0 "" check "$TMP/z400.json"
+scene "$TMP/m999.json" '{"name": "b", "type": "particle", "mass": 1e999, "position": [1, 0]}' \
+    '{"type": "distance", "a": [0, 0], "b": "b"}'
+expect "mass 1e999 (overflow): refused at load, FILE:LINE and the key" 2 \
+    "m999.json:1:68: at bodies\[0\].mass: real number overflow" check "$TMP/m999.json"
 scene "$TMP/axis.json" '{"name": "b", "type": "particle", "mass": 1, "position": [0, 0]}' \
     '{"type": "slider", "point": "b", "line": [0, 0], "axis": [1e-300, 0]}'
 expect "slider axis of length 1e-300: refused at load (its square underflows)" 2 \
@@ -167,7 +192,7 @@ expect "distance of 1e-200 taken from the initial state: refused at load" 2 \
     check "$TMP/len.json"
 scene "$TMP/step.json" '{"name": "b", "type": "particle", "mass": 1, "position": [1, 0]}' \
     '{"type": "distance", "a": [0, 0], "b": "b", "drive": {"type": "sine", "amplitude": 1, "omega": 1e-310}}'
-expect "a drive's omega of 1e-310 (subnormal): refused at load" 2 "field 'omega' is out of range \(1e-310" \
+expect "a drive's omega of 1e-310 (subnormal): refused at load" 2 "field 'omega' underflows: 1e-310" \
     check "$TMP/step.json"
 printf '{"name": "s", "bodies": [{"name": "b", "type": "rigid", "mass": 1, "inertia": 1e-20, "position": [0.5, 0], "points": {"o": [-0.5, 0]}}], "joints": [{"type": "revolute", "a": "b.o", "b": [0, 0]}]}\n' > "$TMP/inertia.json"
 expect "inertia 1e-20 beside mass 1: refused at load (M singular to working precision)" 2 \
@@ -208,8 +233,24 @@ expect "--rank-tol 1: refused as an argument (exit 2), not run" 2 "^braun: --ran
 expect "--rank-tol 0.5: the message says what the tolerance did" 1 \
     "constraints disagree.*with --rank-tol 0.5, rows whose pivot is below 0.5 times the largest count as dependent" \
     run data/four-bar.json --dt 1e-2 --t-end 1 --rank-tol 0.5 --summary /dev/null
-expect "--dt 1e-310: too small, not 'not a finite number'" 2 "^braun: --dt: '1e-310' is too small" \
+expect "--dt 1e-310: underflows, not 'not a finite number'" 2 "^braun: --dt: '1e-310' underflows: it is below the smallest normal double" \
     run four-bar --dt 1e-310 --t-end 1
+# A value below a double's range reads as 0 (strtod's ERANGE): refused,
+# in every real option, as an underflow.
+for opt in --dt --t-end --rtol --atol --rank-tol --energy-max-rel --guard --soft-tol --ref-h; do
+    expect "$opt 1e-400: refused as an underflow (it would read as 0)" 2 \
+        "^braun: $opt: '1e-400' underflows: it is below the smallest normal double, 2.22507e-308, and would read as 0" \
+        run four-bar --dt 1e-2 --t-end 1 --integrator dopri5 "$opt" 1e-400
+done
+expect "plot --from -1e-400: refused as an underflow" 2 "^braun: --from: '-1e-400' underflows" \
+    plot four-bar --dt 1e-2 --t-end 1 --from -1e-400 -o "$TMP/from.svg"
+expect "gen --angle 1e-400: refused as an underflow, not 'a number of degrees'" 2 \
+    "^braun: --angle: '1e-400' underflows" gen chain 2 --angle 1e-400
+"$BRAUN" run pendulum --dt 1e-2 --t-end 0.05 --out "$TMP/u.csv" --summary /dev/null
+sed '3s/^\([^,]*\),[^,]*,/\1,1e-400,/' "$TMP/u.csv" > "$TMP/u400.csv"
+expect "plot --traj: a CSV value 1e-400 (reads as 0) is refused at CSV:LINE, its column" 2 \
+    "^braun: --traj .*u400.csv:3: column 2 \(bob.x\) is 1e-400: it underflows" \
+    plot pendulum --traj "$TMP/u400.csv" -o "$TMP/u.svg"
 expect "--dt 1e999: out of range, not 'not a finite number'" 2 "^braun: --dt: '1e999' is out of range" \
     run four-bar --dt 1e999 --t-end 1
 expect "--dt 1e-17 with --t-end 1: below the time resolution" 2 "below the time resolution" \

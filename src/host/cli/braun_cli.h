@@ -83,6 +83,12 @@ char *braun_cli_read_file(const char *path, size_t max, size_t *len, char *err, 
 /* ---------------------------------------------------------- usage (cli_usage.c) */
 void braun_cli_usage(FILE *f);
 
+/* ------------------------------------------------ real values (cli_real.c) */
+/* A real option's value: a finite double filling s, neither beyond a
+ * double's range nor nonzero below its smallest normal value (it would
+ * underflow). 0, or BRAUN_CLI_USAGE after one message naming opt. */
+int braun_cli_parse_real(const char *opt, const char *s, double *out);
+
 /* ---------------------------------------------------- options (cli_args.c) */
 typedef struct braun_cli_run_args {
     const char *model;          /* MODEL argument, as given */

@@ -35,29 +35,9 @@ const char *braun_cli_corrections_str(unsigned bits, char *buf, size_t size)
     return buf;
 }
 
-/* A real number filling the whole argument. NaN and Inf are never
- * meaningful here; nor are numbers a double cannot hold: beyond its range,
- * or nonzero below its smallest normal value (strtod's ERANGE). Each is
- * refused with what is wrong with it. */
-static int parse_real(const char *opt, const char *s, double *out)
-{
-    char *end;
-    errno = 0;
-    double x = strtod(s, &end);
-    if (end == s || *end != '\0') return braun_cli_error("%s: '%s' is not a number", opt, s);
-    if (!isfinite(x) && errno != ERANGE) return braun_cli_error("%s: '%s' is not finite", opt, s);
-    if (errno == ERANGE && (isinf(x) || fabs(x) > 1))
-        return braun_cli_error("%s: '%s' is out of range (beyond %g)", opt, s, DBL_MAX);
-    if (errno == ERANGE || (x != 0 && fabs(x) < DBL_MIN))
-        return braun_cli_error("%s: '%s' is too small (below the smallest normal double, %g; "
-                               "write 0 or a larger value)", opt, s, DBL_MIN);
-    *out = x;
-    return 0;
-}
-
 static int parse_positive(const char *opt, const char *s, double *out)
 {
-    int rc = parse_real(opt, s, out);
+    int rc = braun_cli_parse_real(opt, s, out);
     if (rc) return rc;
     if (!(*out > 0)) return braun_cli_error("%s must be > 0 (got %s)", opt, s);
     return 0;
@@ -66,7 +46,7 @@ static int parse_positive(const char *opt, const char *s, double *out)
 /* Tolerances where 0 asks for the library's default. */
 static int parse_nonnegative(const char *opt, const char *s, double *out)
 {
-    int rc = parse_real(opt, s, out);
+    int rc = braun_cli_parse_real(opt, s, out);
     if (rc) return rc;
     if (!(*out >= 0)) return braun_cli_error("%s must be >= 0 (got %s)", opt, s);
     return 0;
@@ -139,7 +119,7 @@ static int apply_plot(const char *opt, const char *val, braun_cli_run_args *a)
     if (strcmp(opt, "--frames") == 0) return parse_count(opt, val, 1, 1000, &a->frames);
     if (strcmp(opt, "--samples") == 0) return parse_count(opt, val, 2, 100000, &a->samples);
     if (strcmp(opt, "--from") == 0) {
-        const int rc = parse_real(opt, val, &a->from);
+        const int rc = braun_cli_parse_real(opt, val, &a->from);
         if (!rc && a->from < 0) return braun_cli_error("--from must be >= 0 (got %s)", val);
         return rc;
     }
@@ -175,10 +155,10 @@ static int apply(const char *opt, const char *val, braun_cli_run_args *a, int pl
     }
     if (strcmp(opt, "--energy-max-rel") == 0) return parse_nonnegative(opt, val, &a->energy_max_rel);
     /* 0 is the library's default, a negative value turns the guard off. */
-    if (strcmp(opt, "--guard") == 0) return parse_real(opt, val, &a->guard);
+    if (strcmp(opt, "--guard") == 0) return braun_cli_parse_real(opt, val, &a->guard);
     /* 0 is the library's default, a negative value turns the filter off. */
     if (strcmp(opt, "--soft-tol") == 0) {
-        const int rc = parse_real(opt, val, &a->soft_tol);
+        const int rc = braun_cli_parse_real(opt, val, &a->soft_tol);
         if (!rc && a->soft_tol >= 1)
             return braun_cli_error("--soft-tol %s: must be < 1 (relative to the constraint "
                                    "matrix's norm)", val);

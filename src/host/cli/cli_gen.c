@@ -211,11 +211,10 @@ static void write_spatial(FILE *f, long N, double deg)
 
 static int parse_angle(const char *s, double *deg)
 {
-    char *end;
-    errno = 0;
-    double x = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(x) ||
-        fabs(x) > GEN_MAX_ANGLE)
+    double x;
+    const int rc = braun_cli_parse_real("--angle", s, &x);
+    if (rc) return rc;
+    if (fabs(x) > GEN_MAX_ANGLE)
         return braun_cli_error("--angle must be a number of degrees in [-%g, %g] (got '%s')",
                                GEN_MAX_ANGLE, GEN_MAX_ANGLE, s);
     *deg = x + 0.0; /* -0 prints as 0 */

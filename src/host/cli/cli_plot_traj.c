@@ -29,6 +29,14 @@ static const char *header_cell(const char *p, const char *end, char *name, size_
     return p;
 }
 
+/* A mantissa with a nonzero digit: the number written is not 0. */
+static int nonzero_digits(const char *s, const char *end)
+{
+    for (; s < end && *s != 'e' && *s != 'E'; s++)
+        if (*s >= '1' && *s <= '9') return 1;
+    return 0;
+}
+
 /* One row into row (cols numbers, the CSV's columns; an empty traj_err is
  * NaN): 0, or BRAUN_CLI_USAGE after "FILE:LINE: ..." naming the column. A
  * value must be a finite double: nan, inf and what overflows one (1e999)
@@ -62,6 +70,12 @@ static int read_row(const char *p, const char *eol, const braun_cli_target *t, i
                                    name, (int)(stop - start > 40 ? 40 : stop - start), start,
                                    errno == ERANGE ? "beyond the range of a double"
                                                    : "not a finite number");
+        /* A nonzero number that reads as 0 lost its value; a subnormal is
+         * kept: braun run writes one as digits that read back exactly. */
+        if (row[j] == 0 && stop != p && errno == ERANGE && nonzero_digits(start, stop))
+            return braun_cli_error("--traj %s:%ld: column %d (%s) is %.*s: it underflows (below "
+                                   "the smallest double, it would read as 0)", path, line, j + 1,
+                                   name, (int)(stop - start > 40 ? 40 : stop - start), start);
         p = last ? eol : stop + 1;
     }
     return 0;

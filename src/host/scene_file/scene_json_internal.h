@@ -45,6 +45,14 @@ typedef struct sj_name {
     int index;
 } sj_name;
 
+/* A real of the text that underflows (scene_json_underflow.c): jansson's
+ * value for it and its token. */
+typedef struct sj_underflow {
+    const json_t *value;
+    const char *text;
+    size_t len;
+} sj_underflow;
+
 /* The reader's state: the text, the path being read, the scene being
  * filled, and the first error. */
 typedef struct sj_reader {
@@ -77,6 +85,9 @@ typedef struct sj_reader {
     braun_scene_classes extra;
     /* The element being read, for messages: "body 'crank'", "joint #3". */
     char who[160];
+    /* The reals that underflow, sorted by value (sj_find_underflows). */
+    sj_underflow *underflows;
+    int nunderflows;
 } sj_reader;
 
 /* Format "FILE:LINE:COL: message" at the current path; returns -1. */
@@ -111,6 +122,13 @@ void sj_index_free(sj_reader *r);
  * 0, or -1 after a message at the element. */
 int sj_check_mass(sj_reader *r);
 int sj_check_initial(sj_reader *r);
+
+/* List the reals of the text whose token is not 0 but whose value is
+ * below BRAUN_SCENE_MIN_NORMAL (jansson reads "1e-400" as 0 and "1e-310"
+ * as a subnormal without an error) into r->underflows: 0, or -1 out of
+ * memory. sj_underflow_of: the entry of value v, or NULL. */
+int sj_find_underflows(sj_reader *r, json_t *root);
+const sj_underflow *sj_underflow_of(const sj_reader *r, const json_t *v);
 
 /* Read every element of the root object into r->out (scene_json_read.c). */
 int sj_read_scene(sj_reader *r, json_t *root);

@@ -147,7 +147,10 @@ static braun_scene_file *load_owned(const char *path, char *text, size_t len,
     r.err_size = err_size;
     r.out = &o->file;
     if (extra) r.extra = *extra;
-    int st = sj_read_scene(&r, root);
+    int st = sj_find_underflows(&r, root);
+    if (st) set_err(err, err_size, path, 1, 1, "out of memory");
+    else st = sj_read_scene(&r, root);
+    free(r.underflows);
     free(r.point_names);
     sj_index_free(&r);
     free((void *)r.rod_names);

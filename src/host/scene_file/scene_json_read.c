@@ -51,21 +51,41 @@ static int missing(sj_reader *r, const char *key)
     return sj_fail(r, SJ_AT_VALUE, "%s: missing field '%s'", r->who, key);
 }
 
-/* A number in range; the path is at the value. Nonzero numbers below the
- * smallest normal braun_real are refused with the too large ones: they
- * carry a few bits at most, and arithmetic on them is slow. */
-static int number_value(sj_reader *r, json_t *v, const char *field, double *x)
+/* A number in range; the path is at the value. A nonzero number below the
+ * smallest normal braun_real underflows: jansson reads "1e-400" as 0 and
+ * "1e-310" as a subnormal that keeps a few bits, arithmetic on which is
+ * slow too. Both are refused, with the least nonzero magnitude the field
+ * accepts: least, BRAUN_SCENE_MIN_NORMAL or, for a parameter with a
+ * domain, BRAUN_SCENE_MIN_SCALE (scale_value). */
+static int number_in(sj_reader *r, json_t *v, const char *field, double least, double *x)
 {
     if (!json_is_number(v)) return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be a number", r->who, field);
     *x = json_number_value(v);
     if (!isfinite(*x) || fabs(*x) > BRAUN_SCENE_MAX_ABS)
         return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' is out of range (%g; the limit is |x| <= %g)",
                        r->who, field, *x, BRAUN_SCENE_MAX_ABS);
-    if (*x != 0 && fabs(*x) < BRAUN_SCENE_MIN_NORMAL)
-        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' is out of range (%.3g is below the smallest "
-                                       "normal number %g: write 0 or a larger value)",
-                       r->who, field, *x, BRAUN_SCENE_MIN_NORMAL);
+    const sj_underflow *u = sj_underflow_of(r, v);
+    if (u || (*x != 0 && fabs(*x) < BRAUN_SCENE_MIN_NORMAL)) {
+        char written[48], read[64];
+        if (u) snprintf(written, sizeof written, "%.*s", u->len > 40 ? 40 : (int)u->len, u->text);
+        else snprintf(written, sizeof written, "%.3g", *x);
+        if (*x == 0) snprintf(read, sizeof read, "0");
+        else snprintf(read, sizeof read, "the subnormal %.6g (a few bits at most)", *x);
+        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' underflows: %s%s is below the smallest "
+                                       "normal number %g and would read as %s; the least nonzero "
+                                       "magnitude it accepts is %g (%s)",
+                       r->who, field, written, u && u->len > 40 ? "..." : "",
+                       BRAUN_SCENE_MIN_NORMAL, read, least,
+                       least > BRAUN_SCENE_MIN_NORMAL ? "BRAUN_SCENE_MIN_SCALE, for a field with a "
+                                                        "domain"
+                                                      : "BRAUN_SCENE_MIN_NORMAL");
+    }
     return 0;
+}
+
+static int number_value(sj_reader *r, json_t *v, const char *field, double *x)
+{
+    return number_in(r, v, field, BRAUN_SCENE_MIN_NORMAL, x);
 }
 
 /* A parameter with a domain (a mass, a length, an axis, a stiffness, a
@@ -83,22 +103,29 @@ static int scale_value(sj_reader *r, const char *field, const double *x, int cou
                    count > 1 ? "length " : "", len, BRAUN_SCENE_MIN_SCALE);
 }
 
-/* Member key as a number: 0 read, 1 absent and optional, -1 error. */
-static int num_field(sj_reader *r, json_t *obj, const char *key, int required, double *x)
+/* Member key as a number (least: as number_in): 0 read, 1 absent and
+ * optional, -1 error. */
+static int num_field_in(sj_reader *r, json_t *obj, const char *key, int required, double least,
+                        double *x)
 {
     json_t *v = json_object_get(obj, key);
     if (!v) return required ? missing(r, key) : 1;
     sj_push_key(r, key);
-    int st = number_value(r, v, key, x);
+    int st = number_in(r, v, key, least, x);
     sj_pop(r);
     return st;
+}
+
+static int num_field(sj_reader *r, json_t *obj, const char *key, int required, double *x)
+{
+    return num_field_in(r, obj, key, required, BRAUN_SCENE_MIN_NORMAL, x);
 }
 
 /* A number with a domain: sign > 0 asks x > 0, sign = 0 asks x >= 0. */
 static int num_field_min(sj_reader *r, json_t *obj, const char *key, int required, int strict,
                          double *x)
 {
-    int st = num_field(r, obj, key, required, x);
+    int st = num_field_in(r, obj, key, required, BRAUN_SCENE_MIN_SCALE, x);
     if (st) return st;
     if (strict ? !(*x > 0) : !(*x >= 0)) {
         sj_push_key(r, key);
@@ -436,7 +463,11 @@ static int real_value(sj_reader *r, json_t *v, const braun_scene_field *f, braun
                                                                      : 1;
     double x[8] = {0};
     if (count > 8) return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' has too many entries", r->who, f->key);
-    if (count == 1 ? number_value(r, v, f->key, x) : vec_value(r, v, f->key, count, x)) return -1;
+    /* A vector's domain is on its length (scale_value), not its entries. */
+    const double least = (f->flags & (BRAUN_FIELD_POSITIVE | BRAUN_FIELD_NONNEG | BRAUN_FIELD_NONZERO))
+                             ? BRAUN_SCENE_MIN_SCALE
+                             : BRAUN_SCENE_MIN_NORMAL;
+    if (count == 1 ? number_in(r, v, f->key, least, x) : vec_value(r, v, f->key, count, x)) return -1;
     int zero = 1;
     for (int i = 0; i < count; i++) {
         if ((f->flags & BRAUN_FIELD_POSITIVE) && !(x[i] > 0))
