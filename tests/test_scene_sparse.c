@@ -35,8 +35,6 @@ int braun_cli_error(const char *fmt, ...)
     return BRAUN_CLI_USAGE;
 }
 
-void braun_cli_usage(FILE *f) { (void)f; }
-
 /* `braun gen KIND N [--angle DEG] [--rods]` into a temporary file, loaded. */
 static braun_scene_file *generate(const char *kind, int count, const char *angle, int rods)
 {

@@ -96,6 +96,19 @@ bad "empty backend" $run --dt 1e-3 --backend=
 bad "--sparse with a value" $run --dt 1e-3 --sparse=yes
 bad "--sparse on a built-in model" $run --dt 1e-3 --sparse
 bad "--backend suitesparse on a built-in model" $run --dt 1e-3 --backend suitesparse
+# --help and --version take nothing more: a word after them is a mistake,
+# refused (exit 2) rather than ignored; so is every command's --help.
+bad "--help with an extra argument" --help extra
+bad "-h with an extra argument" -h extra
+bad "help with an extra argument" help extra
+bad "--version with an extra argument" --version extra
+for cmd in run plot check gen gen-c list; do
+    bad "$cmd --help with an extra argument" $cmd --help extra
+    bad "$cmd -h after an argument" $cmd extra -h
+    "$BRAUN" $cmd --help > "$TMP/chelp" 2>&1; rc=$?
+    check "$cmd --help alone: exit 0, the usage" sh -c '[ "$1" -eq 0 ] && grep -q "^Usage: braun run" "$2"' \
+        sh "$rc" "$TMP/chelp"
+done
 "$BRAUN" run scene.json --dt 1e-3 --t-end 1 > /dev/null 2> "$TMP/scene.err"; rc=$?
 check "missing scene file: exit 2 and 'cannot open'" \
     sh -c '[ "$1" -eq 2 ] && [ "$(cat "$2")" = "braun: scene.json: cannot open: No such file or directory" ]' \

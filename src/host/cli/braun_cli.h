@@ -82,6 +82,10 @@ char *braun_cli_read_file(const char *path, size_t max, size_t *len, char *err, 
 
 /* ---------------------------------------------------------- usage (cli_usage.c) */
 void braun_cli_usage(FILE *f);
+/* --help or -h among the arguments after command cmd: alone, the usage on
+ * stdout and -1; beside any other argument a usage error (BRAUN_CLI_USAGE
+ * after one message); 0 when not asked. */
+int braun_cli_help_asked(const char *cmd, int argc, char **argv);
 
 /* ------------------------------------------------ real values (cli_real.c) */
 /* A real option's value: a finite double filling s, neither beyond a
@@ -136,9 +140,9 @@ enum {
 #define BRAUN_CLI_MAX_REF_STEPS 1e9
 
 /* Parse the arguments after "run" (plot = 0) or "plot" (plot = 1: also
- * the plot options; --dt and --t-end not needed with --traj). Returns 0 to
- * run, -1 when --help was asked (usage already printed), else
- * BRAUN_CLI_USAGE after one message. */
+ * the plot options; --dt and --t-end not needed with --traj; --help is the
+ * caller's, braun_cli_help_asked). Returns 0 to run, else BRAUN_CLI_USAGE
+ * after one message. */
 int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot);
 
 /* Comma list of the correction names in bits ("none" for 0); buf >= 32. */

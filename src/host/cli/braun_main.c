@@ -10,11 +10,15 @@ int main(int argc, char **argv)
     /* Usage errors are one line, so scripts can show them as they are. */
     if (argc < 2) return braun_cli_error("missing command: run, plot, check, gen, gen-c, list, --help or --version");
     const char *cmd = argv[1];
+    /* braun --help and --version take nothing more: a word after them is
+     * a mistake (a command meant before them), not something to ignore. */
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+        if (argc > 2) return braun_cli_error("%s takes no arguments (got '%s')", cmd, argv[2]);
         braun_cli_usage(stdout);
         return 0;
     }
     if (strcmp(cmd, "--version") == 0) {
+        if (argc > 2) return braun_cli_error("%s takes no arguments (got '%s')", cmd, argv[2]);
         /* What this build holds: the precision and the backends. */
         const int lapack = braun_linsolver_lapack() != NULL;
         const int ss = braun_linsolver_suitesparse() != NULL;
@@ -27,6 +31,14 @@ int main(int argc, char **argv)
                precision, lapack ? ", lapack" : "", ss ? ", suitesparse" : "");
         return 0;
     }
+    /* Every command's --help: alone, the usage (exit 0); with other
+     * arguments a usage error, as for the tool's own --help. */
+    static const char *const commands[] = {"run", "plot", "check", "gen", "gen-c", "list"};
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (strcmp(cmd, commands[i]) == 0) {
+            const int help = braun_cli_help_asked(cmd, argc - 2, argv + 2);
+            if (help) return help < 0 ? 0 : help;
+        }
     if (strcmp(cmd, "list") == 0) {
         if (argc > 2) return braun_cli_error("list takes no arguments (got '%s')", argv[2]);
         return braun_cli_list();
@@ -34,7 +46,6 @@ int main(int argc, char **argv)
     if (strcmp(cmd, "run") == 0) {
         braun_cli_run_args a;
         int rc = braun_cli_parse_run(argc - 2, argv + 2, &a, 0);
-        if (rc < 0) return 0; /* --help */
         if (rc) return rc;
         return braun_cli_run(&a);
     }

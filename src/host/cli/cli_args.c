@@ -227,10 +227,6 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
 
     for (int i = 0; i < argc; i++) {
         const char *arg = argv[i];
-        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
-            braun_cli_usage(stdout);
-            return -1;
-        }
         /* "-" alone and negative numbers are values, not options. */
         if (arg[0] != '-' || strcmp(arg, "-") == 0) {
             if (a->model) return braun_cli_error("unexpected argument '%s' (one MODEL only)", arg);

@@ -201,10 +201,6 @@ done:
 
 int braun_cli_check(int argc, char **argv)
 {
-    if (argc == 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
-        braun_cli_usage(stdout);
-        return 0;
-    }
     if (argc != 1) return braun_cli_error("check needs exactly one SCENE (a .json file or a "
                                           "built-in model)");
     braun_cli_target tg;

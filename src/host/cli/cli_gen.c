@@ -231,10 +231,6 @@ int braun_cli_gen(int argc, char **argv)
     int rods = 0, ladder = 0, fourbar = 0, spatial = 0, rc;
     double deg;
     if (argc < 1) return braun_cli_error("gen needs a kind: " GEN_USAGE);
-    if (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0) {
-        braun_cli_usage(stdout);
-        return 0;
-    }
     if (strcmp(argv[0], "chain") == 0) ladder = 0;
     else if (strcmp(argv[0], "ladder") == 0) ladder = 1;
     else if (strcmp(argv[0], "n-four-bar") == 0) fourbar = 1;

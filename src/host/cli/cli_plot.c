@@ -121,7 +121,6 @@ int braun_cli_plot(int argc, char **argv)
 {
     braun_cli_run_args a;
     int rc = braun_cli_parse_run(argc, argv, &a, 1);
-    if (rc < 0) return 0;
     if (rc) return rc;
     const int fmt = format_of(a.plot_path);
     if (fmt < 0)

@@ -1,5 +1,21 @@
-/* braun --help. */
+/* braun --help, and a command's --help. */
+#include <string.h>
+
 #include "braun_cli.h"
+
+int braun_cli_help_asked(const char *cmd, int argc, char **argv)
+{
+    int at = -1;
+    for (int i = 0; i < argc && at < 0; i++)
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) at = i;
+    if (at < 0) return 0;
+    if (argc > 1)
+        return braun_cli_error("%s %s takes no other arguments (got '%s'): braun %s %s alone "
+                               "shows the usage", cmd, argv[at], argv[at == 0 ? 1 : 0], cmd,
+                               argv[at]);
+    braun_cli_usage(stdout);
+    return -1;
+}
 
 void braun_cli_usage(FILE *f)
 {
@@ -14,7 +30,7 @@ void braun_cli_usage(FILE *f)
 "       braun gen spatial-chain N [--angle DEG] [-o FILE]\n"
 "       braun gen-c SCENE [--symbol NAME] [-o FILE]\n"
 "       braun list\n"
-"       braun --help | --version\n"
+"       braun --help | --version | COMMAND --help (nothing after them)\n"
 "\n"
 "Simulates a constrained mechanical system with the corrected equation of\n"
 "motion of Braun & Goldfarb (2012), Eqs. 16, 17 and 20, and reports its\n"
