@@ -314,7 +314,7 @@ check "CSV: the built-in slider-crank names its columns as data/slider-crank.jso
 check "JSON: dt 0.05, the effective rank_tol (10 max(m, n) eps = 1.33e-14) and energy_max_rel 0.01" sh -c '
     grep -q "^  \"dt\": 0.05,$" short.json && grep -q "^  \"rank_tol\": 1.3322676295501878e-14,$" short.json &&
     grep -q "^  \"energy_max_rel\": 0.01,$" short.json && grep -q "^  \"guard\": 0.001,$" short.json &&
-    grep -q "^  \"defaults\": \[\"rank_tol\", \"energy_max_rel\", \"symmetry_tol\", \"inconsistency_tol\", \"soft_tol\", \"guard\", \"ref_h\"\]$" short.json'
+    grep -q "^  \"defaults\": \[\"rank_tol\", \"energy_max_rel\", \"symmetry_tol\", \"inconsistency_tol\", \"soft_tol\", \"guard\", \"max_steps\", \"ref_h\"\]$" short.json'
 check "JSON: the guard's bounds are its relative value times the scales" \
     awk -F': ' '/"guard": / { g = $2 + 0 } /"guard_position_bound"/ { b = $2 + 0 } /"guard_position_scale"/ { s = $2 + 0 }
          END { exit !(g == 0.001 && s > 0 && (b - g * s) ^ 2 < 1e-30) }' short.json

@@ -96,6 +96,47 @@ bad "empty backend" $run --dt 1e-3 --backend=
 bad "--sparse with a value" $run --dt 1e-3 --sparse=yes
 bad "--sparse on a built-in model" $run --dt 1e-3 --sparse
 bad "--backend suitesparse on a built-in model" $run --dt 1e-3 --backend suitesparse
+# bad_msg NAME PATTERN ARGS...: as bad, within 10 s, the line matching PATTERN (grep -E).
+bad_msg() {
+    name=$1 pattern=$2; shift 2
+    timeout 10 "$BRAUN" "$@" > "$TMP/bad.out" 2> "$TMP/bad.err"; rc=$?
+    if [ "$rc" -eq 2 ] && [ ! -s "$TMP/bad.out" ] && [ "$(lines "$TMP/bad.err")" -eq 1 ] &&
+        grep -Eq -- "$pattern" "$TMP/bad.err"; then
+        ok "bad argument: $name"
+    else
+        not_ok "bad argument: $name" "exit $rc, stderr: $(head -c 300 "$TMP/bad.err")"
+    fi
+}
+# --max-steps bounds a fixed-step run too, before it starts (the default,
+# 1e8, is the adaptive driver's): --dt 1e-12 to 1 s would run for hours.
+bad_msg "fixed-step run of 1e12 steps: refused at once, count, limit and option named" \
+    "^braun: --dt 1e-12 to --t-end 1 is a fixed-step run of [0-9]+ steps \(T/H = 1e\+12\), more than --max-steps 100000000 allows" \
+    run pendulum --dt 1e-12 --t-end 1
+bad_msg "plot: the same limit" "more than --max-steps 100000000 allows" \
+    plot pendulum --dt 1e-10 --t-end 1 -o "$TMP/ms.svg"
+bad_msg "--max-steps 999 for 1000 steps: refused" \
+    "^braun: --dt 0.001 to --t-end 1 is a fixed-step run of 1000 steps \(T/H = 1000\), more than --max-steps 999" \
+    run pendulum --dt 1e-3 --t-end 1 --max-steps 999
+for v in 0 -3; do bad_msg "--max-steps $v" "^braun: --max-steps must be >= 1 \(got $v\)$" $run --dt 1e-3 --max-steps $v; done
+bad_msg "--max-steps 2.5" "^braun: --max-steps must be a whole number of steps" $run --dt 1e-3 --max-steps 2.5
+for v in 1e19 99999999999999999999999; do
+    bad_msg "--max-steps $v: beyond a long" "^braun: --max-steps $v: more than the library's step limit can hold" \
+        $run --dt 1e-3 --max-steps $v
+done
+for v in inf nan abc; do bad_msg "--max-steps $v" "^braun: --max-steps: '$v' is not" $run --dt 1e-3 --max-steps $v; done
+"$BRAUN" run pendulum --dt 1e-3 --t-end 1 --max-steps 1e3 > "$TMP/ms.json" 2> "$TMP/ms.err"; rc=$?
+check "--max-steps 1e3 for 1000 steps: runs them, the summary's max_steps 1000" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^  \"steps\": 1000,$" "$2" && grep -q "^  \"max_steps\": 1000,$" "$2" &&
+    ! grep -q "^  \"defaults\": .*max_steps" "$2"' sh "$rc" "$TMP/ms.json"
+"$BRAUN" run pendulum --dt 1e-3 --t-end 1 > "$TMP/ms.json"
+check "a fixed-step run's summary: max_steps 100000000, the default" sh -c '
+    grep -q "^  \"max_steps\": 100000000,$" "$1" && grep -q "^  \"defaults\": .*\"max_steps\"" "$1"' \
+    sh "$TMP/ms.json"
+"$BRAUN" run pendulum --dt 1e-3 --t-end 1 --integrator dopri5 --max-steps 5 > "$TMP/ms.json" 2> "$TMP/ms.err"; rc=$?
+check "dopri5 --max-steps 5: stops after 5 attempts, exit 1, BRAUN_ERR_TOO_MANY_STEPS" sh -c '
+    [ "$1" -eq 1 ] && grep -q "^  \"status\": \"BRAUN_ERR_TOO_MANY_STEPS\",$" "$2" &&
+    grep -q "^  \"max_steps\": 5,$" "$2" && grep -q "^  \"steps\": 5,$" "$2"' sh "$rc" "$TMP/ms.json"
+
 # --help and --version take nothing more: a word after them is a mistake,
 # refused (exit 2) rather than ignored; so is every command's --help.
 bad "--help with an extra argument" --help extra

@@ -104,6 +104,8 @@ typedef struct braun_cli_run_args {
     double rank_tol;            /* 0: library default */
     double energy_max_rel;      /* 0: library default */
     double rtol, atol;          /* dopri5 only */
+    long max_steps;             /* --max-steps: dopri5's attempts; a fixed-step run's steps */
+    int max_steps_given;
     double ref_h;               /* 0: reference default */
     const char *out_path;       /* CSV trajectory, NULL for none; "-" stdout */
     long every;                 /* CSV row every K steps */
@@ -138,6 +140,13 @@ enum {
 /* --ref-h: the integrated references may take at most this many substeps
  * (t_end / ref_h). */
 #define BRAUN_CLI_MAX_REF_STEPS 1e9
+
+/* --max-steps' default: the adaptive driver's own (braun_adaptive), which
+ * bounds a fixed-step run too (checked before it starts). */
+#define BRAUN_CLI_MAX_STEPS 100000000L
+
+/* The steps braun_integrate takes from t = 0 to t_end with step h. */
+double braun_cli_fixed_steps(double h, double t_end);
 
 /* Parse the arguments after "run" (plot = 0) or "plot" (plot = 1: also
  * the plot options; --dt and --t-end not needed with --traj; --help is the

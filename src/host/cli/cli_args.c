@@ -2,12 +2,14 @@
  * exit status 2, before anything is computed. */
 #include <errno.h>
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "braun_cli.h"
+#include "braun_math.h" /* BRAUN_EPS: braun_integrate's step count */
 
 static const struct {
     const char *name;
@@ -61,6 +63,43 @@ static int parse_every(const char *s, long *out)
         return braun_cli_error("--every must be an integer >= 1 (got '%s')", s);
     *out = k;
     return 0;
+}
+
+/* --max-steps: a whole number from 1 to LONG_MAX (braun_adaptive's
+ * max_steps is a long), as digits or as a number whose value is whole
+ * (1e8). */
+static int parse_max_steps(const char *s, long *out)
+{
+    static const char *const opt = "--max-steps";
+    char *end;
+    errno = 0;
+    const long k = strtol(s, &end, 10);
+    if (end != s && *end == '\0' && errno != ERANGE) {
+        if (k < 1) return braun_cli_error("%s must be >= 1 (got %s)", opt, s);
+        *out = k;
+        return 0;
+    }
+    double x;
+    if (end != s && *end == '\0') x = k > 0 ? HUGE_VAL : -HUGE_VAL; /* digits beyond a long */
+    else if (braun_cli_parse_real(opt, s, &x)) return BRAUN_CLI_USAGE;
+    if (x < 1) return braun_cli_error("%s must be >= 1 (got %s)", opt, s);
+    /* (double)LONG_MAX rounds up to 2^63 (2^31 + 1 with a 32-bit long is exact). */
+    if (x >= (double)LONG_MAX + 1.0)
+        return braun_cli_error("%s %s: more than the library's step limit can hold (%ld)", opt,
+                               s, LONG_MAX);
+    if (x != floor(x)) return braun_cli_error("%s must be a whole number of steps (got %s)", opt, s);
+    *out = (long)x;
+    return 0;
+}
+
+double braun_cli_fixed_steps(double h, double t_end)
+{
+    /* braun_integrate's count (braun_integrate.c): a span that is a whole
+     * number of steps up to round-off takes that many, else one more. */
+    const double ratio = t_end / h;
+    const double slack = 8.0 * (double)BRAUN_EPS > 1e-9 ? 8.0 * (double)BRAUN_EPS : 1e-9;
+    const double steps = ceil(ratio - slack * ratio);
+    return steps < 1 ? 1 : steps;
 }
 
 static int parse_corrections(const char *s, braun_cli_run_args *a)
@@ -167,6 +206,10 @@ static int apply(const char *opt, const char *val, braun_cli_run_args *a, int pl
     if (strcmp(opt, "--rtol") == 0) return parse_nonnegative(opt, val, &a->rtol);
     if (strcmp(opt, "--atol") == 0) return parse_nonnegative(opt, val, &a->atol);
     if (strcmp(opt, "--ref-h") == 0) return parse_positive(opt, val, &a->ref_h);
+    if (strcmp(opt, "--max-steps") == 0) {
+        a->max_steps_given = 1;
+        return parse_max_steps(val, &a->max_steps);
+    }
     if (strcmp(opt, "--every") == 0) {
         a->every_given = 1;
         return parse_every(val, &a->every);
@@ -198,7 +241,7 @@ static int takes_value(const char *opt, int plot)
     static const char *const names[] = {
         "--dt", "--t-end", "--integrator", "--corrections", "--discretization",
         "--rank-tol", "--energy-max-rel", "--guard", "--soft-tol", "--rtol", "--atol", "--ref-h",
-        "--every", "--out", "--summary", "--backend"};
+        "--every", "--out", "--summary", "--backend", "--max-steps"};
     static const char *const plot_names[] = {"-o", "--traj", "--points", "--plot", "--frames",
                                              "--from", "--samples", "--view"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
@@ -217,6 +260,7 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
     a->discretization = BRAUN_PER_STEP;
     a->rtol = 1e-8;
     a->atol = 1e-10;
+    a->max_steps = BRAUN_CLI_MAX_STEPS;
     a->every = 1;
     a->summary_path = plot ? NULL : "-";
     a->backend = "dense";
@@ -311,6 +355,15 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
         return braun_cli_error("--dt %g is below the time resolution at --t-end %g (%g): the "
                                "steps' times would not advance", a->dt, a->t_end,
                                4 * DBL_EPSILON * a->t_end);
+    /* A fixed-step run's length is known before it starts: one beyond the
+     * step limit is refused rather than left to run for hours (dopri5
+     * counts its attempts against the same limit as it goes). */
+    if (a->method != BRAUN_DOPRI5 && braun_cli_fixed_steps(a->dt, a->t_end) > (double)a->max_steps)
+        return braun_cli_error("--dt %g to --t-end %g is a fixed-step run of %.15g steps (T/H = "
+                               "%g), more than --max-steps %ld allows: give a larger --dt, or "
+                               "raise --max-steps", a->dt, a->t_end,
+                               braun_cli_fixed_steps(a->dt, a->t_end), a->t_end / a->dt,
+                               a->max_steps);
     /* The integrated references take t_end / ref_h substeps. */
     if (a->ref_h > 0 && a->t_end / a->ref_h > BRAUN_CLI_MAX_REF_STEPS)
         return braun_cli_error("--ref-h %g: the reference would take %g substeps to --t-end %g "

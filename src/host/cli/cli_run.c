@@ -94,7 +94,7 @@ static int integrate(braun_data *d, const braun_cli_run_args *a, long every,
 {
     if (a->method == BRAUN_DOPRI5) {
         braun_adaptive ctl = {(braun_real)a->rtol, (braun_real)a->atol, (braun_real)a->dt,
-                              0, 0, 0};
+                              0, 0, a->max_steps};
         return braun_integrate_adaptive(d, &ctl, (braun_real)a->t_end, every, out, user);
     }
     return braun_integrate(d, a->method, (braun_real)a->dt, (braun_real)a->t_end, every, out,

@@ -166,13 +166,15 @@ int braun_cli_write_summary(FILE *f, const braun_cli_result *r)
     if (adaptive) {
         defaulted[nd++] = "h_min";
         defaulted[nd++] = "h_max";
-        defaulted[nd++] = "max_steps";
     }
+    if (!a->max_steps_given) defaulted[nd++] = "max_steps";
     if (!(a->ref_h > 0) && !isnan(mon->ref_h)) defaulted[nd++] = "ref_h";
     num(&j, "h0", adaptive ? a->dt : NAN);
     num(&j, "h_min", adaptive ? 1e-12 * span : NAN);
     num(&j, "h_max", adaptive ? span : NAN);
-    num(&j, "max_steps", adaptive ? 1e8 : NAN);
+    /* The step limit of both kinds of run (--max-steps): dopri5's
+     * attempts, a fixed-step run's steps (checked before it started). */
+    integer(&j, "max_steps", a->max_steps);
     integer(&j, "every", a->every);
     num(&j, "cpu_s_monitored", r->cpu_monitored_s);
     str(&j, "cpu_s_note", isnan(r->cpu_s) ? "not timed (braun plot): see cpu_s_monitored"
