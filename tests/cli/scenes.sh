@@ -87,6 +87,49 @@ check "check slider-crank: initial residual $v <= 1e-15, reference slider-crank"
     awk -v a="$1" "BEGIN { exit !(a + 0 <= 1e-15) }" && grep -q "^reference: slider-crank$" "$2"' \
     sh "$v" "$TMP/sc.out"
 
+# Constraints with no solution: a particle pinned at x = 0 by one joint and
+# at x = 1 by another; two distances from one anchor (1 and 2). check says
+# so (consistent: no), names the joints whose rows disagree and exits 1;
+# run names them too (the core's rows of d->error.index/index2).
+cat > "$TMP/pinned.json" <<'EOF'
+{"name": "pinned", "bodies": [{"name": "b", "type": "particle", "mass": 1, "position": [0.5, 0]}],
+ "joints": [{"type": "distance", "a": [0, 3], "b": "b"},
+            {"name": "left", "type": "revolute", "a": [0, 0], "b": "b"},
+            {"name": "right", "type": "revolute", "a": [1, 0], "b": "b"}],
+ "effects": [{"type": "gravity", "g": [0, -9.81]}]}
+EOF
+"$BRAUN" check "$TMP/pinned.json" > "$TMP/pin.out" 2> "$TMP/pin.err"; rc=$?
+check "check: pinned at x = 0 and x = 1: consistent: no, exit 1, joints 'left' and 'right' named" sh -c '
+    [ "$1" -eq 1 ] && grep -q "^consistent: no$" "$2" && grep -q "^rank: 2$" "$2" && [ "$(wc -l < "$3")" -eq 1 ] &&
+    grep -q "^braun: pinned: the constraints have no solution at the initial state: joint .left. (revolute) (row 1) and joint .right. (revolute) (row 3) disagree (their least-squares residual 0.707 is above the library.s inconsistency tolerance 1.49e-08" "$3"' \
+    sh "$rc" "$TMP/pin.out" "$TMP/pin.err"
+"$BRAUN" run "$TMP/pinned.json" --dt 1e-3 --t-end 1 > /dev/null 2> "$TMP/pinr.err"; rc=$?
+check "run: the same scene stops at once, exit 1, names the joints of the rows that disagree" sh -c '
+    [ "$1" -eq 1 ] && [ "$(wc -l < "$2")" -eq 1 ] &&
+    grep -q "(rows 1 and 3 disagree most) at t = 0; row 1 is joint .left. (revolute), row 3 is joint .right. (revolute) (BRAUN_ERR_INCONSISTENT" "$2"' \
+    sh "$rc" "$TMP/pinr.err"
+cat > "$TMP/circles.json" <<'EOF'
+{"name": "circles", "bodies": [{"name": "b", "type": "particle", "mass": 1, "position": [1.5, 0]}],
+ "joints": [{"type": "distance", "a": [0, 0], "b": "b", "length": 1},
+            {"name": "long", "type": "distance", "a": [0, 0], "b": "b", "length": 2}]}
+EOF
+"$BRAUN" check "$TMP/circles.json" > "$TMP/circ.out" 2> "$TMP/circ.err"; rc=$?
+check "check: two distances 1 and 2 from one anchor: consistent: no, both joints named" sh -c '
+    [ "$1" -eq 1 ] && grep -q "^consistent: no$" "$2" &&
+    grep -q "joint #1 (distance) (row 0) and joint .long. (distance) (row 1) disagree" "$3"' \
+    sh "$rc" "$TMP/circ.out" "$TMP/circ.err"
+sed 's/"B": \[2, 0\]/"B": [2.2, 0]/' data/parallelogram-redundant.json > "$TMP/par.json"
+"$BRAUN" check "$TMP/par.json" > "$TMP/par.out" 2> "$TMP/par.err"; rc=$?
+check "check: the parallelogram's third crank 0.2 m off: consistent: no, its joints named first" sh -c '
+    [ "$1" -eq 1 ] && grep -q "^consistent: no$" "$2" &&
+    grep -q "joint .pivot2. (revolute) (row 3), joint .pin2. (revolute) (row 9), .* and more disagree" "$3"' \
+    sh "$rc" "$TMP/par.out" "$TMP/par.err"
+for f in data/parallelogram-redundant.json data/iftomm/a04-bricard.json four-bar; do
+    "$BRAUN" check "$f" > "$TMP/cons.out" 2>&1; rc=$?
+    check "check $f (redundant rows that agree, or none): consistent: yes" sh -c '
+        [ "$1" -eq 0 ] && grep -q "^consistent: yes$" "$2"' sh "$rc" "$TMP/cons.out"
+done
+
 # ------------------------------------------- bad scenes: the reader's message
 # Each must exit 2, print nothing on stdout and exactly "braun: " + the
 # expected message of tests/scene/NAME.err.

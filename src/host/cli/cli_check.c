@@ -63,6 +63,74 @@ static int rank_of_rows(int rows, int n, double *C, double tol)
     return rank;
 }
 
+/* The least-squares residual e = b − C x* of C x = b, C (rows x n,
+ * row-major, destroyed) of rank r: r steps of Householder QR with column
+ * pivoting give an orthonormal basis of range(C), and e is the part of b
+ * outside it (b is overwritten by e). Returns ‖e‖, or -1 out of memory. */
+static double lsq_residual(int rows, int n, double *C, int r, double *b)
+{
+    double *norm = calloc((size_t)(n > 0 ? n : 1), sizeof(double));
+    double *vv = calloc((size_t)(r > 0 ? r : 1), sizeof(double));
+    int done = 0;
+    if (!norm || !vv) {
+        free(norm);
+        free(vv);
+        return -1;
+    }
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < rows; i++) norm[j] += C[(size_t)i * n + j] * C[(size_t)i * n + j];
+    for (int k = 0; k < r && k < n && k < rows; k++) {
+        int p = k;
+        for (int j = k + 1; j < n; j++)
+            if (norm[j] > norm[p]) p = j;
+        if (p != k) {
+            for (int i = 0; i < rows; i++) {
+                const double t = C[(size_t)i * n + k];
+                C[(size_t)i * n + k] = C[(size_t)i * n + p];
+                C[(size_t)i * n + p] = t;
+            }
+            const double t = norm[k];
+            norm[k] = norm[p];
+            norm[p] = t;
+        }
+        /* Reflect entries k..rows-1 of column k onto e_k; v stays there. */
+        double s = 0;
+        for (int i = k; i < rows; i++) s += C[(size_t)i * n + k] * C[(size_t)i * n + k];
+        if (!(s > 0)) break;
+        const double x = C[(size_t)k * n + k], alpha = x > 0 ? -sqrt(s) : sqrt(s);
+        C[(size_t)k * n + k] = x - alpha;
+        for (int i = k; i < rows; i++) vv[k] += C[(size_t)i * n + k] * C[(size_t)i * n + k];
+        for (int j = k + 1; j < n; j++) {
+            double d = 0;
+            for (int i = k; i < rows; i++) d += C[(size_t)i * n + k] * C[(size_t)i * n + j];
+            d = 2 * d / vv[k];
+            norm[j] = 0;
+            for (int i = k; i < rows; i++) {
+                C[(size_t)i * n + j] -= d * C[(size_t)i * n + k];
+                if (i > k) norm[j] += C[(size_t)i * n + j] * C[(size_t)i * n + j];
+            }
+        }
+        double d = 0;
+        for (int i = k; i < rows; i++) d += C[(size_t)i * n + k] * b[i];
+        d = 2 * d / vv[k];
+        for (int i = k; i < rows; i++) b[i] -= d * C[(size_t)i * n + k];
+        done = k + 1;
+    }
+    /* Qᵀb's first entries are in range(C); the rest, reflected back, is e. */
+    double e = 0;
+    for (int i = 0; i < done; i++) b[i] = 0;
+    for (int i = done; i < rows; i++) e += b[i] * b[i];
+    for (int k = done - 1; k >= 0; k--) {
+        double d = 0;
+        for (int i = k; i < rows; i++) d += C[(size_t)i * n + k] * b[i];
+        d = 2 * d / vv[k];
+        for (int i = k; i < rows; i++) b[i] -= d * C[(size_t)i * n + k];
+    }
+    free(norm);
+    free(vv);
+    return sqrt(e);
+}
+
 /* C = A R^-1 with M = RᵀR (rows of C solve Rᵀ c = a). Returns 0, or -1 if
  * M is not positive definite. */
 static int weight_rows(int rows, int n, const double *M, double *A)
@@ -95,6 +163,82 @@ static int weight_rows(int rows, int n, const double *M, double *A)
     }
     free(R);
     return 0;
+}
+
+/* Whether the holonomic rows can all hold at the initial state, to first
+ * order: the least-squares residual of C x = −Φ_q (C = A_q R⁻¹, the rows
+ * as the solver weighs them; T: m x n doubles, destroyed). Rows of full
+ * rank always can; dependent rows must agree, as the library's position
+ * correction requires (braun_corrections.c: above options.inconsistency_tol,
+ * default sqrt(ε), a run fails with BRAUN_ERR_INCONSISTENT). *resid: ‖e‖;
+ * e: the residual vector (m), whose largest entries are the rows that
+ * disagree; *rank_q: the rows' rank. Returns 1 consistent, 0 not, -1 out
+ * of memory. */
+static int consistent_rows(int m, int n, const double *C, const double *phi, double *T,
+                           double *e, double *resid, int *rank_q)
+{
+    *resid = 0;
+    *rank_q = 0;
+    if (m == 0) return 1;
+    memcpy(T, C, sizeof(double) * (size_t)m * n);
+    const int rank = *rank_q = rank_of_rows(m, n, T, (double)braun_default_rank_tol(m, n));
+    if (rank < 0) return -1;
+    if (rank == m) return 1;
+    memcpy(T, C, sizeof(double) * (size_t)m * n);
+    for (int i = 0; i < m; i++) e[i] = -phi[i];
+    *resid = lsq_residual(m, n, T, rank, e);
+    if (*resid < 0) return -1;
+    return *resid <= sqrt((double)BRAUN_EPS);
+}
+
+/* "joint 'left' (revolute) and joint 'right' (revolute)" (a built-in
+ * model: "rows 0 and 2"): the elements whose rows have the largest
+ * entries of the residual e (m), at most four, each named once. */
+static void name_disagreeing(const braun_cli_target *tg, int m, const double *e, char *buf,
+                             size_t size)
+{
+    enum { MOST = 4 };
+    char names[MOST][160];
+    int rows[MOST] = {0}, count = 0, more = 0;
+    double emax = 0;
+    for (int i = 0; i < m; i++)
+        if (fabs(e[i]) > emax) emax = fabs(e[i]);
+    /* Rows in order of |e_i|, down to a thousandth of the largest. */
+    for (double above = INFINITY; emax > 0 && !more;) {
+        int best = -1;
+        for (int i = 0; i < m; i++)
+            if (fabs(e[i]) < above && fabs(e[i]) >= 1e-3 * emax &&
+                (best < 0 || fabs(e[i]) > fabs(e[best])))
+                best = i;
+        if (best < 0) break;
+        above = fabs(e[best]);
+        /* Rows of equal |e_i|: every one of them, in row order. */
+        for (int i = best; i < m; i++) {
+            if (fabs(e[i]) != above) continue;
+            char own[160];
+            const char *o = braun_cli_row_owner(tg->scene, i, own, sizeof own);
+            if (!o) snprintf(own, sizeof own, "row %d", i), o = own;
+            int seen = 0;
+            for (int k = 0; k < count && !seen; k++) seen = strcmp(names[k], o) == 0;
+            if (seen) continue;
+            if (count == MOST) {
+                more = 1;
+                continue;
+            }
+            snprintf(names[count], sizeof names[count], "%s", o);
+            rows[count++] = i;
+        }
+    }
+    size_t len = 0;
+    buf[0] = '\0';
+    for (int k = 0; k < count && len < size; k++) {
+        const char *sep = k == 0 ? "" : k == count - 1 && !more ? " and " : ", ";
+        int w = tg->scene ? snprintf(buf + len, size - len, "%s%s (row %d)", sep, names[k], rows[k])
+                          : snprintf(buf + len, size - len, "%s%s", sep, names[k]);
+        if (w < 0) break;
+        len += (size_t)w;
+    }
+    if (more && len < size) snprintf(buf + len, size - len, " and more");
 }
 
 /* A text of the scene on one "key: value" line (braun_cli_put_text), so a
@@ -132,8 +276,12 @@ static int report(const braun_cli_target *tg)
     braun_real *M = calloc(nn, sizeof(braun_real)), *A = calloc(rn, sizeof(braun_real));
     braun_real *scratch = calloc(3 * (size_t)rows + 3, sizeof(braun_real));
     double *Md = calloc(nn, sizeof(double)), *Ad = calloc(rn, sizeof(double));
+    /* The holonomic rows' consistency: Φ_q, the residual, and m x n doubles
+     * of work (Md's once it is spent, when they fit). */
+    double *phi = calloc((size_t)m + 1, sizeof(double)), *e = calloc((size_t)m + 1, sizeof(double));
+    double *T = m > n ? calloc((size_t)m * n, sizeof(double)) : NULL;
     int rc = BRAUN_CLI_FAILED;
-    if (!buf || !M || !A || !scratch || !Md || !Ad) {
+    if (!buf || !M || !A || !scratch || !Md || !Ad || !phi || !e || (m > n && !T)) {
         braun_cli_error("out of memory");
         goto done;
     }
@@ -159,6 +307,7 @@ static int report(const braun_cli_target *tg)
         braun_cli_error("%s: the holonomic callback failed at the initial state", tg->name);
         goto done;
     }
+    for (int i = 0; i < m; i++) phi[i] = (double)scratch[i];
     if (p > 0 && s->nonholonomic(0, tg->q0, tg->v0, scratch, A + (size_t)m * n,
                                  scratch + 2 * rows, s->user) != 0) {
         braun_cli_error("%s: the nonholonomic callback failed at the initial state", tg->name);
@@ -166,13 +315,21 @@ static int report(const braun_cli_target *tg)
     }
     for (size_t i = 0; i < nn; i++) Md[i] = (double)M[i];
     for (size_t i = 0; i < rn; i++) Ad[i] = (double)A[i];
-    int rank = 0;
+    int rank = 0, consistent = 1;
+    double resid = 0;
     if (rows > 0) {
         if (weight_rows(rows, n, Md, Ad)) {
             braun_cli_error("%s: the mass matrix is not positive definite", tg->name);
             goto done;
         }
-        rank = rank_of_rows(rows, n, Ad, (double)braun_default_rank_tol(rows, n));
+        /* The holonomic rows are Ad's first m: all of them without
+         * nonholonomic rows, whose rank is then the one to print. */
+        consistent = consistent_rows(m, n, Ad, phi, T ? T : Md, e, &resid, &rank);
+        if (p > 0) rank = rank_of_rows(rows, n, Ad, (double)braun_default_rank_tol(rows, n));
+        if (consistent < 0 || rank < 0) {
+            braun_cli_error("out of memory");
+            goto done;
+        }
     }
     char corr[64];
     const unsigned supported = model.opt.corrections;
@@ -182,6 +339,7 @@ static int report(const braun_cli_target *tg)
     printf("n: %d\nm: %d\np: %d\n", n, m, p);
     printf("rank: %d\nredundant: %d\ndof: %d\n", rank, rows - rank, n - rank);
     printf("position_residual: %.3g\nvelocity_residual: %.3g\n", (double)pos, (double)vel);
+    printf("consistent: %s\n", consistent ? "yes" : "no");
     printf("mass_matrix: %s\n", s->flags & BRAUN_MASS_CONSTANT ? "constant" : "varies");
     printf("energy_law: %s\n", s->energy ? "yes" : "no");
     printf("energy_input: %s\n", s->flags & BRAUN_ENERGY_INPUT ? "yes" : "no");
@@ -189,6 +347,16 @@ static int report(const braun_cli_target *tg)
            braun_cli_corrections_str(tg->corrections & supported, corr, sizeof corr));
     printf("reference: %s\n", tg->reference ? tg->reference->name : "none");
     rc = fflush(stdout) == 0 ? 0 : BRAUN_CLI_FAILED;
+    if (!consistent) {
+        /* What a run would meet at its first step, said before it. */
+        char who[800];
+        name_disagreeing(tg, m, e, who, sizeof who);
+        braun_cli_error("%s: the constraints have no solution at the initial state: %s disagree "
+                        "(their least-squares residual %.3g is above the library's inconsistency "
+                        "tolerance %.3g: braun run stops with BRAUN_ERR_INCONSISTENT)",
+                        tg->name, who, resid, sqrt((double)BRAUN_EPS));
+        rc = BRAUN_CLI_FAILED;
+    }
 done:
     free(buf);
     free(M);
@@ -196,6 +364,9 @@ done:
     free(scratch);
     free(Md);
     free(Ad);
+    free(phi);
+    free(e);
+    free(T);
     return rc;
 }
 

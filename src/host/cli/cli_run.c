@@ -101,23 +101,44 @@ static int integrate(braun_data *d, const braun_cli_run_args *a, long every,
                            user);
 }
 
+/* For rows that disagree (BRAUN_ERR_INCONSISTENT: d->error.index and
+ * index2, -1 when the core does not know them), the elements of the scene
+ * that own them: "; row 0 is joint 'left' (revolute), row 2 is joint
+ * 'right' (revolute)"; "" without a scene or rows. */
+static const char *disagreeing_rows(const braun_data *d, const braun_cli_target *tg, char *buf,
+                                    size_t size)
+{
+    char a[160], b[160];
+    const int i = d->error.index, j = d->error.index2;
+    const braun_scene_file *sf = tg ? tg->scene : NULL;
+    const char *oa = braun_cli_row_owner(sf, i, a, sizeof a);
+    const char *ob = j != i ? braun_cli_row_owner(sf, j, b, sizeof b) : NULL;
+    buf[0] = '\0';
+    if (oa && ob) snprintf(buf, size, "; row %d is %s, row %d is %s", i, oa, j, ob);
+    else if (oa || ob) snprintf(buf, size, "; row %d is %s", oa ? i : j, oa ? oa : ob);
+    return buf;
+}
+
 /* "braun: [<element>: ]<sentence> (<STATUS: meaning>)"; the sentence only
  * when d->error belongs to this failure (early argument checks record
  * nothing); the element of a scene when the guard saw the failing call;
- * for dependent rows that disagree under a --rank-tol, what the tolerance
- * does. */
+ * for dependent rows that disagree, the joints they belong to, and under a
+ * --rank-tol what the tolerance does. */
 static void report_failure(const braun_data *d, int st, const braun_cli_guard *guard,
-                           const braun_cli_run_args *a)
+                           const braun_cli_run_args *a, const braun_cli_target *tg)
 {
     if (d->error.status == st) {
-        char what[256];
+        char what[256], rows[400];
         const char *element = guard ? braun_cli_guard_element(guard, d->error.t) : NULL;
         braun_error_format(d, what, sizeof what);
+        const char *owners = st == BRAUN_ERR_INCONSISTENT ? disagreeing_rows(d, tg, rows, sizeof rows) : "";
         if (st == BRAUN_ERR_INCONSISTENT && a && a->rank_tol > 0)
-            braun_cli_error("%s (%s); with --rank-tol %g, rows whose pivot is below %g times "
+            braun_cli_error("%s%s (%s); with --rank-tol %g, rows whose pivot is below %g times "
                             "the largest count as dependent: a smaller tolerance (or the "
-                            "default, 0) may keep them", what, braun_status_str(st),
+                            "default, 0) may keep them", what, owners, braun_status_str(st),
                             a->rank_tol, a->rank_tol);
+        else if (st == BRAUN_ERR_INCONSISTENT)
+            braun_cli_error("%s%s (%s)", what, owners, braun_status_str(st));
         else if (element)
             braun_cli_error("%s: %s (%s)", element, what, braun_status_str(st));
         else
@@ -376,7 +397,7 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
                         ctx.have_good ? ctx.good.t : (double)d.t, what);
         exit_status = BRAUN_CLI_FAILED;
     } else if (st) {
-        report_failure(&d, st, &guard, a);
+        report_failure(&d, st, &guard, a, tg);
         exit_status = BRAUN_CLI_FAILED;
     }
     if (timed && !ctx.monitor_status &&
@@ -427,7 +448,7 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
 
 init_failed:
     /* Nothing was integrated: no summary to speak of. */
-    report_failure(failed, st, NULL, a);
+    report_failure(failed, st, NULL, a, tg);
     braun_data_release(&mon.scratch);
     braun_data_release(&d);
     braun_cli_output_close(&out_csv);

@@ -52,8 +52,10 @@ void braun_cli_usage(FILE *f)
 "                         trajectory written by 'run --out' without running\n"
 "  check SCENE            read and build a scene (or a built-in model) and print\n"
 "                         n, m, p, the rank of its rows at t = 0 (redundant rows,\n"
-"                         degrees of freedom), its initial residuals, its energy\n"
-"                         law and corrections, one 'key: value' per line\n"
+"                         degrees of freedom), its initial residuals, whether\n"
+"                         its rows can all hold (consistent: yes | no: then the\n"
+"                         joints that disagree are named and it exits 1), its\n"
+"                         energy law and corrections, one 'key: value' per line\n"
 "  gen chain N            write an N-link pendulum chain scene (rigid links, or\n"
 "                         uniform rods with --rods), N <= 2000, straight and\n"
 "                         --angle DEG below the horizontal (default 0), at rest,\n"
@@ -159,7 +161,8 @@ void braun_cli_usage(FILE *f)
 "are two outputs that are one file and an output that is the input scene.\n"
 "\n"
 "Exit status: 0 success; 1 the solver failed (message on stderr, summary and\n"
-"CSV written up to the last good step), the library refused the system, or an\n"
-"output could not be written; 2 bad arguments or a bad scene file.\n",
+"CSV written up to the last good step), the library refused the system, check\n"
+"found constraints with no solution at t = 0, or an output could not be\n"
+"written; 2 bad arguments or a bad scene file.\n",
         f);
 }
