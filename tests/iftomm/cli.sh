@@ -39,5 +39,24 @@ check "a03-andrews: n 21, m 20, rank 20, 1 dof" sizes data/iftomm/a03-andrews.js
 check "a04-bricard: n 35, m 35, rank 34, 1 redundant, 1 dof" sizes data/iftomm/a04-bricard.json "35 35 34 1 1"
 check "a05-flyball-governor: n 34, m 30, rank 30, 4 dof" sizes data/iftomm/a05-flyball-governor.json "34 30 30 0 4"
 
+# Reported points on the trajectory CSV: A01 and A02 report a particle
+# under its own name ({"P1": "P1"}), whose P1.x, P1.y are the body's own
+# columns: written once (they were repeated at the end, same values), and
+# read back by plot --traj; A03 (F, a point of a rigid body) keeps its own.
+for s in a01-pendulum:P1:2 a02-n-four-bar:B0:82; do
+    scn=${s%%:*} rest=${s#*:}; pt=${rest%%:*} n=${rest#*:}
+    "$BRAUN" run "data/iftomm/$scn.json" --dt 1e-3 --t-end 1e-3 --out "$TMP/$scn.csv" --summary /dev/null; rc=$?
+    check "$scn --out: no column twice, $pt.x once, 1 + 2n + 4 = $((1 + 2 * n + 4)) columns" sh -c '
+        [ "$1" -eq 0 ] && [ "$(head -n 1 "$2" | tr , "\n" | sort | uniq -d | wc -l)" -eq 0 ] &&
+        [ "$(head -n 1 "$2" | tr , "\n" | grep -c "^$3.x \[m\]$")" -eq 1 ] &&
+        awk -F, -v c="$4" "{ if (NF != c) bad = 1 } END { exit bad }" "$2"' \
+        sh "$rc" "$TMP/$scn.csv" "$pt" $((1 + 2 * n + 4))
+    "$BRAUN" plot "data/iftomm/$scn.json" --traj "$TMP/$scn.csv" --points "$pt" -o "$TMP/$scn.svg" 2> "$TMP/traj.err"
+    check "$scn: plot --traj reads that CSV back and traces $pt" sh -c '[ "$1" -eq 0 ] && [ -s "$2" ]' sh "$?" "$TMP/$scn.svg"
+done
+"$BRAUN" run data/iftomm/a03-andrews.json --dt 1e-5 --t-end 1e-5 --out "$TMP/a03.csv" --summary /dev/null
+check "a03-andrews --out: its reported point F keeps its columns F.x, F.y, last" \
+    sh -c 'head -n 1 "$1" | grep -q ",traj_err \[q\],F.x \[m\],F.y \[m\]$"' sh "$TMP/a03.csv"
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -204,6 +204,10 @@ typedef struct braun_cli_target {
     const char *drawing_text;     /* a built-in's scene text (for its point names), or NULL */
     braun_cli_id id;              /* the scene file's identity (outputs must differ) */
     char path_buf[4096];          /* a shipped scene found by name (braun_cli_data_file) */
+    /* The scene's reported points that have CSV columns of their own, by
+     * index into its report_names (braun_cli_report_columns). */
+    int *reports;
+    int nreports;
 } braun_cli_target;
 
 /* The one place that maps MODEL to a target: a built-in name (braun list)
@@ -287,6 +291,11 @@ int braun_cli_csv_column_count(const braun_cli_target *t, int n);
 int braun_cli_report_dim(const braun_cli_target *t);
 const char *braun_cli_column_name(const braun_cli_target *t, int n, int j, char *name,
                                   size_t size, const char **unit);
+/* Set t->reports: every reported point of t's scene but those that are a
+ * body itself under the body's own name ({"P1": "P1"}, as the IFToMM
+ * scenes report their particle), whose NAME.x, NAME.y are the body's own
+ * columns already, with the same values. 0, or -1 out of memory. */
+int braun_cli_report_columns(braun_cli_target *t);
 /* Index of the state column called want (its " [unit]" optional), or -1;
  * reported points are not among them (braun plot draws them as points). */
 int braun_cli_column_find(const braun_cli_target *t, int n, const char *want);

@@ -5,6 +5,7 @@
  * in C. A body class the tool does not know (a program's own, or a
  * spatial one) names its coordinates body.q[k], body.v[k], without units. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "braun_cli.h"
@@ -65,17 +66,54 @@ const char *braun_cli_coord_name(const braun_cli_target *t, int i, int velocity,
 }
 
 /* The scene's reported points (docs/scene-format.md, "Reported points"):
- * NAME.x, NAME.y (and NAME.z in a spatial scene) after the other columns. */
+ * NAME.x, NAME.y (and NAME.z in a spatial scene) after the other columns,
+ * for those with columns of their own (t->reports). */
 int braun_cli_report_dim(const braun_cli_target *t)
 {
     const braun_scene_file *s = t ? t->scene : NULL;
-    return s && s->nreports > 0 ? (s->scene.dim == 3 ? 3 : 2) : 0;
+    return s && t->nreports > 0 ? (s->scene.dim == 3 ? 3 : 2) : 0;
 }
 
 int braun_cli_csv_column_count(const braun_cli_target *t, int n)
 {
     const int dim = braun_cli_report_dim(t);
-    return braun_cli_column_count(n) + (dim ? dim * t->scene->nreports : 0);
+    return braun_cli_column_count(n) + (dim ? dim * t->nreports : 0);
+}
+
+/* Reported point k is its body's origin and its columns NAME.x, NAME.y
+ * (.z) are names of the body's first coordinates: a particle, or a rigid
+ * body's centre, reported under the body's name (the loader refuses a
+ * body's name for any other point). */
+static int repeats_body(const braun_cli_target *t, int k)
+{
+    const braun_scene_file *sf = t->scene;
+    const braun_scene_point *pt = &sf->scene.points[sf->report_points[k]];
+    const int dim = sf->scene.dim == 3 ? 3 : 2;
+    if (pt->body < 0 || pt->body >= sf->scene.nbodies || pt->x != 0 || pt->y != 0 || pt->z != 0)
+        return 0;
+    const braun_scene_body *b = &sf->scene.bodies[pt->body];
+    if (b->kind->dof < dim) return 0;
+    for (int c = 0; c < dim; c++) {
+        char own[160], body[160];
+        const char *unit;
+        snprintf(own, sizeof own, "%.120s.%c", sf->report_names[k], "xyz"[c]);
+        if (strcmp(braun_cli_coord_name(t, b->iq + c, 0, body, sizeof body, &unit), own) != 0)
+            return 0;
+    }
+    return 1;
+}
+
+int braun_cli_report_columns(braun_cli_target *t)
+{
+    const braun_scene_file *sf = t->scene;
+    t->reports = NULL;
+    t->nreports = 0;
+    if (!sf || sf->nreports <= 0) return 0;
+    t->reports = malloc((size_t)sf->nreports * sizeof *t->reports);
+    if (!t->reports) return -1;
+    for (int k = 0; k < sf->nreports; k++)
+        if (!repeats_body(t, k)) t->reports[t->nreports++] = k;
+    return 0;
 }
 
 /* Column j of the trajectory CSV: t, the n coordinates, the n velocities,
@@ -94,9 +132,9 @@ const char *braun_cli_column_name(const braun_cli_target *t, int n, int j, char 
     if (j <= 2 * n) return braun_cli_coord_name(t, (j - 1) % n, j > n, name, size, unit);
     j -= 2 * n + 1;
     const int dim = braun_cli_report_dim(t);
-    if (j >= 4 && dim && j - 4 < dim * t->scene->nreports) {
+    if (j >= 4 && dim && j - 4 < dim * t->nreports) {
         *unit = "m";
-        snprintf(name, size, "%.120s.%c", t->scene->report_names[(j - 4) / dim],
+        snprintf(name, size, "%.120s.%c", t->scene->report_names[t->reports[(j - 4) / dim]],
                  "xyz"[(j - 4) % dim]);
         return name;
     }

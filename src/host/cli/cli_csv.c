@@ -5,7 +5,8 @@
  * "energy_err [J]" and "traj_err [q]" — then one row per written state,
  * each number the shortest decimal that reads back as the same double;
  * traj_err is empty without a reference; then a scene's reported points,
- * "NAME.x [m]", "NAME.y [m]" (and "NAME.z [m]" in a spatial scene).
+ * "NAME.x [m]", "NAME.y [m]" (and "NAME.z [m]" in a spatial scene), but
+ * for one that is a body's own columns already (braun_cli_report_columns).
  * docs/cli.md lists the columns. */
 #include <stdlib.h>
 #include <string.h>
@@ -60,10 +61,10 @@ int braun_cli_csv_row(FILE *f, const braun_cli_target *tg, int n, double t, cons
 #else
         const braun_real *qr = q;
 #endif
-        for (int k = 0; k < tg->scene->nreports; k++) {
+        for (int k = 0; k < tg->nreports; k++) {
             braun_real pos[3];
-            braun_scene_point_state(&tg->scene->scene, tg->scene->report_points[k], qr, NULL, pos,
-                                    NULL);
+            braun_scene_point_state(&tg->scene->scene, tg->scene->report_points[tg->reports[k]],
+                                    qr, NULL, pos, NULL);
             for (int c = 0; c < dim; c++) fputc(',', f), braun_cli_put_number(f, (double)pos[c]);
         }
 #ifdef BRAUN_SINGLE

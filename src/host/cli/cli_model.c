@@ -3,6 +3,7 @@
  * mechanism), or a scene file — as given, or one of the shipped scenes
  * (braun_cli_data_dir) by its file name. Nothing else in the tool knows how
  * MODEL is resolved. */
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -93,6 +94,10 @@ int braun_cli_target_open(const char *arg, braun_cli_target *t)
         t->scene = f;
         t->drawing = f;
         braun_cli_path_id(arg, &t->id);
+        if (braun_cli_report_columns(t)) {
+            braun_cli_target_close(t);
+            return braun_cli_error("out of memory");
+        }
         return 0;
     }
     const braun_builtin *b = braun_builtin_find(arg);
@@ -123,6 +128,9 @@ int braun_cli_target_open(const char *arg, braun_cli_target *t)
 
 void braun_cli_target_close(braun_cli_target *t)
 {
+    free(t->reports);
+    t->reports = NULL;
+    t->nreports = 0;
     if (t->drawing != t->scene) braun_scene_free(t->drawing);
     braun_scene_free(t->scene);
     t->scene = NULL;
