@@ -124,6 +124,20 @@ check "check: the parallelogram's third crank 0.2 m off: consistent: no, its joi
     [ "$1" -eq 1 ] && grep -q "^consistent: no$" "$2" &&
     grep -q "joint .pivot2. (revolute) (row 3), joint .pin2. (revolute) (row 9), .* and more disagree" "$3"' \
     sh "$rc" "$TMP/par.out" "$TMP/par.err"
+# One joint alone: a universal joint started with its axes parallel (its
+# row needs them perpendicular; its gradient vanishes there).
+cat > "$TMP/unipar.json" <<'EOF'
+{"name": "unipar", "bodies": [{"name": "b", "type": "rigid3d", "mass": 1, "inertia": [0.1, 0.1, 0.1],
+  "position": [0, 0, -0.5], "points": {"top": [0, 0, 0.5]}}],
+ "joints": [{"name": "h", "type": "universal", "a": "b.top", "b": [0, 0, 0], "axis": [1, 0, 0], "axis_b": [1, 0, 0]}]}
+EOF
+"$BRAUN" check "$TMP/unipar.json" > "$TMP/uni.out" 2> "$TMP/uni.err"; rc=$?
+"$BRAUN" run "$TMP/unipar.json" --dt 1e-3 --t-end 1 > /dev/null 2> "$TMP/unir.err"; rc2=$?
+check "check and run: a universal joint started with parallel axes cannot be met: one joint named, alone" sh -c '
+    [ "$1" -eq 1 ] && [ "$2" -eq 1 ] && grep -q "^consistent: no$" "$3" &&
+    grep -q "joint .h. (universal) (row 3) cannot be met (its gradient depends on the other rows" "$4" &&
+    grep -q "(row 3: its gradient depends on the other rows. here, its error does not) at t = 0; row 3 is joint .h. (universal)" "$5"' \
+    sh "$rc" "$rc2" "$TMP/uni.out" "$TMP/uni.err" "$TMP/unir.err"
 for f in data/parallelogram-redundant.json data/iftomm/a04-bricard.json four-bar; do
     "$BRAUN" check "$f" > "$TMP/cons.out" 2>&1; rc=$?
     check "check $f (redundant rows that agree, or none): consistent: yes" sh -c '

@@ -194,8 +194,8 @@ static int consistent_rows(int m, int n, const double *C, const double *phi, dou
 /* "joint 'left' (revolute) and joint 'right' (revolute)" (a built-in
  * model: "rows 0 and 2"): the elements whose rows have the largest
  * entries of the residual e (m), at most four, each named once. */
-static void name_disagreeing(const braun_cli_target *tg, int m, const double *e, char *buf,
-                             size_t size)
+static int name_disagreeing(const braun_cli_target *tg, int m, const double *e, char *buf,
+                            size_t size)
 {
     enum { MOST = 4 };
     char names[MOST][160];
@@ -239,6 +239,7 @@ static void name_disagreeing(const braun_cli_target *tg, int m, const double *e,
         len += (size_t)w;
     }
     if (more && len < size) snprintf(buf + len, size - len, " and more");
+    return count + more;
 }
 
 /* A text of the scene on one "key: value" line (braun_cli_put_text), so a
@@ -350,11 +351,20 @@ static int report(const braun_cli_target *tg)
     if (!consistent) {
         /* What a run would meet at its first step, said before it. */
         char who[800];
-        name_disagreeing(tg, m, e, who, sizeof who);
-        braun_cli_error("%s: the constraints have no solution at the initial state: %s disagree "
-                        "(their least-squares residual %.3g is above the library's inconsistency "
-                        "tolerance %.3g: braun run stops with BRAUN_ERR_INCONSISTENT)",
-                        tg->name, who, resid, sqrt((double)BRAUN_EPS));
+        if (name_disagreeing(tg, m, e, who, sizeof who) == 1)
+            /* One element alone: its rows' gradients depend on others' here
+             * while its error does not (a joint started at a singular
+             * configuration). */
+            braun_cli_error("%s: the constraints have no solution at the initial state: %s cannot be "
+                            "met (its gradient depends on the other rows' here, its error does not; "
+                            "least-squares residual %.3g, above the library's inconsistency tolerance "
+                            "%.3g: braun run stops with BRAUN_ERR_INCONSISTENT)",
+                            tg->name, who, resid, sqrt((double)BRAUN_EPS));
+        else
+            braun_cli_error("%s: the constraints have no solution at the initial state: %s disagree "
+                            "(their least-squares residual %.3g is above the library's inconsistency "
+                            "tolerance %.3g: braun run stops with BRAUN_ERR_INCONSISTENT)",
+                            tg->name, who, resid, sqrt((double)BRAUN_EPS));
         rc = BRAUN_CLI_FAILED;
     }
 done:
