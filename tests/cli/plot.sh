@@ -391,6 +391,12 @@ check "a shipped scene runs by its name from any directory (damped-motor.json)" 
     [ "$1" -eq 0 ] && grep -q "^  \"scene\": \"damped-motor\",$" s.json' sh "$rc"
 "$BRAUN" plot sleigh --dt 1e-2 --t-end 2 -o sleigh.svg; rc=$?
 check "... and draws by its name without .json (sleigh)" sh -c '[ "$1" -eq 0 ] && [ -s sleigh.svg ]' sh "$rc"
+"$BRAUN" check a01-pendulum > a01.out 2>&1; rc=$?
+"$BRAUN" check iftomm/a05-flyball-governor.json > a05.out 2>&1; rc2=$?
+"$BRAUN" check iftomm/../four-bar.json > up.out 2>&1; rc3=$?
+check "the IFToMM scenes by name (a01-pendulum, iftomm/a05-flyball-governor.json); no .. out of the data directory" sh -c '
+    [ "$1" -eq 0 ] && [ "$2" -eq 0 ] && [ "$3" -eq 2 ] && grep -q "^scene: a01-pendulum$" a01.out &&
+    grep -q "^file: .*/iftomm/a05-flyball-governor.json$" a05.out' sh "$rc" "$rc2" "$rc3"
 cd .. || exit 1
 
 echo "$passed passed, $failed failed, $skipped skipped"

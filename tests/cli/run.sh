@@ -45,7 +45,8 @@ for model in slider-crank four-bar pendulum andrews; do
 done
 check "list has one line per model, then the shipped scenes" sh -c '
     [ "$(sed -n "/^\$/q;p" "$1" | wc -l)" -eq 4 ] && grep -q "^shipped scenes (" "$1" &&
-    grep -q "^four-bar.json  *n=6 m=5 p=0" "$1" && grep -q "^damped-motor.json " "$1"' sh "$TMP/list"
+    grep -q "^four-bar.json  *n=6 m=5 p=0" "$1" && grep -q "^damped-motor.json " "$1" &&
+    grep -q "^iftomm/a05-flyball-governor.json n=34 m=30 p=0" "$1"' sh "$TMP/list"
 
 # ----------------------------------------------------------------- bad arguments
 # Each must exit 2, print nothing on stdout and exactly one "braun: " line on stderr.

@@ -1,17 +1,19 @@
 /* braun list: the built-in models, one line each (name, n, m, p,
  * description), then the shipped scenes that run by their file name from
- * any directory (name.json, n, m, p, description, path). */
+ * any directory (name.json, or group/name.json for data/iftomm/; n, m, p,
+ * description). */
 #include <string.h>
 
 #include "braun_cli.h"
 
+/* user: the data directory; a scene in a group is named GROUP/FILE. */
 static void scene_line(const char *path, void *user)
 {
     char err[512];
-    (void)user;
+    const char *dir = user;
+    const size_t dlen = strlen(dir);
     braun_scene_file *f = braun_scene_load(path, err, sizeof err);
-    const char *slash = strrchr(path, '/');
-    const char *file = slash ? slash + 1 : path;
+    const char *file = strncmp(path, dir, dlen) == 0 && path[dlen] == '/' ? path + dlen + 1 : path;
     if (!f) {
         printf("%-22s (does not load: %s)\n", file, err);
         return;
@@ -36,7 +38,7 @@ int braun_cli_list(void)
     const char *dir = braun_cli_data_dir();
     if (dir) {
         printf("\nshipped scenes (%s; run them by name from any directory):\n", dir);
-        braun_cli_data_each(scene_line, NULL);
+        braun_cli_data_each(scene_line, (void *)dir);
     }
     return fflush(stdout) == 0 ? 0 : BRAUN_CLI_FAILED;
 }

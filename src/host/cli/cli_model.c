@@ -75,8 +75,9 @@ int braun_cli_target_open(const char *arg, braun_cli_target *t)
 {
     memset(t, 0, sizeof *t);
     /* Not a built-in name and not a file here: a shipped scene by name
-     * ("four-bar.json", or "damped-motor"). */
-    if (!is_model_name(arg) && !exists(arg) && !strchr(arg, '/') &&
+     * ("four-bar.json", "damped-motor", "a01-pendulum" or
+     * "iftomm/a01-pendulum"). */
+    if (!is_model_name(arg) && !exists(arg) &&
         braun_cli_data_file(arg, t->path_buf, sizeof t->path_buf))
         arg = t->path_buf;
     if (is_scene_file(arg) || (!is_model_name(arg) && exists(arg))) {
