@@ -2,8 +2,9 @@
  * plot --plot` and `--traj`: from its scene — body name and the body
  * class's coordinate ("crank.x" m, "crank.theta" rad; velocities
  * "crank.vx" m/s, "crank.omega" rad/s) — or q[i], v[i] for a system defined
- * in C. A body class the tool does not know (a program's own, or a
- * spatial one) names its coordinates body.q[k], body.v[k], without units. */
+ * in C. A spatial body names its coordinates body.q[k], body.v[k] with
+ * their units; a body class the tool does not know (a program's own), the
+ * same without units. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,6 +21,21 @@ static const coord_names known[] = {
      {"m", "m", "rad"}, {"m/s", "m/s", "rad/s"}},
     {&braun_scene_body_particle, {"x", "y", NULL}, {"vx", "vy", NULL},
      {"m", "m", NULL}, {"m/s", "m/s", NULL}},
+};
+
+/* The spatial classes keep their coordinates' meaning to themselves
+ * (docs/method.md, "Spatial rigid bodies"): body.q[k], body.v[k], with the
+ * units they have — a position and a unit quaternion (and their rates). */
+typedef struct coord_units {
+    const braun_scene_body_class *kind;
+    int count;
+    const char *q_unit[7], *v_unit[7];
+} coord_units;
+
+static const coord_units spatial[] = {
+    {&braun_scene_body_rigid3d, 7, {"m", "m", "m", "1", "1", "1", "1"},
+     {"m/s", "m/s", "m/s", "1/s", "1/s", "1/s", "1/s"}},
+    {&braun_scene_body_particle3d, 3, {"m", "m", "m"}, {"m/s", "m/s", "m/s"}},
 };
 
 /* The body whose coordinates hold coordinate i (bodies are numbered in
@@ -61,6 +77,9 @@ const char *braun_cli_coord_name(const braun_cli_target *t, int i, int velocity,
             snprintf(name, size, "%s.%s", bn, velocity ? known[c].v[k] : known[c].q[k]);
             return name;
         }
+    for (size_t c = 0; c < sizeof spatial / sizeof spatial[0]; c++)
+        if (spatial[c].kind == body->kind && k < spatial[c].count)
+            *unit = velocity ? spatial[c].v_unit[k] : spatial[c].q_unit[k];
     snprintf(name, size, "%s.%s[%d]", bn, velocity ? "v" : "q", k);
     return name;
 }
