@@ -87,8 +87,8 @@ static inline void braun__dense_form_c(braun_dense *s, braun_qrcp *f, int rows, 
         const braun_real *restrict ai = A + (size_t)i * (size_t)(N); \
         braun_real dot = 0, nn = 0;                              \
         UNROLL for (int j = 0; j < (N); j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
-            ci[j] = ai[j] * DINV[j];                             \
-            dot += ci[j] * ATIL[j];                              \
+            ci[j] = ai[j] * (DINV)[j];                           \
+            dot += ci[j] * (ATIL)[j];                            \
             if (BRAUN_FUSED_NORMS) nn += ci[j] * ci[j];          \
         }                                                        \
         rs[i] -= dot;                                            \

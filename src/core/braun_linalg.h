@@ -119,13 +119,10 @@ typedef struct braun_qrcp {
 } braun_qrcp;
 
 /* The dense backend forms those norms with C (braun_dense.h): −2 % of a
- * generic step; with compile-time sizes the factorization's own unrolled
- * pass is cheaper (+0.8 % fused), so there it does not. */
-#ifdef BRAUN_FIXED_N
-#define BRAUN_FUSED_NORMS 0
-#else
+ * generic step, −0.6 % with compile-time sizes (once C is formed with its
+ * scales in registers; before that the factorization's own unrolled pass
+ * was cheaper). */
 #define BRAUN_FUSED_NORMS 1
-#endif
 
 /* Soft directions (src/braun_qrcp_soft.c): at most BRAUN_SOFT_MAX at a
  * time, below BRAUN_SOFT_GATE·λ. */
