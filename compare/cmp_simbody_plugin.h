@@ -43,7 +43,7 @@ typedef struct cmp_sb_host {
     double (*mech_unwrap)(double prev, double th);
     int (*traj_push)(cmp_traj *tr, double t, const double *q, const double *v);
     double (*cpu_seconds)(void);
-    void (*fn_eval)(const braun_scene_fn *f, braun_real t, braun_real *value, braun_real *rate,
+    int (*fn_eval)(const braun_scene_fn *f, braun_real t, braun_real *value, braun_real *rate,
                     braun_real *accel);
     /* Spatial mechanisms (m->spatial set): cmp_mech3.h. */
     int (*mech3_tree)(cmp_mech3 *m, char *why, size_t whysize);

@@ -11,6 +11,7 @@
 
 #include "test_util.h"
 #include "braun_host.h" /* braun_error_format */
+#include "braun_scene_file.h"
 
 typedef struct ring {
     braun_data *d;       /* the data the callbacks call into, or NULL */
@@ -252,6 +253,79 @@ static void test_eval_overflow_refused(void **state)
     test_sim_close(&sim);
 }
 
+/* A data never initialised, one whose init failed, one released: every
+ * call refuses it, saying so; a short buffer's message gives both sizes. */
+static void test_unready_data_named(void **state)
+{
+    (void)state;
+    ring r = {0};
+    const braun_system s = ring_system(&r);
+    braun_data zero;
+    memset(&zero, 0, sizeof zero);
+    assert_int_equal(braun_step(&zero, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(zero.error.where, "not initialised"));
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    braun_data_release(&sim.data);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(sim.data.error.where, "released"));
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, 1, 0, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    braun_data_release(&sim.data); /* twice: safe */
+    const size_t need = braun_data_size(&sim.model);
+    assert_int_equal(braun_data_init(&sim.data, &sim.model, sim.buffer, need - 1), BRAUN_ERR_BUFFER);
+    char what[256], want[64];
+    braun_error_format(&sim.data, what, sizeof what);
+    snprintf(want, sizeof want, "of %zu bytes is smaller than braun_data_size() = %zu", need - 1, need);
+    assert_non_null(strstr(what, want));
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT); /* failed init */
+    free(sim.buffer);
+}
+
+/* The scene helpers a program calls refuse what does not exist — a
+ * point or body index out of range, no function, an unknown kind — with a
+ * status or NaN, instead of reading past the arrays. */
+static void test_scene_helpers_refuse(void **state)
+{
+    (void)state;
+    static const char text[] =
+        "{\"name\": \"p\", \"bodies\": [{\"name\": \"b\", \"type\": \"particle\", \"mass\": 1,"
+        " \"position\": [1, 0]}], \"joints\": [{\"type\": \"distance\", \"a\": [0, 0], \"b\": \"b\"}]}";
+    char err[256];
+    braun_scene_file *f = braun_scene_load_text("inline.json", text, sizeof text - 1, err, sizeof err);
+    assert_non_null(f);
+    const braun_scene *sc = &f->scene;
+    braun_real q[2] = {1, 0}, v[2] = {0, 0}, pos[3], xy[2];
+    assert_int_equal(braun_scene_point_state(sc, 0, q, v, pos, NULL), BRAUN_OK);
+    assert_int_equal(braun_scene_point_state(sc, sc->npoints, q, v, pos, NULL), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_scene_point_state(sc, -1, q, v, pos, NULL), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_scene_point_position(sc, 5, q, xy), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_scene_point_position(NULL, 0, q, xy), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_scene_initial_point(sc, 1000, pos), BRAUN_ERR_ARGUMENT);
+    assert_true(isnan(braun_scene_initial_distance(sc, 0, 1000)));
+    assert_true(isnan(braun_scene_initial_angle(sc, 7)));
+    assert_true(braun_scene_initial_angle(sc, -1) == 0); /* the ground */
+    assert_int_equal(braun_scene_initial_state(sc, q, v), BRAUN_OK);
+    assert_int_equal(braun_scene_initial_state(sc, NULL, v), BRAUN_ERR_ARGUMENT);
+    braun_scene unbuilt;
+    memset(&unbuilt, 0, sizeof unbuilt);
+    assert_int_equal(braun_scene_initial_state(&unbuilt, q, v), BRAUN_ERR_ARGUMENT);
+    braun_real x = 0, dx = 0;
+    assert_int_equal(braun_scene_fn_eval(NULL, 0, &x, &dx, NULL), BRAUN_ERR_ARGUMENT);
+    assert_true(isnan(x) && isnan(dx));
+    braun_scene_fn odd;
+    memset(&odd, 0, sizeof odd);
+    odd.kind = (braun_scene_fn_kind)99;
+    x = 0;
+    assert_int_equal(braun_scene_fn_eval(&odd, 0, &x, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    assert_true(isnan(x));
+    odd.kind = BRAUN_FN_CONSTANT;
+    odd.a = 2.5;
+    assert_int_equal(braun_scene_fn_eval(&odd, 0, &x, NULL, NULL), BRAUN_OK);
+    assert_true(x == 2.5);
+    braun_scene_free(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -261,6 +335,8 @@ int main(void)
         cmocka_unit_test(test_reentry_from_system_callback),
         cmocka_unit_test(test_reentry_from_output_callback),
         cmocka_unit_test(test_eval_overflow_refused),
+        cmocka_unit_test(test_unready_data_named),
+        cmocka_unit_test(test_scene_helpers_refuse),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -395,7 +395,10 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
                     size_t bytes);
 
 /* Free what a backend allocated (nothing for the built-in kernels). The
- * buffer stays the caller's. Safe to call twice. */
+ * buffer stays the caller's; d->q and d->v still show the last state, but
+ * every call refuses d until braun_data_init. Safe to call twice. Call it
+ * before braun_data_init is called again on a d whose model has a backend:
+ * braun_data_init cannot know whether d held one (nothing else is lost). */
 void braun_data_release(braun_data *d);
 
 /* Set time and state, check it is finite, reset ∫Ė and take E0 = E(t,q,v):

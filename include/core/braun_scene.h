@@ -73,9 +73,11 @@ typedef struct braun_scene_fn {
 } braun_scene_fn;
 
 /* f(t), f'(t), f''(t) (any output may be NULL). A step has zero
- * derivatives: it is only accepted where no derivative is needed. */
-void braun_scene_fn_eval(const braun_scene_fn *f, braun_real t, braun_real *value,
-                         braun_real *rate, braun_real *accel);
+ * derivatives: it is only accepted where no derivative is needed. Returns
+ * BRAUN_OK, or BRAUN_ERR_ARGUMENT (outputs NaN) for a NULL f or a kind that
+ * is none of the above. */
+int braun_scene_fn_eval(const braun_scene_fn *f, braun_real t, braun_real *value,
+                        braun_real *rate, braun_real *accel);
 
 /* ------------------------------------------------------------------ */
 /* Elements and their classes                                          */
@@ -222,9 +224,10 @@ void braun_scene_dir_eval(const braun_scene *s, int body, const braun_real *d,
 
 /* World position and velocity of point i of a built scene at (q, v)
  * (pos, vel: 3 entries, z = 0 in a planar scene; v and vel may be NULL):
- * what a reported point (docs/scene-format.md, "Reported points") holds. */
-void braun_scene_point_state(const braun_scene *s, int i, const braun_real *q,
-                             const braun_real *v, braun_real *pos, braun_real *vel);
+ * what a reported point (docs/scene-format.md, "Reported points") holds.
+ * BRAUN_ERR_ARGUMENT for no such point (or NULL s, q, pos). */
+int braun_scene_point_state(const braun_scene *s, int i, const braun_real *q,
+                            const braun_real *v, braun_real *pos, braun_real *vel);
 
 /* Angle θ and angular velocity ω of a body that has one (0 for the ground
  * or a body without angle; omega 0 when v is NULL); returns θ's column, or
@@ -236,9 +239,11 @@ int braun_scene_body_angle(const braun_scene *s, int body, const braun_real *q,
  * point i at the bodies' initial state q0 (pos: 3 entries), the distance
  * between two points there, and a body's initial angle (0 for the ground
  * and bodies without angle). */
-void braun_scene_initial_point(const braun_scene *s, int i, braun_real *pos);
+int braun_scene_initial_point(const braun_scene *s, int i, braun_real *pos);
 braun_real braun_scene_initial_distance(const braun_scene *s, int a, int b);
 braun_real braun_scene_initial_angle(const braun_scene *s, int body);
+/* (A point or body that does not exist: BRAUN_ERR_ARGUMENT, and NaN for
+ * the distance and the angle.) */
 
 /* -------------------------------------------------------------- bodies */
 /* A body class: its coordinates, mass block, kinetic energy, weight and
@@ -717,11 +722,13 @@ int braun_scene_build_sparse(braun_scene *s, braun_system *sys, void *buffer, si
                              braun_scene_error *err);
 
 /* Initial q and v (n entries each) from the bodies' q0 and v0. */
-void braun_scene_initial_state(const braun_scene *s, braun_real *q, braun_real *v);
+/* BRAUN_ERR_ARGUMENT for NULL arguments, a body without a class, or a
+ * scene not built (s->n = 0). */
+int braun_scene_initial_state(const braun_scene *s, braun_real *q, braun_real *v);
 
-/* World position of point i at q (xy: 2 entries). */
-void braun_scene_point_position(const braun_scene *s, int i, const braun_real *q,
-                                braun_real *xy);
+/* World position of point i at q (xy: 2 entries); BRAUN_ERR_ARGUMENT for
+ * no such point. */
+int braun_scene_point_position(const braun_scene *s, int i, const braun_real *q, braun_real *xy);
 
 #ifdef __cplusplus
 }

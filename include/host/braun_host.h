@@ -26,8 +26,8 @@ extern "C" {
  * Works like snprintf: writes at most size bytes including the NUL (buf may
  * be NULL when size is 0) and returns the length the full sentence needs,
  * or -1 if d is NULL. Only meaningful after a call on d returned
- * d->error.status; early argument checks (NULL pointers) return an error
- * without recording it. */
+ * d->error.status (every failing call records itself, NULL pointers
+ * included; only a NULL d cannot be). */
 int braun_error_format(const braun_data *d, char *buf, size_t size);
 
 #ifdef __cplusplus

@@ -87,7 +87,8 @@ void braun_scene_free(braun_scene_file *f);
  * in file order, and describes the first that fails (returns non-zero, or
  * gives a non-finite value) in msg, one line: "effect 'sp' (spring): its
  * forces return 1 at t = 0.5, where its points 'a' and 'b' coincide".
- * Returns 1 if one failed, 0 if none does, -1 out of memory. v may be NULL.
+ * Returns 1 if one failed, 0 if none does, -1 out of memory or sf or q
+ * NULL. v may be NULL.
  * For messages after a callback failed (the core's error record names the
  * callback, not the element); the loader makes the same check at the
  * initial state, so a scene that loads evaluates there. */

@@ -295,7 +295,7 @@ int braun_integrate_adaptive(braun_data *d, const braun_adaptive *ctl,
                              void *out_user)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = braun__check_ready(d, "braun_integrate_adaptive");
+    int st = braun__check_ready(d);
     if (st) return st;
     braun_priv *pv = braun__priv(d);
     pv->busy = 1;

@@ -141,6 +141,9 @@ void braun_data_release(braun_data *d)
 #endif
     pv->ls_state = NULL;
     pv->ls_owned = 0;
+    /* Released: every call refuses it until braun_data_init (a backend's
+     * state is gone); q and v still point at the last state. */
+    d->priv = NULL;
 }
 
 int braun_set_state(braun_data *d, braun_real t, const braun_real *q,

@@ -32,10 +32,12 @@ int braun__check_finite(braun_data *d, int n, const braun_real *x,
     return BRAUN_OK;
 }
 
-int braun__check_ready(braun_data *d, const char *where)
+int braun__check_ready(braun_data *d)
 {
     if (!d->priv || !d->model)
-        return braun__fail(d, BRAUN_ERR_ARGUMENT, where, -1, -1, 0, 0);
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "data not initialised (braun_data_init not called, failed, or released)", -1, -1,
+                           0, 0);
     const braun_priv *pv = braun__priv(d);
     if (pv->busy)
         return braun__fail(d, BRAUN_ERR_ARGUMENT,

@@ -85,7 +85,7 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
                     void *out_user)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = braun__check_ready(d, "braun_integrate");
+    int st = braun__check_ready(d);
     if (st) return st;
     braun_priv *pv = braun__priv(d);
     pv->busy = 1;

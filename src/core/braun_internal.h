@@ -204,7 +204,7 @@ static inline int braun__time_step_ok(braun_data *d, braun_real t, braun_real t_
 int braun__check_options(braun_data *d);
 /* The data block is usable (initialised, state set): BRAUN_OK or an error
  * recorded in d->error; `where` names the calling function. */
-int braun__check_ready(braun_data *d, const char *where);
+int braun__check_ready(braun_data *d);
 /* The system the data was made for is still model->sys: sizes, flags,
  * sparsity and the callbacks they require (a few compares per call). */
 int braun__check_system(braun_data *d);

@@ -273,7 +273,7 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
 int braun_step(braun_data *d, braun_method method, braun_real h)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = braun__check_ready(d, "braun_step");
+    int st = braun__check_ready(d);
     if (st) return st;
     const braun_tableau *tb = braun__tableau(method);
     if (!tb) return braun__fail(d, BRAUN_ERR_ARGUMENT, "method", (int)method, -1, 0, (double)d->t);

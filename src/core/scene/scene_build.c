@@ -339,8 +339,13 @@ void braun_scene__system(braun_scene *s, braun_system *sys)
     sys->sparsity = NULL;
 }
 
-void braun_scene_initial_state(const braun_scene *s, braun_real *q, braun_real *v)
+int braun_scene_initial_state(const braun_scene *s, braun_real *q, braun_real *v)
 {
+    if (!s || !q || !v || s->n <= 0 || (s->nbodies > 0 && !s->bodies)) return BRAUN_ERR_ARGUMENT;
+    for (int k = 0; k < s->nbodies; k++) {
+        const braun_scene_body *b = &s->bodies[k];
+        if (!b->kind || b->iq < 0 || b->iq + b->kind->dof > s->n) return BRAUN_ERR_ARGUMENT;
+    }
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *b = &s->bodies[k];
         if (b->kind->initial) {
@@ -353,4 +358,5 @@ void braun_scene_initial_state(const braun_scene *s, braun_real *q, braun_real *
             v[b->iq + i] = b->v0[i];
         }
     }
+    return BRAUN_OK;
 }

@@ -1,6 +1,7 @@
 /* Kinematics of a point of a scene: fixed on the ground, or on a body,
  * whose class computes it (scene_rigid.c, scene_particle.c). Every joint,
  * spring and force reaches q through these. */
+#include <math.h> /* NAN */
 #include "scene_internal.h"
 
 /* The ground part, and the common start of a body point: body, column,
@@ -44,15 +45,25 @@ void braun_scene_dir_eval(const braun_scene *s, int body, const braun_real *d,
     D->direction = 1;
 }
 
-void braun_scene_point_state(const braun_scene *s, int i, const braun_real *q,
-                             const braun_real *v, braun_real *pos, braun_real *vel)
+/* Point i exists and its body (if any) has a class. */
+static int point_ok(const braun_scene *s, int i)
+{
+    if (!s || !s->points || i < 0 || i >= s->npoints) return 0;
+    const int b = s->points[i].body;
+    return b < 0 || (b < s->nbodies && s->bodies && s->bodies[b].kind);
+}
+
+int braun_scene_point_state(const braun_scene *s, int i, const braun_real *q,
+                            const braun_real *v, braun_real *pos, braun_real *vel)
 {
     scene_pt P;
+    if (!point_ok(s, i) || !q || !pos) return BRAUN_ERR_ARGUMENT;
     braun_scene__point(s, i, q, v, &P);
     for (int k = 0; k < 3; k++) {
         pos[k] = P.pos[k];
         if (vel) vel[k] = P.vel[k];
     }
+    return BRAUN_OK;
 }
 
 void braun_scene_pt_grad(const scene_pt *P, const braun_real *g, braun_real *row)
@@ -70,25 +81,27 @@ int braun_scene_body_angle(const braun_scene *s, int body, const braun_real *q,
     return col;
 }
 
-void braun_scene_point_position(const braun_scene *s, int i, const braun_real *q,
-                                braun_real *xy)
+int braun_scene_point_position(const braun_scene *s, int i, const braun_real *q, braun_real *xy)
 {
     scene_pt P;
+    if (!point_ok(s, i) || !q || !xy) return BRAUN_ERR_ARGUMENT;
     braun_scene__point(s, i, q, NULL, &P);
     xy[0] = P.pos[0];
     xy[1] = P.pos[1];
+    return BRAUN_OK;
 }
 
 /* ------------------------------------------------------- initial state */
-void braun_scene_initial_point(const braun_scene *s, int i, braun_real *pos)
+int braun_scene_initial_point(const braun_scene *s, int i, braun_real *pos)
 {
+    if (!point_ok(s, i) || !pos) return BRAUN_ERR_ARGUMENT;
     const braun_scene_point *pt = &s->points[i];
     scene_pt P;
     if (pt->body < 0) {
         pos[0] = pt->x;
         pos[1] = pt->y;
         pos[2] = pt->z;
-        return;
+        return BRAUN_OK;
     }
     /* The body's own coordinates are q0 (or what its class makes of
      * them): no numbering needed. */
@@ -103,13 +116,14 @@ void braun_scene_initial_point(const braun_scene *s, int i, braun_real *pos)
     start(bd, &P);
     bd->kind->point(bd, pt, q0, NULL, &P);
     for (int k = 0; k < 3; k++) pos[k] = P.pos[k];
+    return BRAUN_OK;
 }
 
 braun_real braun_scene_initial_distance(const braun_scene *s, int a, int b)
 {
     braun_real pa[3], pb[3];
-    braun_scene_initial_point(s, a, pa);
-    braun_scene_initial_point(s, b, pb);
+    if (braun_scene_initial_point(s, a, pa) || braun_scene_initial_point(s, b, pb))
+        return (braun_real)NAN; /* no such point */
     if (pa[2] == pb[2]) return braun_scene__hypot(pb[0] - pa[0], pb[1] - pa[1]);
     const braun_real dz = pb[2] - pa[2];
     const braun_real dxy = braun_scene__hypot(pb[0] - pa[0], pb[1] - pa[1]);
@@ -118,6 +132,8 @@ braun_real braun_scene_initial_distance(const braun_scene *s, int a, int b)
 
 braun_real braun_scene_initial_angle(const braun_scene *s, int body)
 {
-    if (body < 0 || !s->bodies[body].kind || s->bodies[body].kind->angle < 0) return 0;
+    if (!s || body >= s->nbodies || (body >= 0 && (!s->bodies || !s->bodies[body].kind)))
+        return (braun_real)NAN; /* no such body */
+    if (body < 0 || s->bodies[body].kind->angle < 0) return 0;
     return s->bodies[body].q0[s->bodies[body].kind->angle];
 }

@@ -94,7 +94,11 @@ static void describe(msg *w, const braun_data *d)
         put(w, "invalid sizes n, m, p");
         return;
     case BRAUN_ERR_BUFFER:
-        put(w, "workspace buffer smaller than braun_data_size(), or a backend could not allocate");
+        if (where && strncmp(where, "buffer", 6) == 0 && d->model)
+            put(w, "workspace buffer of %.0f bytes is smaller than braun_data_size() = %zu bytes", e->value,
+                braun_data_size(d->model));
+        else
+            put(w, "workspace buffer smaller than braun_data_size(), or a backend could not allocate");
         return;
     case BRAUN_ERR_NONFINITE:
         put(w, "%s", noun(where));

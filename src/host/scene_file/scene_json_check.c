@@ -237,7 +237,7 @@ int braun_scene_file_diagnose(const braun_scene_file *sf, braun_real t, const br
                               const braun_real *v, char *msg, size_t size)
 {
     if (msg && size) msg[0] = '\0';
-    if (!sf || !q) return 0;
+    if (!sf || !q) return -1; /* nothing to evaluate: not "nothing fails" */
     const braun_scene *s = &sf->scene;
     braun_real *Q = calloc((size_t)s->n + 1, sizeof *Q);
     if (!Q) return -1;
