@@ -71,15 +71,21 @@ static braun_system ring_system(ring *r)
 
 static const braun_real q0[2] = {1, 0}, v0[2] = {0, 0};
 
+/* A data for the ring with every correction (no state yet). */
+static void open_ring(test_sim *sim, ring *r)
+{
+    const braun_system s = ring_system(r);
+    assert_int_equal(test_sim_open(sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+}
+
 /* Sizes, flags or a required callback changed after braun_data_init: every
  * entry refuses, naming it, and the state is untouched; put back, it runs. */
 static void test_system_changed_after_init(void **state)
 {
     (void)state;
     ring r = {0};
-    const braun_system s = ring_system(&r);
     test_sim sim;
-    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    open_ring(&sim, &r);
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
     assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_OK);
     const braun_real qa = sim.data.q[0];
@@ -98,7 +104,7 @@ static void test_system_changed_after_init(void **state)
     sim.model.sys.m = 1;
     sim.model.sys.flags |= BRAUN_ENERGY_INPUT;
     assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT);
-    sim.model.sys.flags = s.flags;
+    sim.model.sys.flags = ring_system(&r).flags;
     sim.model.sys.holonomic = NULL;
     assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_MISSING_CALLBACK);
     assert_string_equal(sim.data.error.where, "holonomic is NULL but m > 0");
@@ -140,9 +146,8 @@ static void test_failed_set_state_changes_nothing(void **state)
 {
     (void)state;
     ring r = {0};
-    const braun_system s = ring_system(&r);
     test_sim sim;
-    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    open_ring(&sim, &r);
     r.fail_energy = 1;
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_ERR_CALLBACK);
     assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT); /* no state */
@@ -216,9 +221,8 @@ static void test_reentry_from_output_callback(void **state)
 {
     (void)state;
     ring r = {0};
-    const braun_system s = ring_system(&r);
     test_sim sim;
-    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    open_ring(&sim, &r);
     for (int adaptive = 0; adaptive < 2; adaptive++) {
         watcher w = {0};
         assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
@@ -241,9 +245,8 @@ static void test_eval_overflow_refused(void **state)
 {
     (void)state;
     ring r = {0};
-    const braun_system s = ring_system(&r);
     test_sim sim;
-    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    open_ring(&sim, &r);
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
     const braun_real off[2] = {1.01, 0};
     braun_real qd[2], vd[2];
@@ -259,13 +262,12 @@ static void test_unready_data_named(void **state)
 {
     (void)state;
     ring r = {0};
-    const braun_system s = ring_system(&r);
     braun_data zero;
     memset(&zero, 0, sizeof zero);
     assert_int_equal(braun_step(&zero, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT);
     assert_non_null(strstr(zero.error.where, "not initialised"));
     test_sim sim;
-    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    open_ring(&sim, &r);
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
     braun_data_release(&sim.data);
     assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT);
