@@ -4,6 +4,7 @@
  * current call (issue 11). Each test fails on the code before it. */
 #include "test_util.h"
 #include "braun_linsolver.h"
+#include "braun_internal.h" /* braun__fixed_step_count */
 #include "test_systems.h"
 
 static pendulum_params pend(void)
@@ -239,6 +240,24 @@ static void test_adaptive_repeatable(void **state)
     }
 }
 
+/* braun_integrate's step count (braun_internal.h): a whole number of steps
+ * up to round-off takes that many, never fewer by a whole step — at 1e12
+ * steps a relative allowance of 1e-9 made the last step 1000 h long. */
+static void test_fixed_step_count(void **state)
+{
+    (void)state;
+    assert_int_equal(braun__fixed_step_count(2.0), 2);
+    assert_int_equal(braun__fixed_step_count(0.2), 1);
+    assert_int_equal(braun__fixed_step_count(1000.0000000001), 1000);
+    assert_int_equal(braun__fixed_step_count(1000.3), 1001);
+    assert_true(braun__fixed_step_count(1e9 + 0.75) == 1000000001L);
+    if (sizeof(long) >= 8) {
+        assert_true(braun__fixed_step_count(1e12) == 1000000000000L);
+        assert_true(braun__fixed_step_count(1e12 + 0.75) == 1000000000001L);
+        assert_true(braun__fixed_step_count(1e12 * (1 + 1e-15)) == 1000000000000L); /* round-off: 1e12 */
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -247,6 +266,7 @@ int main(void)
         cmocka_unit_test(test_failures_record_themselves),
         cmocka_unit_test(test_no_state_refused),
         cmocka_unit_test(test_adaptive_repeatable),
+        cmocka_unit_test(test_fixed_step_count),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -35,13 +35,7 @@ static int integrate(braun_data *d, braun_method method, braun_real h, braun_rea
      * a span of more than ~2.1e9 steps would overflow it. */
     const double most = LONG_MAX > 2147483647L ? 9.0e18 : (double)LONG_MAX - 1.0;
     if (ratio > most) return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "step count", -1, -1, ratio, t0);
-    /* A span that is a whole number of steps up to round-off takes exactly
-     * that many; otherwise the last step is shortened to land on t_end. */
-    /* (h itself carries the working precision's rounding: a float h makes
-     * the ratio off by ~1e-7 relative) */
-    const double slack = 8.0 * (double)BRAUN_EPS > 1e-9 ? 8.0 * (double)BRAUN_EPS : 1e-9;
-    long steps = (long)ceil(ratio - slack * ratio);
-    if (steps < 1) steps = 1;
+    long steps = braun__fixed_step_count(ratio);
 
     if (out && out(d, out_user)) return BRAUN_STOPPED;
     for (long i = 1; i <= steps; i++) {

@@ -33,6 +33,7 @@
 #define BRAUN_INTERNAL_H
 
 #include <limits.h>
+#include <math.h> /* ceil: braun__fixed_step_count */
 #include "braun.h"
 #include "braun_dense.h"
 #include "braun_linalg.h"
@@ -205,6 +206,21 @@ int braun__check_options(braun_data *d);
 /* The data block is usable (initialised, state set): BRAUN_OK or an error
  * recorded in d->error; `where` names the calling function. */
 int braun__check_ready(braun_data *d);
+
+/* Steps of braun_integrate for a span of `ratio` steps of h: a span that
+ * is a whole number of steps up to round-off takes exactly that many,
+ * otherwise the last step is shortened to land on t_end. The round-off
+ * allowed is relative (h carries the working precision's rounding: a
+ * float h makes the ratio off by ~1e-7 relative) but never a whole step:
+ * at 1e12 steps a relative 1e-9 would make the last step 1000 h long. */
+static inline long braun__fixed_step_count(double ratio)
+{
+    const double slack = 8.0 * (double)BRAUN_EPS > 1e-9 ? 8.0 * (double)BRAUN_EPS : 1e-9;
+    double allowance = slack * ratio;
+    if (allowance > 0.5) allowance = 0.5;
+    const long steps = (long)ceil(ratio - allowance);
+    return steps < 1 ? 1 : steps;
+}
 /* The system the data was made for is still model->sys: sizes, flags,
  * sparsity and the callbacks they require (a few compares per call). */
 int braun__check_system(braun_data *d);
