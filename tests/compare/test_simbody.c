@@ -290,16 +290,22 @@ static void test_failure_is_a_row(void **state)
     cmp_traj_free(&tr);
     cmp_target_free(&tg);
     /* A fixed step too large for the motor's damping (τ0/ω0 on a light
-     * crank): the run goes unstable and Simbody's integrator throws
-     * StepFailed (a NaN inertia) at t = 72.75 after 1456 good samples with
-     * the reference BLAS and LAPACK, at 72.85 with OpenBLAS. */
+     * crank): the run goes unstable. How the blow-up surfaces depends on
+     * the BLAS Debian's alternatives select (make bench's dependencies
+     * install OpenBLAS, which then takes over): with the reference BLAS
+     * and LAPACK Simbody's integrator throws StepFailed (a NaN inertia) at
+     * t = 72.75 after 1456 good samples; with OpenBLAS the state turns
+     * non-finite first and the adapter stops the run at 72.9 (DIVERGED).
+     * Either way the failure is a row with the samples before it. */
     target("damped-motor", &tg);
     assert_int_equal(cmp_traj_init(&tr, tg.sys.n, 64), 0);
     sp = spec_of(CMP_SB_RKM_FIXED, 0, 0.05, 100.0, 0.05);
     cmp_run(&tg, &sp, &tr, &out);
     check_failed(&out, &tr, sp.T);
-    assert_string_equal(out.status_name, "SB_STEP_FAILED");
-    assert_non_null(strstr(out.detail, "step failed"));
+    if (strcmp(out.status_name, "SB_STEP_FAILED") == 0)
+        assert_non_null(strstr(out.detail, "step failed"));
+    else
+        assert_string_equal(out.status_name, "DIVERGED");
     assert_true(out.t_reached > 10 && out.t_reached < 100);
     assert_true(tr.count > 200);
     assert_near(tr.t[tr.count - 1], out.t_reached, 1e-9);
