@@ -150,27 +150,20 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
                     const braun_real *v)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
-    if (!d->priv || !d->model) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_set_state (data not initialised)", -1, -1, 0, 0);
-    if (braun__priv(d)->busy)
-        return braun__fail(d, BRAUN_ERR_ARGUMENT,
-                           "braun_set_state: a driver is running on this data (called from its callback)",
-                           -1, -1, 0, (double)d->t);
+    int st = braun__check_usable(d, 0);
+    if (st) return st;
     if (!q || !v) return braun__fail(d, BRAUN_ERR_ARGUMENT, q ? "state v (NULL)" : "state q (NULL)", -1, -1, 0, (double)t);
     const int n = d->model->sys.n;
     if (!braun_is_finite(t)) return braun__fail(d, BRAUN_ERR_NONFINITE, "state t", -1, -1, (double)t, (double)t);
-    int st = braun__check_system(d);
-    if (st) return st;
     st = braun__check_finite(d, n, q, "state q", 0, t);
     if (st) return st;
     st = braun__check_finite(d, n, v, "state v", 0, t);
     if (st) return st;
     /* E0 first: a start whose energy cannot be evaluated changes nothing
      * (the last run's state stays, and so does whether one is set). */
-    braun_real E0 = 0;
-    if (d->model->sys.energy) {
-        st = braun_energy(d, t, q, v, &E0);
-        if (st) return st;
-    }
+    braun_real E0;
+    st = braun__energy(d, t, q, v, &E0);
+    if (st) return st;
     for (int i = 0; i < n; i++) {
         d->q[i] = q[i];
         d->v[i] = v[i];

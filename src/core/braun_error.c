@@ -32,20 +32,29 @@ int braun__check_finite(braun_data *d, int n, const braun_real *x,
     return BRAUN_OK;
 }
 
-int braun__check_ready(braun_data *d)
+int braun__check_usable(braun_data *d, int busy_allowed)
 {
     if (!d->priv || !d->model)
         return braun__fail(d, BRAUN_ERR_ARGUMENT,
                            "data not initialised (braun_data_init not called, failed, or released)", -1, -1,
                            0, 0);
-    const braun_priv *pv = braun__priv(d);
-    if (pv->busy)
+    const int busy = braun__priv(d)->busy;
+    if (busy > busy_allowed)
         return braun__fail(d, BRAUN_ERR_ARGUMENT,
-                           "re-entrant call: a driver is running on this data (called from its callback)",
+                           busy == 2 ? "re-entrant call: a step's stages are running on this data (called "
+                                       "from a system callback)"
+                                     : "re-entrant call: a driver is running on this data (called from "
+                                       "its callback)",
                            -1, -1, 0, (double)d->t);
-    if (!pv->state_set)
+    return braun__check_system(d);
+}
+
+int braun__check_ready(braun_data *d)
+{
+    int st = braun__check_usable(d, 0);
+    if (st) return st;
+    if (!braun__priv(d)->state_set)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "no state: call braun_set_state first", -1, -1,
                            0, (double)d->t);
-    const int st = braun__check_system(d);
-    return st ? st : braun__check_options(d);
+    return braun__check_options(d);
 }

@@ -403,22 +403,18 @@ static int check_state(braun_data *d, braun_real t, const braun_real *q,
     return st;
 }
 
-/* The arguments of braun_eval, braun_residuals, braun_energy. */
-static int check_call(braun_data *d, const braun_real *q, const braun_real *v, const char *where)
+/* The arguments of braun_eval, braun_residuals, braun_energy. Allowed in
+ * an output callback, between steps (docs/api.md), not from a system
+ * callback while a step's stages run: the call would overwrite the scratch
+ * the step is using. */
+static int check_call(braun_data *d, const braun_real *q, const braun_real *v)
 {
-    if (!d->priv || !d->model) return braun__fail(d, BRAUN_ERR_ARGUMENT, where, -1, -1, 0, 0);
-    /* From a system callback while a step's stages run: the call would
-     * overwrite the scratch the step is using. (From an output callback,
-     * between steps, it is fine: docs/api.md.) */
-    if (braun__priv(d)->busy == 2)
-        return braun__fail(d, BRAUN_ERR_ARGUMENT,
-                           "re-entrant call: a step's stages are running on this data (called from a "
-                           "system callback)",
-                           -1, -1, 0, (double)d->t);
+    const int st = braun__check_usable(d, 1);
+    if (st) return st;
     if (!q || !v)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, !q ? "state q (NULL)" : "state v (NULL)", -1, -1, 0,
                            (double)d->t);
-    return braun__check_system(d);
+    return BRAUN_OK;
 }
 
 int braun_eval(braun_data *d, braun_real t, const braun_real *q,
@@ -426,7 +422,7 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
                braun_real *vdot)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = check_call(d, q, v, "braun_eval");
+    int st = check_call(d, q, v);
     if (st) return st;
     if (!qdot || !vdot) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_eval (NULL output)", -1, -1, 0, (double)t);
     /* The stages read q and v to the end while they write vdot, and qdot is
@@ -480,13 +476,18 @@ int braun_energy(braun_data *d, braun_real t, const braun_real *q,
                  const braun_real *v, braun_real *E)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = check_call(d, q, v, "braun_energy");
+    int st = check_call(d, q, v);
     if (st) return st;
     if (!E) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_energy (NULL output)", -1, -1, 0, (double)t);
+    return braun__energy(d, t, q, v, E);
+}
+
+int braun__energy(braun_data *d, braun_real t, const braun_real *q, const braun_real *v, braun_real *E)
+{
     const braun_system *s = &d->model->sys;
     *E = 0;
     if (!s->energy) return BRAUN_OK;
-    st = braun__callback(d, s->energy(t, q, v, E, NULL, NULL, NULL, s->user), "energy", t);
+    int st = braun__callback(d, s->energy(t, q, v, E, NULL, NULL, NULL, s->user), "energy", t);
     if (!st) st = braun__check_finite(d, 1, E, "energy E", 0, t);
     return st;
 }
@@ -496,7 +497,7 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
                     braun_real *energy)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = check_call(d, q, v, "braun_residuals");
+    int st = check_call(d, q, v);
     if (st) return st;
     braun_priv *pv = braun__priv(d);
     const braun_system *s = &d->model->sys;
@@ -524,7 +525,7 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
         braun_real E = 0;
         *energy = 0;
         if (s->energy && d->has_E0) {
-            st = braun_energy(d, t, q, v, &E);
+            st = braun__energy(d, t, q, v, &E);
             if (st) return st;
             *energy = braun_fabs(E - d->E0 - d->work_in);
             st = braun__check_finite(d, 1, energy, "energy residual", 0, t);

@@ -95,8 +95,7 @@ typedef struct braun_priv {
     /* A driver runs on this data (1: braun_step, braun_integrate or
      * braun_integrate_adaptive, its output callback included), or a step's
      * stages call the system's callbacks (2). Calls that would change the
-     * state or the scratch under it are refused (braun__check_ready,
-     * braun_eval, braun_residuals, braun_energy). */
+     * state or the scratch under it are refused (braun__check_usable). */
     int busy;
     /* Where the stages are. */
     braun_point at;
@@ -203,9 +202,16 @@ static inline int braun__time_step_ok(braun_data *d, braun_real t, braun_real t_
 
 /* The options of d's model are valid (braun_options.c). */
 int braun__check_options(braun_data *d);
-/* The data block is usable (initialised, state set): BRAUN_OK or an error
- * recorded in d->error; `where` names the calling function. */
+/* The data block is usable: initialised, not busy beyond busy_allowed
+ * (braun_priv.busy: 0 for the drivers and braun_set_state, 1 for calls
+ * allowed in an output callback) and made for model->sys as it is
+ * (braun__check_system). BRAUN_OK or an error recorded in d->error. */
+int braun__check_usable(braun_data *d, int busy_allowed);
+/* ... and a driver may run: a state is set, the options are valid. */
 int braun__check_ready(braun_data *d);
+/* E(t, q, v) from the energy callback (0 without one), checked finite; no
+ * argument checks (braun_energy's are the caller's). */
+int braun__energy(braun_data *d, braun_real t, const braun_real *q, const braun_real *v, braun_real *E);
 
 /* Steps of braun_integrate for a span of `ratio` steps of h: a span that
  * is a whole number of steps up to round-off takes exactly that many,
