@@ -133,4 +133,20 @@ const sj_underflow *sj_underflow_of(const sj_reader *r, const json_t *v);
 /* Read every element of the root object into r->out (scene_json_read.c). */
 int sj_read_scene(sj_reader *r, json_t *root);
 
+/* Walking a JSON text jansson has accepted (scene_json_locate.c,
+ * scene_json_underflow.c): past white space, and past a string from its
+ * opening quote (escapes included). */
+static inline const char *sj_skip_ws(const char *p, const char *end)
+{
+    while (p < end && (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')) p++;
+    return p;
+}
+
+static inline const char *sj_skip_string(const char *p, const char *end)
+{
+    p++;
+    while (p < end && *p != '"') p += *p == '\\' ? 2 : 1;
+    return p < end ? p + 1 : p;
+}
+
 #endif

@@ -12,19 +12,8 @@ typedef struct cursor {
     const char *p, *end;
 } cursor;
 
-static void skip_ws(cursor *c)
-{
-    while (c->p < c->end && (*c->p == ' ' || *c->p == '\t' || *c->p == '\n' || *c->p == '\r'))
-        c->p++;
-}
-
-/* Skip a string starting at its opening quote. */
-static void skip_string(cursor *c)
-{
-    c->p++;
-    while (c->p < c->end && *c->p != '"') c->p += *c->p == '\\' ? 2 : 1;
-    if (c->p < c->end) c->p++;
-}
+static void skip_ws(cursor *c) { c->p = sj_skip_ws(c->p, c->end); }
+static void skip_string(cursor *c) { c->p = sj_skip_string(c->p, c->end); }
 
 /* Skip one value of any kind. */
 static void skip_value(cursor *c)

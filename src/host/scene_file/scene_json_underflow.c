@@ -22,18 +22,8 @@ typedef struct walk {
     int oom;
 } walk;
 
-static void skip_ws(walk *w)
-{
-    while (w->p < w->end && (*w->p == ' ' || *w->p == '\t' || *w->p == '\n' || *w->p == '\r'))
-        w->p++;
-}
-
-static void skip_string(walk *w)
-{
-    w->p++;
-    while (w->p < w->end && *w->p != '"') w->p += *w->p == '\\' ? 2 : 1;
-    if (w->p < w->end) w->p++;
-}
+static void skip_ws(walk *w) { w->p = sj_skip_ws(w->p, w->end); }
+static void skip_string(walk *w) { w->p = sj_skip_string(w->p, w->end); }
 
 /* A mantissa with a nonzero digit: the number written is not 0. */
 static int nonzero_digits(const char *s, const char *end)
