@@ -227,6 +227,7 @@
  * converts at the interface.
  */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -315,7 +316,17 @@ typedef struct ss_slot {
     sslong *perm, *iperm; /* G is stored as P G P^T: new index c is row perm[c] */
     sslong *lperm;   /* the order of L's rows (perm composed with L->Perm) */
     double *bp;      /* rows: a right-hand side in that order */
+    /* The forward pass's right-hand side r_v, handed to factor_c (rc,
+     * rc_set), solved with G beside the probe of an accepted Cholesky in
+     * one walk of L (yc, yc_ok): the pinv that follows finds its first
+     * solve done (g_solve compares the right-hand side bit for bit). */
+    double *rc, *yc, *bp2;
+    int rc_set, yc_ok;
     int own_solve;   /* L is simplicial with its diagonal first: solved here */
+    /* L's pattern in 32 bits for the solves and ldl_numeric (own_solve):
+     * column j is li[lbeg[j] .. lend[j]), the positions of L->x; half the
+     * index bytes CHOLMOD's 64-bit arrays would stream. */
+    int *li, *lbeg, *lend;
     const void *own_i; /* L->i and L->nzmax when own_solve was last checked */
     size_t own_nzmax;
     /* The numeric LDL^T done here on L's pattern (ldl_numeric), once
@@ -324,7 +335,13 @@ typedef struct ss_slot {
      * in each), the lower triangle of G by columns (rows gl_i, positions
      * gl_e in G->x), a dense work vector. */
     int own_fact;
-    sslong *lr_p, *lr_k, *lr_q, *gl_p, *gl_i, *gl_e;
+    int *lr_p, *lr_k, *lr_q, *gl_p, *gl_i, *gl_e;
+    /* What ldl_numeric saw of the pivots (piv_ok): the columns whose
+     * pivots it replaced (piv_hit, increasing) and the smallest and largest
+     * of the others, so that neither chol_dep nor the full-rank test walks
+     * L's diagonal again. */
+    int piv_ok, *piv_hit;
+    double piv_min, piv_max;
     double *lw;
     cholmod_factor *L;
     cholmod_dense *X, *Y, *E; /* cholmod_l_solve2 workspaces */
@@ -345,6 +362,10 @@ typedef struct ss_state {
     sslong *sptr;        /* row i's block segments: sptr[i] .. sptr[i+1] */
     int *sblk;           /* block of a segment */
     sslong *spos;        /* first position of a segment in Cx */
+    int *scol, *slen;    /* first column and length of a segment: the
+                          * products with C walk segments, not ci (a
+                          * segment's columns are consecutive), and read a
+                          * third of the indices ci would stream */
     double *wr, *wr2, *wr3, *wr4, *wr5, *wr6, *wr7, *wr8, *wr9, *wr10; /* rows each */
     double *wn, *wn2, *wn3, *wn4, *wn5, *wn6, *wn7; /* n each */
     cholmod_common cc;
@@ -487,13 +508,31 @@ static void r_solve(const cholmod_sparse *R, sslong k, double *y)
 static void c_mul(const ss_state *s, const ss_slot *f, const double *x, const double *y0,
                   double *y, double *bound)
 {
+    const sslong *sptr = s->sptr;
+    const int *scol = s->scol, *slen = s->slen;
+    const double *c = f->Cx; /* segments lie one after another in Cx */
     double bmax = 0;
     for (int i = 0; i < f->rows; i++) {
         double acc = 0, abs_acc = 0;
-        for (sslong p = s->cp[i]; p < s->cp[i + 1]; p++) {
-            double t = f->Cx[p] * x[s->ci[p]];
-            acc += t;
-            abs_acc += fabs(t);
+        for (sslong g = sptr[i]; g < sptr[i + 1]; g++) {
+            const double *xb = x + scol[g];
+            const int len = slen[g];
+            if (len == 3) { /* planar bodies; the same sums in the same order */
+                const double t0 = c[0] * xb[0], t1 = c[1] * xb[1], t2 = c[2] * xb[2];
+                acc += t0;
+                abs_acc += fabs(t0);
+                acc += t1;
+                abs_acc += fabs(t1);
+                acc += t2;
+                abs_acc += fabs(t2);
+            } else {
+                for (int k = 0; k < len; k++) {
+                    const double t = c[k] * xb[k];
+                    acc += t;
+                    abs_acc += fabs(t);
+                }
+            }
+            c += len;
         }
         if (y0) {
             abs_acc += fabs(y0[i]);
@@ -508,10 +547,18 @@ static void c_mul(const ss_state *s, const ss_slot *f, const double *x, const do
 /* x += C^T y (n). */
 static void ct_mul_add(const ss_state *s, const ss_slot *f, const double *y, double *x)
 {
+    const sslong *sptr = s->sptr;
+    const int *scol = s->scol, *slen = s->slen;
     for (int i = 0; i < f->rows; i++) {
-        double yi = y[i];
+        const double yi = y[i];
         if (yi == 0) continue;
-        for (sslong p = s->cp[i]; p < s->cp[i + 1]; p++) x[s->ci[p]] += f->Cx[p] * yi;
+        const double *c = f->Cx + s->cp[i];
+        for (sslong g = sptr[i]; g < sptr[i + 1]; g++) {
+            double *xb = x + scol[g];
+            const int len = slen[g];
+            for (int k = 0; k < len; k++) xb[k] += c[k] * yi;
+            c += len;
+        }
     }
 }
 
@@ -642,6 +689,13 @@ static void slot_free(ss_slot *f, cholmod_common *cc)
     free(f->iperm);
     free(f->lperm);
     free(f->bp);
+    free(f->rc);
+    free(f->yc);
+    free(f->bp2);
+    free(f->li);
+    free(f->lbeg);
+    free(f->lend);
+    free(f->piv_hit);
     free(f->lr_p);
     free(f->lr_k);
     free(f->lr_q);
@@ -676,6 +730,8 @@ static void ss_destroy(void *state)
     free(s->sptr);
     free(s->sblk);
     free(s->spos);
+    free(s->scol);
+    free(s->slen);
     free(s->wr);
     free(s->wr2);
     free(s->wr3);
@@ -884,13 +940,18 @@ static int slot_build(ss_state *s, ss_slot *f, int rows)
     f->iperm = xcalloc((size_t)rows, sizeof *f->iperm);
     f->lperm = xcalloc((size_t)rows, sizeof *f->lperm);
     f->bp = xcalloc((size_t)rows, sizeof *f->bp);
+    f->rc = xcalloc((size_t)rows, sizeof *f->rc);
+    f->yc = xcalloc((size_t)rows, sizeof *f->yc);
+    f->bp2 = xcalloc((size_t)rows, sizeof *f->bp2);
     f->dep = xcalloc((size_t)rows, sizeof *f->dep);
     f->pdiag = xcalloc((size_t)rows, sizeof *f->pdiag);
     f->wtw = xcalloc((size_t)rows, sizeof *f->wtw);
     f->dep_row = xcalloc((size_t)rows, sizeof *f->dep_row);
     f->dlist = xcalloc((size_t)rows, sizeof *f->dlist);
-    if (!f->Cx || !f->perm || !f->iperm || !f->lperm || !f->bp || !f->dep || !f->dep_row ||
-        !f->dlist || !f->pdiag || !f->wtw)
+    f->piv_hit = xcalloc((size_t)rows, sizeof *f->piv_hit);
+    if (!f->Cx || !f->perm || !f->iperm || !f->lperm || !f->bp || !f->rc || !f->yc || !f->bp2 ||
+        !f->dep || !f->dep_row ||
+        !f->dlist || !f->pdiag || !f->wtw || !f->piv_hit)
         return BRAUN_ERR_BUFFER;
     if ((st = blist_build(s, rows, &bl)) != BRAUN_OK) goto out;
 
@@ -1020,7 +1081,10 @@ static int ss_create(void **state, const braun_model *model)
     s->sptr = xcalloc((size_t)rows + 1, sizeof *s->sptr);
     s->sblk = xcalloc((size_t)nseg, sizeof *s->sblk);
     s->spos = xcalloc((size_t)nseg, sizeof *s->spos);
-    if (!s->cp || !s->ci || !s->a2c || !s->sptr || !s->sblk || !s->spos) goto fail;
+    s->scol = xcalloc((size_t)nseg, sizeof *s->scol);
+    s->slen = xcalloc((size_t)nseg, sizeof *s->slen);
+    if (!s->cp || !s->ci || !s->a2c || !s->sptr || !s->sblk || !s->spos || !s->scol || !s->slen)
+        goto fail;
     {
         sslong g = 0, pos = 0;
         for (int i = 0; i < rows; i++) {
@@ -1032,6 +1096,8 @@ static int ss_create(void **state, const braun_model *model)
                 if (b != last) {
                     s->sblk[g] = b;
                     s->spos[g] = pos;
+                    s->scol[g] = s->bstart[b];
+                    s->slen[g] = s->bsize[b];
                     for (int j = 0; j < s->bsize[b]; j++) s->ci[pos + j] = s->bstart[b] + j;
                     pos += s->bsize[b];
                     g++;
@@ -1192,6 +1258,7 @@ static void ss_mul_r(void *state, const braun_real *x, braun_real *y)
 /* factor_c                                                            */
 /* ------------------------------------------------------------------ */
 static int g_solve(ss_state *s, ss_slot *f, const double *b, double *out);
+static void g_solve2(ss_slot *f, const double *b1, const double *b2, double *out1, double *out2);
 
 /* The probe of an accepted Cholesky (see above): y = G^-1 x for a fixed
  * pseudo-random x in [-1, 1)^rows gives sqrt(|x|/|y|) >= sigma_min(C) (up to
@@ -1207,7 +1274,12 @@ static int chol_probe(ss_state *s, ss_slot *f, double lim)
         u = u * 6364136223846793005ULL + 1442695040888963407ULL;
         x[i] = f->dep_row[i] ? 0 : (double)(u >> 11) * 0x1p-52 - 1.0; /* kept rows only */
     }
-    if (g_solve(s, f, x, y)) return cc_fail(&s->cc);
+    if (f->rc_set && f->own_solve) {
+        g_solve2(f, x, f->rc, y, f->yc); /* and r_v's, for the pinv */
+        f->yc_ok = 1;
+    } else if (g_solve(s, f, x, y)) {
+        return cc_fail(&s->cc);
+    }
     const double nx = nrm2(rows, x), ny = nrm2(rows, y);
     if (!(ny <= DBL_MAX)) return 0; /* overflow: singular to working precision */
     return ny > 0 && sqrt(nx / ny) >= lim * f->cmax ? 1 : 0;
@@ -1225,23 +1297,44 @@ static int chol_probe(ss_state *s, ss_slot *f, double lim)
 static int dep_probe(ss_state *s, ss_slot *f, double thr)
 {
     const int rows = f->rows, n = s->n;
-    double *w = s->wr4, *y = s->wr5, *v = s->wn4;
+    double *w = s->wr4, *y = s->wr5, *y1 = s->wr6, *v = s->wn4, *v1 = s->wn5;
     const double lim = DEP_MARGIN * thr, lim2 = lim * lim;
     unsigned long long u = DEP_SEED;
     double sum = 0;
+    /* Both probes' first solves in one walk of L (g_solve2, the same
+     * results as one solve each): v, y for probe 0, v1, y1 for probe 1. */
+    const int pair = DEP_PROBES == 2 && f->own_solve;
     for (int probe = 0; probe < DEP_PROBES; probe++) {
-        memset(w, 0, (size_t)rows * sizeof *w);
-        for (int k = 0; k < f->ndep; k++) {
-            u = u * 6364136223846793005ULL + 1442695040888963407ULL;
-            w[f->dlist[k]] = (u >> 63) ? 1.0 : -1.0;
+        const int first_done = pair && probe == 1;
+        if (first_done) {
+            double *tv = v, *ty = y;
+            v = v1, y = y1, v1 = tv, y1 = ty;
+        } else {
+            for (int pr = probe; pr < (pair ? 2 : probe + 1); pr++) {
+                double *vp = pr == probe ? v : v1, *yp = pr == probe ? y : y1;
+                memset(w, 0, (size_t)rows * sizeof *w);
+                for (int k = 0; k < f->ndep; k++) {
+                    u = u * 6364136223846793005ULL + 1442695040888963407ULL;
+                    w[f->dlist[k]] = (u >> 63) ? 1.0 : -1.0;
+                }
+                memset(vp, 0, (size_t)n * sizeof *vp);
+                ct_mul_add(s, f, w, vp); /* v = C_D^T w */
+                c_mul(s, f, vp, NULL, yp, NULL);
+                for (int k = 0; k < f->ndep; k++) yp[f->dlist[k]] = 0; /* C_B v */
+            }
+            if (pair) {
+                g_solve2(f, y, y1, y, y1);
+            } else if (g_solve(s, f, y, y)) {
+                return cc_fail(&s->cc);
+            }
         }
-        memset(v, 0, (size_t)n * sizeof *v);
-        ct_mul_add(s, f, w, v); /* v = C_D^T w */
         double nv2 = 0;
         for (int it = 0; it <= REFINE_MAX; it++) {
-            c_mul(s, f, v, NULL, y, NULL);
-            for (int k = 0; k < f->ndep; k++) y[f->dlist[k]] = 0; /* C_B v */
-            if (g_solve(s, f, y, y)) return cc_fail(&s->cc);
+            if (it > 0) {
+                c_mul(s, f, v, NULL, y, NULL);
+                for (int k = 0; k < f->ndep; k++) y[f->dlist[k]] = 0; /* C_B v */
+                if (g_solve(s, f, y, y)) return cc_fail(&s->cc);
+            }
             if (probe == 0 && it == 0) { /* W^T w */
                 memcpy(f->wtw, y, (size_t)rows * sizeof *y);
                 f->wtw_ok = 1;
@@ -1273,7 +1366,7 @@ static void dep_clear(ss_slot *f)
  * full-rank G (positive, ratio at least lim, the probe), and the rows set
  * aside pass the dependency probe at the threshold of direction k + 1. 1:
  * accepted, 0: rejected, < 0: error. */
-static int chol_dep(ss_state *s, ss_slot *f, double tol, double dbound)
+static int chol_dep(ss_state *s, ss_slot *f, double tol, double dbound, int hits)
 {
     const cholmod_factor *L = f->L;
     const sslong *Lp = L->p, *Li = L->i, *Lnz = L->nz;
@@ -1281,7 +1374,17 @@ static int chol_dep(ss_state *s, ss_slot *f, double tol, double dbound)
     const int rows = f->rows;
     double dmin = DBL_MAX, dmax = 0;
     int nd = 0;
-    for (int a = 0; a < rows; a++) {
+    if (f->piv_ok) { /* ldl_numeric's record: no negative pivot (refused) */
+        for (int k = 0; k < hits; k++) {
+            const int a = f->piv_hit[k];
+            f->dep[a] = 1;
+            f->dep_row[f->lperm[a]] = 1;
+        }
+        nd = hits;
+        dmin = f->piv_min;
+        dmax = f->piv_max;
+    }
+    for (int a = 0; a < rows && !f->piv_ok; a++) {
         const double d = Lx[Lp[a]];
         if (fabs(d) <= dbound) {
             f->dep[a] = 1;
@@ -1354,6 +1457,30 @@ static int chol_dep(ss_state *s, ss_slot *f, double tol, double dbound)
     return st;
 }
 
+/* L's pattern in 32 bits (li, lbeg, lend). 1: built, 0: positions beyond
+ * int (the solves then go through CHOLMOD), < 0: out of memory. */
+static int l32_build(ss_slot *f)
+{
+    const cholmod_factor *L = f->L;
+    const sslong n = (sslong)L->n, *Lp = L->p, *Li = L->i, *Lnz = L->nz;
+    free(f->li), free(f->lbeg), free(f->lend);
+    f->li = f->lbeg = f->lend = NULL;
+    sslong top = 0;
+    for (sslong j = 0; j < n; j++)
+        if (Lp[j] + Lnz[j] > top) top = Lp[j] + Lnz[j];
+    if (n > INT_MAX || top > INT_MAX) return 0;
+    f->li = xcalloc((size_t)(top > 0 ? top : 1), sizeof *f->li);
+    f->lbeg = xcalloc((size_t)n, sizeof *f->lbeg);
+    f->lend = xcalloc((size_t)n, sizeof *f->lend);
+    if (!f->li || !f->lbeg || !f->lend) return BRAUN_ERR_BUFFER;
+    for (sslong j = 0; j < n; j++) {
+        f->lbeg[j] = (int)Lp[j];
+        f->lend[j] = (int)(Lp[j] + Lnz[j]);
+        for (sslong q = Lp[j]; q < Lp[j] + Lnz[j]; q++) f->li[q] = (int)Li[q];
+    }
+    return 1;
+}
+
 /* The structures of ldl_numeric for the simplicial LDL^T that CHOLMOD
  * just computed (columns sorted, diagonal first: checked). 1: built, 0:
  * this factor is not of that form, < 0: out of memory. */
@@ -1384,27 +1511,27 @@ static int ldl_build(ss_slot *f)
     for (sslong k = 0; k < n; k++)
         for (sslong q = Lp[k] + 1; q < Lp[k] + Lnz[k]; q++) f->lr_p[Li[q] + 1]++;
     for (sslong i = 0; i < n; i++) f->lr_p[i + 1] += f->lr_p[i];
-    sslong *next = f->gl_p; /* as a cursor first */
+    int *next = f->gl_p; /* as a cursor first */
     for (sslong i = 0; i < n; i++) next[i] = f->lr_p[i];
     for (sslong k = 0; k < n; k++)
         for (sslong q = Lp[k] + 1; q < Lp[k] + Lnz[k]; q++) {
-            const sslong at = next[Li[q]]++;
-            f->lr_k[at] = k;
-            f->lr_q[at] = q;
+            const int at = next[Li[q]]++;
+            f->lr_k[at] = (int)k;
+            f->lr_q[at] = (int)q;
         }
     /* lower G: upper entry (a, c), a <= c, is entry (c, a) of column a */
     memset(f->gl_p, 0, ((size_t)n + 1) * sizeof *f->gl_p);
     for (sslong c = 0; c < n; c++)
         for (sslong e = Gp[c]; e < Gp[c + 1]; e++) f->gl_p[Gi[e] + 1]++;
     for (sslong a = 0; a < n; a++) f->gl_p[a + 1] += f->gl_p[a];
-    sslong *cur = xcalloc((size_t)n, sizeof *cur);
+    int *cur = xcalloc((size_t)n, sizeof *cur);
     if (!cur) return BRAUN_ERR_BUFFER;
     for (sslong a = 0; a < n; a++) cur[a] = f->gl_p[a];
     for (sslong c = 0; c < n; c++)
         for (sslong e = Gp[c]; e < Gp[c + 1]; e++) {
-            const sslong at = cur[Gi[e]]++;
-            f->gl_i[at] = c;
-            f->gl_e[at] = e;
+            const int at = cur[Gi[e]]++;
+            f->gl_i[at] = (int)c;
+            f->gl_e[at] = (int)e;
         }
     free(cur);
     return 1;
@@ -1421,34 +1548,42 @@ static int ldl_build(ss_slot *f)
 static long ldl_numeric(ss_slot *f, double dbound, long *neg)
 {
     cholmod_factor *L = f->L;
-    const sslong n = (sslong)L->n, *Lp = L->p, *Li = L->i, *Lnz = L->nz;
+    const int n = (int)L->n, *Lb = f->lbeg, *Le = f->lend, *Li = f->li;
     double *Lx = L->x, *x = f->lw;
     const double *Gx = f->G->x;
-    const sslong *lr_p = f->lr_p, *lr_k = f->lr_k, *lr_q = f->lr_q;
+    const int *lr_p = f->lr_p, *lr_k = f->lr_k, *lr_q = f->lr_q;
     long hits = 0;
+    double dmin = DBL_MAX, dmax = 0;
     *neg = 0;
-    for (sslong j = 0; j < n; j++) {
-        for (sslong t = f->gl_p[j]; t < f->gl_p[j + 1]; t++) x[f->gl_i[t]] = Gx[f->gl_e[t]];
-        for (sslong t = lr_p[j]; t < lr_p[j + 1]; t++) {
-            const sslong k = lr_k[t], qj = lr_q[t], qend = Lp[k] + Lnz[k];
-            const double lkj = Lx[qj] * Lx[Lp[k]]; /* L_jk D_k */
-            for (sslong q = qj; q < qend; q++) x[Li[q]] -= Lx[q] * lkj;
+    f->piv_ok = 0;
+    for (int j = 0; j < n; j++) {
+        for (int t = f->gl_p[j]; t < f->gl_p[j + 1]; t++) x[f->gl_i[t]] = Gx[f->gl_e[t]];
+        for (int t = lr_p[j]; t < lr_p[j + 1]; t++) {
+            const int k = lr_k[t], qj = lr_q[t], qend = Le[k];
+            const double lkj = Lx[qj] * Lx[Lb[k]]; /* L_jk D_k */
+            for (int q = qj; q < qend; q++) x[Li[q]] -= Lx[q] * lkj;
         }
         double d = x[j];
         if (d != d) return -1;
         if (!(fabs(d) > dbound)) {
             d = d < 0 ? -dbound : dbound;
-            hits++;
+            f->piv_hit[hits++] = j;
         } else if (d < 0) {
             ++*neg;
+        } else {
+            if (d < dmin) dmin = d;
+            if (d > dmax) dmax = d;
         }
-        Lx[Lp[j]] = d;
+        Lx[Lb[j]] = d;
         x[j] = 0;
-        for (sslong q = Lp[j] + 1; q < Lp[j] + Lnz[j]; q++) {
+        for (int q = Lb[j] + 1; q < Le[j]; q++) {
             Lx[q] = x[Li[q]] / d;
             x[Li[q]] = 0;
         }
     }
+    f->piv_min = dmin;
+    f->piv_max = dmax;
+    f->piv_ok = 1;
     return hits;
 }
 
@@ -1488,6 +1623,7 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
         if (hits < 0) return BRAUN_ERR_NONFINITE;
         if (neg > 0) return 0;
     } else {
+        f->piv_ok = 0;
         cc->dbound = f->L->is_super ? 0 : dbound;
         cc->ndbounds_hit = 0;
         int ok = cholmod_l_factorize(f->G, f->L, cc);
@@ -1506,6 +1642,11 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
             const sslong *Lp = L->p, *Li = L->i, *Lnz = L->nz;
             for (sslong j = 0; j < (sslong)L->n && f->own_solve; j++)
                 f->own_solve = Lnz[j] > 0 && Li[Lp[j]] == j;
+            if (f->own_solve) {
+                const int b = l32_build(f);
+                if (b < 0) return b;
+                f->own_solve = b;
+            }
             f->own_fact = 0;
             if (f->own_solve && !L->is_ll) {
                 const int b = ldl_build(f);
@@ -1520,12 +1661,13 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
         /* Pivots replaced: only an LDL^T solved here can set their rows
          * aside. */
         if (!f->own_solve || L->is_ll) return 0;
-        const int st = chol_dep(s, f, tol, dbound);
+        const int st = chol_dep(s, f, tol, dbound, (int)hits);
         if (st == 0) f->dep_rejected = 1;
         return st;
     }
     if (f->rule_cap < f->rows) return 0;
-    double rc = cholmod_l_rcond(f->L, cc);
+    /* (cholmod_l_rcond of an LDL^T: min/max |D|, all positive here) */
+    double rc = f->piv_ok ? f->piv_min / f->piv_max : cholmod_l_rcond(f->L, cc);
     if (rc < 0) return cc_fail(cc);
     /* The rank rule: a previous rank below rows (keep) asks for tol_new
      * too before every row counts again. */
@@ -1684,6 +1826,7 @@ static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, bra
     f->path = PATH_NONE;
     f->rank = 0;
     f->pdiag_ok = 0;
+    f->rc_set = f->yc_ok = 0;
     if (rows == 0) {
         f->path = PATH_ZERO;
         return 0;
@@ -1693,7 +1836,11 @@ static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, bra
         double *x = s->wn, *y = s->wr;
         for (int j = 0; j < s->n; j++) x[j] = (double)atil[j];
         c_mul(s, f, x, NULL, y, NULL);
-        for (int i = 0; i < rows; i++) resid[i] = (braun_real)((double)resid[i] - y[i]);
+        for (int i = 0; i < rows; i++) {
+            resid[i] = (braun_real)((double)resid[i] - y[i]);
+            f->rc[i] = (double)resid[i]; /* as ss_lsq will convert it */
+        }
+        f->rc_set = 1;
     }
     if (f->cmax == 0) {
         f->path = PATH_ZERO;
@@ -1710,6 +1857,7 @@ static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, bra
     } else {
         f->dep_rejected = 0;
         int st = chol_try(s, f, t);
+        if (st != 1) f->yc_ok = 0;
         if (st < 0) return st;
         if (st == 1) {
             f->path = PATH_CHOL;
@@ -1733,43 +1881,44 @@ static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, bra
  * and columns j with dep[j] set are left out, i.e. x := G_BB^-1 x on the
  * others and 0 on them (the columns of L at those pivots are round-off
  * over dbound, and G_BB = L_BB D_BB L_BB^T; see above). */
-static void l_solve(const cholmod_factor *L, const unsigned char *dep, double *x)
+static void l_solve(const ss_slot *f, const unsigned char *dep, double *x)
 {
-    const sslong n = (sslong)L->n, *Lp = L->p, *Li = L->i, *Lnz = L->nz;
+    const cholmod_factor *L = f->L;
+    const int n = (int)L->n, *Lb = f->lbeg, *Le = f->lend, *Li = f->li;
     const double *Lx = L->x;
     if (L->is_ll) {
-        for (sslong j = 0; j < n; j++) {
+        for (int j = 0; j < n; j++) {
             if (dep && dep[j]) {
                 x[j] = 0;
                 continue;
             }
-            const sslong p = Lp[j], pend = p + Lnz[j];
+            const int p = Lb[j], pend = Le[j];
             const double xj = x[j] /= Lx[p];
-            for (sslong q = p + 1; q < pend; q++) x[Li[q]] -= Lx[q] * xj;
+            for (int q = p + 1; q < pend; q++) x[Li[q]] -= Lx[q] * xj;
         }
-        for (sslong j = n - 1; j >= 0; j--) {
+        for (int j = n - 1; j >= 0; j--) {
             if (dep && dep[j]) continue;
-            const sslong p = Lp[j], pend = p + Lnz[j];
+            const int p = Lb[j], pend = Le[j];
             double t = x[j];
-            for (sslong q = p + 1; q < pend; q++) t -= Lx[q] * x[Li[q]];
+            for (int q = p + 1; q < pend; q++) t -= Lx[q] * x[Li[q]];
             x[j] = t / Lx[p];
         }
     } else {
-        for (sslong j = 0; j < n; j++) {
+        for (int j = 0; j < n; j++) {
             if (dep && dep[j]) {
                 x[j] = 0;
                 continue;
             }
-            const sslong p = Lp[j], pend = p + Lnz[j];
+            const int p = Lb[j], pend = Le[j];
             const double xj = x[j];
-            for (sslong q = p + 1; q < pend; q++) x[Li[q]] -= Lx[q] * xj;
+            for (int q = p + 1; q < pend; q++) x[Li[q]] -= Lx[q] * xj;
             x[j] = xj / Lx[p]; /* D */
         }
-        for (sslong j = n - 1; j >= 0; j--) {
+        for (int j = n - 1; j >= 0; j--) {
             if (dep && dep[j]) continue;
-            const sslong p = Lp[j], pend = p + Lnz[j];
+            const int p = Lb[j], pend = Le[j];
             double t = x[j];
-            for (sslong q = p + 1; q < pend; q++) t -= Lx[q] * x[Li[q]];
+            for (int q = p + 1; q < pend; q++) t -= Lx[q] * x[Li[q]];
             x[j] = t;
         }
     }
@@ -1780,9 +1929,14 @@ static int g_solve(ss_state *s, ss_slot *f, const double *b, double *out)
 {
     const int rows = f->rows;
     double *bp = f->bp;
+    if (f->yc_ok && memcmp(b, f->rc, (size_t)rows * sizeof *b) == 0) {
+        f->yc_ok = 0; /* solved with the probe (chol_probe) */
+        memmove(out, f->yc, (size_t)rows * sizeof *out);
+        return 0;
+    }
     if (f->own_solve) {
         for (int a = 0; a < rows; a++) bp[a] = b[f->lperm[a]];
-        l_solve(f->L, f->ndep ? f->dep : NULL, bp);
+        l_solve(f, f->ndep ? f->dep : NULL, bp);
         for (int a = 0; a < rows; a++) out[f->lperm[a]] = bp[a];
         return 0;
     }
@@ -1802,6 +1956,62 @@ static int g_solve(ss_state *s, ss_slot *f, const double *b, double *out)
     const double *X = f->X->x;
     for (int c = 0; c < rows; c++) out[f->perm[c]] = X[c];
     return 0;
+}
+
+/* l_solve for two right-hand sides in one walk of L: each the same
+ * operations in the same order as l_solve's. */
+static void l_solve2(const ss_slot *f, const unsigned char *dep, double *x, double *z)
+{
+    const cholmod_factor *L = f->L;
+    const int n = (int)L->n, *Lb = f->lbeg, *Le = f->lend, *Li = f->li;
+    const double *Lx = L->x;
+    const int ll = L->is_ll;
+    for (int j = 0; j < n; j++) {
+        if (dep && dep[j]) {
+            x[j] = z[j] = 0;
+            continue;
+        }
+        const int p = Lb[j], pend = Le[j];
+        const double xj = ll ? (x[j] /= Lx[p]) : x[j], zj = ll ? (z[j] /= Lx[p]) : z[j];
+        for (int q = p + 1; q < pend; q++) {
+            const double l = Lx[q];
+            x[Li[q]] -= l * xj;
+            z[Li[q]] -= l * zj;
+        }
+        if (!ll) {
+            x[j] = xj / Lx[p]; /* D */
+            z[j] = zj / Lx[p];
+        }
+    }
+    for (int j = n - 1; j >= 0; j--) {
+        if (dep && dep[j]) continue;
+        const int p = Lb[j], pend = Le[j];
+        double t = x[j], w = z[j];
+        for (int q = p + 1; q < pend; q++) {
+            const double l = Lx[q];
+            t -= l * x[Li[q]];
+            w -= l * z[Li[q]];
+        }
+        x[j] = ll ? t / Lx[p] : t;
+        z[j] = ll ? w / Lx[p] : w;
+    }
+}
+
+/* out1 := G^-1 b1, out2 := G^-1 b2 with the simplicial factor solved here
+ * (own_solve), bit for bit g_solve's results. */
+static void g_solve2(ss_slot *f, const double *b1, const double *b2, double *out1, double *out2)
+{
+    const int rows = f->rows;
+    double *bp = f->bp, *bp2 = f->bp2;
+    for (int a = 0; a < rows; a++) {
+        bp[a] = b1[f->lperm[a]];
+        bp2[a] = b2[f->lperm[a]];
+    }
+    l_solve2(f, f->ndep ? f->dep : NULL, bp, bp2);
+    for (int a = 0; a < rows; a++) {
+        out1[f->lperm[a]] = bp[a];
+        out2[f->lperm[a]] = bp2[a];
+    }
 }
 
 /* With a full-rank QR factor (rank = rows: C = E R^T Q1^T exactly, up to
