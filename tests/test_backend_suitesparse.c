@@ -2124,6 +2124,176 @@ static void test_redundant_cholesky(void **state)
     }
 }
 
+/* rhs_floor (braun_linsolver.h) on the redundant-rows Cholesky path: a
+ * 10-link chain with joint 0's rows repeated (the rank rule keeping 20 of
+ * 22) and r = C y + delta·w, w random: an inconsistency of about delta.
+ * Floor 0, a floor 1e3 below delta, and the floor after a new factor_c or
+ * a NaN or negative floor give the minimum-norm least-squares solution
+ * (dgelsd's); a floor 1e3 above delta gives another, in the row space of C,
+ * within a few delta of it: the least-squares part was left out, the
+ * consistent part kept. lsq's residual is then that of the x it returns. */
+static void test_rhs_floor(void **state)
+{
+    (void)state;
+    assert_non_null(LS()->rhs_floor);
+    tsys t;
+    build_chain(&t, 10, 0, 1, 871);
+    const int n = t.n, rows = t.rows;
+    const double tol = default_tol(rows, n), delta = 1e-6;
+    dref d;
+    dref_open(&d, &t, rows);
+    void *st = be_create(&t);
+    be_factor_mass(st, &t);
+    LS()->rank_rule(st, 0, 20, rows, (braun_real)sqrt(DBL_EPSILON));
+    assert_int_equal(be_factor_c(st, &t, 0, rows, tol), 20);
+    unsigned long long seed = 872;
+    double *y = dvec((size_t)n), *r = dvec((size_t)rows), *xref = dvec((size_t)n),
+           *xd = dvec((size_t)n), *tmp = dvec((size_t)rows);
+    braun_real *rr = rvec((size_t)rows), *x = rvec((size_t)n);
+    for (int j = 0; j < n; j++) y[j] = test_frand(&seed);
+    c_mul(&d, y, r);
+    for (int i = 0; i < rows; i++) r[i] += delta * test_frand(&seed), rr[i] = (braun_real)r[i];
+    ref_pinv(&d, r, xref, 1e-10);
+    const double scale = amax(n, xref) + 1;
+
+    const double floors[4] = {0, 1e-3 * delta, NAN, -1};
+    for (int k = 0; k < 4; k++) {
+        LS()->rhs_floor(st, 0, (braun_real)floors[k]);
+        LS()->pinv(st, 0, rr, x);
+        assert_le(rdiff(n, x, xref), 1e-10 * scale);
+    }
+    /* Above the inconsistency: not the least-squares solution, but close,
+     * and in range(C^T). */
+    LS()->rhs_floor(st, 0, (braun_real)(1e3 * delta));
+    LS()->pinv(st, 0, rr, x);
+    const double off = rdiff(n, x, xref);
+    assert_true(off > 1e-3 * delta);
+    assert_le(off, 10 * delta * scale);
+    braun_real resid = -1;
+    LS()->lsq(st, 0, rr, x, &resid);
+    assert_le(rdiff(n, x, xref), 10 * delta * scale);
+    for (int j = 0; j < n; j++) xd[j] = (double)x[j];
+    c_mul(&d, xd, tmp);
+    for (int i = 0; i < rows; i++) tmp[i] = r[i] - tmp[i];
+    assert_near(resid, nrm2(rows, tmp), 1e-12);
+    LS()->null_project(st, 0, x);
+    for (int j = 0; j < n; j++) xd[j] = 0;
+    assert_le(rdiff(n, x, xd), 1e-10 * scale);
+    /* A new factorization resets the floor. */
+    assert_int_equal(be_factor_c(st, &t, 0, rows, tol), 20);
+    LS()->pinv(st, 0, rr, x);
+    assert_le(rdiff(n, x, xref), 1e-10 * scale);
+
+    LS()->destroy(st);
+    dref_close(&d);
+    ts_close(&t);
+    free(y);
+    free(r);
+    free(xref);
+    free(xd);
+    free(tmp);
+    free(rr);
+    free(x);
+}
+
+/* The core's use of rhs_floor (braun_corrections.c, velocity_floor): a
+ * table that forwards to this backend and records. On the 3-cell ladder
+ * (36 rows, rank 33) from q0 with random velocities, a step's velocity
+ * correction pinv is the only call with a floor, set just before it to
+ * 4·eps·max_i sum_j |A_ij|·|v_j| over the A of the factorization it uses
+ * (the step's first) and v0, and taken back (0) just after; the position
+ * correction's lsq and the forward passes' pinvs see none. A full-rank
+ * chain never gets a floor. */
+static braun_linsolver rec_ls;
+static struct {
+    int pinvs, lsqs, floors, floored_pinvs, floor_on;
+    double floor, last_floor;
+    braun_real *A; /* slot 0's last factor_c A */
+    int nnz, factors;
+} rec;
+static int rec_factor_c(void *st, int slot, int rows, const braun_real *A, braun_real tol,
+                        const braun_real *atil, braun_real *resid)
+{
+    if (slot == 0 && rec.A && rec.factors++ == 0) memcpy(rec.A, A, (size_t)rec.nnz * sizeof *A);
+    return LS()->factor_c(st, slot, rows, A, tol, atil, resid);
+}
+static void rec_pinv(void *st, int slot, const braun_real *r, braun_real *x)
+{
+    rec.pinvs++;
+    if (rec.floor_on) rec.floored_pinvs++;
+    LS()->pinv(st, slot, r, x);
+}
+static void rec_lsq(void *st, int slot, const braun_real *r, braun_real *x, braun_real *rn)
+{
+    rec.lsqs++;
+    assert_false(rec.floor_on);
+    LS()->lsq(st, slot, r, x, rn);
+}
+static void rec_floor(void *st, int slot, braun_real floor)
+{
+    assert_int_equal(slot, 0);
+    rec.floors++;
+    if (floor > 0) {
+        assert_false(rec.floor_on);
+        rec.floor_on = 1;
+        rec.floor = (double)floor;
+    } else {
+        assert_true(rec.floor_on);
+        assert_true(floor == 0);
+        rec.floor_on = 0;
+    }
+    LS()->rhs_floor(st, slot, floor);
+}
+
+static void test_velocity_floor(void **state)
+{
+    (void)state;
+    rec_ls = *LS();
+    rec_ls.factor_c = rec_factor_c;
+    rec_ls.pinv = rec_pinv;
+    rec_ls.lsq = rec_lsq;
+    rec_ls.rhs_floor = rec_floor;
+    for (int redundant = 1; redundant >= 0; redundant--) {
+        char *text = redundant ? ladder_text(3, 60) : NULL;
+        scene_run r;
+        scene_open(&r, redundant ? "ladder-3.json" : "data/chain-5.json", text, 1);
+        const int n = r.sys.n;
+        memset(&rec, 0, sizeof rec);
+        rec.nnz = r.sys.sparsity->row_ptr[r.sys.m];
+        rec.A = rvec((size_t)rec.nnz);
+        braun_real *v0 = rvec((size_t)n);
+        unsigned long long seed = 881;
+        for (int j = 0; j < n; j++) v0[j] = (braun_real)test_frand(&seed);
+        test_sim a;
+        sim_open(&a, &r.sys, &rec_ls);
+        assert_int_equal(braun_set_state(&a.data, 0, r.sf->q0, v0), BRAUN_OK);
+        assert_int_equal(braun_step(&a.data, BRAUN_RK4, 1e-3), BRAUN_OK);
+        assert_false(rec.floor_on);
+        assert_true(rec.lsqs + rec.pinvs >= 5);
+        if (redundant) {
+            assert_int_equal(rec.floors, 2);
+            assert_int_equal(rec.floored_pinvs, 1);
+            const braun_sparsity *sp = r.sys.sparsity;
+            double big = 0;
+            for (int i = 0; i < r.sys.m; i++) {
+                double sum = 0;
+                for (int k = sp->row_ptr[i]; k < sp->row_ptr[i + 1]; k++)
+                    sum += fabs((double)rec.A[k]) * fabs((double)v0[sp->col[k]]);
+                big = fmax(big, sum);
+            }
+            assert_true(big > 0);
+            assert_near(rec.floor, 4 * DBL_EPSILON * big, 1e-14 * rec.floor);
+        } else {
+            assert_int_equal(rec.floors, 0);
+        }
+        test_sim_close(&a);
+        free(rec.A);
+        free(v0);
+        scene_close(&r);
+        free(text);
+    }
+}
+
 /* rank_rule (braun_linsolver.h) against the built-in kernels'
  * braun_qrcp_factor_rule on the same C: row 4 of a 6-link chain repeated
  * with delta 1e-3 (G accepted at the plain tolerance, L-diagonal ratio
@@ -2302,6 +2472,8 @@ int main(void)
         cmocka_unit_test(test_ladder_redundant_run),
         cmocka_unit_test(test_rank_rule),
         cmocka_unit_test(test_redundant_cholesky),
+        cmocka_unit_test(test_rhs_floor),
+        cmocka_unit_test(test_velocity_floor),
         cmocka_unit_test(test_bench),
     };
     /* make test-valgrind leaves the long runs (the redundant ladders and

@@ -169,10 +169,47 @@ static void velocity_finish(braun_priv *pv)
     for (int i = 0; i < n; i++) pv->dv[i] = -pv->dv[i];
 }
 
+/* The round-off floor of the velocity correction's right-hand side
+ * (braun_linsolver.h rhs_floor; docs/method.md, "The round-off floor of the
+ * velocity correction"): [Φ̇_q; Φ_v] computed from v carries rounding of
+ * about eps·Σ_j |A_ij|·|v_j| in row i, so the part of it outside the range
+ * of a rank-deficient C (exactly dependent rows) below BRAUN_RHS_FLOOR·eps
+ * times the largest such sum is noise, which a backend that finds the
+ * least-squares part by iteration need not chase. Only for a backend that
+ * takes the floor, at a rank-deficient factorization (nothing else leaves
+ * an inconsistency): O(nnz(A)). Not for the position correction: there
+ * the inconsistency is the dependent rows' position error, which decides
+ * whether they stay dependent to round-off at the next factorizations. */
+#define BRAUN_RHS_FLOOR 4
+static void velocity_floor(braun_priv *pv, int on)
+{
+#ifdef BRAUN_NO_LINSOLVER
+    (void)pv, (void)on;
+#else
+    if (!pv->ls->rhs_floor) return;
+    braun_real big = 0;
+    for (int i = 0; on && i < pv->rows; i++) {
+        braun_real sum = 0;
+        if (pv->sp) {
+            for (int k = pv->sp->row_ptr[i]; k < pv->sp->row_ptr[i + 1]; k++)
+                sum += braun_fabs(pv->Avals[k]) * braun_fabs(pv->at.v[pv->sp->col[k]]);
+        } else {
+            const braun_real *a = pv->A + (size_t)i * (size_t)pv->n;
+            for (int j = 0; j < pv->n; j++) sum += braun_fabs(a[j]) * braun_fabs(pv->at.v[j]);
+        }
+        if (sum > big) big = sum;
+    }
+    pv->ls->rhs_floor(pv->ls_state, 0, BRAUN_RHS_FLOOR * BRAUN_EPS * big);
+#endif
+}
+
 static int stage_velocity(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
+    const int deficient = pv->rank[0] < pv->rows;
+    if (deficient) velocity_floor(pv, 1);
     braun__pinv(pv, 0, pv->ev, pv->dv);
+    if (deficient) velocity_floor(pv, 0); /* later solves exact again */
     velocity_finish(pv);
     return BRAUN_OK;
 }

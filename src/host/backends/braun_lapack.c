@@ -390,6 +390,7 @@ static const braun_linsolver lapack_table = {
     ls_rank_rule,
     NULL, /* soft_find: no soft-direction filter (docs/method.md) */
     NULL, /* soft_project */
+    NULL, /* rhs_floor: the complete orthogonal decomposition's C^+ r is exact */
 };
 
 const braun_linsolver *braun_linsolver_lapack(void) { return &lapack_table; }

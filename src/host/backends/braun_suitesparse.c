@@ -127,13 +127,26 @@
  *   rows; 1-2 iterations on the ladder); W^T s and C_B^+ W^T s summed from
  *   CG's products and corrected once (corrected semi-normal equations,
  *   Björck, BIT 27 (1987)). CG stops when t is at rounding level of
- *   |r| + |C||x| (REFINE_TOL eps); a CG that has not after CG_MAX = 200
+ *   |r| + |C||x| (REFINE_TOL eps), or below the caller's round-off floor
+ *   of r (rhs_floor, braun_linsolver.h: the core's for the velocity
+ *   correction, docs/method.md; 0 after every factor_c), where t also
+ *   counts as consistent from the start; a CG that has not after CG_MAX = 200
  *   iterations (W huge: the kept rows nearly dependent themselves) moves
  *   the factorization to the QR path, which must find the same rank.
  *   N z = z - C_B^T G_BB^-1 C_B z, refined as on the full-rank path. Cost:
  *   a Cholesky per factor_c, plus two solves at a run's step starts (the
  *   probe); pinv 2 solves for a consistent r, about 7 with CG. Nothing is
  *   allocated per call (tested).
+ *   Walks of L shared (every result bit for bit that of one solve each):
+ *   the probe of an accepted Cholesky (chol_probe) solves the forward
+ *   pass's r_v (handed to factor_c as resid) in the same walk of L, and the
+ *   pinv that follows finds that solve done (g_solve compares its right-
+ *   hand side bit for bit); the two dependency probes' first solves share a
+ *   walk; ldl_numeric records the replaced pivots and the extreme kept ones
+ *   for chol_dep and the full-rank test. The 2000-cell ladder (24 000 rows;
+ *   its kept rows' pivot ratio 0.008, below CHOL_PROBE_RATIO, so every
+ *   factorization is probed): about 30.5 -> 27.3 ms per corrected RK4
+ *   step, and 25.5 with the velocity floor (interleaved runs, 2026-12-03).
  *
  *  Numeric factorization: the first of each layout of L is CHOLMOD's; a
  *   simplicial LDL^T (columns sorted, diagonal first: checked) is then
@@ -303,6 +316,7 @@ typedef struct ss_slot {
      * L's order) and dep_row[i] (in row order) 1 for them, dlist their row
      * indices (increasing); cg_iters the iterations of the last pinv. */
     int ndep, dep_rejected, pdiag_ok, wtw_ok;
+    double rhs_floor; /* the caller's round-off floor of t (ss_rhs_floor) */
     double *wtw;     /* rows: W^T w for the first probe vector w */
     double *pdiag;   /* rows: the Jacobi preconditioner of CG (rows D) */
     unsigned char *dep, *dep_row;
@@ -1827,6 +1841,7 @@ static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, bra
     f->rank = 0;
     f->pdiag_ok = 0;
     f->rc_set = f->yc_ok = 0;
+    f->rhs_floor = 0;
     if (rows == 0) {
         f->path = PATH_ZERO;
         return 0;
@@ -2163,7 +2178,11 @@ static int pinv_basis(ss_state *s, ss_slot *f, const double *r, double *x)
         if (g_solve(s, f, res, y)) return -1;
         ct_mul_add(s, f, y, x);
     }
-    const double stop = REFINE_TOL * DBL_EPSILON * bound;
+    /* t at rounding level of |r| + |C||x|, or below the caller's floor
+     * (the rounding of the computation that produced r): consistent. */
+    const double stop = REFINE_TOL * DBL_EPSILON * bound > f->rhs_floor
+                            ? REFINE_TOL * DBL_EPSILON * bound
+                            : f->rhs_floor;
     f->cg_iters = 0;
     if (inf_norm(rows, t) <= stop) return 0; /* consistent */
     /* The Jacobi preconditioner, once per factorization: the diagonal of
@@ -2347,6 +2366,17 @@ static void ss_pinv(void *state, int slot, const braun_real *r, braun_real *x)
     ss_lsq(state, slot, r, x, NULL);
 }
 
+/* The round-off floor of the slot's next pinv/lsq right-hand sides
+ * (braun_linsolver.h): pinv_basis takes their inconsistency t as consistent,
+ * and stops CG, at max(REFINE_TOL·eps·(|r| + |C||x|), floor). */
+static void ss_rhs_floor(void *state, int slot, braun_real floor)
+{
+    ss_state *s = state;
+    if (!s || slot < 0 || slot > 1) return;
+    const double fl = (double)floor;
+    s->s[slot].rhs_floor = fl > 0 && fl <= DBL_MAX ? fl : 0;
+}
+
 static void ss_null_project(void *state, int slot, braun_real *z)
 {
 
@@ -2436,6 +2466,7 @@ static const braun_linsolver ss_table = {
     ss_rank_rule,
     NULL, /* soft_find: no soft-direction filter (docs/method.md) */
     NULL, /* soft_project */
+    ss_rhs_floor,
 };
 
 const braun_linsolver *braun_linsolver_suitesparse(void) { return &ss_table; }
