@@ -356,6 +356,7 @@ typedef struct ss_slot {
      * L's diagonal again. */
     int piv_ok, *piv_hit;
     double piv_min, piv_max;
+    int piv_lbig;    /* a replaced pivot's column has an entry > DEP_LMAX */
     double *lw;
     cholmod_factor *L;
     cholmod_dense *X, *Y, *E; /* cholmod_l_solve2 workspaces */
@@ -1403,7 +1404,7 @@ static int chol_dep(ss_state *s, ss_slot *f, double tol, double dbound, int hits
         if (fabs(d) <= dbound) {
             f->dep[a] = 1;
             f->dep_row[f->lperm[a]] = 1;
-            nd++;
+            f->piv_hit[nd++] = a;
         } else if (!(d > 0)) {
             nd = -1; /* a negative pivot beyond round-off: not this path */
             break;
@@ -1419,10 +1420,14 @@ static int chol_dep(ss_state *s, ss_slot *f, double tol, double dbound, int hits
      * set aside took from its pivot, plus DEP_PIVOT_ERR·eps·cmax^2. */
     double pbound = 0;
     if (nd > 0) {
+        /* (piv_hit: the nd columns, increasing; with piv_ok ldl_numeric
+         * has made the checks and filled acc) */
         double *acc = s->wr6;
-        for (int a = 0; a < rows; a++) acc[a] = 0;
-        for (int a = 0; a < rows && nd > 0; a++) {
-            if (!f->dep[a]) continue;
+        const int nhit = nd;
+        if (f->piv_ok && f->piv_lbig) nd = -1;
+        for (int k = 0; k < nhit && !f->piv_ok; k++) acc[f->piv_hit[k]] = 0;
+        for (int k = 0; k < nhit && nd > 0 && !f->piv_ok; k++) {
+            const int a = f->piv_hit[k];
             for (sslong q = Lp[a] + 1; q < Lp[a] + Lnz[a]; q++) {
                 const double l = Lx[q];
                 if (!(fabs(l) <= DEP_LMAX)) {
@@ -1432,9 +1437,8 @@ static int chol_dep(ss_state *s, ss_slot *f, double tol, double dbound, int hits
                 if (f->dep[Li[q]]) acc[Li[q]] += l * l * dbound;
             }
         }
-        for (int a = 0; a < rows && nd > 0; a++)
-            if (f->dep[a])
-                pbound += dbound + acc[a] + DEP_PIVOT_ERR * DBL_EPSILON * f->cmax * f->cmax;
+        for (int k = 0; k < nhit && nd > 0; k++)
+            pbound += dbound + acc[f->piv_hit[k]] + DEP_PIVOT_ERR * DBL_EPSILON * f->cmax * f->cmax;
     }
     if (nd > 0) {
         int k = 0;
@@ -1559,7 +1563,7 @@ static int ldl_build(ss_slot *f)
  * 0.73 against 1.42 ms at 12 000 rows). Returns the pivots replaced, or -1
  * for NaN; *neg: the pivots below -dbound (G is positive semidefinite:
  * such a factorization is refused). */
-static long ldl_numeric(ss_slot *f, double dbound, long *neg)
+static long ldl_numeric(ss_slot *f, double dbound, long *neg, double *acc)
 {
     cholmod_factor *L = f->L;
     const int n = (int)L->n, *Lb = f->lbeg, *Le = f->lend, *Li = f->li;
@@ -1570,6 +1574,7 @@ static long ldl_numeric(ss_slot *f, double dbound, long *neg)
     double dmin = DBL_MAX, dmax = 0;
     *neg = 0;
     f->piv_ok = 0;
+    f->piv_lbig = 0;
     for (int j = 0; j < n; j++) {
         for (int t = f->gl_p[j]; t < f->gl_p[j + 1]; t++) x[f->gl_i[t]] = Gx[f->gl_e[t]];
         for (int t = lr_p[j]; t < lr_p[j + 1]; t++) {
@@ -1593,6 +1598,17 @@ static long ldl_numeric(ss_slot *f, double dbound, long *neg)
         for (int q = Lb[j] + 1; q < Le[j]; q++) {
             Lx[q] = x[Li[q]] / d;
             x[Li[q]] = 0;
+        }
+        if (hits > 0 && f->piv_hit[hits - 1] == j) {
+            /* chol_dep's checks of a replaced pivot's column, while it is
+             * at hand: entries at most DEP_LMAX, and what they take from
+             * the later pivots (acc, in chol_dep's order). */
+            if (hits == 1) memset(acc, 0, (size_t)n * sizeof *acc);
+            for (int q = Lb[j] + 1; q < Le[j]; q++) {
+                const double l = Lx[q];
+                if (!(fabs(l) <= DEP_LMAX)) f->piv_lbig = 1;
+                acc[Li[q]] += l * l * dbound;
+            }
         }
     }
     f->piv_min = dmin;
@@ -1633,7 +1649,7 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
     long hits;
     if (f->own_fact && L->i == f->own_i && L->nzmax == f->own_nzmax) {
         long neg;
-        hits = ldl_numeric(f, dbound, &neg);
+        hits = ldl_numeric(f, dbound, &neg, s->wr6);
         if (hits < 0) return BRAUN_ERR_NONFINITE;
         if (neg > 0) return 0;
     } else {
@@ -2158,13 +2174,27 @@ static double dot_dep(const ss_slot *f, const double *a, const double *b)
  * round-off; CG's products also give W^T s and C_B^+ W^T s as sums, each
  * then refined. 0, -1 (a solve failed), or 1: CG did not converge in
  * CG_MAX iterations (x not written in full). */
-static int pinv_basis(ss_state *s, ss_slot *f, const double *r, double *x)
+static int pinv_basis(ss_state *s, ss_slot *f, const double *r, double *x, int lsq)
 {
     const int n = s->n, rows = f->rows;
     double *res = s->wr2, *t = s->wr4, *sv = s->wr5, *pv = s->wr6, *ap = s->wr7,
            *zr = s->wr9, *za = s->wr10, *xa = s->wn7;
     double bound = 0;
-    if (cbp_solve(s, f, r, x, 1, 0)) return -1;
+    if (lsq && !f->pdiag_ok && f->wtw_ok && f->own_solve) {
+        /* lsq's right-hand side (the position error) is inconsistent on
+         * the rows set aside at round-off (every call on the ladders): CG
+         * follows, and its preconditioner needs G^-1 W^T w. Both solves in
+         * one walk of L, that one kept for g_solve to find; otherwise
+         * cbp_solve's first solve exactly. */
+        double *y = s->wr;
+        memcpy(f->rc, f->wtw, (size_t)rows * sizeof *f->rc);
+        g_solve2(f, r, f->rc, y, f->yc);
+        f->yc_ok = 1;
+        memset(x, 0, (size_t)n * sizeof *x);
+        ct_mul_add(s, f, y, x);
+    } else if (cbp_solve(s, f, r, x, 1, 0)) {
+        return -1;
+    }
     for (int it = 0;; it++) {
         c_mul(s, f, x, r, res, &bound); /* r - C x */
         for (int i = 0; i < rows; i++) t[i] = 0;
@@ -2280,13 +2310,13 @@ static int qr_switch(ss_state *s, ss_slot *f)
 }
 
 /* x := C^+ r (doubles; x has n entries, r rows). 0 or -1. */
-static int pinv_d(ss_state *s, ss_slot *f, const double *r, double *x)
+static int pinv_d(ss_state *s, ss_slot *f, const double *r, double *x, int lsq)
 {
     const int n = s->n, rows = f->rows;
     memset(x, 0, (size_t)n * sizeof *x);
     if (f->path == PATH_ZERO) return 0;
     if (f->path == PATH_CHOL && f->ndep) {
-        const int st = pinv_basis(s, f, r, x);
+        const int st = pinv_basis(s, f, r, x, lsq);
         if (st <= 0) return st;
         /* CG did not converge (W large: the kept rows nearly dependent
          * among themselves): this factorization moves to the QR path,
@@ -2348,7 +2378,7 @@ static void ss_lsq(void *state, int slot, const braun_real *r, braun_real *x,
     const int rows = f->rows;
     double *rd = s->wr3, *xd = s->wn2;
     for (int i = 0; i < rows; i++) rd[i] = (double)r[i];
-    if (pinv_d(s, f, rd, xd)) {
+    if (pinv_d(s, f, rd, xd, resid_norm != NULL)) {
         fill_nan(n, x);
         if (resid_norm) *resid_norm = (braun_real)NAN;
         return;
