@@ -371,6 +371,8 @@ typedef struct ss_state {
     int *bsize, *bstart; /* block sizes, first coordinate of each block */
     size_t *boff;        /* offset of block b in Rb (and in M's values) */
     double *Rb;          /* upper Cholesky factors, block after block, row-major */
+    int r_diag;          /* every R_b diagonal (planar bodies, particles):
+                          * form_c scales, its zero terms skipped */
     const int *arow;     /* A pattern (the model's arrays) */
     sslong *cp, *ci;     /* C pattern: CSR rows x n = CSC of C^T */
     sslong *a2c;         /* A value k lands at Cx[a2c[k]] */
@@ -664,6 +666,10 @@ static int form_c(ss_state *s, ss_slot *f, const braun_real *A)
             const int b = s->sblk[g], bs = s->bsize[b];
             const double *Rb = s->Rb + s->boff[b];
             double *c = Cx + s->spos[g];
+            if (s->r_diag) { /* t - c_k·0 = t: the same quotients */
+                for (int j = 0; j < bs; j++) c[j] /= Rb[j * bs + j];
+                continue;
+            }
             for (int j = 0; j < bs; j++) {
                 double t = c[j];
                 for (int k = 0; k < j; k++) t -= c[k] * Rb[k * bs + j];
@@ -1223,6 +1229,14 @@ static int ss_factor_mass(void *state, const braun_real *M, braun_real sym_tol, 
             }
             for (int j = 0; j < i; j++) R[i * bs + j] = 0;
         }
+    }
+    s->r_diag = 1;
+    for (int b = 0; b < s->nblocks && s->r_diag; b++) {
+        const int bs = s->bsize[b];
+        const double *R = s->Rb + s->boff[b];
+        for (int i = 0; i < bs; i++)
+            for (int j = i + 1; j < bs; j++)
+                if (R[i * bs + j] != 0) s->r_diag = 0;
     }
     return BRAUN_OK;
 }
