@@ -2196,18 +2196,18 @@ static void test_rhs_floor(void **state)
     free(x);
 }
 
-/* The core's use of rhs_floor (braun_corrections.c, velocity_floor): a
- * table that forwards to this backend and records. On the 3-cell ladder
- * (36 rows, rank 33) from q0 with random velocities, a step's velocity
- * correction pinv is the only call with a floor, set just before it to
- * 4·eps·max_i sum_j |A_ij|·|v_j| over the A of the factorization it uses
- * (the step's first) and v0, and taken back (0) just after; the position
- * correction's lsq and the forward passes' pinvs see none. A full-rank
- * chain never gets a floor. */
+/* The core's use of rhs_floor (braun_corrections.c, rhs_floor): a table
+ * that forwards to this backend and records. On the 3-cell ladder (36
+ * rows, rank 33) from q0 with random velocities, a step's position
+ * correction (lsq) and velocity correction (a pinv) are the only calls
+ * with a floor, each set just before and taken back (0) just after:
+ * 1e-3·4·eps·max_i sum_j |A_ij|·|q0_j| and 4·eps·max_i sum_j |A_ij|·|v0_j|
+ * over the A of the factorization they use (the step's first); the
+ * forward passes' pinvs see none. A full-rank chain never gets a floor. */
 static braun_linsolver rec_ls;
 static struct {
-    int pinvs, lsqs, floors, floored_pinvs, floor_on;
-    double floor, last_floor;
+    int pinvs, lsqs, floors, floored_pinvs, floored_lsqs, floor_on;
+    double floor, lsq_floor;
     braun_real *A; /* slot 0's last factor_c A */
     int nnz, factors;
 } rec;
@@ -2226,7 +2226,7 @@ static void rec_pinv(void *st, int slot, const braun_real *r, braun_real *x)
 static void rec_lsq(void *st, int slot, const braun_real *r, braun_real *x, braun_real *rn)
 {
     rec.lsqs++;
-    assert_false(rec.floor_on);
+    if (rec.floor_on) rec.floored_lsqs++, rec.lsq_floor = rec.floor;
     LS()->lsq(st, slot, r, x, rn);
 }
 static void rec_floor(void *st, int slot, braun_real floor)
@@ -2245,7 +2245,7 @@ static void rec_floor(void *st, int slot, braun_real floor)
     LS()->rhs_floor(st, slot, floor);
 }
 
-static void test_velocity_floor(void **state)
+static void test_correction_floors(void **state)
 {
     (void)state;
     rec_ls = *LS();
@@ -2271,18 +2271,23 @@ static void test_velocity_floor(void **state)
         assert_false(rec.floor_on);
         assert_true(rec.lsqs + rec.pinvs >= 5);
         if (redundant) {
-            assert_int_equal(rec.floors, 2);
+            assert_int_equal(rec.floors, 4);
             assert_int_equal(rec.floored_pinvs, 1);
+            assert_int_equal(rec.floored_lsqs, 1);
             const braun_sparsity *sp = r.sys.sparsity;
-            double big = 0;
+            double bigq = 0, bigv = 0;
             for (int i = 0; i < r.sys.m; i++) {
-                double sum = 0;
-                for (int k = sp->row_ptr[i]; k < sp->row_ptr[i + 1]; k++)
-                    sum += fabs((double)rec.A[k]) * fabs((double)v0[sp->col[k]]);
-                big = fmax(big, sum);
+                double sq = 0, sv = 0;
+                for (int k = sp->row_ptr[i]; k < sp->row_ptr[i + 1]; k++) {
+                    sq += fabs((double)rec.A[k]) * fabs((double)r.sf->q0[sp->col[k]]);
+                    sv += fabs((double)rec.A[k]) * fabs((double)v0[sp->col[k]]);
+                }
+                bigq = fmax(bigq, sq);
+                bigv = fmax(bigv, sv);
             }
-            assert_true(big > 0);
-            assert_near(rec.floor, 4 * DBL_EPSILON * big, 1e-14 * rec.floor);
+            assert_true(bigq > 0 && bigv > 0);
+            assert_near(rec.floor, 4 * DBL_EPSILON * bigv, 1e-14 * rec.floor);
+            assert_near(rec.lsq_floor, 1e-3 * 4 * DBL_EPSILON * bigq, 1e-14 * rec.lsq_floor);
         } else {
             assert_int_equal(rec.floors, 0);
         }
@@ -2473,7 +2478,7 @@ int main(void)
         cmocka_unit_test(test_rank_rule),
         cmocka_unit_test(test_redundant_cholesky),
         cmocka_unit_test(test_rhs_floor),
-        cmocka_unit_test(test_velocity_floor),
+        cmocka_unit_test(test_correction_floors),
         cmocka_unit_test(test_bench),
     };
     /* make test-valgrind leaves the long runs (the redundant ladders and

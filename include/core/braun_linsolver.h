@@ -104,14 +104,15 @@ struct braun_linsolver {
                          braun_real rate);
     /* Optional: the round-off floor of the slot's next pinv and lsq
      * right-hand sides (docs/method.md, "The round-off floor of the
-     * velocity correction"): an absolute level (>= 0) below which their
+     * corrections"): an absolute level (>= 0) below which their
      * inconsistency, the part of r outside the range of C that only
      * rank-deficient factorizations leave, is the rounding of the
      * computation that produced r, not data. A backend that computes the
      * least-squares part of C^+ r by iteration may stop there; the
      * consistent part stays exact. factor_c resets it to 0 (every solve
-     * exact), as does a call with 0. The core sets it around the velocity
-     * correction's pinv at a rank-deficient factorization, and only there.
+     * exact), as does a call with 0. The core sets it around the position
+     * correction's lsq and the velocity correction's pinv at a
+     * rank-deficient factorization, and only there.
      * NULL: the backend's solves are exact anyway (the built-in kernels,
      * LAPACK: a complete orthogonal decomposition). */
     void (*rhs_floor)(void *state, int slot, braun_real floor);

@@ -131,6 +131,43 @@ static BRAUN_NOINLINE int inconsistent(braun_data *d, braun_real resid, braun_re
                        (double)pv->at.t);
 }
 
+/* The round-off floor of a correction's right-hand side (braun_linsolver.h
+ * rhs_floor; docs/method.md, "The round-off floor of the corrections"): a
+ * residual computed from x (Φ from q, [Φ̇_q; Φ_v] from v) carries rounding
+ * of about eps·Σ_j |A_ij|·|x_j| in row i, so the part of it outside the
+ * range of a rank-deficient C (exactly dependent rows) below
+ * BRAUN_RHS_FLOOR·eps times the largest such sum is noise, which a backend
+ * that finds the least-squares part by iteration need not chase. The
+ * velocity correction passes that floor; the position correction a
+ * thousandth of it (BRAUN_RHS_FLOOR_Q): the dependent rows' own position
+ * error must still go, since the next factorizations' rank decisions see
+ * it, and left at the floor it accumulated. Only for a backend that takes
+ * the floor, at a rank-deficient factorization (nothing else leaves an
+ * inconsistency): O(nnz(A)). scale 0 restores exact solves. */
+#define BRAUN_RHS_FLOOR 4
+#define BRAUN_RHS_FLOOR_Q BRAUN_R(1e-3)
+static void rhs_floor(braun_priv *pv, int slot, int rows, const braun_real *x, braun_real scale)
+{
+#ifdef BRAUN_NO_LINSOLVER
+    (void)pv, (void)slot, (void)rows, (void)x, (void)scale;
+#else
+    if (!pv->ls->rhs_floor) return;
+    braun_real big = 0;
+    for (int i = 0; scale > 0 && i < rows; i++) {
+        braun_real sum = 0;
+        if (pv->sp) {
+            for (int k = pv->sp->row_ptr[i]; k < pv->sp->row_ptr[i + 1]; k++)
+                sum += braun_fabs(pv->Avals[k]) * braun_fabs(x[pv->sp->col[k]]);
+        } else {
+            const braun_real *a = pv->A + (size_t)i * (size_t)pv->n;
+            for (int j = 0; j < pv->n; j++) sum += braun_fabs(a[j]) * braun_fabs(x[j]);
+        }
+        if (sum > big) big = sum;
+    }
+    pv->ls->rhs_floor(pv->ls_state, slot, scale * BRAUN_RHS_FLOOR * BRAUN_EPS * big);
+#endif
+}
+
 static int stage_position(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
@@ -142,7 +179,9 @@ static int stage_position(braun_data *d)
     position_rhs(pv);
     if (deficient) {
         braun_real resid;
+        rhs_floor(pv, slot, m, pv->at.q, BRAUN_RHS_FLOOR_Q);
         braun__lsq(pv, slot, pv->ep, pv->dq, &resid);
+        rhs_floor(pv, slot, m, pv->at.q, 0);
         const braun_real tol = d->model->opt.inconsistency_tol > 0 ? d->model->opt.inconsistency_tol
                                                                    : braun_sqrt(BRAUN_EPS);
         if (resid > tol) return inconsistent(d, resid, tol);
@@ -169,47 +208,13 @@ static void velocity_finish(braun_priv *pv)
     for (int i = 0; i < n; i++) pv->dv[i] = -pv->dv[i];
 }
 
-/* The round-off floor of the velocity correction's right-hand side
- * (braun_linsolver.h rhs_floor; docs/method.md, "The round-off floor of the
- * velocity correction"): [Φ̇_q; Φ_v] computed from v carries rounding of
- * about eps·Σ_j |A_ij|·|v_j| in row i, so the part of it outside the range
- * of a rank-deficient C (exactly dependent rows) below BRAUN_RHS_FLOOR·eps
- * times the largest such sum is noise, which a backend that finds the
- * least-squares part by iteration need not chase. Only for a backend that
- * takes the floor, at a rank-deficient factorization (nothing else leaves
- * an inconsistency): O(nnz(A)). Not for the position correction: there
- * the inconsistency is the dependent rows' position error, which decides
- * whether they stay dependent to round-off at the next factorizations. */
-#define BRAUN_RHS_FLOOR 4
-static void velocity_floor(braun_priv *pv, int on)
-{
-#ifdef BRAUN_NO_LINSOLVER
-    (void)pv, (void)on;
-#else
-    if (!pv->ls->rhs_floor) return;
-    braun_real big = 0;
-    for (int i = 0; on && i < pv->rows; i++) {
-        braun_real sum = 0;
-        if (pv->sp) {
-            for (int k = pv->sp->row_ptr[i]; k < pv->sp->row_ptr[i + 1]; k++)
-                sum += braun_fabs(pv->Avals[k]) * braun_fabs(pv->at.v[pv->sp->col[k]]);
-        } else {
-            const braun_real *a = pv->A + (size_t)i * (size_t)pv->n;
-            for (int j = 0; j < pv->n; j++) sum += braun_fabs(a[j]) * braun_fabs(pv->at.v[j]);
-        }
-        if (sum > big) big = sum;
-    }
-    pv->ls->rhs_floor(pv->ls_state, 0, BRAUN_RHS_FLOOR * BRAUN_EPS * big);
-#endif
-}
-
 static int stage_velocity(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
     const int deficient = pv->rank[0] < pv->rows;
-    if (deficient) velocity_floor(pv, 1);
+    if (deficient) rhs_floor(pv, 0, pv->rows, pv->at.v, 1);
     braun__pinv(pv, 0, pv->ev, pv->dv);
-    if (deficient) velocity_floor(pv, 0); /* later solves exact again */
+    if (deficient) rhs_floor(pv, 0, pv->rows, pv->at.v, 0); /* exact again */
     velocity_finish(pv);
     return BRAUN_OK;
 }

@@ -128,8 +128,8 @@
  *   CG's products and corrected once (corrected semi-normal equations,
  *   Björck, BIT 27 (1987)). CG stops when t is at rounding level of
  *   |r| + |C||x| (REFINE_TOL eps), or below the caller's round-off floor
- *   of r (rhs_floor, braun_linsolver.h: the core's for the velocity
- *   correction, docs/method.md; 0 after every factor_c), where t also
+ *   of r (rhs_floor, braun_linsolver.h: the core's for the position and
+ *   velocity corrections, docs/method.md; 0 after every factor_c), where t also
  *   counts as consistent from the start; a CG that has not after CG_MAX = 200
  *   iterations (W huge: the kept rows nearly dependent themselves) moves
  *   the factorization to the QR path, which must find the same rank.
