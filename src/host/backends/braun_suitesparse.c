@@ -325,6 +325,10 @@ typedef struct ss_slot {
     /* full-rank path */
     cholmod_sparse *G; /* upper triangle of P C C^T P^T, fixed pattern */
     uint32_t *gptr;  /* G entry e: products gmap[3·gptr[e] .. 3·gptr[e+1]) */
+    int map_by_col;  /* gptr/gmap reordered to ldl_numeric's walk of G's
+                      * lower columns (entry t: position gl_e[t]), which
+                      * then forms each G_ij where it scatters it: G->x is
+                      * neither written nor read (ldl_build) */
     uint32_t *gmap;  /* (offset of row i's block in Cx, of row j's, length);
                       * 32 bits: half the memory the fill of G streams */
     sslong *perm, *iperm; /* G is stored as P G P^T: new index c is row perm[c] */
@@ -1489,6 +1493,22 @@ static int chol_dep(ss_state *s, ss_slot *f, double tol, double dbound, int hits
     return st;
 }
 
+/* One entry of G = C C^T from its products in the map. */
+static inline double g_entry(const double *Cx, const uint32_t *gmap, uint32_t t0, uint32_t t1)
+{
+    double g = 0;
+    for (uint32_t t = t0; t < t1; t++) {
+        const uint32_t *m = gmap + 3 * (size_t)t;
+        const double *ci = Cx + m[0], *cj = Cx + m[1];
+        if (m[2] == 3) { /* planar bodies */
+            g += ci[0] * cj[0] + ci[1] * cj[1] + ci[2] * cj[2];
+        } else {
+            for (uint32_t k = 0; k < m[2]; k++) g += ci[k] * cj[k];
+        }
+    }
+    return g;
+}
+
 /* L's pattern in 32 bits (li, lbeg, lend). 1: built, 0: positions beyond
  * int (the solves then go through CHOLMOD), < 0: out of memory. */
 static int l32_build(ss_slot *f)
@@ -1566,6 +1586,27 @@ static int ldl_build(ss_slot *f)
             f->gl_e[at] = (int)e;
         }
     free(cur);
+    if (!f->map_by_col) {
+        /* The product map in the order of that walk (entry t of the lower
+         * columns is G entry gl_e[t]): ldl_numeric reads it front to back. */
+        uint32_t *np = xcalloc((size_t)ng + 1, sizeof *np);
+        uint32_t *nm = xcalloc(3 * (size_t)f->gptr[ng] + 1, sizeof *nm);
+        if (!np || !nm) {
+            free(np), free(nm);
+            return BRAUN_ERR_BUFFER;
+        }
+        uint32_t q = 0;
+        for (sslong t = 0; t < ng; t++) {
+            const sslong e = f->gl_e[t];
+            for (uint32_t u = f->gptr[e]; u < f->gptr[e + 1]; u++, q++)
+                for (int k = 0; k < 3; k++) nm[3 * (size_t)q + k] = f->gmap[3 * (size_t)u + k];
+            np[t + 1] = q;
+        }
+        free(f->gptr), free(f->gmap);
+        f->gptr = np;
+        f->gmap = nm;
+        f->map_by_col = 1;
+    }
     return 1;
 }
 
@@ -1589,8 +1630,14 @@ static long ldl_numeric(ss_slot *f, double dbound, long *neg, double *acc)
     *neg = 0;
     f->piv_ok = 0;
     f->piv_lbig = 0;
+    const uint32_t *gptr = f->gptr, *gmap = f->gmap;
     for (int j = 0; j < n; j++) {
-        for (int t = f->gl_p[j]; t < f->gl_p[j + 1]; t++) x[f->gl_i[t]] = Gx[f->gl_e[t]];
+        if (f->map_by_col) {
+            for (int t = f->gl_p[j]; t < f->gl_p[j + 1]; t++)
+                x[f->gl_i[t]] = g_entry(f->Cx, gmap, gptr[t], gptr[t + 1]);
+        } else {
+            for (int t = f->gl_p[j]; t < f->gl_p[j + 1]; t++) x[f->gl_i[t]] = Gx[f->gl_e[t]];
+        }
         for (int t = lr_p[j]; t < lr_p[j + 1]; t++) {
             const int k = lr_k[t], qj = lr_q[t], qend = Le[k];
             const double lkj = Lx[qj] * Lx[Lb[k]]; /* L_jk D_k */
@@ -1643,25 +1690,18 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
     const sslong nnzG = (sslong)f->G->nzmax;
     const double *Cx = f->Cx;
     const uint32_t *gptr = f->gptr, *gmap = f->gmap;
-    for (sslong e = 0; e < nnzG; e++) {
-        double g = 0;
-        for (uint32_t t = gptr[e]; t < gptr[e + 1]; t++) {
-            const uint32_t *m = gmap + 3 * (size_t)t;
-            const double *ci = Cx + m[0], *cj = Cx + m[1];
-            if (m[2] == 3) { /* planar bodies */
-                g += ci[0] * cj[0] + ci[1] * cj[1] + ci[2] * cj[2];
-            } else {
-                for (uint32_t k = 0; k < m[2]; k++) g += ci[k] * cj[k];
-            }
-        }
-        Gx[e] = g;
+    const cholmod_factor *L = f->L;
+    const int own = f->own_fact && L->i == f->own_i && L->nzmax == f->own_nzmax;
+    if (!f->map_by_col) {
+        for (sslong e = 0; e < nnzG; e++) Gx[e] = g_entry(Cx, gmap, gptr[e], gptr[e + 1]);
+    } else if (!own) { /* (ldl_numeric forms them itself) */
+        for (sslong t = 0; t < nnzG; t++) Gx[f->gl_e[t]] = g_entry(Cx, gmap, gptr[t], gptr[t + 1]);
     }
     dep_clear(f);
     /* max_i G_ii = cmax^2 */
     const double dbound = CHOL_DBOUND * f->cmax * f->cmax;
-    const cholmod_factor *L = f->L;
     long hits;
-    if (f->own_fact && L->i == f->own_i && L->nzmax == f->own_nzmax) {
+    if (own) {
         long neg;
         hits = ldl_numeric(f, dbound, &neg, s->wr6);
         if (hits < 0) return BRAUN_ERR_NONFINITE;
