@@ -303,15 +303,19 @@ typedef struct ss_qr {
 
 typedef struct ss_slot {
     int rows;        /* rows of C in this slot (0: slot unused) */
+    int qr_refine;   /* full-rank QR path: refine the solves (see above) */
     double *Cx;      /* values of C, pattern cp/ci of the state */
     double cmax;     /* largest row 2-norm of C */
     int path, rank, skip_chol;
+    int map_by_col;  /* gptr/gmap reordered to ldl_numeric's walk of G's
+                      * lower columns (entry t: position gl_e[t]), which
+                      * then forms each G_ij where it scatters it: G->x is
+                      * neither written nor read (ldl_build) */
     /* The rank rule of the next factorizations (ss_rank_rule): keep, cap,
      * tol_new as braun_linsolver.h; keep = cap = rows: the plain tol. */
     int rule_keep, rule_cap;
     double rule_tol_new;
     double tol;      /* the relative tolerance of the last factor_c */
-    int qr_refine;   /* full-rank QR path: refine the solves (see above) */
     /* Cholesky path with redundant rows: ndep rows set aside, dep[a] (in
      * L's order) and dep_row[i] (in row order) 1 for them, dlist their row
      * indices (increasing); cg_iters the iterations of the last pinv. */
@@ -325,10 +329,6 @@ typedef struct ss_slot {
     /* full-rank path */
     cholmod_sparse *G; /* upper triangle of P C C^T P^T, fixed pattern */
     uint32_t *gptr;  /* G entry e: products gmap[3·gptr[e] .. 3·gptr[e+1]) */
-    int map_by_col;  /* gptr/gmap reordered to ldl_numeric's walk of G's
-                      * lower columns (entry t: position gl_e[t]), which
-                      * then forms each G_ij where it scatters it: G->x is
-                      * neither written nor read (ldl_build) */
     uint32_t *gmap;  /* (offset of row i's block in Cx, of row j's, length);
                       * 32 bits: half the memory the fill of G streams */
     sslong *perm, *iperm; /* G is stored as P G P^T: new index c is row perm[c] */
@@ -341,6 +341,7 @@ typedef struct ss_slot {
     double *rc, *yc, *bp2;
     int rc_set, yc_ok;
     int own_solve;   /* L is simplicial with its diagonal first: solved here */
+    int own_fact;    /* ldl_numeric factors L (see below) */
     /* L's pattern in 32 bits for the solves and ldl_numeric (own_solve):
      * column j is li[lbeg[j] .. lend[j]), the positions of L->x; half the
      * index bytes CHOLMOD's 64-bit arrays would stream. */
@@ -352,15 +353,14 @@ typedef struct ss_slot {
      * (row i: columns lr_k[lr_p[i] .. lr_p[i+1]), the position of row i
      * in each), the lower triangle of G by columns (rows gl_i, positions
      * gl_e in G->x), a dense work vector. */
-    int own_fact;
     int *lr_p, *lr_k, *lr_q, *gl_p, *gl_i, *gl_e;
     /* What ldl_numeric saw of the pivots (piv_ok): the columns whose
      * pivots it replaced (piv_hit, increasing) and the smallest and largest
      * of the others, so that neither chol_dep nor the full-rank test walks
      * L's diagonal again. */
-    int piv_ok, *piv_hit;
+    int piv_ok, piv_lbig; /* piv_lbig: a replaced pivot's column has an entry > DEP_LMAX */
+    int *piv_hit;
     double piv_min, piv_max;
-    int piv_lbig;    /* a replaced pivot's column has an entry > DEP_LMAX */
     double *lw;
     cholmod_factor *L;
     cholmod_dense *X, *Y, *E; /* cholmod_l_solve2 workspaces */
