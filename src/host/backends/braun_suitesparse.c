@@ -157,7 +157,7 @@
  *   G's lower columns (ldl_build), and each G_ij is summed where it is
  *   scattered, the same sums as the map's in entry order, so G->x is
  *   neither written nor read (a CHOLMOD refactorization of a new layout
- *   fills it through gl_e).
+ *   fills it through map_e).
  *
  *  Rank deficient otherwise (singular configurations, rows not dependent
  *   to round-off, the rank rule's cap below the rank): SPQR,
@@ -313,7 +313,8 @@ typedef struct ss_slot {
     double cmax;     /* largest row 2-norm of C */
     int path, rank, skip_chol;
     int map_by_col;  /* gptr/gmap reordered to ldl_numeric's walk of G's
-                      * lower columns (entry t: position gl_e[t]), which
+                      * lower columns (entry t: position map_e[t] in G->x,
+                      * kept apart from gl_e, which ldl_build frees), which
                       * then forms each G_ij where it scatters it: G->x is
                       * neither written nor read (ldl_build) */
     /* The rank rule of the next factorizations (ss_rank_rule): keep, cap,
@@ -334,6 +335,7 @@ typedef struct ss_slot {
     /* full-rank path */
     cholmod_sparse *G; /* upper triangle of P C C^T P^T, fixed pattern */
     uint32_t *gptr;  /* G entry e: products gmap[3·gptr[e] .. 3·gptr[e+1]) */
+    int *map_e;      /* with map_by_col: entry t's position in G->x */
     uint32_t *gmap;  /* (offset of row i's block in Cx, of row j's, length);
                       * 32 bits: half the memory the fill of G streams */
     sslong *perm, *iperm; /* G is stored as P G P^T: new index c is row perm[c] */
@@ -715,6 +717,7 @@ static void slot_free(ss_slot *f, cholmod_common *cc)
     free(f->Cx);
     free(f->gptr);
     free(f->gmap);
+    free(f->map_e);
     free(f->perm);
     free(f->iperm);
     free(f->lperm);
@@ -1596,13 +1599,15 @@ static int ldl_build(ss_slot *f)
          * columns is G entry gl_e[t]): ldl_numeric reads it front to back. */
         uint32_t *np = xcalloc((size_t)ng + 1, sizeof *np);
         uint32_t *nm = xcalloc(3 * (size_t)f->gptr[ng] + 1, sizeof *nm);
-        if (!np || !nm) {
-            free(np), free(nm);
+        int *me = xcalloc((size_t)ng + 1, sizeof *me);
+        if (!np || !nm || !me) {
+            free(np), free(nm), free(me);
             return BRAUN_ERR_BUFFER;
         }
         uint32_t q = 0;
         for (sslong t = 0; t < ng; t++) {
             const sslong e = f->gl_e[t];
+            me[t] = (int)e;
             for (uint32_t u = f->gptr[e]; u < f->gptr[e + 1]; u++, q++)
                 for (int k = 0; k < 3; k++) nm[3 * (size_t)q + k] = f->gmap[3 * (size_t)u + k];
             np[t + 1] = q;
@@ -1610,6 +1615,7 @@ static int ldl_build(ss_slot *f)
         free(f->gptr), free(f->gmap);
         f->gptr = np;
         f->gmap = nm;
+        f->map_e = me;
         f->map_by_col = 1;
     }
     return 1;
@@ -1700,7 +1706,7 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
     if (!f->map_by_col) {
         for (sslong e = 0; e < nnzG; e++) Gx[e] = g_entry(Cx, gmap, gptr[e], gptr[e + 1]);
     } else if (!own) { /* (ldl_numeric forms them itself) */
-        for (sslong t = 0; t < nnzG; t++) Gx[f->gl_e[t]] = g_entry(Cx, gmap, gptr[t], gptr[t + 1]);
+        for (sslong t = 0; t < nnzG; t++) Gx[f->map_e[t]] = g_entry(Cx, gmap, gptr[t], gptr[t + 1]);
     }
     dep_clear(f);
     /* max_i G_ii = cmax^2 */
