@@ -146,7 +146,9 @@
  *   for chol_dep and the full-rank test. The 2000-cell ladder (24 000 rows;
  *   its kept rows' pivot ratio 0.008, below CHOL_PROBE_RATIO, so every
  *   factorization is probed): about 30.5 -> 27.3 ms per corrected RK4
- *   step, and 25.5 with the velocity floor (interleaved runs, 2026-12-03).
+ *   step; 24-25 with the corrections' floors and G formed inside
+ *   ldl_numeric (interleaved runs, 2026-12-03; docs/performance.md,
+ *   Optimisations item 15).
  *
  *  Numeric factorization: the first of each layout of L is CHOLMOD's; a
  *   simplicial LDL^T (columns sorted, diagonal first: checked) is then
