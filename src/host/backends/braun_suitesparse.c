@@ -343,12 +343,14 @@ typedef struct ss_slot {
     sslong *perm, *iperm; /* G is stored as P G P^T: new index c is row perm[c] */
     sslong *lperm;   /* the order of L's rows (perm composed with L->Perm) */
     double *bp;      /* rows: a right-hand side in that order */
-    /* The forward pass's right-hand side r_v, handed to factor_c (rc,
-     * rc_set), solved with G beside the probe of an accepted Cholesky in
-     * one walk of L (yc, yc_ok): the pinv that follows finds its first
-     * solve done (g_solve compares the right-hand side bit for bit). */
+    /* The forward pass's right-hand side r_v, handed to factor_c (rc_src,
+     * during factor_c only), solved with G beside the probe of an accepted
+     * Cholesky in one walk of L (rc as ss_lsq converts it, yc, yc_ok): the
+     * pinv that follows finds its first solve done (g_solve compares the
+     * right-hand side bit for bit). */
+    const braun_real *rc_src;
     double *rc, *yc, *bp2;
-    int rc_set, yc_ok;
+    int yc_ok;
     int own_solve;   /* L is simplicial with its diagonal first: solved here */
     int own_fact;    /* ldl_numeric factors L (see below) */
     /* L's pattern in 32 bits for the solves and ldl_numeric (own_solve):
@@ -1317,7 +1319,8 @@ static int chol_probe(ss_state *s, ss_slot *f, double lim)
         u = u * 6364136223846793005ULL + 1442695040888963407ULL;
         x[i] = f->dep_row[i] ? 0 : (double)(u >> 11) * 0x1p-52 - 1.0; /* kept rows only */
     }
-    if (f->rc_set && f->own_solve) {
+    if (f->rc_src && f->own_solve) {
+        for (int i = 0; i < rows; i++) f->rc[i] = (double)f->rc_src[i]; /* as ss_lsq */
         g_solve2(f, x, f->rc, y, f->yc); /* and r_v's, for the pinv */
         f->yc_ok = 1;
     } else if (g_solve(s, f, x, y)) {
@@ -1326,6 +1329,23 @@ static int chol_probe(ss_state *s, ss_slot *f, double lim)
     const double nx = nrm2(rows, x), ny = nrm2(rows, y);
     if (!(ny <= DBL_MAX)) return 0; /* overflow: singular to working precision */
     return ny > 0 && sqrt(nx / ny) >= lim * f->cmax ? 1 : 0;
+}
+
+/* A dependency probe's start: the next fixed w of +-1 on the rows set
+ * aside (u: the generator's state), v = C_D^T w and y = C_B v, for the
+ * solve y := G_BB^-1 y. */
+static void probe_start(ss_state *s, ss_slot *f, unsigned long long *u, double *w, double *v,
+                        double *y)
+{
+    memset(w, 0, (size_t)f->rows * sizeof *w);
+    for (int k = 0; k < f->ndep; k++) {
+        *u = *u * 6364136223846793005ULL + 1442695040888963407ULL;
+        w[f->dlist[k]] = (*u >> 63) ? 1.0 : -1.0;
+    }
+    memset(v, 0, (size_t)s->n * sizeof *v);
+    ct_mul_add(s, f, w, v); /* v = C_D^T w */
+    c_mul(s, f, v, NULL, y, NULL);
+    for (int k = 0; k < f->ndep; k++) y[f->dlist[k]] = 0; /* C_B v */
 }
 
 /* The dependency probe of the rows set aside (see above): for DEP_PROBES
@@ -1340,36 +1360,26 @@ static int chol_probe(ss_state *s, ss_slot *f, double lim)
 static int dep_probe(ss_state *s, ss_slot *f, double thr)
 {
     const int rows = f->rows, n = s->n;
-    double *w = s->wr4, *y = s->wr5, *y1 = s->wr6, *v = s->wn4, *v1 = s->wn5;
+    double *w = s->wr4, *y = s->wr5, *v = s->wn4;
     const double lim = DEP_MARGIN * thr, lim2 = lim * lim;
     unsigned long long u = DEP_SEED;
     double sum = 0;
-    /* Both probes' first solves in one walk of L (g_solve2, the same
-     * results as one solve each): v, y for probe 0, v1, y1 for probe 1. */
+    /* With two probes, both first solves in one walk of L (g_solve2, the
+     * same results as one solve each): probe 1 starts from v1, y1. */
     const int pair = DEP_PROBES == 2 && f->own_solve;
+    double *y1 = s->wr6, *v1 = s->wn5;
+    if (pair) {
+        probe_start(s, f, &u, w, v, y);
+        probe_start(s, f, &u, w, v1, y1);
+        g_solve2(f, y, y1, y, y1);
+    }
     for (int probe = 0; probe < DEP_PROBES; probe++) {
-        const int first_done = pair && probe == 1;
-        if (first_done) {
-            double *tv = v, *ty = y;
-            v = v1, y = y1, v1 = tv, y1 = ty;
-        } else {
-            for (int pr = probe; pr < (pair ? 2 : probe + 1); pr++) {
-                double *vp = pr == probe ? v : v1, *yp = pr == probe ? y : y1;
-                memset(w, 0, (size_t)rows * sizeof *w);
-                for (int k = 0; k < f->ndep; k++) {
-                    u = u * 6364136223846793005ULL + 1442695040888963407ULL;
-                    w[f->dlist[k]] = (u >> 63) ? 1.0 : -1.0;
-                }
-                memset(vp, 0, (size_t)n * sizeof *vp);
-                ct_mul_add(s, f, w, vp); /* v = C_D^T w */
-                c_mul(s, f, vp, NULL, yp, NULL);
-                for (int k = 0; k < f->ndep; k++) yp[f->dlist[k]] = 0; /* C_B v */
-            }
-            if (pair) {
-                g_solve2(f, y, y1, y, y1);
-            } else if (g_solve(s, f, y, y)) {
-                return cc_fail(&s->cc);
-            }
+        if (pair && probe == 1) {
+            v = v1;
+            y = y1;
+        } else if (!pair) {
+            probe_start(s, f, &u, w, v, y);
+            if (g_solve(s, f, y, y)) return cc_fail(&s->cc);
         }
         double nv2 = 0;
         for (int it = 0; it <= REFINE_MAX; it++) {
@@ -1403,6 +1413,39 @@ static void dep_clear(ss_slot *f)
     f->ndep = 0;
 }
 
+/* ldl_numeric's record of the pivots (piv_hit, piv_min, piv_max,
+ * piv_lbig, acc), read from a factor CHOLMOD computed: the number of
+ * pivots replaced, or -1 for a negative pivot beyond round-off. */
+static int piv_scan(ss_slot *f, double dbound, double *acc)
+{
+    const cholmod_factor *L = f->L;
+    const sslong *Lp = L->p, *Li = L->i, *Lnz = L->nz;
+    const double *Lx = L->x;
+    double dmin = DBL_MAX, dmax = 0;
+    int nd = 0;
+    f->piv_lbig = 0;
+    for (int a = 0; a < f->rows; a++) {
+        const double d = Lx[Lp[a]];
+        if (fabs(d) <= dbound) {
+            if (nd == 0) memset(acc, 0, (size_t)f->rows * sizeof *acc);
+            f->piv_hit[nd++] = a;
+            for (sslong q = Lp[a] + 1; q < Lp[a] + Lnz[a]; q++) {
+                const double l = Lx[q];
+                if (!(fabs(l) <= DEP_LMAX)) f->piv_lbig = 1;
+                acc[Li[q]] += l * l * dbound;
+            }
+        } else if (!(d > 0)) {
+            return -1; /* a negative pivot beyond round-off: not this path */
+        } else {
+            if (d < dmin) dmin = d;
+            if (d > dmax) dmax = d;
+        }
+    }
+    f->piv_min = dmin;
+    f->piv_max = dmax;
+    return nd;
+}
+
 /* An LDL^T of G whose pivots at most dbound CHOLMOD replaced: those rows
  * (D) are set aside, and the rank is k = rows - |D| when (see above) the
  * rank rule's cap allows k, the kept rows' pivots pass the tests of a
@@ -1411,63 +1454,24 @@ static void dep_clear(ss_slot *f)
  * accepted, 0: rejected, < 0: error. */
 static int chol_dep(ss_state *s, ss_slot *f, double tol, double dbound, int hits)
 {
-    const cholmod_factor *L = f->L;
-    const sslong *Lp = L->p, *Li = L->i, *Lnz = L->nz;
-    const double *Lx = L->x;
     const int rows = f->rows;
-    double dmin = DBL_MAX, dmax = 0;
-    int nd = 0;
-    if (f->piv_ok) { /* ldl_numeric's record: no negative pivot (refused) */
-        for (int k = 0; k < hits; k++) {
-            const int a = f->piv_hit[k];
-            f->dep[a] = 1;
-            f->dep_row[f->lperm[a]] = 1;
-        }
-        nd = hits;
-        dmin = f->piv_min;
-        dmax = f->piv_max;
+    /* The record of the pivots: ldl_numeric's, or read from CHOLMOD's L. */
+    int nd = f->piv_ok ? hits : piv_scan(f, dbound, s->wr6);
+    for (int k = 0; k < nd; k++) {
+        const int a = f->piv_hit[k];
+        f->dep[a] = 1;
+        f->dep_row[f->lperm[a]] = 1;
     }
-    for (int a = 0; a < rows && !f->piv_ok; a++) {
-        const double d = Lx[Lp[a]];
-        if (fabs(d) <= dbound) {
-            f->dep[a] = 1;
-            f->dep_row[f->lperm[a]] = 1;
-            f->piv_hit[nd++] = a;
-        } else if (!(d > 0)) {
-            nd = -1; /* a negative pivot beyond round-off: not this path */
-            break;
-        } else {
-            if (d < dmin) dmin = d;
-            if (d > dmax) dmax = d;
-        }
-    }
+    const double dmin = f->piv_min, dmax = f->piv_max;
     /* The columns of L at the replaced pivots: entries at most DEP_LMAX
      * (so that G_BB = L_BB D_BB L_BB^T up to dbound·DEP_LMAX^2 per entry),
      * and the bound on the squared distance of each row set aside from the
      * kept rows before it: dbound, plus what the columns of earlier rows
-     * set aside took from its pivot, plus DEP_PIVOT_ERR·eps·cmax^2. */
+     * set aside took from its pivot (acc), plus DEP_PIVOT_ERR·eps·cmax^2. */
+    if (nd > 0 && f->piv_lbig) nd = -1;
     double pbound = 0;
-    if (nd > 0) {
-        /* (piv_hit: the nd columns, increasing; with piv_ok ldl_numeric
-         * has made the checks and filled acc) */
-        double *acc = s->wr6;
-        const int nhit = nd;
-        if (f->piv_ok && f->piv_lbig) nd = -1;
-        for (int k = 0; k < nhit && !f->piv_ok; k++) acc[f->piv_hit[k]] = 0;
-        for (int k = 0; k < nhit && nd > 0 && !f->piv_ok; k++) {
-            const int a = f->piv_hit[k];
-            for (sslong q = Lp[a] + 1; q < Lp[a] + Lnz[a]; q++) {
-                const double l = Lx[q];
-                if (!(fabs(l) <= DEP_LMAX)) {
-                    nd = -1;
-                    break;
-                }
-                if (f->dep[Li[q]]) acc[Li[q]] += l * l * dbound;
-            }
-        }
-        for (int k = 0; k < nhit && nd > 0; k++)
-            pbound += dbound + acc[f->piv_hit[k]] + DEP_PIVOT_ERR * DBL_EPSILON * f->cmax * f->cmax;
-    }
+    for (int k = 0; k < nd; k++)
+        pbound += dbound + s->wr6[f->piv_hit[k]] + DEP_PIVOT_ERR * DBL_EPSILON * f->cmax * f->cmax;
     if (nd > 0) {
         int k = 0;
         for (int i = 0; i < rows; i++)
@@ -1923,7 +1927,8 @@ static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, bra
     f->path = PATH_NONE;
     f->rank = 0;
     f->pdiag_ok = 0;
-    f->rc_set = f->yc_ok = 0;
+    f->rc_src = NULL;
+    f->yc_ok = 0;
     f->rhs_floor = 0;
     if (rows == 0) {
         f->path = PATH_ZERO;
@@ -1934,11 +1939,7 @@ static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, bra
         double *x = s->wn, *y = s->wr;
         for (int j = 0; j < s->n; j++) x[j] = (double)atil[j];
         c_mul(s, f, x, NULL, y, NULL);
-        for (int i = 0; i < rows; i++) {
-            resid[i] = (braun_real)((double)resid[i] - y[i]);
-            f->rc[i] = (double)resid[i]; /* as ss_lsq will convert it */
-        }
-        f->rc_set = 1;
+        for (int i = 0; i < rows; i++) resid[i] = (braun_real)((double)resid[i] - y[i]);
     }
     if (f->cmax == 0) {
         f->path = PATH_ZERO;
@@ -1954,7 +1955,9 @@ static int ss_factor_c(void *state, int slot, int rows, const braun_real *A, bra
         f->skip_chol--;
     } else {
         f->dep_rejected = 0;
+        f->rc_src = atil ? resid : NULL; /* r_v, which the pinv to follow takes */
         int st = chol_try(s, f, t);
+        f->rc_src = NULL;
         if (st != 1) f->yc_ok = 0;
         if (st < 0) return st;
         if (st == 1) {
