@@ -146,23 +146,22 @@ static BRAUN_NOINLINE int inconsistent(braun_data *d, braun_real resid, braun_re
  * inconsistency): O(nnz(A)). scale 0 restores exact solves. */
 #define BRAUN_RHS_FLOOR 4
 #define BRAUN_RHS_FLOOR_Q BRAUN_R(1e-3)
-static void rhs_floor(braun_priv *pv, int slot, int rows, const braun_real *x, braun_real scale)
+static void rhs_floor(braun_priv *pv, int slot, int rows, const braun_real *x,
+                      braun_real scale)
 {
 #ifdef BRAUN_NO_LINSOLVER
     (void)pv, (void)slot, (void)rows, (void)x, (void)scale;
 #else
     if (!pv->ls->rhs_floor) return;
     braun_real big = 0;
-    for (int i = 0; scale > 0 && i < rows; i++) {
-        braun_real sum = 0;
-        if (pv->sp) {
-            for (int k = pv->sp->row_ptr[i]; k < pv->sp->row_ptr[i + 1]; k++)
-                sum += braun_fabs(pv->Avals[k]) * braun_fabs(x[pv->sp->col[k]]);
-        } else {
-            const braun_real *a = pv->A + (size_t)i * (size_t)pv->n;
-            for (int j = 0; j < pv->n; j++) sum += braun_fabs(a[j]) * braun_fabs(x[j]);
+    if (scale > 0) {
+        /* |x| into pv->tmp (free here: the remeasured point is restored
+         * before the velocity correction) */
+        for (int j = 0; j < pv->n; j++) pv->tmp[j] = braun_fabs(x[j]);
+        for (int i = 0; i < rows; i++) {
+            const braun_real sum = braun__row_abs_dot(pv, i, pv->tmp);
+            if (sum > big) big = sum;
         }
-        if (sum > big) big = sum;
     }
     pv->ls->rhs_floor(pv->ls_state, slot, scale * BRAUN_RHS_FLOOR * BRAUN_EPS * big);
 #endif
