@@ -397,6 +397,212 @@ static void test_factor_ordered(void **state)
     assert_int_equal(braun_qrcp_factor_ordered(&g, 1e-2), -1);
 }
 
+/* ---- The Gram path (src/core/braun_qrcp_gram.c): C⁺ through
+ * G = C Cᵀ = L D Lᵀ where the last factorization had full rank and every
+ * pivot clears the gate. Checked against the pivoted QR of the same C and
+ * against the definitions (C C⁺ = I, C N = 0), at every dispatched size;
+ * what it refuses leaves C and its norms for the pivoted QR. */
+static void gram_check(int M, int N, unsigned seed, double scale_row)
+{
+    braun_real reals[2 * NMAX * NMAX + 12 * NMAX], reals2[2 * NMAX * NMAX + 12 * NMAX];
+    int ints[NMAX], ints2[NMAX];
+    braun_qrcp f, g;
+    pinv_case c = {M, N, {0}};
+    for (int i = 0; i < M; i++)
+        for (int j = 0; j < N; j++) c.C[i * N + j] = frand(&seed) * (i == 0 ? scale_row : 1);
+    assert_int_equal(factor(&c, &f, reals, ints, 1e-14), M);
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    f.norms_given = 0;
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2), M);
+    assert_int_equal(f.gram, 1);
+    assert_int_equal(f.rank, M);
+    for (int i = 0; i < M * N; i++) assert_true(f.a[i] == c.C[i]); /* C kept */
+    assert_int_equal(factor(&c, &g, reals2, ints2, 1e-14), M);
+    assert_int_equal(g.gram, 0);
+    /* dmin and r00 are |R_ii| and the largest column norm, as the QR's. */
+    assert_near(f.r00, g.r00, 1e-14 * g.r00);
+    assert_true(f.dmin > 1e-2 * f.r00 && f.dmin <= f.r00);
+    braun_real r[NMAX], r2[NMAX], x[NMAX], y[NMAX], x2[NMAX], y2[NMAX], cr[NMAX], res = -1;
+    for (int i = 0; i < M; i++) {
+        r[i] = frand(&seed);
+        r2[i] = frand(&seed);
+    }
+    braun_qrcp_gram_lsq(&f, r, x, &res);
+    assert_true(res == 0); /* full row rank: every r is reached */
+    braun_qrcp_lsq(&g, r, y, NULL);
+    for (int i = 0; i < N; i++) assert_near(x[i], y[i], 1e-12 * (1 + fabs(y[i])));
+    braun_gemv(M, N, c.C, x, cr);
+    for (int i = 0; i < M; i++) assert_near(cr[i], r[i], 1e-12);
+    /* Two right-hand sides: each bit for bit the single solve. */
+    braun_qrcp_gram_pinv2(&f, r, r2, x, x2);
+    braun_qrcp_gram_lsq(&f, r, y, NULL);
+    braun_qrcp_gram_lsq(&f, r2, y2, NULL);
+    for (int i = 0; i < N; i++) {
+        assert_true(x[i] == y[i]);
+        assert_true(x2[i] == y2[i]);
+    }
+    /* The null-space projector: C N z = 0, and N z as the QR's. */
+    braun_real z[NMAX], nz[NMAX], nz2[NMAX], cz[NMAX];
+    for (int i = 0; i < N; i++) nz[i] = nz2[i] = z[i] = frand(&seed);
+    braun_qrcp_gram_null_project(&f, nz);
+    braun_qrcp_null_project(&g, nz2);
+    braun_gemv(M, N, c.C, nz, cz);
+    for (int i = 0; i < M; i++) assert_near(cz[i], 0, 1e-12);
+    for (int i = 0; i < N; i++) {
+        assert_near(nz[i], nz2[i], 1e-12);
+        if (M == N) assert_true(nz[i] == 0); /* no null space: exactly 0, as the QR's */
+    }
+}
+
+static void test_factor_gram(void **state)
+{
+    (void)state;
+    /* Every dispatched size and one beyond (BRAUN_SMALL_MAX 8). */
+    for (int n = 2; n <= NMAX; n++)
+        for (int m = 1; m <= n; m++) gram_check(m, n, 100u + 7u * (unsigned)(n * NMAX + m), 1);
+    /* One row 30 times the others (the pivots still clear 1e-2). */
+    gram_check(5, 6, 4, 30);
+
+    enum { M = 5, N = 6 };
+    braun_real reals[2 * NMAX * NMAX + 12 * NMAX], reals2[2 * NMAX * NMAX + 12 * NMAX];
+    int ints[NMAX], ints2[NMAX];
+    braun_qrcp f, g;
+    unsigned seed = 21;
+    pinv_case c = {M, N, {0}};
+    for (int i = 0; i < M * N; i++) c.C[i] = frand(&seed);
+    assert_int_equal(factor(&c, &f, reals, ints, 1e-14), M);
+    /* Row 4 within 1e-3 of a combination of rows 0 and 2: its pivot is far
+     * below the gate. Refused, with C and its norms (f->work) left as they
+     * were for the pivoted QR, which then gives what a fresh one gives. */
+    for (int j = 0; j < N; j++) c.C[4 * N + j] = 0.5 * c.C[j] - 2 * c.C[2 * N + j] + 1e-3 * frand(&seed);
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    f.norms_given = 0;
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2), -1);
+    assert_int_equal(f.gram, 0);
+    for (int i = 0; i < M * N; i++) assert_true(f.a[i] == c.C[i]);
+    assert_int_equal(f.norms_given, 1);
+    for (int i = 0; i < M; i++) {
+        double s = 0;
+        for (int j = 0; j < N; j++) s += c.C[i * N + j] * c.C[i * N + j];
+        assert_true(f.work[i] == s);
+    }
+    assert_int_equal(braun_qrcp_factor(&f, 1e-14), M);
+    assert_int_equal(factor(&c, &g, reals2, ints2, 1e-14), M);
+    assert_true(f.dmin == g.dmin);
+    for (int i = 0; i < M * N; i++) assert_true(f.a[i] == g.a[i]);
+    /* The same C accepted under a gate below its smallest pivot. */
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-6), M);
+    /* After a Gram factorization the pivoted QR of the C it kept is the
+     * fresh one (the soft-direction search relies on it: braun_dense.h). */
+    assert_int_equal(braun_qrcp_factor(&f, 1e-14), M);
+    assert_int_equal(f.gram, 0);
+    for (int i = 0; i < M * N; i++) assert_true(f.a[i] == g.a[i]);
+    /* The last factorization rank-deficient: refused. */
+    for (int j = 0; j < N; j++) c.C[4 * N + j] = 0.5 * c.C[j] - 2 * c.C[2 * N + j];
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    assert_int_equal(braun_qrcp_factor(&f, 1e-14), 4);
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2), -1);
+    /* A NaN or an infinite entry: refused, not factored. */
+    for (int k = 0; k < 2; k++) {
+        for (int i = 0; i < M * N; i++) c.C[i] = frand(&seed);
+        for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+        assert_int_equal(braun_qrcp_factor(&f, 1e-14), M);
+        for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+        f.a[7] = k ? INFINITY : NAN;
+        f.norms_given = 0;
+        assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2), -1);
+    }
+    /* A gate of 1 or more (or NaN) accepts nothing. (A refusal leaves the
+     * norms it summed for the next factorization of the same C: a new C
+     * clears them.) */
+    f.norms_given = 0;
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    assert_int_equal(braun_qrcp_factor(&f, 1e-14), M);
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1), -1);
+    assert_int_equal(braun_qrcp_factor_gram(&f, NAN), -1);
+    /* More rows than columns: never full row rank. */
+    pinv_case t = {N, M, {0}};
+    for (int i = 0; i < M * N; i++) t.C[i] = frand(&seed);
+    factor(&t, &g, reals2, ints2, 1e-14);
+    assert_int_equal(braun_qrcp_factor_gram(&g, 1e-2), -1);
+}
+
+/* The Gram path's accuracy against its gate (docs/method.md, "The Gram
+ * path"): C with singular values from 1 down to 1/κ, the smallest pivot
+ * just above the gate. The solves' error against the QR's stays within
+ * 10·ε·κ² (the normal equations' bound), and the QR's within ε·κ·10. */
+static void test_gram_accuracy(void **state)
+{
+    (void)state;
+    enum { M = 5, N = 6 };
+    braun_real reals[2 * NMAX * NMAX + 12 * NMAX], reals2[2 * NMAX * NMAX + 12 * NMAX];
+    int ints[NMAX], ints2[NMAX];
+    braun_qrcp f, g;
+    unsigned seed = 33;
+    const double kappas[3] = {3, 20, 90};
+    for (int kk = 0; kk < 3; kk++) {
+        const double kappa = kappas[kk];
+        /* C = U diag(σ) Vᵀ with Householder-made orthogonal U, V. */
+        double u[M], v[N], U[M * M], V[N * N];
+        double nu = 0, nv = 0;
+        for (int i = 0; i < M; i++) {
+            u[i] = frand(&seed);
+            nu += u[i] * u[i];
+        }
+        for (int i = 0; i < N; i++) {
+            v[i] = frand(&seed);
+            nv += v[i] * v[i];
+        }
+        for (int i = 0; i < M; i++)
+            for (int j = 0; j < M; j++) U[i * M + j] = (i == j) - 2 * u[i] * u[j] / nu;
+        for (int i = 0; i < N; i++)
+            for (int j = 0; j < N; j++) V[i * N + j] = (i == j) - 2 * v[i] * v[j] / nv;
+        pinv_case c = {M, N, {0}};
+        for (int i = 0; i < M; i++)
+            for (int j = 0; j < N; j++) {
+                double s = 0;
+                for (int k = 0; k < M; k++) s += U[i * M + k] * pow(kappa, -(double)k / (M - 1)) * V[j * N + k];
+                c.C[i * N + j] = s;
+            }
+        assert_int_equal(factor(&c, &f, reals, ints, 1e-14), M);
+        for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+        f.norms_given = 0;
+        assert_int_equal(braun_qrcp_factor_gram(&f, 0.5 / (kappa * sqrt((double)M))), M);
+        assert_int_equal(factor(&c, &g, reals2, ints2, 1e-14), M);
+        /* The exact C⁺ r = V Σ⁻¹ Uᵀ r. */
+        braun_real r[M], x[N], y[N];
+        double exact[N], utr[M], nx = 0;
+        for (int i = 0; i < M; i++) r[i] = frand(&seed);
+        for (int k = 0; k < M; k++) {
+            double s = 0;
+            for (int i = 0; i < M; i++) s += U[i * M + k] * r[i];
+            utr[k] = s / pow(kappa, -(double)k / (M - 1));
+        }
+        for (int j = 0; j < N; j++) {
+            double s = 0;
+            for (int k = 0; k < M; k++) s += V[j * N + k] * utr[k];
+            exact[j] = s;
+            nx += s * s;
+        }
+        braun_qrcp_gram_lsq(&f, r, x, NULL);
+        braun_qrcp_lsq(&g, r, y, NULL);
+        double ex = 0, ey = 0;
+        for (int j = 0; j < N; j++) {
+            ex += (x[j] - exact[j]) * (x[j] - exact[j]);
+            ey += (y[j] - exact[j]) * (y[j] - exact[j]);
+        }
+        ex = sqrt(ex / nx);
+        ey = sqrt(ey / nx);
+        print_message("gram accuracy: kappa %g: Gram %.3g, QR %.3g relative (eps*kappa^2 = %.3g)\n",
+                      kappa, ex, ey, DBL_EPSILON * kappa * kappa);
+        assert_true(ex <= 10 * DBL_EPSILON * kappa * kappa);
+        assert_true(ey <= 10 * DBL_EPSILON * kappa);
+    }
+}
+
 /* ---- The size-dispatched kernels (braun_linalg.h, BRAUN_SMALL_DISPATCH)
  * equal plain loops bit for bit, at every dispatched length and beyond it:
  * the reference below is the factorization, solve and projection written
@@ -499,6 +705,8 @@ int main(void)
         cmocka_unit_test(test_rank_tolerance),
         cmocka_unit_test(test_soft_directions),
         cmocka_unit_test(test_factor_ordered),
+        cmocka_unit_test(test_factor_gram),
+        cmocka_unit_test(test_gram_accuracy),
         cmocka_unit_test(test_small_kernels_bitwise),
     };
     return cmocka_run_group_tests_name("linalg", tests, NULL, NULL);

@@ -42,6 +42,7 @@ static int dense_bind(void **state, void *memory, const braun_model *model)
     for (int k = 0; k < 2; k++) {
         s->keep[k] = s->cap[k] = k ? m : rows; /* the plain tolerance */
         s->tol_new[k] = 0;
+        s->tol[k] = 0;
     }
     braun_chol_bind(&s->chol, n, r, ints);
     r += BRAUN_CHOL_REALS(n);

@@ -20,6 +20,7 @@ typedef struct braun_dense {
     /* The rank rule of each slot's next factorization (rank_rule). */
     int keep[2], cap[2];
     braun_real tol_new[2];
+    braun_real tol[2]; /* the last factor_c's tolerance */
     int stage_order; /* a step's later stages: try the last column order */
 } braun_dense;
 
@@ -134,18 +135,34 @@ static inline void braun__dense_form_c(braun_dense *s, braun_qrcp *f, int rows, 
     if (BRAUN_FUSED_NORMS) f->norms_given = resid != NULL;
 }
 
-/* C, then the pivoted QR of C^T in place. At a step's later stages
- * (braun__dense_stage_order) the rank is known: where the slot's last
- * factorization (the step's first stage, or the stage before) had full rank
- * and no pivot below the gate, C is factored in that one's column order
- * without pivoting (braun_qrcp_factor_ordered), accepted if every pivot
- * clears the gate again — BRAUN_ORDER_GATE of the largest column norm, or
- * 10 rank tolerances if that is larger: far from every rank and
- * soft-direction decision, where any column order gives C⁺ to round-off.
- * Else C is formed again and factored with pivoting. Between singular
- * neighbourhoods that is every later stage: −5 % instructions per corrected
- * slider-crank step (docs/performance.md, Optimisations). */
+/* C, then its factorization. Where the slot's last factorization (this
+ * step's stage before, or the last step's) had full rank and no pivot
+ * below the gate — BRAUN_ORDER_GATE of the largest column norm, or 10
+ * rank tolerances if that is larger: far from every rank and
+ * soft-direction decision — the rank is known and C is factored in that
+ * one's column order without pivoting, accepted if every pivot clears the
+ * gate again:
+ *   1. through its Gram matrix G = C Cᵀ = L D Lᵀ (braun_qrcp_factor_gram,
+ *      src/core/braun_qrcp_gram.c), where the gate is also at least
+ *      BRAUN_GRAM_GATE: independent dot products and one division per row
+ *      instead of the QR's chain of norms, square roots and reflections
+ *      (−28 % time per corrected slider-crank step on the host;
+ *      docs/performance.md, Optimisations, item 16);
+ *   2. else, at a step's later stages, by QR in that column order
+ *      (braun_qrcp_factor_ordered; only where the Gram gate is the larger:
+ *      the single-precision build);
+ * else C (formed again if 2 spent it) by the pivoted QR with the rank rule.
+ * Between singular neighbourhoods that is every stage but a few. */
 #define BRAUN_ORDER_GATE BRAUN_R(1e-2)
+/* The Gram path squares C's condition number: its gate keeps the solves
+ * within ≈ ε/gate² of C⁺ (docs/method.md, "The Gram path"): 1e-2 in
+ * double (≤ 1e4·ε ≈ 2e-12 relative, the QR's gate), 1e-1 in single (≤ 100
+ * ε ≈ 6e-6 relative; a gate of 1e-2 would allow 6e-4). */
+#ifdef BRAUN_SINGLE
+#define BRAUN_GRAM_GATE BRAUN_R(1e-1)
+#else
+#define BRAUN_GRAM_GATE BRAUN_R(1e-2)
+#endif
 static inline int braun__dense_factor_c(void *state, int slot, int rows, const braun_real *A, braun_real tol,
                           const braun_real *atil, braun_real *resid)
 {
@@ -153,15 +170,19 @@ static inline int braun__dense_factor_c(void *state, int slot, int rows, const b
     braun_qrcp *f = braun__dense_slot(state, slot);
     const braun_real tol_new = s->tol_new[slot] > tol ? s->tol_new[slot] : tol;
     const braun_real gate = 10 * tol_new > BRAUN_ORDER_GATE ? 10 * tol_new : BRAUN_ORDER_GATE;
+    s->tol[slot] = tol;
     /* The last factorization (read before C overwrites it) had full rank
      * and its smallest pivot cleared the gate too. */
-    const int in_order = s->stage_order && s->cap[slot] >= rows && f->rank == rows &&
-                         f->dmin > gate * braun_fabs(f->a[(size_t)f->perm[0] * (size_t)BRAUN_N(s->n)]);
+    const int known = s->cap[slot] >= rows && f->rank == rows && f->dmin > gate * f->r00;
     braun__dense_form_c(s, f, rows, A, atil, resid);
-    if (in_order) {
-        const int rank = braun_qrcp_factor_ordered(f, gate);
-        if (rank >= 0) return rank;
-        braun__dense_form_c(s, f, rows, A, NULL, NULL);
+    if (known) {
+        const braun_real gram_gate = gate > BRAUN_GRAM_GATE ? gate : BRAUN_GRAM_GATE;
+        if (braun_qrcp_factor_gram(f, gram_gate) >= 0) return rows;
+        if (s->stage_order && gram_gate > gate) {
+            const int rank = braun_qrcp_factor_ordered(f, gate);
+            if (rank >= 0) return rank;
+            braun__dense_form_c(s, f, rows, A, NULL, NULL);
+        }
     }
     return braun_qrcp_factor_rule(f, tol, tol_new, s->keep[slot], s->cap[slot]);
 }
@@ -183,29 +204,42 @@ static inline void braun__dense_rank_rule(void *state, int slot, int keep, int c
 
 static inline void braun__dense_pinv(void *state, int slot, const braun_real *r, braun_real *x)
 {
-    braun_qrcp_pinv_apply(braun__dense_slot(state, slot), r, x);
+    const braun_qrcp *f = braun__dense_slot(state, slot);
+    if (f->gram) braun_qrcp_gram_lsq(f, r, x, NULL);
+    else braun_qrcp_pinv_apply(f, r, x);
 }
 
 static inline void braun__dense_pinv2(void *state, int slot, const braun_real *r1, const braun_real *r2,
                                       braun_real *x1, braun_real *x2)
 {
-    braun_qrcp_pinv2(braun__dense_slot(state, slot), r1, r2, x1, x2);
+    const braun_qrcp *f = braun__dense_slot(state, slot);
+    if (f->gram) braun_qrcp_gram_pinv2(f, r1, r2, x1, x2);
+    else braun_qrcp_pinv2(f, r1, r2, x1, x2);
 }
 
 static inline void braun__dense_lsq(void *state, int slot, const braun_real *r, braun_real *x,
                       braun_real *resid_norm)
 {
-    braun_qrcp_lsq(braun__dense_slot(state, slot), r, x, resid_norm);
+    const braun_qrcp *f = braun__dense_slot(state, slot);
+    if (f->gram) braun_qrcp_gram_lsq(f, r, x, resid_norm);
+    else braun_qrcp_lsq(f, r, x, resid_norm);
 }
 
 static inline int braun__dense_soft_find(void *state, int slot, braun_real rel)
 {
     braun_qrcp *f = braun__dense_slot(state, slot);
     /* The common case inline: no diagonal entry below the gate. */
-    if (f->rank == 0 ||
-        !(f->dmin < BRAUN_SOFT_GATE * rel * braun_fabs(f->a[(size_t)f->perm[0] * (size_t)BRAUN_N(f->n)]))) {
+    if (f->rank == 0 || !(f->dmin < BRAUN_SOFT_GATE * rel * f->r00)) {
         f->nsoft = 0;
         return 0;
+    }
+    /* A Gram factorization is never this close to a rank decision with the
+     * default soft_tol; with a larger one, C (still in f->a) is factored
+     * by QR for the search. */
+    if (f->gram) {
+        braun_dense *s = braun__dense(state);
+        (void)braun_qrcp_factor_rule(f, s->tol[slot], s->tol_new[slot] > s->tol[slot] ? s->tol_new[slot] : s->tol[slot],
+                                     s->keep[slot], s->cap[slot]);
     }
     return braun_qrcp_soft_find(f, rel);
 }
@@ -218,7 +252,9 @@ static inline void braun__dense_soft_project(void *state, int slot, const braun_
 
 static inline void braun__dense_null_project(void *state, int slot, braun_real *z)
 {
-    braun_qrcp_null_project(braun__dense_slot(state, slot), z);
+    const braun_qrcp *f = braun__dense_slot(state, slot);
+    if (f->gram) braun_qrcp_gram_null_project(f, z);
+    else braun_qrcp_null_project(f, z);
 }
 
 #endif

@@ -112,6 +112,10 @@ typedef struct braun_qrcp {
     braun_real dmin;   /* smallest |diagonal entry| of the triangle the solves use
                           (set by the factorization: the soft directions' gate) */
     braun_real soft_lam; /* λ of the soft directions found */
+    braun_real r00;    /* |r_00|: the largest column norm of Cᵀ (the rank
+                          decisions' and the gates' scale) */
+    int gram;          /* the last factorization is G = C Cᵀ = L D Lᵀ
+                          (braun_qrcp_factor_gram): f->a still holds C */
     int norms_given;   /* work[0..rows) holds the rows' squared norms, summed
                           in order while C was formed: the next factorization
                           takes them instead of a pass of its own (and clears
@@ -249,6 +253,18 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
  * only if every pivot exceeds gate·r00 (r00 the largest column norm), else
  * -1 and f->a is spent (form C again and call braun_qrcp_factor_rule). */
 int braun_qrcp_factor_ordered(braun_qrcp *f, braun_real gate);
+/* The matrix in f->a factored through its Gram matrix G = C Cᵀ = L D Lᵀ
+ * in C's row order (src/braun_qrcp_gram.c), when the last factorization
+ * had full rank rows <= n: accepted only if every pivot d_i exceeds
+ * gate²·max_i ‖c_i‖² (gate < 1); then f->gram is set, the rank is rows,
+ * and the solves below (the braun_qrcp_gram_* ones) go through G, C staying
+ * in f->a. Else -1, with C and its norms left for braun_qrcp_factor_rule
+ * or braun_qrcp_factor_ordered. */
+int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate);
+void braun_qrcp_gram_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x, braun_real *resid);
+void braun_qrcp_gram_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_real *r2,
+                           braun_real *x1, braun_real *x2);
+void braun_qrcp_gram_null_project(const braun_qrcp *f, braun_real *z);
 /* x[n] := C^+ r, r[rows] (r is not modified). */
 void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
                            braun_real *x);

@@ -35,6 +35,8 @@ void braun_qrcp_bind(braun_qrcp *f, int n, int rows, braun_real *reals,
     f->nsoft = 0;
     f->dmin = 0;
     f->soft_lam = 0;
+    f->r00 = 0;
+    f->gram = 0;
     f->norms_given = 0;
     f->perm = ints;
 }
@@ -142,6 +144,7 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
     }
     f->rank = 0;
     f->nsoft = 0;
+    f->gram = 0;
     braun_real dmin = 0;
     BRAUN_UNROLL
     for (int k = 0; k < KCAP(f, kmax); k++) {
@@ -191,6 +194,7 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
     }
 
     f->dmin = dmin;
+    f->r00 = r00;
     /* Dependent rows: S = [R11 R12]^T is rows x k; factor it by Householder
      * QR (column-major in f->s) for the least-squares solve of S w = P^T r. */
     const int rk = f->rank;
@@ -241,6 +245,7 @@ int braun_qrcp_factor_ordered(braun_qrcp *f, braun_real gate)
         for (int j = 0; j < rows; j++) norm2[j] = sumsq(n, a + (size_t)j * (size_t)n);
     }
     f->norms_given = 0;
+    f->gram = 0;
     braun_real big = 0;
     BRAUN_UNROLL
     for (int j = 0; j < rows; j++)
@@ -265,6 +270,7 @@ int braun_qrcp_factor_ordered(braun_qrcp *f, braun_real gate)
     BRAUN_SMALL_DISPATCH(n, ORDERED_BODY)
 #undef ORDERED_BODY
     f->dmin = dmin;
+    f->r00 = braun_fabs(COL(a, f, 0, n)[0]); /* |beta| of the first reflector */
     return rows;
 }
 
