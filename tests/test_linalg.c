@@ -413,7 +413,7 @@ static void gram_check(int M, int N, unsigned seed, double scale_row)
     assert_int_equal(factor(&c, &f, reals, ints, 1e-14), M);
     for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
     f.norms_given = 0;
-    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2), M);
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2, 0), M);
     assert_int_equal(f.gram, 1);
     assert_int_equal(f.rank, M);
     for (int i = 0; i < M * N; i++) assert_true(f.a[i] == c.C[i]); /* C kept */
@@ -477,7 +477,7 @@ static void test_factor_gram(void **state)
     for (int j = 0; j < N; j++) c.C[4 * N + j] = 0.5 * c.C[j] - 2 * c.C[2 * N + j] + 1e-3 * frand(&seed);
     for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
     f.norms_given = 0;
-    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2), -1);
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2, 0), -1);
     assert_int_equal(f.gram, 0);
     for (int i = 0; i < M * N; i++) assert_true(f.a[i] == c.C[i]);
     assert_int_equal(f.norms_given, 1);
@@ -492,7 +492,7 @@ static void test_factor_gram(void **state)
     for (int i = 0; i < M * N; i++) assert_true(f.a[i] == g.a[i]);
     /* The same C accepted under a gate below its smallest pivot. */
     for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
-    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-6), M);
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-6, 0), M);
     /* After a Gram factorization the pivoted QR of the C it kept is the
      * fresh one (the soft-direction search relies on it: braun_dense.h). */
     assert_int_equal(braun_qrcp_factor(&f, 1e-14), M);
@@ -503,7 +503,7 @@ static void test_factor_gram(void **state)
     for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
     assert_int_equal(braun_qrcp_factor(&f, 1e-14), 4);
     for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
-    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2), -1);
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2, 0), -1);
     /* A NaN or an infinite entry: refused, not factored. */
     for (int k = 0; k < 2; k++) {
         for (int i = 0; i < M * N; i++) c.C[i] = frand(&seed);
@@ -512,7 +512,7 @@ static void test_factor_gram(void **state)
         for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
         f.a[7] = k ? INFINITY : NAN;
         f.norms_given = 0;
-        assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2), -1);
+        assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2, 0), -1);
     }
     /* A gate of 1 or more (or NaN) accepts nothing. (A refusal leaves the
      * norms it summed for the next factorization of the same C: a new C
@@ -521,13 +521,46 @@ static void test_factor_gram(void **state)
     for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
     assert_int_equal(braun_qrcp_factor(&f, 1e-14), M);
     for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
-    assert_int_equal(braun_qrcp_factor_gram(&f, 1), -1);
-    assert_int_equal(braun_qrcp_factor_gram(&f, NAN), -1);
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1, 0), -1);
+    assert_int_equal(braun_qrcp_factor_gram(&f, NAN, 0), -1);
+    assert_int_equal(braun_qrcp_factor_gram(&f, 0.1, 1), -1);
+    assert_int_equal(braun_qrcp_factor_gram(&f, 0.1, NAN), -1);
     /* More rows than columns: never full row rank. */
     pinv_case t = {N, M, {0}};
     for (int i = 0; i < M * N; i++) t.C[i] = frand(&seed);
     factor(&t, &g, reals2, ints2, 1e-14);
-    assert_int_equal(braun_qrcp_factor_gram(&g, 1e-2), -1);
+    assert_int_equal(braun_qrcp_factor_gram(&g, 1e-2, 0), -1);
+
+    /* The second gate is relative to each row's own norm: a row 20 times
+     * shorter than the others but independent of them passes it (the
+     * first gate, relative to the longest row, only asks 1e-2)... */
+    for (int i = 0; i < M * N; i++) c.C[i] = frand(&seed) * (i < N ? 0.05 : 1);
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    f.norms_given = 0;
+    assert_int_equal(braun_qrcp_factor(&f, 1e-14), M);
+    for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+    assert_int_equal(braun_qrcp_factor_gram(&f, 1e-2, 0.1), M);
+    /* ... while a row within 3 % of a combination of two others fails it
+     * whatever its length: -2, the rank still full (every pivot above the
+     * first gate), and an ordered QR then takes the same C. */
+    for (int scale = 0; scale < 2; scale++) {
+        for (int i = 0; i < M * N; i++) c.C[i] = frand(&seed);
+        for (int j = 0; j < N; j++)
+            c.C[4 * N + j] = (scale ? 1e-3 : 1) * (0.5 * c.C[j] - 2 * c.C[2 * N + j] + 0.03 * frand(&seed));
+        f.norms_given = 0;
+        for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+        assert_int_equal(braun_qrcp_factor(&f, 1e-14), M);
+        for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+        assert_int_equal(braun_qrcp_factor_gram(&f, 1e-5, 0.1), -2);
+        assert_int_equal(f.gram, 0);
+        for (int i = 0; i < M * N; i++) assert_true(f.a[i] == c.C[i]);
+        assert_int_equal(braun_qrcp_factor_ordered(&f, 1e-5), M);
+        for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+        f.norms_given = 0;
+        assert_int_equal(braun_qrcp_factor(&f, 1e-14), M);
+        for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
+        assert_int_equal(braun_qrcp_factor_gram(&f, 1e-5, 0), M); /* without the second gate */
+    }
 }
 
 /* The Gram path's accuracy against its gate (docs/method.md, "The Gram
@@ -570,7 +603,7 @@ static void test_gram_accuracy(void **state)
         assert_int_equal(factor(&c, &f, reals, ints, 1e-14), M);
         for (int i = 0; i < M * N; i++) f.a[i] = c.C[i];
         f.norms_given = 0;
-        assert_int_equal(braun_qrcp_factor_gram(&f, 0.5 / (kappa * sqrt((double)M))), M);
+        assert_int_equal(braun_qrcp_factor_gram(&f, 0.5 / (kappa * sqrt((double)M)), 0), M);
         assert_int_equal(factor(&c, &g, reals2, ints2, 1e-14), M);
         /* The exact C⁺ r = V Σ⁻¹ Uᵀ r. */
         braun_real r[M], x[N], y[N];

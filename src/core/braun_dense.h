@@ -139,29 +139,25 @@ static inline void braun__dense_form_c(braun_dense *s, braun_qrcp *f, int rows, 
  * step's stage before, or the last step's) had full rank and no pivot
  * below the gate — BRAUN_ORDER_GATE of the largest column norm, or 10
  * rank tolerances if that is larger: far from every rank and
- * soft-direction decision — the rank is known and C is factored in that
- * one's column order without pivoting, accepted if every pivot clears the
- * gate again:
+ * soft-direction decision — the rank is known and C is factored without
+ * pivoting, accepted if every pivot clears that gate again:
  *   1. through its Gram matrix G = C Cᵀ = L D Lᵀ (braun_qrcp_factor_gram,
- *      src/core/braun_qrcp_gram.c), where the gate is also at least
- *      BRAUN_GRAM_GATE: independent dot products and one division per row
- *      instead of the QR's chain of norms, square roots and reflections
- *      (−28 % time per corrected slider-crank step on the host;
- *      docs/performance.md, Optimisations, item 16);
- *   2. else, at a step's later stages, by QR in that column order
- *      (braun_qrcp_factor_ordered; only where the Gram gate is the larger:
- *      the single-precision build);
+ *      src/core/braun_qrcp_gram.c) where, besides, every pivot is above
+ *      BRAUN_GRAM_GATE² of its row's G_ii: independent dot products and
+ *      one division per row instead of the QR's chain of norms, square
+ *      roots and reflections (−30 % time per corrected slider-crank step on
+ *      the host; docs/performance.md, Optimisations, item 16);
+ *   2. else, at a step's later stages, by QR in the last column order
+ *      (braun_qrcp_factor_ordered) where only that second test failed;
  * else C (formed again if 2 spent it) by the pivoted QR with the rank rule.
  * Between singular neighbourhoods that is every stage but a few. */
 #define BRAUN_ORDER_GATE BRAUN_R(1e-2)
-/* The Gram path squares C's condition number: its gate keeps the solves
- * within ≈ ε/gate² of C⁺ (docs/method.md, "The Gram path"): 1e-2 in
- * double (≤ 1e4·ε ≈ 2e-12 relative, the QR's gate), 1e-1 in single (≤ 100
- * ε ≈ 6e-6 relative; a gate of 1e-2 would allow 6e-4). */
-#ifdef BRAUN_SINGLE
+/* The Gram path squares the condition number of the row-equilibrated C,
+ * κ̃ (docs/method.md, "The Gram path"): a pivot above gate² of its row's
+ * G_ii keeps κ̃ ≲ √rows/gate, and the solves within ≈ ε·κ̃² of C⁺ — a
+ * factor ≲ 20 above the QR's ε·κ̃ at the slider-crank's 5 rows. */
+#ifndef BRAUN_GRAM_GATE
 #define BRAUN_GRAM_GATE BRAUN_R(1e-1)
-#else
-#define BRAUN_GRAM_GATE BRAUN_R(1e-2)
 #endif
 static inline int braun__dense_factor_c(void *state, int slot, int rows, const braun_real *A, braun_real tol,
                           const braun_real *atil, braun_real *resid)
@@ -176,9 +172,9 @@ static inline int braun__dense_factor_c(void *state, int slot, int rows, const b
     const int known = s->cap[slot] >= rows && f->rank == rows && f->dmin > gate * f->r00;
     braun__dense_form_c(s, f, rows, A, atil, resid);
     if (known) {
-        const braun_real gram_gate = gate > BRAUN_GRAM_GATE ? gate : BRAUN_GRAM_GATE;
-        if (braun_qrcp_factor_gram(f, gram_gate) >= 0) return rows;
-        if (s->stage_order && gram_gate > gate) {
+        const int gram = braun_qrcp_factor_gram(f, gate, BRAUN_GRAM_GATE);
+        if (gram >= 0) return rows;
+        if (gram == -2 && s->stage_order) {
             const int rank = braun_qrcp_factor_ordered(f, gate);
             if (rank >= 0) return rank;
             braun__dense_form_c(s, f, rows, A, NULL, NULL);

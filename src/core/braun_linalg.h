@@ -255,12 +255,15 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
 int braun_qrcp_factor_ordered(braun_qrcp *f, braun_real gate);
 /* The matrix in f->a factored through its Gram matrix G = C Cᵀ = L D Lᵀ
  * in C's row order (src/braun_qrcp_gram.c), when the last factorization
- * had full rank rows <= n: accepted only if every pivot d_i exceeds
- * gate²·max_i ‖c_i‖² (gate < 1); then f->gram is set, the rank is rows,
- * and the solves below (the braun_qrcp_gram_* ones) go through G, C staying
- * in f->a. Else -1, with C and its norms left for braun_qrcp_factor_rule
- * or braun_qrcp_factor_ordered. */
-int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate);
+ * had full rank rows <= n: accepted only if every pivot d_i exceeds both
+ * gate²·max_j G_jj (far from the rank decisions) and rel_gate²·G_ii (the
+ * row-equilibrated G well conditioned; gate, rel_gate < 1). Then f->gram
+ * is set, the rank is rows, and the braun_qrcp_gram_* solves go through G,
+ * C staying in f->a. Else -1 (a pivot below the first gate, a NaN, or not
+ * applicable) or -2 (every pivot above the first gate, some below the
+ * second: the rank is full, an ordered QR can take it), with C and its
+ * norms left for braun_qrcp_factor_ordered or braun_qrcp_factor_rule. */
+int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate, braun_real rel_gate);
 void braun_qrcp_gram_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x, braun_real *resid);
 void braun_qrcp_gram_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_real *r2,
                            braun_real *x1, braun_real *x2);

@@ -29,11 +29,11 @@
 /* Row i of C. */
 #define CROW(f, i, n) ((f)->a + (size_t)(i) * (size_t)(n))
 
-int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate)
+int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate, braun_real rel_gate)
 {
     const int n = BRAUN_N(f->n), rows = BRAUN_ROWS(f->rows);
     braun_real *norm2 = f->work, *L = f->s, *dinv = f->stau, *t = f->tau;
-    if (rows > n || rows == 0 || f->rank != rows || !(gate < 1)) return -1;
+    if (rows > n || rows == 0 || f->rank != rows || !(gate < 1) || !(rel_gate < 1)) return -1;
     /* The rows' squared norms are G's diagonal (the sums the pivoted
      * factorization takes too: on refusal they stay given for it). */
     if (!(BRAUN_FUSED_NORMS && f->norms_given)) {
@@ -50,7 +50,7 @@ int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate)
     BRAUN_UNROLL
     for (int j = 0; j < rows; j++)
         if (norm2[j] > big) big = norm2[j];
-    const braun_real floor2 = gate * gate * big;
+    const braun_real floor2 = gate * gate * big, rel2 = rel_gate * rel_gate;
     /* G's strict lower triangle: independent dot products, one dispatch
      * on n. */
 #define GRAM_BODY(N, UNROLL)                                                            \
@@ -67,6 +67,7 @@ int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate)
 #undef GRAM_BODY
     /* L D Lᵀ row by row: t_j = L_ij d_j, then L_ij, then d_i. */
     braun_real dmin2 = 0;
+    int ill = 0; /* a pivot below rel_gate² of its row's G_ii */
 #define LDL_BODY(R, UNROLL)                                                             \
     UNROLL for (int i = 0; i < (R); i++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
         braun_real *restrict li = L + (size_t)i * (size_t)(R);                          \
@@ -76,18 +77,21 @@ int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate)
             UNROLL for (int k = 0; k < j; k++) s -= t[k] * lj[k]; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
             t[j] = s;                                                                   \
         }                                                                               \
-        braun_real d = norm2[i];                                               \
+        const braun_real gii = norm2[i];                                             \
+        braun_real d = gii;                                                        \
         UNROLL for (int j = 0; j < i; j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
             const braun_real l = t[j] * dinv[j];                                        \
             li[j] = l;                                                                  \
             d -= t[j] * l;                                                              \
         }                                                                               \
         if (!(d > floor2)) return -1; /* NaN too; C and its norms stay */              \
+        if (!(d > rel2 * gii)) ill = 1;                                                 \
         dinv[i] = 1 / d;                                                                \
         if (i == 0 || d < dmin2) dmin2 = d;                                             \
     }
     BRAUN_SMALL_DISPATCH(rows, LDL_BODY)
 #undef LDL_BODY
+    if (ill) return -2;
     f->norms_given = 0;
     f->gram = 1;
     f->nsoft = 0;

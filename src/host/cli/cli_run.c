@@ -393,8 +393,10 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
         char what[256] = "reference evaluation failed";
         if (mon.scratch.error.status == ctx.monitor_status)
             braun_error_format(&mon.scratch, what, sizeof what);
-        braun_cli_error("monitoring failed after t = %.10g: %s",
-                        ctx.have_good ? ctx.good.t : (double)d.t, what);
+        /* Like every failure line, it names the status (the monitor's). */
+        braun_cli_error("monitoring failed after t = %.10g: %s (%s)",
+                        ctx.have_good ? ctx.good.t : (double)d.t, what,
+                        braun_status_str(ctx.monitor_status));
         exit_status = BRAUN_CLI_FAILED;
     } else if (st) {
         report_failure(&d, st, &guard, a, tg);
