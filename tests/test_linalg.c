@@ -3,6 +3,9 @@
  * numbers the code printed. */
 #include "test_util.h"
 #include "braun_linalg.h"
+#include "braun_sincos.h"
+
+#include <string.h>
 
 #define NMAX 8
 
@@ -636,6 +639,69 @@ static void test_gram_accuracy(void **state)
     }
 }
 
+/* ---- sin and cos with one argument reduction, the float build's
+ * braun_sincos (src/core/braun_sincos.h): against the double sin and cos,
+ * in ulps of the float result, over the whole reduced range, near the
+ * multiples of π/2 (where the reduction cancels) and at its edges. */
+/* The error in ulps of the result; next to a zero of sin or cos (where
+ * the reduction's last term, n·P3, carries an absolute error of ~1e-13)
+ * in units of 2^-24·1e-4 instead (absolute 6e-12). */
+static double ulp_error(float got, double exact)
+{
+    const double mag = fabs(exact) > 1e-4 ? fabs(exact) : 1e-4;
+    const float e = (float)mag;
+    const double ulp = nextafterf(e, INFINITY) - e;
+    return fabs((double)got - exact) / ulp;
+}
+
+static void test_sincosf(void **state)
+{
+    (void)state;
+    double worst = 0, worst_x = 0;
+    long checked = 0;
+    /* A grid over ±BRAUN_SINCOS_MAX, and the float neighbours of n·π/2. */
+    for (long k = -3000000; k <= 3000000; k++) {
+        for (int near = 0; near < 2; near++) {
+            float x;
+            if (!near) {
+                x = (float)((double)k * (BRAUN_SINCOS_MAX / 3000000.0) * 0.99999);
+            } else {
+                if (k % 1000) continue;
+                const long n = k / 1000;
+                x = (float)((double)n * 1.57079632679489661923);
+                x = (k & 1) ? nextafterf(x, INFINITY) : x;
+            }
+            float s, c;
+            braun_sincosf(x, &s, &c);
+            const double es = ulp_error(s, sin((double)x)), ec = ulp_error(c, cos((double)x));
+            if (es > worst || ec > worst) {
+                worst = es > ec ? es : ec;
+                worst_x = x;
+            }
+            checked++;
+        }
+    }
+    print_message("braun_sincosf: %ld arguments, worst error %.3g ulp at x = %.9g\n", checked, worst,
+                  worst_x);
+    assert_true(worst <= 2.5); /* measured 2.35; newlib's sinf, cosf: below 1 */
+    /* Small arguments: sin x = x, cos x = 1 to the last bit. */
+    float s, c;
+    braun_sincosf(1e-20f, &s, &c);
+    assert_true(s == 1e-20f && c == 1);
+    braun_sincosf(-0.0f, &s, &c);
+    assert_true(s == 0 && c == 1);
+    /* Beyond the reduced range, NaN and ±Inf: sinf and cosf themselves. */
+    const float far[4] = {BRAUN_SINCOS_MAX, -1e6f, INFINITY, NAN};
+    for (int i = 0; i < 4; i++) {
+        braun_sincosf(far[i], &s, &c);
+        const float s0 = sinf(far[i]), c0 = cosf(far[i]);
+        assert_true(memcmp(&s, &s0, sizeof s) == 0 || (isnan(s) && isnan(s0)));
+        assert_true(memcmp(&c, &c0, sizeof c) == 0 || (isnan(c) && isnan(c0)));
+    }
+    braun_sincosf(NAN, &s, &c);
+    assert_true(isnan(s) && isnan(c));
+}
+
 /* ---- The size-dispatched kernels (braun_linalg.h, BRAUN_SMALL_DISPATCH)
  * equal plain loops bit for bit, at every dispatched length and beyond it:
  * the reference below is the factorization, solve and projection written
@@ -740,6 +806,7 @@ int main(void)
         cmocka_unit_test(test_factor_ordered),
         cmocka_unit_test(test_factor_gram),
         cmocka_unit_test(test_gram_accuracy),
+        cmocka_unit_test(test_sincosf),
         cmocka_unit_test(test_small_kernels_bitwise),
     };
     return cmocka_run_group_tests_name("linalg", tests, NULL, NULL);

@@ -23,6 +23,20 @@
 #define braun_cos cos
 #endif
 
+/* *s = sin x, *c = cos x: in the float build with one argument reduction
+ * (braun_sincos.h); in double sin and cos, which GCC fuses into one sincos
+ * call where the C library has it (glibc). */
+#ifdef BRAUN_SINGLE
+#include "braun_sincos.h"
+#define braun_sincos braun_sincosf
+#else
+static inline void braun_sincos(double x, double *s, double *c)
+{
+    *s = sin(x);
+    *c = cos(x);
+}
+#endif
+
 /* Default relative rank tolerance of the pseudoinverses (docs/method.md,
  * "Rank tolerance"). Double: MATLAB's pinv max(rows,n)·ε with a margin of
  * 10 (QR pivots of exactly dependent rows come out a few ε·||C||). Float:

@@ -65,7 +65,8 @@ static int mass(braun_real t, const braun_real *q, braun_real *M, void *user)
  * generalized force on γ, and its potential ½ c0 (L - l0)². */
 static braun_real spring(const braun_real *q, braun_real *f3)
 {
-    const braun_real siga = braun_sin(q[2]), coga = braun_cos(q[2]);
+    braun_real siga, coga;
+    braun_sincos(q[2], &siga, &coga);
     const braun_real xd = sd * coga + sc * siga + xb, yd = sd * siga - sc * coga + yb;
     const braun_real lang = braun_sqrt((xd - xc) * (xd - xc) + (yd - yc) * (yd - yc));
     const braun_real force = -c0 * (lang - l0) / lang;
@@ -94,13 +95,15 @@ static int forces(braun_real t, const braun_real *q, const braun_real *v, braun_
 static int holonomic(braun_real t, const braun_real *q, const braun_real *v, braun_real *g,
                      braun_real *G, braun_real *b, braun_real *bv, void *user)
 {
-    const braun_real sibe = braun_sin(q[0]), cobe = braun_cos(q[0]);
-    const braun_real siga = braun_sin(q[2]), coga = braun_cos(q[2]);
-    const braun_real side = braun_sin(q[4]), code = braun_cos(q[4]);
-    const braun_real siep = braun_sin(q[6]), coep = braun_cos(q[6]);
-    const braun_real sibeth = braun_sin(q[0] + q[1]), cobeth = braun_cos(q[0] + q[1]);
-    const braun_real siphde = braun_sin(q[3] + q[4]), cophde = braun_cos(q[3] + q[4]);
-    const braun_real siomep = braun_sin(q[5] + q[6]), coomep = braun_cos(q[5] + q[6]);
+    braun_real sibe, cobe, siga, coga, side, code, siep, coep;
+    braun_real sibeth, cobeth, siphde, cophde, siomep, coomep;
+    braun_sincos(q[0], &sibe, &cobe);
+    braun_sincos(q[2], &siga, &coga);
+    braun_sincos(q[4], &side, &code);
+    braun_sincos(q[6], &siep, &coep);
+    braun_sincos(q[0] + q[1], &sibeth, &cobeth);
+    braun_sincos(q[3] + q[4], &siphde, &cophde);
+    braun_sincos(q[5] + q[6], &siomep, &coomep);
     (void)t;
     (void)user;
     if (g) {

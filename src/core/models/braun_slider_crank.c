@@ -66,8 +66,9 @@ static int holonomic(braun_real t, const braun_real *q, const braun_real *v,
 {
     const braun_link_params *p = user;
     braun_real h = BRAUN_R(0.5) * p->rl;
-    braun_real c1 = braun_cos(q[2]), s1 = braun_sin(q[2]);
-    braun_real c2 = braun_cos(q[5]), s2 = braun_sin(q[5]);
+    braun_real c1, s1, c2, s2;
+    braun_sincos(q[2], &s1, &c1);
+    braun_sincos(q[5], &s2, &c2);
     (void)t;
     if (phi) {
         phi[0] = q[0] - h * c1;

@@ -16,7 +16,8 @@ int braun_scene_fn_eval(const braun_scene_fn *f, braun_real t, braun_real *value
         break;
     case BRAUN_FN_SINE: {
         const braun_real arg = f->c * t + f->d;
-        const braun_real s = braun_sin(arg), c = braun_cos(arg);
+        braun_real s, c;
+        braun_sincos(arg, &s, &c);
         x = f->a + f->b * s;
         dx = f->b * f->c * c;
         ddx = -f->b * f->c * f->c * s;

@@ -150,7 +150,8 @@ void braun_scene__drive_row(const scene_frames *F, const braun_scene_fn *f, brau
     braun_scene__vec(&r1, &F->r1, NULL);
     braun_scene__vec(&r2, &F->r2, NULL);
     braun_scene_fn_eval(f, t, &th, &df, &ddf);
-    const braun_real C = braun_cos(th), S = braun_sin(th);
+    braun_real C, S;
+    braun_sincos(th, &S, &C);
     const braun_real sv = braun_scene__dot3(w1.x, r2.x), cv = braun_scene__dot3(r1.x, r2.x);
     if (phi) phi[0] = C * sv - S * cv;
     if (A) {

@@ -33,7 +33,8 @@ static int knife_eval(const braun_scene *s, const braun_scene_joint *j, braun_re
     (void)t;
     (void)b;
     const braun_real th = q[ix + 2], w = v[ix + 2];
-    const braun_real c = braun_cos(th), sn = braun_sin(th);
+    braun_real c, sn;
+    braun_sincos(th, &sn, &c);
     const braun_real norm = braun_sqrt(j->axis[0] * j->axis[0] + j->axis[1] * j->axis[1]);
     const braun_real nlx = -j->axis[1] / norm, nly = j->axis[0] / norm;
     const braun_real nx = c * nlx - sn * nly, ny = sn * nlx + c * nly;

@@ -48,7 +48,8 @@ static void rigid_point(const braun_scene_body *b, const braun_scene_point *pt,
         P->vel[0] = v[0];
         P->vel[1] = v[1];
     }
-    const braun_real c = braun_cos(q[2]), sn = braun_sin(q[2]);
+    braun_real c, sn;
+    braun_sincos(q[2], &sn, &c);
     const braun_real rx = c * pt->x - sn * pt->y, ry = sn * pt->x + c * pt->y;
     P->pos[0] += rx;
     P->pos[1] += ry;

@@ -19,7 +19,8 @@ static void line_row(const braun_scene *s, int body_l, const scene_pt *P, const 
 {
     braun_real th, w;
     const int col = braun_scene__angle(s, body_l, q, v, &th, &w);
-    const braun_real c = braun_cos(th), sn = braun_sin(th);
+    braun_real c, sn;
+    braun_sincos(th, &sn, &c);
     /* Ground lines keep g exact (no rotation by 0). */
     const braun_real gx = col >= 0 ? c * gl[0] - sn * gl[1] : gl[0];
     const braun_real gy = col >= 0 ? sn * gl[0] + c * gl[1] : gl[1];
