@@ -4,6 +4,7 @@
 #include "test_util.h"
 #include "braun_linalg.h"
 #include "braun_sincos.h"
+#include "braun_dense.h"
 
 #include <string.h>
 
@@ -639,6 +640,80 @@ static void test_gram_accuracy(void **state)
     }
 }
 
+/* The dense backend's choice (braun_dense.h, braun__dense_factor_c): a
+ * factorization after a full-rank one goes through the Gram matrix, and a
+ * soft-direction search on it (a wide window: here 0.09·r00, above a row
+ * 20 times shorter than the longest and orthogonal to the others, which
+ * the Gram gates accept) factors the kept C by QR first, finding what a
+ * QR alone finds. */
+static void test_dense_soft_after_gram(void **state)
+{
+    (void)state;
+    enum { M = 5, N = 6 };
+    braun_dense s, t;
+    braun_real chol_r[2][N * N + N], reals[2][2 * NMAX * NMAX + 12 * NMAX + 64];
+    int chol_i[2][2 * N], ints[2][NMAX];
+    braun_real eye[N * N], A[M * N];
+    for (int i = 0; i < N * N; i++) eye[i] = (i % (N + 1)) == 0;
+    braun_dense *st[2] = {&s, &t};
+    for (int k = 0; k < 2; k++) {
+        memset(st[k], 0, sizeof s);
+        st[k]->n = N;
+        braun_chol_bind(&st[k]->chol, N, chol_r[k], chol_i[k]);
+        assert_int_equal(braun_chol_factor(&st[k]->chol, eye, 1e-12, NULL, NULL, NULL), BRAUN_OK);
+        assert_true(braun_qrcp_reals(N, M) <= sizeof reals[k] / sizeof reals[k][0]);
+        braun_qrcp_bind(&st[k]->fv, N, M, reals[k], ints[k]);
+        braun__dense_rank_rule(st[k], 0, M, M, 0);
+    }
+    unsigned seed = 41;
+    /* Rows 0-3 well conditioned (near the unit vectors); row 4: */
+    for (int i = 0; i < M * N; i++) A[i] = (i / N == i % N) + 0.3 * frand(&seed);
+    /* Row 4: orthogonal to the others (Gram–Schmidt), 0.05 of the longest
+     * row's norm: a singular value of 0.05·r00 that the Gram gates pass. */
+    double big = 0;
+    for (int i = 0; i < 4; i++) {
+        double nn = 0;
+        for (int j = 0; j < N; j++) nn += A[i * N + j] * A[i * N + j];
+        big = fmax(big, sqrt(nn));
+    }
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = 0; i < 4; i++) {
+            double d = 0, nn = 0;
+            for (int j = 0; j < N; j++) {
+                d += A[4 * N + j] * A[i * N + j];
+                nn += A[i * N + j] * A[i * N + j];
+            }
+            for (int j = 0; j < N; j++) A[4 * N + j] -= d / nn * A[i * N + j];
+        }
+    double n4 = 0;
+    for (int j = 0; j < N; j++) n4 += A[4 * N + j] * A[4 * N + j];
+    for (int j = 0; j < N; j++) A[4 * N + j] *= 0.05 * big / sqrt(n4);
+    /* s: a first factorization (pivoted QR), then the same C again: Gram. */
+    assert_int_equal(braun__dense_factor_c(&s, 0, M, A, 1e-14, NULL, NULL), M);
+    assert_int_equal(s.fv.gram, 0);
+    assert_int_equal(braun__dense_factor_c(&s, 0, M, A, 1e-14, NULL, NULL), M);
+    assert_int_equal(s.fv.gram, 1);
+    /* t: the pivoted QR only. */
+    assert_int_equal(braun__dense_factor_c(&t, 0, M, A, 1e-14, NULL, NULL), M);
+    assert_int_equal(t.fv.gram, 0);
+    const braun_real rel = 9e-3;
+    const int ns = braun__dense_soft_find(&s, 0, rel), nt = braun__dense_soft_find(&t, 0, rel);
+    assert_int_equal(nt, 1); /* the short row's direction */
+    assert_int_equal(ns, nt);
+    assert_int_equal(s.fv.gram, 0); /* now the QR */
+    braun_real x[N], ys[N], yt[N];
+    for (int i = 0; i < N; i++) x[i] = frand(&seed);
+    braun__dense_soft_project(&s, 0, x, ys, 0);
+    braun__dense_soft_project(&t, 0, x, yt, 0);
+    for (int i = 0; i < N; i++) assert_true(ys[i] == yt[i]);
+    /* Below the window (the default soft_tol's 1e-6): nothing, and the
+     * Gram factor stays. */
+    assert_int_equal(braun__dense_factor_c(&s, 0, M, A, 1e-14, NULL, NULL), M);
+    assert_int_equal(s.fv.gram, 1);
+    assert_int_equal(braun__dense_soft_find(&s, 0, 1e-6), 0);
+    assert_int_equal(s.fv.gram, 1);
+}
+
 /* ---- sin and cos with one argument reduction, the float build's
  * braun_sincos (src/core/braun_sincos.h): against the double sin and cos,
  * in ulps of the float result, over the whole reduced range, near the
@@ -807,6 +882,7 @@ int main(void)
         cmocka_unit_test(test_factor_gram),
         cmocka_unit_test(test_gram_accuracy),
         cmocka_unit_test(test_sincosf),
+        cmocka_unit_test(test_dense_soft_after_gram),
         cmocka_unit_test(test_small_kernels_bitwise),
     };
     return cmocka_run_group_tests_name("linalg", tests, NULL, NULL);

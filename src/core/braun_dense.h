@@ -233,9 +233,9 @@ static inline int braun__dense_soft_find(void *state, int slot, braun_real rel)
      * default soft_tol; with a larger one, C (still in f->a) is factored
      * by QR for the search. */
     if (f->gram) {
-        braun_dense *s = braun__dense(state);
-        (void)braun_qrcp_factor_rule(f, s->tol[slot], s->tol_new[slot] > s->tol[slot] ? s->tol_new[slot] : s->tol[slot],
-                                     s->keep[slot], s->cap[slot]);
+        const braun_dense *s = braun__dense(state);
+        const braun_real tol = s->tol[slot], tol_new = s->tol_new[slot] > tol ? s->tol_new[slot] : tol;
+        (void)braun_qrcp_factor_rule(f, tol, tol_new, s->keep[slot], s->cap[slot]);
     }
     return braun_qrcp_soft_find(f, rel);
 }

@@ -112,8 +112,10 @@ typedef struct braun_qrcp {
     braun_real dmin;   /* smallest |diagonal entry| of the triangle the solves use
                           (set by the factorization: the soft directions' gate) */
     braun_real soft_lam; /* λ of the soft directions found */
-    braun_real r00;    /* |r_00|: the largest column norm of Cᵀ (the rank
-                          decisions' and the gates' scale) */
+    braun_real r00;    /* the scale of the rank decisions and the gates:
+                          |r_00| of the pivoted QR (the largest column norm
+                          of Cᵀ) or of the ordered one (its first column's),
+                          the largest row norm of C on the Gram path */
     int gram;          /* the last factorization is G = C Cᵀ = L D Lᵀ
                           (braun_qrcp_factor_gram): f->a still holds C */
     int norms_given;   /* work[0..rows) holds the rows' squared norms, summed
