@@ -159,12 +159,18 @@ static inline void braun__dense_form_c(braun_dense *s, braun_qrcp *f, int rows, 
 #ifndef BRAUN_GRAM_GATE
 #define BRAUN_GRAM_GATE BRAUN_R(1e-1)
 #endif
+/* The rank rule's tolerance for a new pivot: never below the plain one. */
+static inline braun_real braun__dense_tol_new(const braun_dense *s, int slot, braun_real tol)
+{
+    return s->tol_new[slot] > tol ? s->tol_new[slot] : tol;
+}
+
 static inline int braun__dense_factor_c(void *state, int slot, int rows, const braun_real *A, braun_real tol,
                           const braun_real *atil, braun_real *resid)
 {
     braun_dense *s = braun__dense(state);
     braun_qrcp *f = braun__dense_slot(state, slot);
-    const braun_real tol_new = s->tol_new[slot] > tol ? s->tol_new[slot] : tol;
+    const braun_real tol_new = braun__dense_tol_new(s, slot, tol);
     const braun_real gate = 10 * tol_new > BRAUN_ORDER_GATE ? 10 * tol_new : BRAUN_ORDER_GATE;
     s->tol[slot] = tol;
     /* The last factorization (read before C overwrites it) had full rank
@@ -200,25 +206,19 @@ static inline void braun__dense_rank_rule(void *state, int slot, int keep, int c
 
 static inline void braun__dense_pinv(void *state, int slot, const braun_real *r, braun_real *x)
 {
-    const braun_qrcp *f = braun__dense_slot(state, slot);
-    if (f->gram) braun_qrcp_gram_lsq(f, r, x, NULL);
-    else braun_qrcp_pinv_apply(f, r, x);
+    braun_qrcp_pinv_apply(braun__dense_slot(state, slot), r, x);
 }
 
 static inline void braun__dense_pinv2(void *state, int slot, const braun_real *r1, const braun_real *r2,
                                       braun_real *x1, braun_real *x2)
 {
-    const braun_qrcp *f = braun__dense_slot(state, slot);
-    if (f->gram) braun_qrcp_gram_pinv2(f, r1, r2, x1, x2);
-    else braun_qrcp_pinv2(f, r1, r2, x1, x2);
+    braun_qrcp_pinv2(braun__dense_slot(state, slot), r1, r2, x1, x2);
 }
 
 static inline void braun__dense_lsq(void *state, int slot, const braun_real *r, braun_real *x,
                       braun_real *resid_norm)
 {
-    const braun_qrcp *f = braun__dense_slot(state, slot);
-    if (f->gram) braun_qrcp_gram_lsq(f, r, x, resid_norm);
-    else braun_qrcp_lsq(f, r, x, resid_norm);
+    braun_qrcp_lsq(braun__dense_slot(state, slot), r, x, resid_norm);
 }
 
 static inline int braun__dense_soft_find(void *state, int slot, braun_real rel)
@@ -234,8 +234,8 @@ static inline int braun__dense_soft_find(void *state, int slot, braun_real rel)
      * by QR for the search. */
     if (f->gram) {
         const braun_dense *s = braun__dense(state);
-        const braun_real tol = s->tol[slot], tol_new = s->tol_new[slot] > tol ? s->tol_new[slot] : tol;
-        (void)braun_qrcp_factor_rule(f, tol, tol_new, s->keep[slot], s->cap[slot]);
+        (void)braun_qrcp_factor_rule(f, s->tol[slot], braun__dense_tol_new(s, slot, s->tol[slot]),
+                                     s->keep[slot], s->cap[slot]);
     }
     return braun_qrcp_soft_find(f, rel);
 }
@@ -248,9 +248,7 @@ static inline void braun__dense_soft_project(void *state, int slot, const braun_
 
 static inline void braun__dense_null_project(void *state, int slot, braun_real *z)
 {
-    const braun_qrcp *f = braun__dense_slot(state, slot);
-    if (f->gram) braun_qrcp_gram_null_project(f, z);
-    else braun_qrcp_null_project(f, z);
+    braun_qrcp_null_project(braun__dense_slot(state, slot), z);
 }
 
 #endif

@@ -260,8 +260,8 @@ int braun_qrcp_factor_ordered(braun_qrcp *f, braun_real gate);
  * had full rank rows <= n: accepted only if every pivot d_i exceeds both
  * gate²·max_j G_jj (far from the rank decisions) and rel_gate²·G_ii (the
  * row-equilibrated G well conditioned; gate, rel_gate < 1). Then f->gram
- * is set, the rank is rows, and the braun_qrcp_gram_* solves go through G,
- * C staying in f->a. Else -1 (a pivot below the first gate, a NaN, or not
+ * is set, the rank is rows, and the solves below (braun_qrcp_lsq,
+ * _pinv_apply, _pinv2, _null_project) go through G, C staying in f->a. Else -1 (a pivot below the first gate, a NaN, or not
  * applicable) or -2 (every pivot above the first gate, some below the
  * second: the rank is full, an ordered QR can take it), with C and its
  * norms left for braun_qrcp_factor_ordered or braun_qrcp_factor_rule. */
@@ -270,19 +270,42 @@ void braun_qrcp_gram_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x
 void braun_qrcp_gram_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_real *r2,
                            braun_real *x1, braun_real *x2);
 void braun_qrcp_gram_null_project(const braun_qrcp *f, braun_real *z);
-/* x[n] := C^+ r, r[rows] (r is not modified). */
-void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
-                           braun_real *x);
-/* The same, and *resid := ||r - C C^+ r||_2, the part of r no x can reach
- * (0 when the rows are independent). */
-void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
-                    braun_real *resid);
+/* The solves, through whichever factorization f holds (f->gram: the
+ * Gram path's, src/braun_qrcp_gram.c; else the QR's, src/braun_qrcp.c).
+ * One dispatch here, inline, so that no caller can apply the QR's solves
+ * to a Gram factor. */
+void braun_qrcp__qr_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x, braun_real *resid);
+void braun_qrcp__qr_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_real *r2,
+                          braun_real *x1, braun_real *x2);
+void braun_qrcp__qr_null_project(const braun_qrcp *f, braun_real *z);
+/* x[n] := C^+ r, r[rows] (r is not modified), and *resid :=
+ * ||r - C C^+ r||_2 (resid may be NULL), the part of r no x can reach (0
+ * when the rows are independent). */
+static inline void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
+                                  braun_real *resid)
+{
+    if (f->gram) braun_qrcp_gram_lsq(f, r, x, resid);
+    else braun_qrcp__qr_lsq(f, r, x, resid);
+}
+/* The same without the residual. */
+static inline void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r, braun_real *x)
+{
+    braun_qrcp_lsq(f, r, x, NULL);
+}
 /* x1 := C^+ r1 and x2 := C^+ r2 in one walk of the factor (full row rank;
  * else two braun_qrcp_lsq calls): bit for bit the two applies. */
-void braun_qrcp_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_real *r2,
-                      braun_real *x1, braun_real *x2);
+static inline void braun_qrcp_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_real *r2,
+                                    braun_real *x1, braun_real *x2)
+{
+    if (f->gram) braun_qrcp_gram_pinv2(f, r1, r2, x1, x2);
+    else braun_qrcp__qr_pinv2(f, r1, r2, x1, x2);
+}
 /* z[n] := N z = z - C^+ C z (projection onto the null space of C). */
-void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z);
+static inline void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
+{
+    if (f->gram) braun_qrcp_gram_null_project(f, z);
+    else braun_qrcp__qr_null_project(f, z);
+}
 /* The soft directions of the last factorization: the right singular
  * vectors s_c of C whose singular values σ_c are below BRAUN_SOFT_GATE·λ,
  * λ = rel·|r_00| (rel > 0), found by inverse iteration on the factor.

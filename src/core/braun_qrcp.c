@@ -274,12 +274,6 @@ int braun_qrcp_factor_ordered(braun_qrcp *f, braun_real gate)
     return rows;
 }
 
-void braun_qrcp_pinv_apply(const braun_qrcp *f, const braun_real *r,
-                           braun_real *x)
-{
-    braun_qrcp_lsq(f, r, x, NULL);
-}
-
 /* x[n] := Q1 w = H_0 ... H_{k-1} [w; 0], k the rank. (One loop, not a
  * zero fill and a copy: compilers turn a zero fill into a memset call,
  * which costs a small-vector kernel more than the fill itself on a
@@ -327,8 +321,8 @@ static void lsq_deficient(const braun_qrcp *f, braun_real *w, braun_real *resid)
     }
 }
 
-void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
-                    braun_real *resid)
+void braun_qrcp__qr_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
+                        braun_real *resid)
 {
     const int n = BRAUN_N(f->n), rows = BRAUN_ROWS(f->rows), rk = f->rank;
     const braun_real *a = f->a;
@@ -366,16 +360,16 @@ void braun_qrcp_lsq(const braun_qrcp *f, const braun_real *r, braun_real *x,
 }
 
 /* Two right-hand sides with full row rank (the position and velocity
- * corrections share C): each the operations of braun_qrcp_lsq in the same
+ * corrections share C): each the operations of braun_qrcp__qr_lsq in the same
  * order, the permutation, the triangle and the reflectors walked once. The
  * second work vector is f->s, scratch unless the rank is deficient. */
-void braun_qrcp_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_real *r2,
-                      braun_real *x1, braun_real *x2)
+void braun_qrcp__qr_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_real *r2,
+                          braun_real *x1, braun_real *x2)
 {
     const int n = BRAUN_N(f->n), rows = BRAUN_ROWS(f->rows), rk = f->rank;
     if (rk != rows || rk == 0) {
-        braun_qrcp_lsq(f, r1, x1, NULL);
-        braun_qrcp_lsq(f, r2, x2, NULL);
+        braun_qrcp__qr_lsq(f, r1, x1, NULL);
+        braun_qrcp__qr_lsq(f, r2, x2, NULL);
         return;
     }
     const braun_real *a = f->a;
@@ -412,7 +406,7 @@ void braun_qrcp_pinv2(const braun_qrcp *f, const braun_real *r1, const braun_rea
 #undef Q1_2_BODY
 }
 
-void braun_qrcp_null_project(const braun_qrcp *f, braun_real *z)
+void braun_qrcp__qr_null_project(const braun_qrcp *f, braun_real *z)
 {
     const int n = BRAUN_N(f->n), rk = f->rank;
     if (rk == 0) return;

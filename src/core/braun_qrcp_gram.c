@@ -38,12 +38,7 @@ int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate, braun_real rel_gate)
      * factorization takes too: on refusal they stay given for it). */
     if (!(BRAUN_FUSED_NORMS && f->norms_given)) {
         BRAUN_UNROLL
-        for (int j = 0; j < rows; j++) {
-            const braun_real *cj = f->a + (size_t)j * (size_t)n;
-            braun_real s = 0;
-            for (int k = 0; k < n; k++) s += cj[k] * cj[k];
-            norm2[j] = s;
-        }
+        for (int j = 0; j < rows; j++) norm2[j] = braun_dot(n, CROW(f, j, n), CROW(f, j, n));
         f->norms_given = BRAUN_FUSED_NORMS;
     }
     braun_real big = 0;
@@ -189,13 +184,7 @@ void braun_qrcp_gram_null_project(const braun_qrcp *f, braun_real *z)
         return;
     }
     BRAUN_UNROLL
-    for (int j = 0; j < rows; j++) {
-        const braun_real *cj = CROW(f, j, n);
-        braun_real s = 0;
-        BRAUN_UNROLL
-        for (int k = 0; k < n; k++) s += cj[k] * z[k];
-        w[j] = s;
-    }
+    for (int j = 0; j < rows; j++) w[j] = braun_dot(n, CROW(f, j, n), z);
     gram_solve(f, w, NULL);
     BRAUN_UNROLL
     for (int j = 0; j < rows; j++) {
