@@ -866,6 +866,99 @@ static void test_small_kernels_bitwise(void **state)
     assert_true(checked >= 60);
 }
 
+/* The Cholesky solves and product at the dispatched lengths (the whole
+ * triangle unrolled, braun_chol.c) against the envelope loops, and the
+ * dense backend's rows of C = A R⁻¹ (braun_dense.h, unrolled in place)
+ * against the solve: equal values at every n <= KMAX, on banded mass
+ * matrices with zeros inside the envelope (the four-bar's pattern: x and y
+ * blocks interleaved) and on dense ones. Fails if an unrolled body reads
+ * the wrong entry or sums in another order. */
+static void test_chol_small_kernels(void **state)
+{
+    (void)state;
+    unsigned seed = 7;
+    int checked = 0;
+    for (int n = 1; n <= KMAX; n++)
+        for (int band = 0; band < 3; band++) {
+            /* band 0: dense SPD; 1: couples i and i+2 only; 2: tridiagonal. */
+            braun_real M[KMAX * KMAX], B[KMAX * KMAX];
+            for (int i = 0; i < n * n; i++) B[i] = frand(&seed);
+            for (int i = 0; i < n; i++)
+                for (int j = 0; j < n; j++) {
+                    double sum = 0;
+                    for (int k = 0; k < n; k++) sum += B[i * n + k] * B[j * n + k];
+                    const int off = i > j ? i - j : j - i;
+                    const int keep = band == 0 || off == 0 || (band == 1 ? off == 2 : off == 1);
+                    M[i * n + j] = keep ? (i == j ? sum + n : 0.3 * sum / n) : 0;
+                }
+            braun_real cr[KMAX * KMAX + KMAX];
+            int ci[2 * KMAX];
+            braun_chol c;
+            braun_chol_bind(&c, n, cr, ci);
+            assert_int_equal(braun_chol_factor(&c, M, 1e-12, NULL, NULL, NULL), BRAUN_OK);
+            braun_real b[KMAX], x[KMAX], xr[KMAX];
+            for (int i = 0; i < n; i++) b[i] = frand(&seed);
+            /* x = R^-T b: forward over the envelope */
+            braun_chol_solve_rt_to(&c, b, x);
+            for (int i = 0; i < n; i++) {
+                double sum = b[i];
+                for (int k = c.first[i]; k < i; k++) sum -= c.R[k * n + i] * xr[k];
+                xr[i] = sum * c.dinv[i];
+            }
+            for (int i = 0; i < n; i++) assert_true(x[i] == xr[i]);
+            /* x = R^-1 b: backward over the envelope; in place too */
+            braun_chol_solve_r_to(&c, b, x);
+            for (int i = n - 1; i >= 0; i--) {
+                double sum = b[i];
+                for (int k = i + 1; k <= c.last[i]; k++) sum -= c.R[i * n + k] * xr[k];
+                xr[i] = sum * c.dinv[i];
+            }
+            for (int i = 0; i < n; i++) assert_true(x[i] == xr[i]);
+            for (int i = 0; i < n; i++) x[i] = b[i];
+            braun_chol_solve_r(&c, x);
+            for (int i = 0; i < n; i++) assert_true(x[i] == xr[i]);
+            /* y = R b */
+            braun_chol_mul_r(&c, b, x);
+            for (int i = 0; i < n; i++) {
+                double sum = 0;
+                for (int k = i; k <= c.last[i]; k++) sum += c.R[i * n + k] * b[k];
+                assert_true(x[i] == sum);
+            }
+            /* The dense backend's C = A R^-1 with r_v and the rows' norms. */
+            if (n >= 2 && !c.diagonal) {
+                const int rows = n - 1;
+                braun_dense s;
+                braun_real reals[2 * KMAX * KMAX + 12 * KMAX + 64], A[KMAX * KMAX], at[KMAX], rv[KMAX];
+                int ints[KMAX];
+                memset(&s, 0, sizeof s);
+                s.n = n;
+                s.chol = c;
+                assert_true(braun_qrcp_reals(n, rows) <= sizeof reals / sizeof reals[0]);
+                braun_qrcp_bind(&s.fv, n, rows, reals, ints);
+                for (int i = 0; i < rows * n; i++) A[i] = frand(&seed);
+                for (int i = 0; i < n; i++) at[i] = frand(&seed);
+                for (int i = 0; i < rows; i++) rv[i] = frand(&seed);
+                braun_real rv0[KMAX];
+                memcpy(rv0, rv, sizeof rv);
+                braun__dense_form_c(&s, &s.fv, rows, A, at, rv);
+                for (int i = 0; i < rows; i++) {
+                    braun_real row[KMAX];
+                    braun_chol_solve_rt_to(&c, A + i * n, row);
+                    double dot = 0, nn = 0;
+                    for (int j = 0; j < n; j++) {
+                        assert_true(s.fv.a[i * n + j] == row[j]);
+                        dot += row[j] * at[j];
+                        nn += row[j] * row[j];
+                    }
+                    assert_true(rv[i] == rv0[i] - dot);
+                    if (BRAUN_FUSED_NORMS) assert_true(s.fv.work[i] == nn);
+                }
+            }
+            checked++;
+        }
+    assert_int_equal(checked, 3 * KMAX);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -884,6 +977,7 @@ int main(void)
         cmocka_unit_test(test_sincosf),
         cmocka_unit_test(test_dense_soft_after_gram),
         cmocka_unit_test(test_small_kernels_bitwise),
+        cmocka_unit_test(test_chol_small_kernels),
     };
     return cmocka_run_group_tests_name("linalg", tests, NULL, NULL);
 }

@@ -118,19 +118,35 @@ static inline void braun__dense_form_c(braun_dense *s, braun_qrcp *f, int rows, 
                 braun_chol_solve_diag(&s->chol, A + (size_t)i * (size_t)n, C + (size_t)i * (size_t)n);
         }
     } else {
-        for (int i = 0; i < rows; i++) {
-            braun_real *ci = C + (size_t)i * (size_t)n;
-            braun_chol_solve_rt_to(&s->chol, A + (size_t)i * (size_t)n, ci);
-            if (resid) {
-                braun_real dot = 0, nn = 0;
-                for (int j = 0; j < n; j++) {
-                    dot += ci[j] * atil[j];
-                    if (BRAUN_FUSED_NORMS) nn += ci[j] * ci[j];
-                }
-                resid[i] -= dot;
-                if (BRAUN_FUSED_NORMS) f->work[i] = nn;
-            }
-        }
+        /* Each row c_i = R⁻ᵀ a_i: at a short length the compiler knows, the
+         * triangle unrolled in place (braun_chol.c's solve, the same
+         * operations), with the row's dot product and squared norm. */
+        const braun_real *restrict R = s->chol.R, *restrict rdinv = s->chol.dinv;
+#define FORM_M_BODY(N, UNROLL)                                                          \
+    for (int i = 0; i < rows; i++) {                                                    \
+        braun_real *restrict ci = C + (size_t)i * (size_t)(N);                          \
+        const braun_real *restrict ai = A + (size_t)i * (size_t)(N);                    \
+        if (BRAUN_SMALL_CONST(N)) {                                                     \
+            UNROLL for (int j = 0; j < (N); j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+                braun_real sj = ai[j];                                                  \
+                UNROLL for (int k = 0; k < j; k++) sj -= R[k * (N) + j] * ci[k]; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+                ci[j] = sj * rdinv[j];                                                  \
+            }                                                                           \
+        } else {                                                                        \
+            braun_chol_solve_rt_to(&s->chol, ai, ci);                                   \
+        }                                                                               \
+        if (resid) {                                                                    \
+            braun_real dot = 0, nn = 0;                                                 \
+            UNROLL for (int j = 0; j < (N); j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+                dot += ci[j] * atil[j];                                                 \
+                if (BRAUN_FUSED_NORMS) nn += ci[j] * ci[j];                             \
+            }                                                                           \
+            resid[i] -= dot;                                                            \
+            if (BRAUN_FUSED_NORMS) f->work[i] = nn;                                     \
+        }                                                                               \
+    }
+        BRAUN_SMALL_DISPATCH(n, FORM_M_BODY)
+#undef FORM_M_BODY
     }
     if (BRAUN_FUSED_NORMS) f->norms_given = resid != NULL;
 }

@@ -217,6 +217,16 @@ typedef struct braun_qrcp {
     }
 #endif
 
+/* A length the compiler knows (a dispatched body's, a fixed-size build's)
+ * and short enough for a body unrolled whole: the dense kernels below
+ * choose it over their loops. Other compilers take the loops. */
+#if defined(__GNUC__)
+#define BRAUN_CONSTANT_P(x) __builtin_constant_p(x)
+#else
+#define BRAUN_CONSTANT_P(x) 0
+#endif
+#define BRAUN_SMALL_CONST(len) (BRAUN_CONSTANT_P(len) && (len) <= BRAUN_SMALL_MAX)
+
 /* y[0..len) := (I - tau v v^T) y with v = (1, vtail[0..len-1)): one
  * Householder reflector of the factorization (vtail, another column or
  * another array, never overlaps y). */

@@ -29,6 +29,9 @@
 /* Row i of C. */
 #define CROW(f, i, n) ((f)->a + (size_t)(i) * (size_t)(n))
 
+/* The largest factor kept in local arrays (registers) while it is formed. */
+#define BRAUN_GRAM_LOCAL 8
+
 int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate, braun_real rel_gate)
 {
     const int n = BRAUN_N(f->n), rows = BRAUN_ROWS(f->rows);
@@ -60,29 +63,46 @@ int braun_qrcp_factor_gram(braun_qrcp *f, braun_real gate, braun_real rel_gate)
     }
     BRAUN_SMALL_DISPATCH(n, GRAM_BODY)
 #undef GRAM_BODY
-    /* L D Lᵀ row by row: t_j = L_ij d_j, then L_ij, then d_i. */
+    /* L D Lᵀ row by row: t_j = L_ij d_j, then L_ij, then d_i. At the
+     * dispatched sizes on local arrays the compiler keeps in registers:
+     * every pivot waits for the ones before it, and a store and a reload
+     * of t, L or 1/d would add its forwarding latency to that chain. The
+     * factor is written out once, for the solves. */
     braun_real dmin2 = 0;
     int ill = 0; /* a pivot below rel_gate² of its row's G_ii */
 #define LDL_BODY(R, UNROLL)                                                             \
+    {                                                                                   \
+    braun_real Lloc[BRAUN_GRAM_LOCAL * BRAUN_GRAM_LOCAL], tloc[BRAUN_GRAM_LOCAL], dloc[BRAUN_GRAM_LOCAL]; \
+    const int local_ = BRAUN_CONSTANT_P(R) && (R) <= BRAUN_GRAM_LOCAL;                  \
+    braun_real *Lw = local_ ? Lloc : L, *tw = local_ ? tloc : t, *dw = local_ ? dloc : dinv; \
     UNROLL for (int i = 0; i < (R); i++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
-        braun_real *restrict li = L + (size_t)i * (size_t)(R);                          \
+        braun_real *li = Lw + (size_t)i * (size_t)(R);                                  \
+        const braun_real *gi = L + (size_t)i * (size_t)(R); /* G's row */               \
         UNROLL for (int j = 0; j < i; j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
-            const braun_real *restrict lj = L + (size_t)j * (size_t)(R);                \
-            braun_real s = li[j];                                                       \
-            UNROLL for (int k = 0; k < j; k++) s -= t[k] * lj[k]; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
-            t[j] = s;                                                                   \
+            const braun_real *lj = Lw + (size_t)j * (size_t)(R);                        \
+            braun_real s = gi[j];                                                       \
+            UNROLL for (int k = 0; k < j; k++) s -= tw[k] * lj[k]; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+            tw[j] = s;                                                                  \
         }                                                                               \
         const braun_real gii = norm2[i];                                             \
         braun_real d = gii;                                                        \
         UNROLL for (int j = 0; j < i; j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
-            const braun_real l = t[j] * dinv[j];                                        \
+            const braun_real l = tw[j] * dw[j];                                         \
             li[j] = l;                                                                  \
-            d -= t[j] * l;                                                              \
+            d -= tw[j] * l;                                                             \
         }                                                                               \
         if (!(d > floor2)) return -1; /* NaN too; C and its norms stay */              \
         if (!(d > rel2 * gii)) ill = 1;                                                 \
-        dinv[i] = 1 / d;                                                                \
+        dw[i] = 1 / d;                                                                  \
         if (i == 0 || d < dmin2) dmin2 = d;                                             \
+    }                                                                                   \
+    if (local_) {                                                                       \
+        UNROLL for (int i = 0; i < (R); i++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+            dinv[i] = dw[i];                                                            \
+            UNROLL for (int j = 0; j < i; j++) /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+                L[(size_t)i * (size_t)(R) + (size_t)j] = Lw[(size_t)i * (size_t)(R) + (size_t)j]; \
+        }                                                                               \
+    }                                                                                   \
     }
     BRAUN_SMALL_DISPATCH(rows, LDL_BODY)
 #undef LDL_BODY
