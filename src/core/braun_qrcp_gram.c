@@ -206,10 +206,12 @@ void braun_qrcp_gram_null_project(const braun_qrcp *f, braun_real *z)
     BRAUN_UNROLL
     for (int j = 0; j < rows; j++) w[j] = braun_dot(n, CROW(f, j, n), z);
     gram_solve(f, w, NULL);
-    BRAUN_UNROLL
-    for (int j = 0; j < rows; j++) {
-        const braun_real *cj = CROW(f, j, n), wj = w[j];
-        BRAUN_UNROLL
-        for (int k = 0; k < n; k++) z[k] -= wj * cj[k];
+    /* z −= Cᵀw, one dispatch on n. */
+#define NP_BODY(N, UNROLL)                                                              \
+    BRAUN_UNROLL for (int j = 0; j < rows; j++) {                                       \
+        const braun_real *restrict cj = CROW(f, j, n), wj = w[j];                       \
+        UNROLL for (int k = 0; k < (N); k++) z[k] -= wj * cj[k]; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
     }
+    BRAUN_SMALL_DISPATCH(n, NP_BODY)
+#undef NP_BODY
 }
