@@ -1,6 +1,7 @@
 /* Cholesky factorization M = R^T R of the mass matrix and its solves.
  * The solves skip the zero envelope of R (diagonal, banded and block mass
- * matrices cost O(n) or O(n·band) instead of O(n²)) and multiply by the
+ * matrices cost O(n) or O(n·band) instead of O(n²)) — except at the short
+ * lengths a dispatched body unrolls whole (below) — and multiply by the
  * stored reciprocal pivots. */
 #include "braun_linalg.h"
 
