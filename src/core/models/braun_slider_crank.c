@@ -105,29 +105,43 @@ static int holonomic(braun_real t, const braun_real *q, const braun_real *v,
     return 0;
 }
 
-/* Eq. 23: E = ½vᵀMv + mg(y1 + y2). */
+/* Eq. 23: E = ½vᵀMv + mg(y1 + y2). Straight-line (M = diag(m, m, J, m,
+ * m, J)): the callback runs twice a corrected step. */
 static int energy(braun_real t, const braun_real *q, const braun_real *v,
                   braun_real *E, braun_real *dE_dq, braun_real *dE_dv,
                   braun_real *dE_dt, void *user)
 {
     const braun_link_params *p = user;
-    braun_real m = p->rm, l = p->rl;
-    braun_real mg = p->rmg;
-    braun_real J = m * l * l / BRAUN_R(12.0);
-    const braun_real diag[6] = {m, m, J, m, m, J};
+    const braun_real m = p->rm, l = p->rl;
+    const braun_real mg = p->rmg;
+    const braun_real J = m * l * l / BRAUN_R(12.0);
     (void)t;
     if (E) {
         braun_real T = BRAUN_R(0.0);
-        for (int i = 0; i < 6; ++i) T += diag[i] * v[i] * v[i];
+        T += m * v[0] * v[0];
+        T += m * v[1] * v[1];
+        T += J * v[2] * v[2];
+        T += m * v[3] * v[3];
+        T += m * v[4] * v[4];
+        T += J * v[5] * v[5];
         *E = BRAUN_R(0.5) * T + mg * (q[1] + q[4]);
     }
     if (dE_dq) {
-        for (int i = 0; i < 6; ++i) dE_dq[i] = BRAUN_R(0.0);
+        dE_dq[0] = BRAUN_R(0.0);
         dE_dq[1] = mg;
+        dE_dq[2] = BRAUN_R(0.0);
+        dE_dq[3] = BRAUN_R(0.0);
         dE_dq[4] = mg;
+        dE_dq[5] = BRAUN_R(0.0);
     }
-    if (dE_dv)
-        for (int i = 0; i < 6; ++i) dE_dv[i] = diag[i] * v[i];
+    if (dE_dv) {
+        dE_dv[0] = m * v[0];
+        dE_dv[1] = m * v[1];
+        dE_dv[2] = J * v[2];
+        dE_dv[3] = m * v[3];
+        dE_dv[4] = m * v[4];
+        dE_dv[5] = J * v[5];
+    }
     if (dE_dt) *dE_dt = BRAUN_R(0.0);
     return 0;
 }
