@@ -83,11 +83,7 @@ int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
  * order. */
 #define RT_BODY(N, UNROLL)                                                              \
     if (BRAUN_SMALL_CONST(N)) {                                                         \
-        UNROLL for (int i = 0; i < (N); i++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
-            braun_real s = b[i];                                                        \
-            UNROLL for (int k = 0; k < i; k++) s -= R[k * (N) + i] * x[k]; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
-            x[i] = s * c->dinv[i];                                                      \
-        }                                                                               \
+        BRAUN_CHOL_RT_WHOLE(N, UNROLL, R, c->dinv, b, x)                                \
     } else {                                                                            \
         for (int i = 0; i < (N); i++) {                                                 \
             braun_real s = b[i];                                                        \

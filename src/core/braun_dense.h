@@ -119,19 +119,15 @@ static inline void braun__dense_form_c(braun_dense *s, braun_qrcp *f, int rows, 
         }
     } else {
         /* Each row c_i = R⁻ᵀ a_i: at a short length the compiler knows, the
-         * triangle unrolled in place (braun_chol.c's solve, the same
-         * operations), with the row's dot product and squared norm. */
+         * triangle unrolled in place (BRAUN_CHOL_RT_WHOLE, as braun_chol.c's
+         * solve), with the row's dot product and squared norm. */
         const braun_real *restrict R = s->chol.R, *restrict rdinv = s->chol.dinv;
 #define FORM_M_BODY(N, UNROLL)                                                          \
     for (int i = 0; i < rows; i++) {                                                    \
         braun_real *restrict ci = C + (size_t)i * (size_t)(N);                          \
         const braun_real *restrict ai = A + (size_t)i * (size_t)(N);                    \
         if (BRAUN_SMALL_CONST(N)) {                                                     \
-            UNROLL for (int j = 0; j < (N); j++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
-                braun_real sj = ai[j];                                                  \
-                UNROLL for (int k = 0; k < j; k++) sj -= R[k * (N) + j] * ci[k]; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
-                ci[j] = sj * rdinv[j];                                                  \
-            }                                                                           \
+            BRAUN_CHOL_RT_WHOLE(N, UNROLL, R, rdinv, ai, ci)                            \
         } else {                                                                        \
             braun_chol_solve_rt_to(&s->chol, ai, ci);                                   \
         }                                                                               \

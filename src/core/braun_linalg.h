@@ -227,6 +227,18 @@ typedef struct braun_qrcp {
 #endif
 #define BRAUN_SMALL_CONST(len) (BRAUN_CONSTANT_P(len) && (len) <= BRAUN_SMALL_MAX)
 
+/* x := R⁻ᵀ b over the whole triangle of a Cholesky factor, unrolled (N a
+ * length the compiler knows, BRAUN_SMALL_CONST; x may be b): the short
+ * lengths of braun_chol_solve_rt_to and the dense backend's rows of
+ * C = A R⁻¹ (braun_dense.h). The zeros an envelope loop would skip add
+ * exact zeros: the same values. */
+#define BRAUN_CHOL_RT_WHOLE(N, UNROLL, R, dinv, b, x)                                   \
+    UNROLL for (int i_ = 0; i_ < (N); i_++) { /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        braun_real s_ = (b)[i_];                                                        \
+        UNROLL for (int k_ = 0; k_ < i_; k_++) s_ -= (R)[k_ * (N) + i_] * (x)[k_]; /* NOLINT(bugprone-macro-parentheses): a pragma */ \
+        (x)[i_] = s_ * (dinv)[i_];                                                      \
+    }
+
 /* y[0..len) := (I - tau v v^T) y with v = (1, vtail[0..len-1)): one
  * Householder reflector of the factorization (vtail, another column or
  * another array, never overlaps y). */
