@@ -406,6 +406,68 @@ static void test_inconsistent_single_row(void **state)
     test_sim_close(&sim);
 }
 
+/* A drive x = r·t (holonomic, rheonomic: b_q = r) and a knife forbidding
+ * x motion (nonholonomic, Φ_v = v_x): dependent rows whose positions agree
+ * at t = 0 and whose velocities cannot (Φ̇_q = v_x − r, Φ_v = v_x) unless
+ * r = 0. Before, the velocity correction took the least-squares compromise
+ * and a run ended with status 0 and the knife violated. */
+static int drive_x(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                   braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    const double r = *(const double *)u;
+    (void)v;
+    if (phi) phi[0] = q[0] - r * t;
+    if (A) { A[0] = 1; A[1] = 0; }
+    if (b) b[0] = r;
+    if (bv) bv[0] = 0;
+    return 0;
+}
+static int knife_x(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                   braun_real *A, braun_real *bv, void *u)
+{
+    (void)t; (void)q; (void)u;
+    if (phi) phi[0] = v[0];
+    if (A) { A[0] = 1; A[1] = 0; }
+    if (bv) bv[0] = 0;
+    return 0;
+}
+
+static void test_inconsistent_velocities(void **state)
+{
+    (void)state;
+    double rate = 1.0;
+    braun_system s = {2, 1, 1, BRAUN_MASS_CONSTANT, line_mass, line_forces, drive_x, knife_x,
+                      NULL, NULL, &rate, NULL};
+    const double q0[2] = {0, 0}, v0[2] = {0.5, 1};
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
+                     BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
+    assert_string_equal(sim.data.error.where, "velocity-level constraint rows");
+    assert_near(sim.data.error.value, sqrt(0.5), 1e-12); /* |(−0.5) − 0.5|/sqrt(2) */
+    assert_true((sim.data.error.index == 0 && sim.data.error.index2 == 1) ||
+                (sim.data.error.index == 1 && sim.data.error.index2 == 0));
+    assert_true(sim.data.t == 0 && sim.data.q[0] == 0 && sim.data.v[0] == 0.5);
+    {
+        char what[256];
+        braun_error_format(&sim.data, what, sizeof what);
+        assert_non_null(strstr(what, "velocity-level constraint rows disagree by 0.707"));
+    }
+    /* Rates that agree (r = 0, the knife's v_x = 0): merely redundant. */
+    rate = 0;
+    const double v1[2] = {0.5, 1}; /* both rows' velocity error 0.5: removed */
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v1), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 0, NULL, NULL), BRAUN_OK);
+    assert_near(sim.data.v[0], 0, 1e-12);
+    assert_near(sim.data.q[1], 1, 1e-12);
+    /* A new braun_set_state is judged again. */
+    rate = 1;
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
+    test_sim_close(&sim);
+}
+
 /* A NaN from a callback at the user's state is named with its entry. The
  * library checks only the results and scans the outputs on failure. */
 static int nan_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,
@@ -477,6 +539,7 @@ int main(void)
         cmocka_unit_test(test_inconsistent_constraints),
         cmocka_unit_test(test_inconsistent_rows_named),
         cmocka_unit_test(test_inconsistent_single_row),
+        cmocka_unit_test(test_inconsistent_velocities),
         cmocka_unit_test(test_infinite_jacobian_is_named),
         cmocka_unit_test(test_nonfinite_callback_outputs_are_named),
         cmocka_unit_test(test_status_names),

@@ -252,7 +252,11 @@ typedef struct braun_options {
     /* When the holonomic rows are dependent (rank-deficient factorization),
      * the part of the position error Φ_q + hΦ̇_q outside the range of C_q
      * cannot be removed by any motion: above this (absolute, constraint
-     * units) the step fails with BRAUN_ERR_INCONSISTENT. <= 0: sqrt(ε). */
+     * units) the step fails with BRAUN_ERR_INCONSISTENT. The same bound
+     * holds for the velocity-level rows [A_q; A_vv] at the first velocity
+     * correction after braun_set_state: the part of [Φ̇_q; Φ_v] outside
+     * the range of C_v (two drives of one joint at different rates, a
+     * knife across a driven slider). <= 0: sqrt(ε). */
     braun_real inconsistency_tol;
     /* Accuracy guard (docs/robustness.md, "The accuracy guard"): a step
      * whose start finds a residual above its bound stops the run with
@@ -335,8 +339,10 @@ typedef struct braun_error_info {
     const char *where;  /* static string: "mass", "forces", "state q", ... */
     int index;          /* row/entry involved, or -1 */
     int index2;         /* column, or -1; BRAUN_ERR_INCONSISTENT: index and
-                         * index2 are the two holonomic rows that disagree
-                         * most (largest least-squares residual); index2 is
+                         * index2 are the two rows that disagree most
+                         * (largest least-squares residual; holonomic rows,
+                         * or rows of [A_q; A_vv] when `where` says
+                         * "velocity-level"); index2 is
                          * -1 when no other row's residual exceeds the
                          * tolerance (one row that cannot be met alone) */
     double value;       /* offending value (pivot, asymmetry, ...) */

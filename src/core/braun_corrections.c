@@ -101,34 +101,48 @@ static void position_rhs(braun_priv *pv)
     for (int i = 0; i < pv->m; i++) pv->ep[i] = -(pv->phi[i] + h * pv->ev[i]);
 }
 
-/* The failure of Eq. 16's dependent rows, naming the two rows that
- * disagree most: the largest entries of the least-squares residual
- * A·dq − ep (a rare path: the user's program can name the joints). A
- * second row is named only if its own entry exceeds the tolerance: a row
+/* The failure of dependent rows, naming the two that disagree most: the
+ * largest entries of the least-squares residual A·x − sign·r over the
+ * first `rows` rows (a rare path: the user's program can name the joints).
+ * A second row is named only if its own entry exceeds the tolerance: a row
  * whose gradient depends on the others' while its error does not (a joint
  * started at a singular configuration) is alone in the residual. */
-static BRAUN_NOINLINE int inconsistent(braun_data *d, braun_real resid, braun_real tol)
+static BRAUN_NOINLINE int disagreeing_rows(braun_data *d, int rows, const braun_real *x,
+                                           const braun_real *r, braun_real sign, braun_real resid,
+                                           braun_real tol, const char *what)
 {
     braun_priv *pv = braun__priv(d);
-    braun_real *dq = pv->dq;
     int worst = -1, next = -1;
     braun_real rw = -1, rn = -1;
-    braun__solve_r(pv, dq, dq);
-    for (int i = 0; i < pv->m; i++) {
-        const braun_real r = braun_fabs(braun__row_dot(pv, i, dq) - pv->ep[i]);
-        if (r > rw) {
+    for (int i = 0; i < rows; i++) {
+        const braun_real e = braun_fabs(braun__row_dot(pv, i, x) - sign * r[i]);
+        if (e > rw) {
             next = worst;
             rn = rw;
             worst = i;
-            rw = r;
-        } else if (r > rn) {
+            rw = e;
+        } else if (e > rn) {
             next = i;
-            rn = r;
+            rn = e;
         }
     }
     if (!(rn > tol)) next = -1;
-    return braun__fail(d, BRAUN_ERR_INCONSISTENT, "holonomic constraints", worst, next, (double)resid,
-                       (double)pv->at.t);
+    return braun__fail(d, BRAUN_ERR_INCONSISTENT, what, worst, next, (double)resid, (double)pv->at.t);
+}
+
+/* Eq. 16's dependent rows disagree: A·dq ≠ ep. */
+static BRAUN_NOINLINE int inconsistent(braun_data *d, braun_real resid, braun_real tol)
+{
+    braun_priv *pv = braun__priv(d);
+    braun__solve_r(pv, pv->dq, pv->dq);
+    return disagreeing_rows(d, pv->m, pv->dq, pv->ep, 1, resid, tol, "holonomic constraints");
+}
+
+/* The library's inconsistency tolerance (options.inconsistency_tol). */
+static braun_real inconsistency_tol(const braun_data *d)
+{
+    return d->model->opt.inconsistency_tol > 0 ? d->model->opt.inconsistency_tol
+                                               : braun_sqrt(BRAUN_EPS);
 }
 
 /* The round-off floor of a correction's right-hand side (braun_linsolver.h
@@ -181,8 +195,7 @@ static int stage_position(braun_data *d)
         rhs_floor(pv, slot, m, pv->at.q, BRAUN_RHS_FLOOR_Q);
         braun__lsq(pv, slot, pv->ep, pv->dq, &resid);
         rhs_floor(pv, slot, m, pv->at.q, 0);
-        const braun_real tol = d->model->opt.inconsistency_tol > 0 ? d->model->opt.inconsistency_tol
-                                                                   : braun_sqrt(BRAUN_EPS);
+        const braun_real tol = inconsistency_tol(d);
         if (resid > tol) return inconsistent(d, resid, tol);
     } else {
         braun__pinv(pv, slot, pv->ep, pv->dq);
@@ -207,6 +220,28 @@ static void velocity_finish(braun_priv *pv)
     for (int i = 0; i < n; i++) pv->dv[i] = -pv->dv[i];
 }
 
+/* First-order consistency, judged once after braun_set_state: dependent
+ * velocity-level rows must agree, A·dv = −[Φ̇_q; Φ_v] (two drives of one
+ * joint at different rates; a knife across a driven slider). Later the
+ * holonomic rows' disagreement shows in Eq. 16 (the positions drift
+ * apart), but a nonholonomic row's would only be left uncorrected, and a
+ * run would end with status 0 and the rows violated. Only at the start:
+ * within a run a row dropped near a singular configuration leaves its
+ * velocity error along the weak direction by design (docs/method.md). */
+static BRAUN_NOINLINE int velocity_consistent(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    braun_real r2 = 0;
+    for (int i = 0; i < pv->rows; i++) {
+        const braun_real e = braun__row_dot(pv, i, pv->dv) + pv->ev[i];
+        r2 += e * e;
+    }
+    const braun_real resid = braun_sqrt(r2), tol = inconsistency_tol(d);
+    if (!(resid > tol)) return BRAUN_OK;
+    return disagreeing_rows(d, pv->rows, pv->dv, pv->ev, -1, resid, tol,
+                            "velocity-level constraint rows");
+}
+
 static int stage_velocity(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
@@ -215,6 +250,10 @@ static int stage_velocity(braun_data *d)
     braun__pinv(pv, 0, pv->ev, pv->dv);
     if (deficient) rhs_floor(pv, 0, pv->rows, pv->at.v, 0); /* exact again */
     velocity_finish(pv);
+    if (!pv->vel_judged) {
+        pv->vel_judged = 1;
+        if (deficient) return velocity_consistent(d);
+    }
     return BRAUN_OK;
 }
 

@@ -90,6 +90,7 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
                     ((s->flags & BRAUN_ENERGY_INPUT) || s->energy);
     pv->R_is_constant = 0;
     pv->state_integrated = 0;
+    pv->vel_judged = 0;
     pv->state_set = 0;
     pv->flags = s->flags;
     pv->busy = 0;
@@ -175,6 +176,7 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
      * factorization, made at braun_data_init, stays counted). */
     d->stats = (braun_stats){0, 0, 0, pv->R_is_constant ? 1 : 0, 0, 0, 0, 0};
     pv->state_integrated = 0;
+    pv->vel_judged = 0;
     pv->state_set = 1;
     pv->has_prev = 0;
     pv->t_lo = 0;

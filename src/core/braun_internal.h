@@ -90,6 +90,7 @@ typedef struct braun_priv {
     int work_rows;        /* rows whose work rate stage power adds (not scleronomic, a law or input) */
     int R_is_constant;    /* R computed once in braun_data_init */
     int state_integrated; /* the state came from a step, not braun_set_state */
+    int vel_judged;       /* the first velocity correction since braun_set_state ran (rows' consistency) */
     int state_set;        /* braun_set_state was called */
     unsigned flags;       /* sys.flags at braun_data_init (braun__check_system) */
     /* A driver runs on this data (1: braun_step, braun_integrate or

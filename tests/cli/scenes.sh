@@ -138,6 +138,36 @@ check "check and run: a universal joint started with parallel axes cannot be met
     grep -q "joint .h. (universal) (row 3) cannot be met (its gradient depends on the other rows" "$4" &&
     grep -q "(row 3: its gradient depends on the other rows. here, its error does not) at t = 0; row 3 is joint .h. (universal)" "$5"' \
     sh "$rc" "$rc2" "$TMP/uni.out" "$TMP/uni.err" "$TMP/unir.err"
+# Positions that agree, velocities that do not: a knife edge across a
+# driven slider; two drives of one crank at different rates. check says so
+# and names them; run stops at its first step (before, the knife's run
+# ended with exit 0 and the knife violated throughout).
+cat > "$TMP/knife-drive.json" <<'EOF'
+{"name": "knife-drive",
+ "bodies": [{"name": "sled", "type": "rigid", "mass": 1, "inertia": 0.1, "position": [0, 0]}],
+ "joints": [{"name": "rail", "type": "slider", "point": "sled", "line": [0, 0], "axis": [1, 0],
+             "drive": {"type": "linear", "value": 0, "rate": 1}},
+            {"name": "turn", "type": "angle", "a": "ground", "b": "sled", "angle": 0},
+            {"name": "blade", "type": "knife", "body": "sled", "direction": [0, 1]}]}
+EOF
+"$BRAUN" check "$TMP/knife-drive.json" > "$TMP/kd.out" 2> "$TMP/kd.err"; rc=$?
+"$BRAUN" run "$TMP/knife-drive.json" --dt 1e-3 --t-end 1 > /dev/null 2> "$TMP/kdr.err"; rc2=$?
+check "check and run: a knife across a driven slider: consistent: no, exit 1, slider and knife named" sh -c '
+    [ "$1" -eq 1 ] && [ "$2" -eq 1 ] && grep -q "^consistent: no$" "$3" && [ "$(wc -l < "$4")" -eq 1 ] &&
+    grep -q "^braun: knife-drive: the constraints. velocities have no solution at the initial state: joint .rail. (slider) (row 1) and joint .blade. (knife) (row 3) disagree (the least-squares residual of their velocity error, 0.707," "$4" &&
+    grep -q "dependent velocity-level constraint rows disagree by 0.707.* at t = 0; row [13] is joint .[a-z]*. ([a-z]*), row [13] is joint .[a-z]*. ([a-z]*) (BRAUN_ERR_INCONSISTENT" "$5" &&
+    grep -q "joint .blade. (knife)" "$5"' \
+    sh "$rc" "$rc2" "$TMP/kd.out" "$TMP/kd.err" "$TMP/kdr.err"
+sed 's|"rate": 6.283185307179586}}|&,\
+    {"name": "drive2", "type": "angle", "a": "ground", "b": "crank", "drive": {"type": "linear", "value": 0, "rate": 6.2831863}}|' \
+    data/driven-crank.json > "$TMP/double-drive.json"
+"$BRAUN" check "$TMP/double-drive.json" > "$TMP/dd.out" 2> "$TMP/dd.err"; rc=$?
+"$BRAUN" run "$TMP/double-drive.json" --dt 1e-3 --t-end 1 > /dev/null 2> "$TMP/ddr.err"; rc2=$?
+check "check and run: two drives of one crank, rates 1e-6 rad/s apart: consistent: no, both named, run stops at t = 0" sh -c '
+    [ "$1" -eq 1 ] && [ "$2" -eq 1 ] && grep -q "^consistent: no$" "$3" && grep -q "^rank: 6$" "$3" &&
+    grep -q "joint .drive2*. (angle) (row [56]) and joint .drive2*. (angle) (row [56]) disagree (the least-squares residual of their velocity error, 7.0" "$4" &&
+    grep -q "velocity-level constraint rows disagree by 7.0.* at t = 0; row [56] is joint .drive2*. (angle), row [56] is joint .drive2*. (angle)" "$5"' \
+    sh "$rc" "$rc2" "$TMP/dd.out" "$TMP/dd.err" "$TMP/ddr.err"
 for f in data/parallelogram-redundant.json data/iftomm/a04-bricard.json four-bar; do
     "$BRAUN" check "$f" > "$TMP/cons.out" 2>&1; rc=$?
     check "check $f (redundant rows that agree, or none): consistent: yes" sh -c '

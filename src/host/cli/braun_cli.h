@@ -178,10 +178,11 @@ void braun_cli_guard_wrap(braun_cli_guard *g, const braun_system *sys,
 const char *braun_cli_guard_element(const braun_cli_guard *g, double t);
 
 /* ------------------------------------------------------- rows (cli_rows.c) */
-/* The element of a scene file that owns holonomic row `row`, as its file
- * names it: "joint 'knee' (revolute)", "joint #3 (distance)", "rod #2",
- * "body 'b' (rigid3d: its own constraint)"; NULL without a scene or past
- * its rows. */
+/* The element of a scene file that owns row `row` of [Φ_q; Φ_v] (the
+ * nonholonomic rows after the m holonomic ones), as its file names it:
+ * "joint 'knee' (revolute)", "joint #3 (distance)", "rod #2",
+ * "body 'b' (rigid3d: its own constraint)", "joint 'blade' (knife)"; NULL
+ * without a scene or past its rows. */
 const char *braun_cli_row_owner(const braun_scene_file *sf, int row, char *buf, size_t size);
 
 /* ------------------------------------------------------ models (cli_model.c) */

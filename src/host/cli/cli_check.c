@@ -165,13 +165,15 @@ static int weight_rows(int rows, int n, const double *M, double *A)
     return 0;
 }
 
-/* Whether the holonomic rows can all hold at the initial state, to first
- * order: the least-squares residual of C x = −Φ_q (C = A_q R⁻¹, the rows
- * as the solver weighs them; T: m x n doubles, destroyed). Rows of full
- * rank always can; dependent rows must agree, as the library's position
- * correction requires (braun_corrections.c: above options.inconsistency_tol,
- * default sqrt(ε), a run fails with BRAUN_ERR_INCONSISTENT). *resid: ‖e‖;
- * e: the residual vector (m), whose largest entries are the rows that
+/* Whether m rows can all hold at the initial state, to first order: the
+ * least-squares residual of C x = −phi (C = A R⁻¹, the rows as the solver
+ * weighs them; T: m x n doubles, destroyed). Rows of full rank always can;
+ * dependent rows must agree, as the library's position correction requires
+ * (braun_corrections.c: above options.inconsistency_tol, default sqrt(ε), a
+ * run fails with BRAUN_ERR_INCONSISTENT). Called with the holonomic rows
+ * and phi = Φ_q (positions), then with all rows [A_q; A_vv] and their
+ * velocity error phi = [A_q v − b_q; Φ_v] (velocities). *resid: ‖e‖; e:
+ * the residual vector (m), whose largest entries are the rows that
  * disagree; *rank_q: the rows' rank. Returns 1 consistent, 0 not, -1 out
  * of memory. */
 static int consistent_rows(int m, int n, const double *C, const double *phi, double *T,
@@ -280,9 +282,11 @@ static int report(const braun_cli_target *tg)
     /* The holonomic rows' consistency: Φ_q, the residual, and m x n doubles
      * of work (Md's once it is spent, when they fit). */
     double *phi = calloc((size_t)m + 1, sizeof(double)), *e = calloc((size_t)m + 1, sizeof(double));
-    double *T = m > n ? calloc((size_t)m * n, sizeof(double)) : NULL;
+    /* ... and of the velocity rows: [A_q v − b_q; Φ_v], then its residual. */
+    double *ev = calloc((size_t)rows + 1, sizeof(double));
+    double *T = rows > n ? calloc((size_t)rows * n, sizeof(double)) : NULL;
     int rc = BRAUN_CLI_FAILED;
-    if (!buf || !M || !A || !scratch || !Md || !Ad || !phi || !e || (m > n && !T)) {
+    if (!buf || !M || !A || !scratch || !Md || !Ad || !phi || !e || !ev || (rows > n && !T)) {
         braun_cli_error("out of memory");
         goto done;
     }
@@ -308,16 +312,22 @@ static int report(const braun_cli_target *tg)
         braun_cli_error("%s: the holonomic callback failed at the initial state", tg->name);
         goto done;
     }
-    for (int i = 0; i < m; i++) phi[i] = (double)scratch[i];
+    for (int i = 0; i < m; i++) {
+        phi[i] = (double)scratch[i];
+        double dphi = -(double)scratch[rows + i]; /* Φ̇_q = A_q v − b_q */
+        for (int k = 0; k < n; k++) dphi += (double)A[(size_t)i * n + k] * (double)tg->v0[k];
+        ev[i] = dphi;
+    }
     if (p > 0 && s->nonholonomic(0, tg->q0, tg->v0, scratch, A + (size_t)m * n,
                                  scratch + 2 * rows, s->user) != 0) {
         braun_cli_error("%s: the nonholonomic callback failed at the initial state", tg->name);
         goto done;
     }
+    for (int i = 0; i < p; i++) ev[m + i] = (double)scratch[i];
     for (size_t i = 0; i < nn; i++) Md[i] = (double)M[i];
     for (size_t i = 0; i < rn; i++) Ad[i] = (double)A[i];
-    int rank = 0, consistent = 1;
-    double resid = 0;
+    int rank = 0, consistent = 1, vconsistent = 1, vrank = 0;
+    double resid = 0, vresid = 0;
     if (rows > 0) {
         if (weight_rows(rows, n, Md, Ad)) {
             braun_cli_error("%s: the mass matrix is not positive definite", tg->name);
@@ -326,8 +336,12 @@ static int report(const braun_cli_target *tg)
         /* The holonomic rows are Ad's first m: all of them without
          * nonholonomic rows, whose rank is then the one to print. */
         consistent = consistent_rows(m, n, Ad, phi, T ? T : Md, e, &resid, &rank);
-        if (p > 0) rank = rank_of_rows(rows, n, Ad, (double)braun_default_rank_tol(rows, n));
-        if (consistent < 0 || rank < 0) {
+        /* All rows, at the velocity level; their rank is the one to print
+         * (the holonomic rows' alone without nonholonomic rows). ev
+         * becomes its residual. */
+        vconsistent = consistent_rows(rows, n, Ad, ev, T ? T : Md, ev, &vresid, &vrank);
+        if (p > 0) rank = vrank;
+        if (consistent < 0 || vconsistent < 0 || rank < 0) {
             braun_cli_error("out of memory");
             goto done;
         }
@@ -340,7 +354,7 @@ static int report(const braun_cli_target *tg)
     printf("n: %d\nm: %d\np: %d\n", n, m, p);
     printf("rank: %d\nredundant: %d\ndof: %d\n", rank, rows - rank, n - rank);
     printf("position_residual: %.3g\nvelocity_residual: %.3g\n", (double)pos, (double)vel);
-    printf("consistent: %s\n", consistent ? "yes" : "no");
+    printf("consistent: %s\n", consistent && vconsistent ? "yes" : "no");
     printf("mass_matrix: %s\n", s->flags & BRAUN_MASS_CONSTANT ? "constant" : "varies");
     printf("energy_law: %s\n", s->energy ? "yes" : "no");
     printf("energy_input: %s\n", s->flags & BRAUN_ENERGY_INPUT ? "yes" : "no");
@@ -366,6 +380,28 @@ static int report(const braun_cli_target *tg)
                             "tolerance %.3g: braun run stops with BRAUN_ERR_INCONSISTENT)",
                             tg->name, who, resid, sqrt((double)BRAUN_EPS));
         rc = BRAUN_CLI_FAILED;
+    } else if (!vconsistent) {
+        /* The positions hold but the velocities cannot: dependent rows
+         * whose rates disagree (two drives of one joint) drift apart from
+         * t = 0 on. A run's position correction meets the disagreement
+         * times h at its first step, and the positions' own soon after. */
+        char who[800];
+        if (name_disagreeing(tg, rows, ev, who, sizeof who) == 1)
+            braun_cli_error("%s: the constraints' velocities have no solution at the initial state: "
+                            "%s cannot be met (its gradient depends on the other rows' here, its "
+                            "velocity error does not; least-squares residual %.3g, above the "
+                            "library's inconsistency tolerance %.3g: braun run stops with "
+                            "BRAUN_ERR_INCONSISTENT at its first step when the velocity correction "
+                            "is on)",
+                            tg->name, who, vresid, sqrt((double)BRAUN_EPS));
+        else
+            braun_cli_error("%s: the constraints' velocities have no solution at the initial state: "
+                            "%s disagree (the least-squares residual of their velocity error, %.3g, "
+                            "is above the library's inconsistency tolerance %.3g: braun run stops "
+                            "with BRAUN_ERR_INCONSISTENT at its first step when the velocity "
+                            "correction is on)",
+                            tg->name, who, vresid, sqrt((double)BRAUN_EPS));
+        rc = BRAUN_CLI_FAILED;
     }
 done:
     free(buf);
@@ -376,6 +412,7 @@ done:
     free(Ad);
     free(phi);
     free(e);
+    free(ev);
     free(T);
     return rc;
 }
