@@ -468,6 +468,52 @@ static void test_inconsistent_velocities(void **state)
     test_sim_close(&sim);
 }
 
+/* M = diag(1 + x², 1 + t) declared BRAUN_MASS_CONSTANT: the library
+ * factored M(0, 0) = I once and would use it everywhere. The claim is
+ * checked where it costs no step: at braun_set_state and at a driver's last
+ * state. */
+static int varying_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    const int *which = u; /* 0: M(x), 1: M(t) */
+    M[0] = 1 + (*which == 0 ? q[0] * q[0] : 0);
+    M[3] = 1 + (*which == 1 ? t : 0);
+    M[1] = M[2] = 0;
+    return 0;
+}
+
+static void test_mass_constant_claim_checked(void **state)
+{
+    (void)state;
+    int which = 0;
+    braun_system s = {2, 0, 0, BRAUN_MASS_CONSTANT, varying_mass, line_forces, NULL, NULL, NULL,
+                      NULL, &which, NULL};
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_NONE), BRAUN_OK);
+    /* M(q) at the start differs: refused, nothing set. */
+    const double q1[2] = {0.5, 0}, q0[2] = {0, 0}, v0[2] = {1, 0};
+    assert_int_equal(braun_set_state(&sim.data, 0, q1, v0), BRAUN_ERR_ARGUMENT);
+    assert_string_equal(sim.data.error.where,
+                        "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)");
+    assert_true(sim.data.error.value > 0.05);
+    /* Where M(q) equals M(0, 0) the start passes; the motion leaves it
+     * (x = t) and the driver's last state says so. */
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 0, NULL, NULL),
+                     BRAUN_ERR_ARGUMENT);
+    assert_near(sim.data.error.t, 1.0, 1e-12);
+    /* M(t): the same at the end of the span. */
+    which = 1;
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 0.5, 0, NULL, NULL),
+                     BRAUN_ERR_ARGUMENT);
+    braun_adaptive ctl = {1e-6, 1e-8, 0, 0, 0, 0};
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 0.5, 0, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    test_sim_close(&sim);
+    /* A mass matrix that is constant passes everywhere (the built-in
+     * models, the scenes: every test that runs them). */
+}
+
 /* A NaN from a callback at the user's state is named with its entry. The
  * library checks only the results and scans the outputs on failure. */
 static int nan_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,
@@ -540,6 +586,7 @@ int main(void)
         cmocka_unit_test(test_inconsistent_rows_named),
         cmocka_unit_test(test_inconsistent_single_row),
         cmocka_unit_test(test_inconsistent_velocities),
+        cmocka_unit_test(test_mass_constant_claim_checked),
         cmocka_unit_test(test_infinite_jacobian_is_named),
         cmocka_unit_test(test_nonfinite_callback_outputs_are_named),
         cmocka_unit_test(test_status_names),

@@ -64,6 +64,12 @@ BRAUN_FORCE_INLINE int guard_rows(braun_data *d, unsigned corr, int accel)
     return st;
 }
 
+int braun__final_checks(braun_data *d)
+{
+    const int st = braun__check_mass_claim(d, d->t, d->q);
+    return st ? st : braun__guard_final(d);
+}
+
 /* A driver's last state: no next step starts there to check it, so one
  * evaluation of the residuals does (constraints and energy; no
  * factorization, no right-hand side). */

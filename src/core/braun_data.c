@@ -160,10 +160,12 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     if (st) return st;
     st = braun__check_finite(d, n, v, "state v", 0, t);
     if (st) return st;
-    /* E0 first: a start whose energy cannot be evaluated changes nothing
-     * (the last run's state stays, and so does whether one is set). */
+    /* E0 and the mass claim first: a start whose energy cannot be
+     * evaluated changes nothing (the last run's state stays, and so does
+     * whether one is set). */
     braun_real E0;
     st = braun__energy(d, t, q, v, &E0);
+    if (!st) st = braun__check_mass_claim(d, t, q);
     if (st) return st;
     for (int i = 0; i < n; i++) {
         d->q[i] = q[i];

@@ -62,6 +62,56 @@ static int stage_mass(braun_data *d)
     return BRAUN_OK;
 }
 
+/* BRAUN_MASS_CONSTANT is a claim: M was evaluated and factored once, at
+ * t = 0, q = 0 (braun_data_init). A mass matrix that does vary (relative
+ * coordinates, a body's inertia in world axes) would be taken as M(0, 0)
+ * everywhere, a wrong motion with no other sign. Checked at braun_set_state
+ * and at a driver's last state — a mass callback and n² (block) products,
+ * never inside a step: the quadratic forms xᵀM(t, q)x and ‖R x‖² of a
+ * fixed probe x must agree within sqrt(ε) of Σ|x_i M_ij x_j| (round-off
+ * of the factor is about n²ε of it). */
+int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q)
+{
+    braun_priv *pv = braun__priv(d);
+    if (!pv->R_is_constant || !pv->Mcheck) return BRAUN_OK;
+    const braun_system *s = &d->model->sys;
+    const int n = pv->n;
+    int st = braun__callback(d, s->mass(t, q, pv->Mcheck, s->user), "mass", t);
+    if (!st) st = braun__check_finite(d, (int)pv->mass_count, pv->Mcheck, "mass", pv->sp ? 0 : n, t);
+    if (st) return st;
+    braun_real *x = pv->ce, *rx = pv->tmp;
+    for (int i = 0; i < n; i++) x[i] = 1 + (braun_real)((i * 7) % 11) / 16; /* no symmetry of a model */
+    braun_real form = 0, scale = 0;
+    const braun_real *M = pv->Mcheck;
+    if (pv->sp) {
+        /* Diagonal blocks, each row-major. */
+        int off = 0;
+        for (int k = 0; k < pv->sp->nblocks; k++) {
+            const int b = pv->sp->block[k];
+            for (int i = 0; i < b; i++)
+                for (int j = 0; j < b; j++) {
+                    const braun_real e = x[off + i] * *M++ * x[off + j];
+                    form += e;
+                    scale += braun_fabs(e);
+                }
+            off += b;
+        }
+    } else {
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++) {
+                const braun_real e = x[i] * M[(size_t)i * (size_t)n + (size_t)j] * x[j];
+                form += e;
+                scale += braun_fabs(e);
+            }
+    }
+    braun__mul_r(pv, x, rx);
+    const braun_real diff = braun_fabs(form - braun_dot(n, rx, rx));
+    if (diff <= braun_sqrt(BRAUN_EPS) * scale) return BRAUN_OK;
+    return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                       "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)", -1, -1,
+                       scale > 0 ? (double)(diff / scale) : (double)diff, (double)t);
+}
+
 /* ================================================================ */
 /* Stage forces: the applied and inertial forces Q(t, q, v) of Eq. 1 and the
  * unconstrained acceleration a = M⁻¹Q (Eq. 9), kept in weighted form

@@ -9,7 +9,7 @@
 static int finish_failed(braun_data *d, int failed, int due, braun_output_fn out, void *out_user)
 {
     const braun_error_info failure = d->error;
-    int st = braun__guard_final(d);
+    int st = braun__final_checks(d);
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
     if (st) return st;
     d->error = failure;
@@ -66,7 +66,7 @@ static int integrate(braun_data *d, braun_method method, braun_real h, braun_rea
             return BRAUN_STOPPED;
         braun__commit(d, pv->y1, t_new, t_lo);
     }
-    st = braun__guard_final(d);
+    st = braun__final_checks(d);
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
     if (st) return st;
     if (out && out(d, out_user)) return BRAUN_STOPPED;

@@ -111,6 +111,7 @@ typedef struct braun_priv {
      * into Avals and Mvals; dense solvers get them scattered into A / M. */
     const braun_sparsity *sp;
     braun_real *Avals;    /* nnz = sp->row_ptr[rows] */
+    braun_real *Mcheck;   /* BRAUN_MASS_CONSTANT: M(t, q) of the claim's check */
     braun_real *Mvals;    /* mass callback output when the solver does not
                              take it in place: mass_count values */
     size_t mass_count;    /* n*n dense, sum of block^2 sparse */
@@ -261,6 +262,11 @@ int braun__guard_final(braun_data *d);
 
 /* Stage mass alone (braun_data_init factors a constant M with it). */
 int braun__stage_mass(braun_data *d);
+/* BRAUN_MASS_CONSTANT checked at a state: M(t, q) must be the M factored
+ * at braun_data_init (braun_set_state, a driver's last state). */
+int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q);
+/* A driver's last state: the mass claim, then the guard. */
+int braun__final_checks(braun_data *d);
 /* Stage constraints alone at pv->at: A, b_v and, with residuals, Φ, b_q
  * and [Φ̇_q; Φ_v] (the corrections at a step's end re-measure the
  * velocity-level residual at the corrected position). */

@@ -26,6 +26,7 @@ typedef struct shape {
     int dense;         /* the solver wants dense A and M */
     int sparse;        /* the system has a sparsity */
     int in_place;      /* the solver takes M in its own buffer (mass_buffer) */
+    int mass_constant; /* BRAUN_MASS_CONSTANT: the claim is checked (Mcheck) */
 } shape;
 
 /* The buffers: field of braun_priv, reals. */
@@ -40,6 +41,8 @@ typedef struct shape {
     X(Mvals, !(s).in_place || (s).sparse ? (s).mass_count : 0)                       \
     /* a dense solver without its own M buffer, given a sparse system */             \
     X(Mdense, (s).dense && (s).sparse && !(s).in_place ? (s).nn : 0)                 \
+    /* M(t, q) against the constant M's factor (braun__check_mass_claim) */          \
+    X(Mcheck, (s).mass_constant ? (s).mass_count : 0)                                \
     X(phi, (s).rows)                                                                 \
     X(b, (s).m)                                                                      \
     X(bv, (s).rows)                                                                  \
@@ -75,6 +78,7 @@ static shape shape_of(const braun_model *model, const braun_linsolver *ls)
     s.dense = (ls->flags & BRAUN_LS_DENSE) != 0;
     s.sparse = sp != NULL;
     s.in_place = ls->mass_buffer != NULL;
+    s.mass_constant = (sys->flags & BRAUN_MASS_CONSTANT) != 0;
     s.nnz = 0;
     s.mass_count = s.nn;
     if (sp) {
