@@ -231,9 +231,12 @@ static void velocity_finish(braun_priv *pv)
  * joint at different rates; a knife across a driven slider). Later the
  * holonomic rows' disagreement shows in Eq. 16 (the positions drift
  * apart), but a nonholonomic row's would only be left uncorrected, and a
- * run would end with status 0 and the rows violated. Only at the start:
- * within a run a row dropped near a singular configuration leaves its
- * velocity error along the weak direction by design (docs/method.md). */
+ * run would end with status 0 and the rows violated. Rows without a time
+ * term cannot trip it: their error A v lies in the range of C = A R⁻¹
+ * (up to the dropped pivots, below the plain rank tolerance at a start).
+ * Only at the start: within a run the rank rule keeps a row dropped near
+ * a singular configuration (pivots up to sqrt(ε)), whose velocity error
+ * along the weak direction then stays by design (docs/method.md). */
 static BRAUN_NOINLINE int velocity_consistent(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
