@@ -44,7 +44,8 @@ CORE_SRC := $(sort $(shell find src/core -name '*.c'))
 # The host tier's library (error formatting, reference oracles, scene files,
 # scene-to-C): libbraun_host.a, with jansson.
 HOST_SRC := $(sort $(wildcard src/host/error/*.c src/host/reference/*.c \
-                              src/host/scene_file/*.c src/host/gen_c/*.c))
+                              src/host/scene_file/*.c src/host/gen_c/*.c \
+                              src/host/check/*.c))
 CLI_SRC  := $(sort $(wildcard src/host/cli/*.c))
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/obj/%.o)
 HOST_OBJ := $(HOST_SRC:%.c=$(BUILD)/obj/%.o)

@@ -30,6 +30,41 @@ extern "C" {
  * included; only a NULL d cannot be). */
 int braun_error_format(const braun_data *d, char *buf, size_t size);
 
+/* Your callbacks against finite differences of themselves at one state
+ * (t, q, v) — the Jacobians and b-terms the library takes as given, and
+ * whose mistakes its corrections hide (a wrong b_qv is removed step by step
+ * as drift; a law that disagrees with the forces is enforced). Each figure
+ * is the largest difference over the quantity's scale (0 where the system
+ * has no such rows or law):
+ *   jacobian_q  A_q against ∂Φ_q/∂q
+ *   b_q         against −∂Φ_q/∂t
+ *   b_qv        against −d/dt(A_q v − b_q) along (t, q) → (t + τ, q + τv)
+ *   jacobian_v  A_vv against ∂Φ_v/∂v
+ *   b_vv        against −d/dt Φ_v along the same line
+ *   energy_gradient  dE_dq, dE_dv, dE_dt against differences of E
+ *   energy_rate |dE/dt along the ideal motion − Ė| over its terms, with
+ *               Ė = power (BRAUN_ENERGY_INPUT) + the constraint force's
+ *               work rate: judged only at a state on the constraints
+ *               (state_residual, ‖Φ_q‖ + ‖[Φ̇_q; Φ_v]‖, below 1e-8 of the
+ *               state's size), NaN elsewhere.
+ * Central differences in double (about 1e-10 of a smooth callback's
+ * scale). Returns BRAUN_OK when every figure is at most tol (≤ 0: 1e-6),
+ * BRAUN_ERR_ARGUMENT when one is above it (rep->worst names the entry of
+ * the first such figure in the order above, e.g. "A_q[2][2]", "b_qv[3]",
+ * "energy rate" — a wrong A_q also shows in b_qv; rep->worst_value its
+ * figure; with none above tol, the largest), or the status of
+ * what failed (an invalid system, a callback, BRAUN_ERR_BUFFER). Sparse
+ * systems too (their compressed rows are scattered). Check a few states,
+ * moving ones included: at rest the velocity terms are not exercised. */
+typedef struct braun_callback_report {
+    double jacobian_q, b_q, b_qv, jacobian_v, b_vv, energy_gradient, energy_rate;
+    double state_residual;
+    double worst_value;
+    char worst[64];
+} braun_callback_report;
+int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_real *q,
+                          const braun_real *v, double tol, braun_callback_report *rep);
+
 #ifdef __cplusplus
 }
 #endif

@@ -168,6 +168,13 @@ check "check and run: two drives of one crank, rates 1e-6 rad/s apart: consisten
     grep -q "joint .drive2*. (angle) (row [56]) and joint .drive2*. (angle) (row [56]) disagree (the least-squares residual of their velocity error, 7.0" "$4" &&
     grep -q "velocity-level constraint rows disagree by 7.0.* at t = 0; row [56] is joint .drive2*. (angle), row [56] is joint .drive2*. (angle)" "$5"' \
     sh "$rc" "$rc2" "$TMP/dd.out" "$TMP/dd.err" "$TMP/ddr.err"
+# Every shipped scene's callbacks agree with their own finite differences
+# at the initial state (braun_check_callbacks); the line is the last one.
+for f in data/*.json data/iftomm/*.json slider-crank four-bar pendulum andrews; do
+    "$BRAUN" check "$f" > "$TMP/cb.out" 2>&1; rc=$?
+    check "check $f: callbacks: yes, the last line" sh -c '
+        [ "$1" -eq 0 ] && tail -n 1 "$2" | grep -q "^callbacks: yes (largest difference "' sh "$rc" "$TMP/cb.out"
+done
 for f in data/parallelogram-redundant.json data/iftomm/a04-bricard.json four-bar; do
     "$BRAUN" check "$f" > "$TMP/cons.out" 2>&1; rc=$?
     check "check $f (redundant rows that agree, or none): consistent: yes" sh -c '

@@ -361,7 +361,23 @@ static int report(const braun_cli_target *tg)
     printf("corrections: %s\n",
            braun_cli_corrections_str(tg->corrections & supported, corr, sizeof corr));
     printf("reference: %s\n", tg->reference ? tg->reference->name : "none");
+    /* The callbacks against their own finite differences at the initial
+     * state (braun_check_callbacks): a wrong Jacobian, b-term or energy
+     * gradient, which a run's corrections would hide. */
+    braun_callback_report cb;
+    const int cst = braun_check_callbacks(s, 0, tg->q0, tg->v0, 0, &cb);
+    if (cst == BRAUN_OK || cst == BRAUN_ERR_ARGUMENT)
+        printf("callbacks: %s (largest difference %.2g%s%s)\n", cst ? "no" : "yes", cb.worst_value,
+               cb.worst[0] ? ", " : "", cb.worst);
+    else
+        printf("callbacks: not checked (%s)\n", braun_status_str(cst));
     rc = fflush(stdout) == 0 ? 0 : BRAUN_CLI_FAILED;
+    if (cst == BRAUN_ERR_ARGUMENT) {
+        braun_cli_error("%s: a callback disagrees with the finite differences of its own outputs at "
+                        "the initial state: %s off by %.3g of its scale (braun_check_callbacks)",
+                        tg->name, cb.worst, cb.worst_value);
+        rc = BRAUN_CLI_FAILED;
+    }
     if (!consistent) {
         /* What a run would meet at its first step, said before it. */
         char who[800];

@@ -1,0 +1,428 @@
+/* A system's callbacks against finite differences of themselves, at one
+ * state (braun_check_callbacks, braun_host.h). The library takes every
+ * Jacobian, b-term and energy gradient as given and its corrections hide a
+ * wrong one: a misprinted b_qv is removed step by step as "drift", a law
+ * that disagrees with the forces is enforced (docs/api.md, section 6).
+ * Five-point differences in double, step cbrt(ε)·max(1, |x|); each figure is
+ * the largest difference beyond the differences' own round-off, over the
+ * quantity's scale (so a quantity at rest is not judged by noise). */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "braun_host.h"
+
+typedef struct work {
+    const braun_system *s;
+    int n, m, p;
+    braun_real *q, *v, *phi, *A, *b, *bv, *M, *Q, *dq, *dv; /* callback buffers */
+    braun_real *Avals; /* a sparse system's compressed rows (else A itself) */
+    double *f0, *fp;                                       /* scratch values */
+    braun_callback_report *rep;
+    double tol;
+    int named_fail; /* rep->worst names a figure above tol: the first one in
+                     * the order checked (A_q before b_qv, whose differences
+                     * go through A_q; the gradient before the rate) */
+} work;
+
+static double fd_step(double x) { return cbrt(DBL_EPSILON) * (fabs(x) > 1 ? fabs(x) : 1); }
+
+/* One figure: analytic x[k] against finite differences d[k] (count k), the
+ * differences computed from values of magnitude up to `mag` with step tau.
+ * The worst is kept in *fig and, when it is the report's worst so far, named. */
+static void judge(work *w, double *fig, const char *name, int rows, int cols, const double *x,
+                  const double *d, double mag, double tau)
+{
+    const int count = rows * cols;
+    double scale = 0, worst = 0;
+    int at = -1;
+    for (int k = 0; k < count; k++) {
+        if (fabs(x[k]) > scale) scale = fabs(x[k]);
+        if (fabs(d[k]) > scale) scale = fabs(d[k]);
+    }
+    /* Round-off of a central difference of values of size mag (a bound,
+     * with room for cancellation inside the callback): what the differences
+     * cannot resolve is not held against the callback. */
+    const double noise = 1e2 * DBL_EPSILON * mag / tau;
+    for (int k = 0; k < count; k++) {
+        const double diff = fabs(x[k] - d[k]);
+        const double e = (diff > noise ? diff - noise : (diff == diff ? 0 : diff)) /
+                         (scale + noise + DBL_MIN);
+        if (e > worst || (e != e)) {
+            worst = e;
+            at = k;
+        }
+    }
+    if (worst > *fig || worst != worst) *fig = worst;
+    const int fails = !(worst <= w->tol);
+    if (at >= 0 && !w->named_fail && (fails || worst > w->rep->worst_value)) {
+        w->rep->worst_value = worst;
+        w->named_fail = fails;
+        if (rows > 1 && cols > 1)
+            snprintf(w->rep->worst, sizeof w->rep->worst, "%s[%d][%d]", name, at / cols, at % cols);
+        else snprintf(w->rep->worst, sizeof w->rep->worst, "%s[%d]", name, at);
+    }
+}
+
+static double max_abs(int k, const double *x)
+{
+    double s = 0;
+    for (int i = 0; i < k; i++)
+        if (fabs(x[i]) > s) s = fabs(x[i]);
+    return s;
+}
+
+/* A sparse system's compressed values of rows first..first+count−1 into
+ * the first count rows of the dense w->A. */
+static void scatter(work *w, int first, int count)
+{
+    const braun_sparsity *sp = w->s->sparsity;
+    if (!sp) return;
+    for (size_t k = 0; k < (size_t)count * w->n; k++) w->A[k] = 0;
+    const int base = sp->row_ptr[first];
+    for (int i = 0; i < count; i++)
+        for (int k = sp->row_ptr[first + i]; k < sp->row_ptr[first + i + 1]; k++)
+            w->A[(size_t)i * w->n + sp->col[k]] = w->Avals[k - base];
+}
+
+/* Φ_q (into out, m doubles) at (t, q); A_q, b_q, b_qv stay in w. */
+static int holonomic(work *w, double t, const braun_real *q, const braun_real *v, double *out)
+{
+    const int m = w->m;
+    for (int i = 0; i < m; i++) w->phi[i] = w->b[i] = w->bv[i] = 0;
+    if (w->s->holonomic((braun_real)t, q, v, w->phi, w->Avals, w->b, w->bv, w->s->user) != 0) return -1;
+    scatter(w, 0, m);
+    for (int i = 0; i < m; i++) out[i] = (double)w->phi[i];
+    return 0;
+}
+
+/* g = A_q v − b_q at (t, q) for the velocity v: its derivative along
+ * (1, v) in (t, q) at v̇ = 0 is −b_qv. */
+static int hol_rate(work *w, double t, const braun_real *q, const braun_real *v, double *g)
+{
+    if (holonomic(w, t, q, v, g)) return -1;
+    for (int i = 0; i < w->m; i++) {
+        double s = -(double)w->b[i];
+        for (int j = 0; j < w->n; j++) s += (double)w->A[(size_t)i * w->n + j] * (double)v[j];
+        g[i] = s;
+    }
+    return 0;
+}
+
+static int nonholonomic(work *w, double t, const braun_real *q, const braun_real *v, double *out)
+{
+    for (int i = 0; i < w->p; i++) w->phi[i] = w->bv[i] = 0;
+    if (w->s->nonholonomic((braun_real)t, q, v, w->phi, w->Avals, w->bv, w->s->user) != 0) return -1;
+    scatter(w, w->m, w->p);
+    for (int i = 0; i < w->p; i++) out[i] = (double)w->phi[i];
+    return 0;
+}
+
+static int energy(work *w, double t, const braun_real *q, const braun_real *v, double *E)
+{
+    braun_real e = 0, dt = 0;
+    if (w->s->energy((braun_real)t, q, v, &e, w->dq, w->dv, &dt, w->s->user) != 0) return -1;
+    *E = (double)e;
+    return 0;
+}
+
+/* What is differenced, and along which line through (t0, q0, v0). */
+enum quantity { PHI_Q, RATE_Q, PHI_V, ENERGY };
+enum direction { ALONG_T, ALONG_Q, ALONG_V, ALONG_MOTION }; /* MOTION: (1, v0, 0) */
+
+/* The quantity (count values into out) at parameter s on the line. */
+static int value_at(work *w, enum quantity f, enum direction dir, int j, double s, double t0,
+              const braun_real *q0, const braun_real *v0, double *out)
+{
+    const int n = w->n;
+    double t = t0;
+    memcpy(w->q, q0, sizeof(braun_real) * n);
+    memcpy(w->v, v0, sizeof(braun_real) * n);
+    switch (dir) {
+    case ALONG_T: t += s; break;
+    case ALONG_Q: w->q[j] = (braun_real)((double)q0[j] + s); break;
+    case ALONG_V: w->v[j] = (braun_real)((double)v0[j] + s); break;
+    case ALONG_MOTION:
+        t += s;
+        for (int k = 0; k < n; k++) w->q[k] = (braun_real)((double)q0[k] + s * (double)v0[k]);
+        break;
+    }
+    /* q and v are work copies: the callbacks get them, not the caller's. */
+    braun_real *q = w->q, *v = w->v;
+    switch (f) {
+    case PHI_Q: return holonomic(w, t, q, v, out);
+    case RATE_Q: return hol_rate(w, t, q, v0, out);
+    case PHI_V: return nonholonomic(w, t, q, v, out);
+    case ENERGY: return energy(w, t, q, v, out);
+    }
+    return -1;
+}
+
+/* The derivative of the quantity along the line at s = 0: the five-point
+ * stencil (f(−τ) − 8f(−τ/2) + 8f(τ/2) − f(τ))/(6τ), exact to O(τ⁴) —
+ * a curvature on a length ℓ ≪ 1 leaves (τ/ℓ)⁴, not (τ/ℓ)². *mag: the
+ * largest |f| seen (for the round-off bound). */
+static int deriv(work *w, enum quantity f, enum direction dir, int j, double tau, double t0,
+                 const braun_real *q0, const braun_real *v0, int count, double *out, double *mag)
+{
+    static const double step[4] = {1, -1, 0.5, -0.5}, weight[4] = {-1, 1, 8, -8};
+    for (int i = 0; i < count; i++) out[i] = 0;
+    for (int k = 0; k < 4; k++) {
+        if (value_at(w, f, dir, j, step[k] * tau, t0, q0, v0, w->fp)) return BRAUN_ERR_CALLBACK;
+        for (int i = 0; i < count; i++) {
+            out[i] += weight[k] * w->fp[i];
+            if (fabs(w->fp[i]) > *mag) *mag = fabs(w->fp[i]);
+        }
+    }
+    for (int i = 0; i < count; i++) out[i] /= 6 * tau;
+    return BRAUN_OK;
+}
+
+/* The step along the motion: τ·|v| of the coordinates' scale. */
+static double motion_step(int n, const braun_real *q0, const braun_real *v0)
+{
+    double vmax = 0, qmax = 0;
+    for (int j = 0; j < n; j++) {
+        if (fabs((double)v0[j]) > vmax) vmax = fabs((double)v0[j]);
+        if (fabs((double)q0[j]) > qmax) qmax = fabs((double)q0[j]);
+    }
+    return cbrt(DBL_EPSILON) * (1 + qmax) / (vmax > 1 ? vmax : 1);
+}
+
+/* The rows of one kind: the Jacobian (holonomic in q, nonholonomic in v),
+ * b_q (holonomic: −∂Φ_q/∂t) and the acceleration term (−d/dt of
+ * A_q v − b_q, resp. of Φ_v, along the motion at v̇ = 0). */
+static int check_rows(work *w, int nonholo, double t, const braun_real *q0, const braun_real *v0)
+{
+    const int n = w->n, r = nonholo ? w->p : w->m;
+    const enum quantity f = nonholo ? PHI_V : PHI_Q;
+    double *A = calloc((size_t)r * n * 2 + 4 * (size_t)r + 1, sizeof(double));
+    if (!A) return BRAUN_ERR_BUFFER;
+    double *fd = A + (size_t)r * n, *b = fd + (size_t)r * n, *bv = b + r, *col = bv + r, *g0 = col + r;
+    int st = nonholo ? nonholonomic(w, t, q0, v0, g0) : holonomic(w, t, q0, v0, g0);
+    if (st) st = BRAUN_ERR_CALLBACK;
+    if (!st) {
+        for (size_t k = 0; k < (size_t)r * n; k++) A[k] = (double)w->A[k];
+        for (int i = 0; i < r; i++) {
+            b[i] = nonholo ? 0 : (double)w->b[i];
+            bv[i] = (double)w->bv[i];
+        }
+    }
+    double mag = max_abs(r, g0), tau_max = 0;
+    for (int j = 0; j < n && !st; j++) {
+        const double x = nonholo ? (double)v0[j] : (double)q0[j], tau = fd_step(x);
+        if (tau > tau_max) tau_max = tau;
+        st = deriv(w, f, nonholo ? ALONG_V : ALONG_Q, j, tau, t, q0, v0, r, col, &mag);
+        for (int i = 0; i < r && !st; i++) fd[(size_t)i * n + j] = col[i];
+    }
+    if (!st)
+        judge(w, nonholo ? &w->rep->jacobian_v : &w->rep->jacobian_q, nonholo ? "A_vv" : "A_q", r, n,
+              A, fd, mag + max_abs(r * n, A), tau_max);
+    if (!st && !nonholo) {
+        const double tt = fd_step(t);
+        double m2 = mag;
+        st = deriv(w, PHI_Q, ALONG_T, 0, tt, t, q0, v0, r, col, &m2);
+        for (int i = 0; i < r && !st; i++) col[i] = -col[i];
+        if (!st) judge(w, &w->rep->b_q, "b_q", r, 1, b, col, m2, tt);
+    }
+    if (!st) {
+        const double tv = motion_step(n, q0, v0);
+        double gmag = 0;
+        for (int i = 0; i < r; i++) {
+            double terms = fabs(b[i]) + fabs(g0[i]);
+            for (int j = 0; j < n; j++) terms += fabs(A[(size_t)i * n + j] * (double)v0[j]);
+            if (terms > gmag) gmag = terms;
+        }
+        st = deriv(w, nonholo ? PHI_V : RATE_Q, ALONG_MOTION, 0, tv, t, q0, v0, r, col, &gmag);
+        for (int i = 0; i < r && !st; i++) col[i] = -col[i];
+        if (!st) judge(w, nonholo ? &w->rep->b_vv : &w->rep->b_qv, nonholo ? "b_vv" : "b_qv", r, 1, bv,
+                       col, gmag, tv);
+    }
+    free(A);
+    return st;
+}
+
+/* dE_dq, dE_dv, dE_dt against differences of E. */
+static int check_energy_gradient(work *w, double t, const braun_real *q0, const braun_real *v0)
+{
+    const int n = w->n;
+    double *g = calloc(4 * (size_t)n + 3, sizeof(double));
+    if (!g) return BRAUN_ERR_BUFFER;
+    double *fd = g + 2 * n + 1, E0 = 0;
+    braun_real e = 0, dt = 0;
+    int st = w->s->energy((braun_real)t, q0, v0, &e, w->dq, w->dv, &dt, w->s->user) ? BRAUN_ERR_CALLBACK
+                                                                                     : BRAUN_OK;
+    if (!st) {
+        E0 = (double)e;
+        for (int j = 0; j < n; j++) {
+            g[j] = (double)w->dq[j];
+            g[n + j] = (double)w->dv[j];
+        }
+        g[2 * n] = (double)dt;
+    }
+    double mag = fabs(E0), tau_max = 0;
+    for (int j = 0; j < 2 * n && !st; j++) {
+        const int in_v = j >= n, k = in_v ? j - n : j;
+        const double tau = fd_step(in_v ? (double)v0[k] : (double)q0[k]);
+        if (tau > tau_max) tau_max = tau;
+        st = deriv(w, ENERGY, in_v ? ALONG_V : ALONG_Q, k, tau, t, q0, v0, 1, fd + j, &mag);
+    }
+    const double tt = fd_step(t);
+    double mt = mag;
+    if (!st) st = deriv(w, ENERGY, ALONG_T, 0, tt, t, q0, v0, 1, fd + 2 * n, &mt);
+    if (!st) {
+        judge(w, &w->rep->energy_gradient, "dE_dq", 1, n, g, fd, mag, tau_max);
+        judge(w, &w->rep->energy_gradient, "dE_dv", 1, n, g + n, fd + n, mag, tau_max);
+        judge(w, &w->rep->energy_gradient, "dE_dt", 1, 1, g + 2 * n, fd + 2 * n, mt, tt);
+    }
+    free(g);
+    return st;
+}
+
+/* dE/dt along the ideal motion against Ė = power + Q_c·v (the library's
+ * input rate on the constraints), at a state on the constraints:
+ * |∂E/∂q·v + ∂E/∂v·v̇ + ∂E/∂t − P − Q_c·v| over the sum of the terms'
+ * magnitudes, Q_c = M v̇ − Q. */
+static int check_energy_rate(work *w, double t, const braun_real *q0, const braun_real *v0)
+{
+    const braun_system *s = w->s;
+    const int n = w->n;
+    braun_model model;
+    int st = braun_model_init(&model, s);
+    if (st) return st;
+    model.opt.corrections = BRAUN_CORRECT_NONE;
+    model.opt.guard = -1;
+    const size_t bytes = braun_data_size(&model);
+    void *buf = malloc(bytes);
+    braun_real *vdot = calloc(2 * (size_t)n, sizeof(braun_real));
+    braun_data d;
+    if (!buf || !vdot) st = BRAUN_ERR_BUFFER;
+    if (!st) st = braun_data_init(&d, &model, buf, bytes);
+    int inited = !st;
+    braun_real pos = 0, vel = 0;
+    if (!st) st = braun_set_state(&d, (braun_real)t, q0, v0);
+    if (!st) st = braun_residuals(&d, (braun_real)t, q0, v0, &pos, &vel, NULL);
+    if (!st) st = braun_eval(&d, (braun_real)t, q0, v0, 0, vdot + n, vdot);
+    if (inited) braun_data_release(&d);
+    double qn = 0, vn = 0;
+    for (int j = 0; j < n; j++) {
+        qn = fabs((double)q0[j]) > qn ? fabs((double)q0[j]) : qn;
+        vn = fabs((double)v0[j]) > vn ? fabs((double)v0[j]) : vn;
+    }
+    w->rep->state_residual = (double)pos + (double)vel;
+    if (!st && ((double)pos > 1e-8 * (1 + qn) || (double)vel > 1e-8 * (1 + vn))) {
+        /* Off the constraints the identity does not hold: not judged. */
+        w->rep->energy_rate = NAN;
+        free(buf);
+        free(vdot);
+        return BRAUN_OK;
+    }
+    braun_real P = 0, e = 0, dt = 0;
+    if (!st && s->mass((braun_real)t, q0, w->M, s->user)) st = BRAUN_ERR_CALLBACK;
+    if (!st && s->forces((braun_real)t, q0, v0, w->Q, s->user)) st = BRAUN_ERR_CALLBACK;
+    if (!st && (s->flags & BRAUN_ENERGY_INPUT) && s->power((braun_real)t, q0, v0, &P, s->user))
+        st = BRAUN_ERR_CALLBACK;
+    if (!st && s->energy((braun_real)t, q0, v0, &e, w->dq, w->dv, &dt, s->user)) st = BRAUN_ERR_CALLBACK;
+    if (!st) {
+        double delta = (double)dt - (double)P, scale = fabs((double)dt) + fabs((double)P);
+        for (int i = 0; i < n; i++) {
+            double qc = -(double)w->Q[i];
+            if (s->sparsity) qc = 0; /* blocks: below */
+            else
+                for (int j = 0; j < n; j++) qc += (double)w->M[(size_t)i * n + j] * (double)vdot[j];
+            w->f0[i] = qc;
+        }
+        if (s->sparsity) {
+            const braun_real *Mb = w->M;
+            int off = 0;
+            for (int k = 0; k < s->sparsity->nblocks; k++) {
+                const int bsz = s->sparsity->block[k];
+                for (int i = 0; i < bsz; i++) {
+                    double qc = -(double)w->Q[off + i];
+                    for (int j = 0; j < bsz; j++) qc += (double)*Mb++ * (double)vdot[off + j];
+                    w->f0[off + i] = qc;
+                }
+                off += bsz;
+            }
+        }
+        for (int i = 0; i < n; i++) {
+            const double a = (double)w->dq[i] * (double)v0[i], b = (double)w->dv[i] * (double)vdot[i],
+                         c = w->f0[i] * (double)v0[i];
+            delta += a + b - c;
+            scale += fabs(a) + fabs(b) + fabs(c);
+        }
+        const double r = scale > 0 ? fabs(delta) / scale : 0;
+        w->rep->energy_rate = r;
+        if (!w->named_fail && (r > w->rep->worst_value || !(r <= w->tol))) {
+            w->rep->worst_value = r;
+            w->named_fail = !(r <= w->tol);
+            snprintf(w->rep->worst, sizeof w->rep->worst, "energy rate");
+        }
+    }
+    free(buf);
+    free(vdot);
+    return st;
+}
+
+int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_real *q,
+                          const braun_real *v, double tol, braun_callback_report *rep)
+{
+    if (!sys || !q || !v || !rep) return BRAUN_ERR_ARGUMENT;
+    memset(rep, 0, sizeof *rep);
+    rep->energy_rate = NAN;
+    const char *problem = NULL;
+    int st = braun_system_check(sys, &problem);
+    if (st) {
+        snprintf(rep->worst, sizeof rep->worst, "%s", problem ? problem : "invalid system");
+        return st;
+    }
+    work w = {0};
+    w.s = sys;
+    w.n = sys->n;
+    w.m = sys->m;
+    w.p = sys->p;
+    w.rep = rep;
+    w.tol = tol > 0 ? tol : 1e-6;
+    const int n = sys->n, rows = sys->m + sys->p + 1;
+    const size_t mass = sys->sparsity ? 0 : (size_t)n * n;
+    size_t mblocks = 0;
+    if (sys->sparsity)
+        for (int k = 0; k < sys->sparsity->nblocks; k++)
+            mblocks += (size_t)sys->sparsity->block[k] * (size_t)sys->sparsity->block[k];
+    const size_t nnz = sys->sparsity ? (size_t)sys->sparsity->row_ptr[sys->m + sys->p] : 0;
+    braun_real *r = calloc(4 * (size_t)n + 3 * (size_t)rows + (size_t)rows * n + mass + mblocks +
+                               (size_t)n + nnz + 1,
+                           sizeof(braun_real));
+    double *f = calloc(3 * (size_t)(rows + n), sizeof(double));
+    if (!r || !f) {
+        free(r);
+        free(f);
+        return BRAUN_ERR_BUFFER;
+    }
+    w.q = r;
+    w.v = w.q + n;
+    w.dq = w.v + n;
+    w.dv = w.dq + n;
+    w.phi = w.dv + n;
+    w.b = w.phi + rows;
+    w.bv = w.b + rows;
+    w.A = w.bv + rows;
+    w.M = w.A + (size_t)rows * n;
+    w.Q = w.M + mass + mblocks;
+    w.Avals = sys->sparsity ? w.Q + n : w.A;
+    w.f0 = f;
+    w.fp = f + rows + n;
+    if (sys->m > 0) st = check_rows(&w, 0, (double)t, q, v);
+    if (!st && sys->p > 0) st = check_rows(&w, 1, (double)t, q, v);
+    if (!st && sys->energy) st = check_energy_gradient(&w, (double)t, q, v);
+    if (!st && sys->energy) st = check_energy_rate(&w, (double)t, q, v);
+    free(r);
+    free(f);
+    if (st) {
+        if (st == BRAUN_ERR_CALLBACK) snprintf(rep->worst, sizeof rep->worst, "a callback failed");
+        return st;
+    }
+    return w.named_fail ? BRAUN_ERR_ARGUMENT : BRAUN_OK;
+}
