@@ -100,10 +100,12 @@ static void test_scenes_pass(void **state)
 static braun_system base;
 static int mode;
 static double factor;
+static double sim_q0; /* q[0] of the checked state */
 
 static int bad_holonomic(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
                          braun_real *A, braun_real *b, braun_real *bv, void *u)
 {
+    if (mode == 6 && q[0] > sim_q0 + 1e-9) return -3; /* refuses the differences' points */
     int r = base.holonomic(t, q, v, phi, A, b, bv, u);
     if (mode == 1 && A) A[2 * 6 + 2] *= factor;   /* an entry of A_q */
     if (mode == 2 && bv) bv[2] *= factor;         /* the acceleration term */
@@ -137,6 +139,7 @@ static void test_misprints_found(void **state)
     assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
     assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, 0.37, 0, NULL, NULL), BRAUN_OK);
     const char *expect[6] = {NULL, "A_q[2][2]", "b_qv[2]", "b_q[4]", "dE_dq[4]", "energy rate"};
+    sim_q0 = sim.data.q[0];
     const double slips[2] = {1e-2, 1e-4};
     for (int k = 0; k < 2; k++) {
         factor = 1 - slips[k];
@@ -160,10 +163,19 @@ static void test_misprints_found(void **state)
     q[0] += 1e-3;
     assert_int_equal(braun_check_callbacks(&s, sim.data.t, q, sim.data.v, 0, &rep), BRAUN_OK);
     assert_true(isnan(rep.energy_rate) && rep.state_residual > 1e-4);
-    test_sim_close(&sim);
+    /* A state that is not finite; a callback that refuses a point. */
+    q[2] = NAN;
+    assert_int_equal(braun_check_callbacks(&s, 0, q, sim.data.v, 0, &rep), BRAUN_ERR_NONFINITE);
+    assert_string_equal(rep.worst, "state q[2]");
+    q[2] = 0.3;
+    mode = 6;
+    assert_int_equal(braun_check_callbacks(&s, 0, q, sim.data.v, 0, &rep), BRAUN_ERR_CALLBACK);
+    assert_non_null(strstr(rep.worst, "holonomic callback returned -3"));
+    mode = 0;
     /* Bad arguments. */
     assert_int_equal(braun_check_callbacks(NULL, 0, q, q, 0, &rep), BRAUN_ERR_ARGUMENT);
     assert_int_equal(braun_check_callbacks(&s, 0, q, q, 0, NULL), BRAUN_ERR_ARGUMENT);
+    test_sim_close(&sim);
 }
 
 int main(void)

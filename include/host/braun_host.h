@@ -53,14 +53,18 @@ int braun_error_format(const braun_data *d, char *buf, size_t size);
  * the first such figure in the order above, e.g. "A_q[2][2]", "b_qv[3]",
  * "energy rate" — a wrong A_q also shows in b_qv; rep->worst_value its
  * figure; with none above tol, the largest), or the status of
- * what failed (an invalid system, a callback, BRAUN_ERR_BUFFER). Sparse
+ * what failed, rep->worst saying what (a state that is not finite:
+ * BRAUN_ERR_NONFINITE; a callback's refusal: BRAUN_ERR_CALLBACK; a system
+ * the library refuses; BRAUN_ERR_BUFFER). Sparse
  * systems too (their compressed rows are scattered). Check a few states,
  * moving ones included: at rest the velocity terms are not exercised. */
 typedef struct braun_callback_report {
     double jacobian_q, b_q, b_qv, jacobian_v, b_vv, energy_gradient, energy_rate;
     double state_residual;
     double worst_value;
-    char worst[64];
+    char worst[160]; /* the entry, or what failed ("state q[2]", "holonomic
+                      * callback returned -3 at t = 0.1", the library's
+                      * sentence for a system it refuses) */
 } braun_callback_report;
 int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_real *q,
                           const braun_real *v, double tol, braun_callback_report *rep);

@@ -74,6 +74,13 @@ static double max_abs(int k, const double *x)
     return s;
 }
 
+/* A callback refused a point of the differences (or the state): named. */
+static int failed(work *w, const char *which, int rc, double t)
+{
+    snprintf(w->rep->worst, sizeof w->rep->worst, "%s callback returned %d at t = %.6g", which, rc, t);
+    return -1;
+}
+
 /* A sparse system's compressed values of rows first..first+count−1 into
  * the first count rows of the dense w->A. */
 static void scatter(work *w, int first, int count)
@@ -92,7 +99,8 @@ static int holonomic(work *w, double t, const braun_real *q, const braun_real *v
 {
     const int m = w->m;
     for (int i = 0; i < m; i++) w->phi[i] = w->b[i] = w->bv[i] = 0;
-    if (w->s->holonomic((braun_real)t, q, v, w->phi, w->Avals, w->b, w->bv, w->s->user) != 0) return -1;
+    const int rc = w->s->holonomic((braun_real)t, q, v, w->phi, w->Avals, w->b, w->bv, w->s->user);
+    if (rc) return failed(w, "holonomic", rc, t);
     scatter(w, 0, m);
     for (int i = 0; i < m; i++) out[i] = (double)w->phi[i];
     return 0;
@@ -114,7 +122,8 @@ static int hol_rate(work *w, double t, const braun_real *q, const braun_real *v,
 static int nonholonomic(work *w, double t, const braun_real *q, const braun_real *v, double *out)
 {
     for (int i = 0; i < w->p; i++) w->phi[i] = w->bv[i] = 0;
-    if (w->s->nonholonomic((braun_real)t, q, v, w->phi, w->Avals, w->bv, w->s->user) != 0) return -1;
+    const int rc = w->s->nonholonomic((braun_real)t, q, v, w->phi, w->Avals, w->bv, w->s->user);
+    if (rc) return failed(w, "nonholonomic", rc, t);
     scatter(w, w->m, w->p);
     for (int i = 0; i < w->p; i++) out[i] = (double)w->phi[i];
     return 0;
@@ -123,7 +132,8 @@ static int nonholonomic(work *w, double t, const braun_real *q, const braun_real
 static int energy(work *w, double t, const braun_real *q, const braun_real *v, double *E)
 {
     braun_real e = 0, dt = 0;
-    if (w->s->energy((braun_real)t, q, v, &e, w->dq, w->dv, &dt, w->s->user) != 0) return -1;
+    const int rc = w->s->energy((braun_real)t, q, v, &e, w->dq, w->dv, &dt, w->s->user);
+    if (rc) return failed(w, "energy", rc, t);
     *E = (double)e;
     return 0;
 }
@@ -252,8 +262,8 @@ static int check_energy_gradient(work *w, double t, const braun_real *q0, const 
     if (!g) return BRAUN_ERR_BUFFER;
     double *fd = g + 2 * n + 1, E0 = 0;
     braun_real e = 0, dt = 0;
-    int st = w->s->energy((braun_real)t, q0, v0, &e, w->dq, w->dv, &dt, w->s->user) ? BRAUN_ERR_CALLBACK
-                                                                                     : BRAUN_OK;
+    const int rc = w->s->energy((braun_real)t, q0, v0, &e, w->dq, w->dv, &dt, w->s->user);
+    int st = rc ? (failed(w, "energy", rc, t), BRAUN_ERR_CALLBACK) : BRAUN_OK;
     if (!st) {
         E0 = (double)e;
         for (int j = 0; j < n; j++) {
@@ -305,6 +315,9 @@ static int check_energy_rate(work *w, double t, const braun_real *q0, const brau
     if (!st) st = braun_set_state(&d, (braun_real)t, q0, v0);
     if (!st) st = braun_residuals(&d, (braun_real)t, q0, v0, &pos, &vel, NULL);
     if (!st) st = braun_eval(&d, (braun_real)t, q0, v0, 0, vdot + n, vdot);
+    /* The library's own refusal (a BRAUN_MASS_CONSTANT that does not
+     * hold, a non-SPD M, ...): its sentence. */
+    if (st && inited && !w->named_fail) braun_error_format(&d, w->rep->worst, sizeof w->rep->worst);
     if (inited) braun_data_release(&d);
     double qn = 0, vn = 0;
     for (int j = 0; j < n; j++) {
@@ -320,11 +333,15 @@ static int check_energy_rate(work *w, double t, const braun_real *q0, const brau
         return BRAUN_OK;
     }
     braun_real P = 0, e = 0, dt = 0;
-    if (!st && s->mass((braun_real)t, q0, w->M, s->user)) st = BRAUN_ERR_CALLBACK;
-    if (!st && s->forces((braun_real)t, q0, v0, w->Q, s->user)) st = BRAUN_ERR_CALLBACK;
-    if (!st && (s->flags & BRAUN_ENERGY_INPUT) && s->power((braun_real)t, q0, v0, &P, s->user))
-        st = BRAUN_ERR_CALLBACK;
-    if (!st && s->energy((braun_real)t, q0, v0, &e, w->dq, w->dv, &dt, s->user)) st = BRAUN_ERR_CALLBACK;
+    int rc = 0;
+    if (!st && (rc = s->mass((braun_real)t, q0, w->M, s->user)) != 0)
+        st = (failed(w, "mass", rc, t), BRAUN_ERR_CALLBACK);
+    if (!st && (rc = s->forces((braun_real)t, q0, v0, w->Q, s->user)) != 0)
+        st = (failed(w, "forces", rc, t), BRAUN_ERR_CALLBACK);
+    if (!st && (s->flags & BRAUN_ENERGY_INPUT) && (rc = s->power((braun_real)t, q0, v0, &P, s->user)) != 0)
+        st = (failed(w, "power", rc, t), BRAUN_ERR_CALLBACK);
+    if (!st && (rc = s->energy((braun_real)t, q0, v0, &e, w->dq, w->dv, &dt, s->user)) != 0)
+        st = (failed(w, "energy", rc, t), BRAUN_ERR_CALLBACK);
     if (!st) {
         double delta = (double)dt - (double)P, scale = fabs((double)dt) + fabs((double)P);
         for (int i = 0; i < n; i++) {
@@ -372,6 +389,16 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
     if (!sys || !q || !v || !rep) return BRAUN_ERR_ARGUMENT;
     memset(rep, 0, sizeof *rep);
     rep->energy_rate = NAN;
+    /* A state the differences can use: finite. */
+    if (!isfinite((double)t)) {
+        snprintf(rep->worst, sizeof rep->worst, "state t");
+        return BRAUN_ERR_NONFINITE;
+    }
+    for (int i = 0; i < sys->n; i++)
+        if (!isfinite((double)q[i]) || !isfinite((double)v[i])) {
+            snprintf(rep->worst, sizeof rep->worst, "state %s[%d]", isfinite((double)q[i]) ? "v" : "q", i);
+            return BRAUN_ERR_NONFINITE;
+        }
     const char *problem = NULL;
     int st = braun_system_check(sys, &problem);
     if (st) {
@@ -421,7 +448,8 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
     free(r);
     free(f);
     if (st) {
-        if (st == BRAUN_ERR_CALLBACK) snprintf(rep->worst, sizeof rep->worst, "a callback failed");
+        if (st == BRAUN_ERR_CALLBACK && !strstr(rep->worst, "callback"))
+            snprintf(rep->worst, sizeof rep->worst, "a callback failed");
         return st;
     }
     return w.named_fail ? BRAUN_ERR_ARGUMENT : BRAUN_OK;
