@@ -244,6 +244,33 @@ static int name_disagreeing(const braun_cli_target *tg, int m, const double *e, 
     return count + more;
 }
 
+/* The message of rows that cannot all hold (e: their least-squares
+ * residual, count rows; vel: at the velocity level). One element alone:
+ * its rows' gradients depend on others' here while its error does not (a
+ * joint started at a singular configuration). */
+static void say_unsolvable(const braun_cli_target *tg, int count, const double *e, double resid,
+                           int vel)
+{
+    char who[800];
+    const char *what = vel ? "the constraints' velocities" : "the constraints";
+    const char *run = vel ? "braun run stops with BRAUN_ERR_INCONSISTENT at its first step when the "
+                            "velocity correction is on"
+                          : "braun run stops with BRAUN_ERR_INCONSISTENT";
+    if (name_disagreeing(tg, count, e, who, sizeof who) == 1)
+        braun_cli_error("%s: %s have no solution at the initial state: %s cannot be met (its gradient "
+                        "depends on the other rows' here, its %serror does not; least-squares "
+                        "residual %.3g, above the library's inconsistency tolerance %.3g: %s)",
+                        tg->name, what, who, vel ? "velocity " : "", resid, sqrt((double)BRAUN_EPS),
+                        run);
+    else
+        braun_cli_error("%s: %s have no solution at the initial state: %s disagree (%s %.3g%s is "
+                        "above the library's inconsistency tolerance %.3g: %s)",
+                        tg->name, what, who,
+                        vel ? "the least-squares residual of their velocity error," :
+                              "their least-squares residual",
+                        resid, vel ? "," : "", sqrt((double)BRAUN_EPS), run);
+}
+
 /* A text of the scene on one "key: value" line (braun_cli_put_text), so a
  * name or description with a newline cannot add a line (a forged "n:
  * 999") to what scripts read. */
@@ -378,45 +405,14 @@ static int report(const braun_cli_target *tg)
                         tg->name, cb.worst, cb.worst_value);
         rc = BRAUN_CLI_FAILED;
     }
-    if (!consistent) {
-        /* What a run would meet at its first step, said before it. */
-        char who[800];
-        if (name_disagreeing(tg, m, e, who, sizeof who) == 1)
-            /* One element alone: its rows' gradients depend on others' here
-             * while its error does not (a joint started at a singular
-             * configuration). */
-            braun_cli_error("%s: the constraints have no solution at the initial state: %s cannot be "
-                            "met (its gradient depends on the other rows' here, its error does not; "
-                            "least-squares residual %.3g, above the library's inconsistency tolerance "
-                            "%.3g: braun run stops with BRAUN_ERR_INCONSISTENT)",
-                            tg->name, who, resid, sqrt((double)BRAUN_EPS));
-        else
-            braun_cli_error("%s: the constraints have no solution at the initial state: %s disagree "
-                            "(their least-squares residual %.3g is above the library's inconsistency "
-                            "tolerance %.3g: braun run stops with BRAUN_ERR_INCONSISTENT)",
-                            tg->name, who, resid, sqrt((double)BRAUN_EPS));
-        rc = BRAUN_CLI_FAILED;
-    } else if (!vconsistent) {
-        /* The positions hold but the velocities cannot: dependent rows
-         * whose rates disagree (two drives of one joint) drift apart from
-         * t = 0 on. A run's position correction meets the disagreement
-         * times h at its first step, and the positions' own soon after. */
-        char who[800];
-        if (name_disagreeing(tg, rows, ev, who, sizeof who) == 1)
-            braun_cli_error("%s: the constraints' velocities have no solution at the initial state: "
-                            "%s cannot be met (its gradient depends on the other rows' here, its "
-                            "velocity error does not; least-squares residual %.3g, above the "
-                            "library's inconsistency tolerance %.3g: braun run stops with "
-                            "BRAUN_ERR_INCONSISTENT at its first step when the velocity correction "
-                            "is on)",
-                            tg->name, who, vresid, sqrt((double)BRAUN_EPS));
-        else
-            braun_cli_error("%s: the constraints' velocities have no solution at the initial state: "
-                            "%s disagree (the least-squares residual of their velocity error, %.3g, "
-                            "is above the library's inconsistency tolerance %.3g: braun run stops "
-                            "with BRAUN_ERR_INCONSISTENT at its first step when the velocity "
-                            "correction is on)",
-                            tg->name, who, vresid, sqrt((double)BRAUN_EPS));
+    if (!consistent || !vconsistent) {
+        /* What a run would meet at its first step, said before it: the
+         * positions first; positions that hold with velocities that cannot
+         * (two drives of one joint at different rates) drift apart from
+         * t = 0 on. */
+        const int velocities = consistent;
+        say_unsolvable(tg, velocities ? rows : m, velocities ? ev : e, velocities ? vresid : resid,
+                       velocities);
         rc = BRAUN_CLI_FAILED;
     }
 done:
