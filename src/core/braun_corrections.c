@@ -251,7 +251,8 @@ static BRAUN_NOINLINE int velocity_consistent(braun_data *d)
                             "velocity-level constraint rows");
 }
 
-static int stage_velocity(braun_data *d)
+/* judge: this is the first velocity correction since braun_set_state. */
+static int stage_velocity(braun_data *d, int judge)
 {
     braun_priv *pv = braun__priv(d);
     const int deficient = pv->rank[0] < pv->rows;
@@ -259,10 +260,7 @@ static int stage_velocity(braun_data *d)
     braun__pinv(pv, 0, pv->ev, pv->dv);
     if (deficient) rhs_floor(pv, 0, pv->rows, pv->at.v, 0); /* exact again */
     velocity_finish(pv);
-    if (!pv->vel_judged) {
-        pv->vel_judged = 1;
-        if (deficient) return velocity_consistent(d);
-    }
+    if (judge && deficient) return velocity_consistent(d);
     return BRAUN_OK;
 }
 
@@ -519,6 +517,13 @@ static int position_velocity(braun_data *d, unsigned corr, int remeasure)
     const int n = BRAUN_N(pv->n);
     const int position = pv->rows > 0 && pv->m > 0 && (corr & BRAUN_CORRECT_POSITION);
     const int velocity = pv->rows > 0 && (corr & BRAUN_CORRECT_VELOCITY);
+    /* The first velocity correction since braun_set_state judges the rows'
+     * consistency (velocity_consistent) — whichever path it takes: a full
+     * rank has nothing to judge, and a later rank-deficient step is no
+     * start (a row dropped near a singular configuration keeps its error
+     * along the weak direction by design). */
+    const int judge = velocity && !pv->vel_judged;
+    if (velocity) pv->vel_judged = 1;
     int st = BRAUN_OK;
     if (position && velocity && !remeasure && !pv->need_fq && pv->rank[0] >= pv->rows) {
         /* Eqs. 16 and 17 with one factorization (C_q is C_v, full rank):
@@ -539,7 +544,7 @@ static int position_velocity(braun_data *d, unsigned corr, int remeasure)
         st = braun__stage_constraints(d, 1);
         pv->at.q = q1;
     }
-    if (!st && velocity) st = stage_velocity(d);
+    if (!st && velocity) st = stage_velocity(d, judge);
     else for (int i = 0; i < n; i++) pv->dv[i] = 0;
     return st;
 }
