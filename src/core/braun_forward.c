@@ -83,26 +83,17 @@ int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q)
     for (int i = 0; i < n; i++) x[i] = 1 + (braun_real)((i * 7) % 11) / 16; /* no symmetry of a model */
     braun_real form = 0, scale = 0;
     const braun_real *M = pv->Mcheck;
-    if (pv->sp) {
-        /* Diagonal blocks, each row-major. */
-        int off = 0;
-        for (int k = 0; k < pv->sp->nblocks; k++) {
-            const int b = pv->sp->block[k];
-            for (int i = 0; i < b; i++)
-                for (int j = 0; j < b; j++) {
-                    const braun_real e = x[off + i] * *M++ * x[off + j];
-                    form += e;
-                    scale += braun_fabs(e);
-                }
-            off += b;
-        }
-    } else {
-        for (int i = 0; i < n; i++)
-            for (int j = 0; j < n; j++) {
-                const braun_real e = x[i] * M[(size_t)i * (size_t)n + (size_t)j] * x[j];
+    /* Diagonal blocks, each row-major (a dense M: one block of n). */
+    const int nblocks = pv->sp ? pv->sp->nblocks : 1;
+    for (int k = 0, off = 0; k < nblocks; k++) {
+        const int b = pv->sp ? pv->sp->block[k] : n;
+        for (int i = 0; i < b; i++)
+            for (int j = 0; j < b; j++) {
+                const braun_real e = x[off + i] * *M++ * x[off + j];
                 form += e;
                 scale += braun_fabs(e);
             }
+        off += b;
     }
     braun__mul_r(pv, x, rx);
     const braun_real diff = braun_fabs(form - braun_dot(n, rx, rx));

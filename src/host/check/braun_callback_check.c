@@ -344,25 +344,18 @@ static int check_energy_rate(work *w, double t, const braun_real *q0, const brau
         st = (failed(w, "energy", rc, t), BRAUN_ERR_CALLBACK);
     if (!st) {
         double delta = (double)dt - (double)P, scale = fabs((double)dt) + fabs((double)P);
-        for (int i = 0; i < n; i++) {
-            double qc = -(double)w->Q[i];
-            if (s->sparsity) qc = 0; /* blocks: below */
-            else
-                for (int j = 0; j < n; j++) qc += (double)w->M[(size_t)i * n + j] * (double)vdot[j];
-            w->f0[i] = qc;
-        }
-        if (s->sparsity) {
-            const braun_real *Mb = w->M;
-            int off = 0;
-            for (int k = 0; k < s->sparsity->nblocks; k++) {
-                const int bsz = s->sparsity->block[k];
-                for (int i = 0; i < bsz; i++) {
-                    double qc = -(double)w->Q[off + i];
-                    for (int j = 0; j < bsz; j++) qc += (double)*Mb++ * (double)vdot[off + j];
-                    w->f0[off + i] = qc;
-                }
-                off += bsz;
+        /* Q_c = M v̇ − Q over M's diagonal blocks, each row-major (a dense
+         * M: one block of n). */
+        const braun_real *Mb = w->M;
+        const int nblocks = s->sparsity ? s->sparsity->nblocks : 1;
+        for (int k = 0, off = 0; k < nblocks; k++) {
+            const int bsz = s->sparsity ? s->sparsity->block[k] : n;
+            for (int i = 0; i < bsz; i++) {
+                double qc = -(double)w->Q[off + i];
+                for (int j = 0; j < bsz; j++) qc += (double)*Mb++ * (double)vdot[off + j];
+                w->f0[off + i] = qc;
             }
+            off += bsz;
         }
         for (int i = 0; i < n; i++) {
             const double a = (double)w->dq[i] * (double)v0[i], b = (double)w->dv[i] * (double)vdot[i],
@@ -422,7 +415,7 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
     braun_real *r = calloc(4 * (size_t)n + 3 * (size_t)rows + (size_t)rows * n + mass + mblocks +
                                (size_t)n + nnz + 1,
                            sizeof(braun_real));
-    double *f = calloc(3 * (size_t)(rows + n), sizeof(double));
+    double *f = calloc(2 * (size_t)(rows + n), sizeof(double)); /* f0, fp */
     if (!r || !f) {
         free(r);
         free(f);
