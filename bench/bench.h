@@ -24,6 +24,7 @@ typedef enum bench_item {
     BENCH_STEP_ALL,      /* braun_step, every correction the system supports */
     BENCH_STEP_FREE,     /* braun_step on the same bodies with no constraint rows */
     BENCH_STEP_FLOOR,    /* RK4 on the minimal-coordinate equation (floor) */
+    BENCH_STEP_SPECIAL,  /* the ideal step written out for the slider-crank (bench_special.c) */
     BENCH_RHS_IDEAL,     /* braun_eval, corrections off (Udwadia–Kalaba) */
     BENCH_RHS_CORR,      /* braun_eval, every correction (Eqs. 16, 17, 20) */
     BENCH_RHS_FLOOR,     /* the minimal equation's right-hand side */
@@ -71,6 +72,10 @@ void bench_run_free(bench_run *r);
 /* Whether the item exists for this target (the floor needs a minimal
  * equation). */
 int bench_run_has(const bench_run *r, bench_item it);
+/* How far the specialised floor's trajectory ended from the library's ideal
+ * step's over one block (relative to the largest entry of q and v); NaN
+ * where it does not apply. */
+double bench_run_special_agreement(const bench_run *r);
 /* Reset the item's state to the start of a block (not timed). */
 void bench_run_reset(bench_run *r, bench_item it);
 /* Run one block of the item: `steps` steps or right-hand sides. Returns
@@ -82,6 +87,10 @@ long bench_run_block(bench_run *r, bench_item it, int *status);
  * equation y' = f(t, y), and one evaluation of f. */
 void bench_floor_step(const braun_builtin *b, double t, double h, double *y);
 void bench_floor_rhs(const braun_builtin *b, double t, const double *y, double *dydt);
+
+/* The specialised floor (bench_special.c): libbraun's ideal RK4 step of the
+ * slider-crank written out by hand, y = (q, v), 12 entries. */
+void bench_special_step(const braun_link_params *p, double h, double *y);
 
 /* ---------------------------------------------------------------- timing */
 /* Process CPU time in nanoseconds. */

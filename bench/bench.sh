@@ -79,8 +79,10 @@ objdump -d --no-show-raw-insn "$STATIC" > "$CG/objdump.txt"
 : > "$CG/jobs.txt"
 for t in $TARGETS; do
     minimal=$(awk -F, -v t="$t" '$1 == t { print $8 }' "$OUT/targets.csv")
-    for item in step-none step-pv step-all step-free step-floor rhs-ideal rhs-corrected rhs-floor; do
+    for item in step-none step-pv step-all step-free step-floor step-special rhs-ideal rhs-corrected rhs-floor; do
         case $item in *-floor) [ "$minimal" = "-" ] && continue ;; esac
+        # The specialised floor is the built-in slider-crank's (bench/bench_special.c).
+        [ "$item" = step-special ] && [ "$t" != slider-crank ] && continue
         echo "$t $item" >> "$CG/jobs.txt"
     done
 done
@@ -193,7 +195,7 @@ fixed-O3-lto|-O3 -g -flto|$FIX|gcc-ar|"
         pass=$((pass + 1))
     done
     while IFS='|' read -r name flags vbin vstatic; do
-        for item in step-none step-all; do
+        for item in step-none step-all step-special; do
             ir=
             if valgrind --tool=callgrind --callgrind-out-file="$CG/variant.cg" \
                     --toggle-collect=bench_run_block "$vstatic" run slider-crank "$item" \
@@ -240,7 +242,11 @@ CPU=$(sed -n 's/^model name[^:]*: *//p' /proc/cpuinfo 2>/dev/null | head -n 1)
 
 # The labels of the series (compare/series.tsv) as braun-bench has them.
 "$BIN" series > "$OUT/series.txt"
+# How far the specialised floor's trajectory ends from the library's ideal
+# step (braun-bench run ... step-special; it is not timed above 1e-9).
+AGREE=$(sed -n 's/.*agreement=\([^ ]*\).*/\1/p' "$CG/slider-crank.step-special.txt" 2>/dev/null)
 awk -f bench/tables.awk -v out="$OUT" -v meta="$OUT/meta.txt" -v series="$OUT/series.txt" \
+    -v special_agreement="${AGREE:-?}" \
     "$OUT/targets.csv" "$OUT/time.csv" "$OUT/instructions.csv" "$OUT/flops.csv" \
     "$OUT/profile.csv" "$OUT/matched_error.csv" "$OUT/variants.csv"
 

@@ -29,7 +29,7 @@ static int usage(void)
             "       braun-bench info TARGET...\n"
             "       braun-bench matched RUNS_CSV [LEVEL...]\n"
             "       braun-bench series\n"
-            "items: step-none step-pv step-all step-free step-floor rhs-ideal rhs-corrected "
+            "items: step-none step-pv step-all step-free step-floor step-special rhs-ideal rhs-corrected "
             "rhs-floor\n");
     return 2;
 }
@@ -228,7 +228,10 @@ static int cmd_run(int argc, char **argv)
         bench_run_reset(r, (bench_item)it);
         ops = bench_run_block(r, (bench_item)it, &st);
     }
-    printf("ops=%ld status=%d\n", ops, st);
+    if (it == BENCH_STEP_SPECIAL)
+        printf("ops=%ld status=%d agreement=%.3g\n", ops, st, bench_run_special_agreement(r));
+    else
+        printf("ops=%ld status=%d\n", ops, st);
     bench_run_free(r);
     bench_target_close(&tg);
     return 0;

@@ -1,5 +1,6 @@
 /* The measured work of one target: a workspace per configuration, blocks of
  * steps or right-hand sides from fixed states. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,12 +26,64 @@ struct bench_run {
     double *yrec;
     int yrec_done;
     double dydt[4];
+    /* The specialised floor: its state, and how far its trajectory ended
+     * from the library's ideal step over one block (bench_special_agreement). */
+    double ysp[12];
+    double special_dev;
 };
 
 /* Which workspace an item uses (the right-hand sides have their own). */
 static int uses_data(bench_item it)
 {
-    return it != BENCH_STEP_FLOOR && it != BENCH_RHS_FLOOR;
+    return it != BENCH_STEP_FLOOR && it != BENCH_RHS_FLOOR && it != BENCH_STEP_SPECIAL;
+}
+
+/* The specialised floor exists for the built-in slider-crank in a double
+ * build (bench_special.c writes that model out). */
+static int special_applies(const bench_target *tg)
+{
+#ifdef BRAUN_SINGLE
+    (void)tg;
+    return 0;
+#else
+    return strcmp(tg->source, "built-in") == 0 &&
+           strcmp(tg->name, "slider-crank") == 0 && tg->sys.n == 6 && tg->sys.m == 5 &&
+           tg->sys.p == 0;
+#endif
+}
+
+static void special_start(bench_run *r)
+{
+    for (int i = 0; i < 6; i++) {
+        r->ysp[i] = (double)r->tg->q0[i];
+        r->ysp[6 + i] = (double)r->tg->v0[i];
+    }
+}
+
+/* One block of the specialised step against one of the library's ideal
+ * step from the same start: the largest difference of q and v at the end,
+ * relative to the largest entry. A floor that does not simulate the same
+ * motion is no floor: bench_run_new drops it above 1e-9. */
+static double special_agreement(bench_run *r)
+{
+    braun_data *d = &r->data[BENCH_STEP_NONE];
+    const braun_link_params *p = (const braun_link_params *)r->tg->sys.user;
+    const double h = r->tg->h;
+    special_start(r);
+    if (braun_set_state(d, 0, r->tg->q0, r->tg->v0)) return INFINITY;
+    for (long s = 0; s < r->steps; s++) {
+        bench_special_step(p, h, r->ysp);
+        if (braun_step(d, BRAUN_RK4, (braun_real)h)) return INFINITY;
+    }
+    double dev = 0, big = 0;
+    for (int i = 0; i < 6; i++) {
+        const double e[2] = {r->ysp[i] - (double)d->q[i], r->ysp[6 + i] - (double)d->v[i]};
+        for (int j = 0; j < 2; j++)
+            if (!(fabs(e[j]) <= dev)) dev = fabs(e[j]); /* NaN too */
+        if (fabs((double)d->q[i]) > big) big = fabs((double)d->q[i]);
+        if (fabs((double)d->v[i]) > big) big = fabs((double)d->v[i]);
+    }
+    return dev / (big > 1 ? big : 1);
 }
 
 bench_run *bench_run_new(const bench_target *tg, long steps, char *err, size_t errsize)
@@ -48,7 +101,8 @@ bench_run *bench_run_new(const bench_target *tg, long steps, char *err, size_t e
     r->free_sys.flags = (r->free_sys.flags & ~(unsigned)BRAUN_CONSTRAINT_WORK) | BRAUN_SCLERONOMIC;
     for (int i = 0; i < BENCH_ITEMS; i++) {
         bench_item it = (bench_item)i;
-        r->has[i] = uses_data(it) || tg->minimal != NULL;
+        r->has[i] = it == BENCH_STEP_SPECIAL ? special_applies(tg)
+                                             : uses_data(it) || tg->minimal != NULL;
         if (!uses_data(it)) continue;
         const braun_system *sys = it == BENCH_STEP_FREE ? &r->free_sys : &tg->sys;
         int st = braun_model_init(&r->model[i], sys);
@@ -81,6 +135,15 @@ bench_run *bench_run_new(const bench_target *tg, long steps, char *err, size_t e
     r->yrec = malloc((size_t)steps * 3 * sizeof *r->yrec);
     if (!r->rec || !r->qdot || !r->yrec) goto oom;
     r->vdot = r->qdot + n;
+    r->special_dev = NAN;
+    if (r->has[BENCH_STEP_SPECIAL]) {
+        r->special_dev = special_agreement(r);
+        if (!(r->special_dev <= 1e-9)) {
+            fprintf(stderr, "braun-bench: %s: step-special ends %g from step-none after %ld steps: "
+                            "not the same motion, not timed\n", tg->name, r->special_dev, steps);
+            r->has[BENCH_STEP_SPECIAL] = 0;
+        }
+    }
     return r;
 oom:
     snprintf(err, errsize, "out of memory");
@@ -96,6 +159,11 @@ void bench_run_free(bench_run *r)
     free(r->qdot);
     free(r->yrec);
     free(r);
+}
+
+double bench_run_special_agreement(const bench_run *r)
+{
+    return r->special_dev;
 }
 
 int bench_run_has(const bench_run *r, bench_item it)
@@ -147,6 +215,7 @@ void bench_run_reset(bench_run *r, bench_item it)
     if (!bench_run_has(r, it)) return;
     switch (it) {
     case BENCH_STEP_FLOOR: floor_start(r); break;
+    case BENCH_STEP_SPECIAL: special_start(r); break;
     case BENCH_RHS_FLOOR:
         if (!r->yrec_done) record_floor(r);
         break;
@@ -178,6 +247,11 @@ long bench_run_block(bench_run *r, bench_item it, int *status)
             r->t = (double)(s + 1) * tg->h;
         }
         return r->steps;
+    case BENCH_STEP_SPECIAL: {
+        const braun_link_params *p = (const braun_link_params *)tg->sys.user;
+        for (long s = 0; s < r->steps; s++) bench_special_step(p, tg->h, r->ysp);
+        return r->steps;
+    }
     case BENCH_RHS_FLOOR:
         for (long s = 0; s < r->steps; s++) {
             const double *x = r->yrec + (size_t)s * 3;

@@ -7,7 +7,7 @@
 #include "braun_scene_file.h"
 
 static const char *const item_names[BENCH_ITEMS] = {
-    "step-none", "step-pv", "step-all", "step-free", "step-floor",
+    "step-none", "step-pv", "step-all", "step-free", "step-floor", "step-special",
     "rhs-ideal", "rhs-corrected", "rhs-floor"};
 
 const char *bench_item_name(bench_item it)

@@ -271,5 +271,12 @@ END {
     printf "| instructions per corrected / ideal step | %s / %s | | |\n", f0(ir[k]), f0(ir[kn]) > f
     printf "| flops per corrected step (all / core) | %s / %s | | %s instructions and %s ns per flop |\n", f0(fl[k]), f0(flc[k]), f1(ratio(ir[k], fl[k])), sig(ratio(ns[k], fl[k])) > f
     printf "| corrected step / minimal-coordinate RK4 step (floor) | %s (time), %s (instructions) | | |\n", f1(rf[k]), f1(ratio(ir[k], ir[t, "step-floor"])) > f
+    ks = t SUBSEP "step-special"
+    if (ks in ns) {
+        printf "| ideal step written out by hand (`bench/bench_special.c`, the specialised floor; its trajectory ends %s from the ideal step's) | %s ns (median; fastest %s), %s instructions | | %s of the ideal step's time |\n", special_agreement, f0(ns[ks]), f0(nsmin[ks]), f0(ir[ks]), f2(ri[ks]) > f
+        v = "fixed-O3-lto"
+        if ((v SUBSEP "step-special") in vns)
+            printf "| fixed sizes `-O3 -flto`: written-out ideal / ideal / corrected step, medians | %s / %s / %s ns | corrected ≤ 500 (issue 16) | %s |\n", f0(vns[v, "step-special"]), f0(vns[v, "step-none"]), f0(vns[v, "step-all"]), (num(vns[v, "step-all"]) && vns[v, "step-all"] <= 500 ? "met" : "not met") > f
+    }
     close(f)
 }

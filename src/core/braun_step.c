@@ -22,48 +22,53 @@ static int diverged_if_integrated(braun_data *d, int stage, int st)
  * times h, in passes of up to four terms: the same sums in the same order
  * as one pass per term, without re-reading dst. Returns Σ dst·0 of the last
  * pass (braun_all_finite's test: 0 unless dst holds a NaN or an Inf). The
- * stage states and the step's end both take it. */
+ * stage states and the step's end both take it. A pass's terms are held in
+ * scalars, not arrays: GCC at -O3 -flto could not see that a pass reads
+ * only the entries written and warned (-Wmaybe-uninitialized). */
 BRAUN_FORCE_INLINE braun_real combine(int N, const braun_real *src, braun_real *dst, const braun_real *coef,
                           int count, braun_real h, braun_real *const *k)
 {
-    const braun_real *kt[BRAUN_MAX_STAGES];
-    braun_real bt[BRAUN_MAX_STAGES];
-    int nt = 0;
-    for (int s = 0; s < count; s++) {
-        const braun_real b = coef[s] * h;
-        if (b == 0) continue;
-        kt[nt] = k[s];
-        bt[nt++] = b;
-    }
     braun_real chk = 0;
-    int t = 0;
+    int s = 0;
     do {
-        const int terms = nt - t > 4 ? 4 : nt - t;
-        const braun_real *const *kp = kt + t; /* this pass's terms */
-        const braun_real *bp = bt + t;
+        const braun_real *k0 = dst, *k1 = dst, *k2 = dst, *k3 = dst;
+        braun_real b0 = 0, b1 = 0, b2 = 0, b3 = 0;
+        int terms = 0;
+        for (; s < count && terms < 4; s++) {
+            const braun_real b = coef[s] * h;
+            if (b == 0) continue;
+            switch (terms++) {
+            case 0: k0 = k[s]; b0 = b; break;
+            case 1: k1 = k[s]; b1 = b; break;
+            case 2: k2 = k[s]; b2 = b; break;
+            default: k3 = k[s]; b3 = b; break;
+            }
+        }
+        /* Zero coefficients after a pass's fourth term start no pass. */
+        while (s < count && coef[s] * h == 0) s++;
         chk = 0;
         switch (terms) {
         case 4:
             for (int i = 0; i < N; i++) {
-                dst[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i] + bp[2] * kp[2][i] + bp[3] * kp[3][i];
+                dst[i] = src[i] + b0 * k0[i] + b1 * k1[i] + b2 * k2[i] + b3 * k3[i];
                 chk += dst[i] * 0;
             }
             break;
         case 3:
             for (int i = 0; i < N; i++) {
-                dst[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i] + bp[2] * kp[2][i];
+                dst[i] = src[i] + b0 * k0[i] + b1 * k1[i] + b2 * k2[i];
                 chk += dst[i] * 0;
             }
             break;
         case 2:
             for (int i = 0; i < N; i++) {
-                dst[i] = src[i] + bp[0] * kp[0][i] + bp[1] * kp[1][i];
+                dst[i] = src[i] + b0 * k0[i] + b1 * k1[i];
                 chk += dst[i] * 0;
             }
             break;
         case 1:
             for (int i = 0; i < N; i++) {
-                dst[i] = src[i] + bp[0] * kp[0][i];
+                dst[i] = src[i] + b0 * k0[i];
                 chk += dst[i] * 0;
             }
             break;
@@ -75,8 +80,7 @@ BRAUN_FORCE_INLINE braun_real combine(int N, const braun_real *src, braun_real *
             break;
         }
         src = dst;
-        t += terms;
-    } while (t < nt);
+    } while (s < count);
     return chk;
 }
 

@@ -229,7 +229,7 @@ static int fn_value(sj_reader *r, json_t *v, const char *field, braun_scene_fn *
 
 static int fn_object(sj_reader *r, json_t *v, braun_scene_fn *f)
 {
-    const char *type;
+    const char *type = NULL; /* set by str_field on success; -O3 -flto cannot tell */
     if (str_field(r, v, "type", 1, &type)) return -1;
     static const char *const k_const[] = {"type", "value", NULL};
     static const char *const k_lin[] = {"type", "value", "rate", NULL};
