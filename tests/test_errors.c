@@ -483,8 +483,8 @@ static void test_inconsistent_velocities(void **state)
 
 /* M = diag(1 + x², 1 + t) declared BRAUN_MASS_CONSTANT: the library
  * factored M(0, 0) = I once and would use it everywhere. The claim is
- * checked where it costs no step: at braun_set_state and at a driver's last
- * state. */
+ * checked at braun_set_state, at the start of every 64th step
+ * (BRAUN_MASS_CHECK_EVERY) and at a driver's last state. */
 static int varying_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
 {
     const int *which = u; /* 0: M(x), 1: M(t) */
@@ -509,11 +509,30 @@ static void test_mass_constant_claim_checked(void **state)
                         "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)");
     assert_true(sim.data.error.value > 0.05);
     /* Where M(q) equals M(0, 0) the start passes; the motion leaves it
-     * (x = t) and the driver's last state says so. */
+     * (x = t): the 64th step's start says so, t = 0.63, and the run keeps
+     * the state there. A first version checked a driver's last state only
+     * (t = 1 here) and a braun_step loop never. */
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
     assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 0, NULL, NULL),
                      BRAUN_ERR_ARGUMENT);
-    assert_near(sim.data.error.t, 1.0, 1e-12);
+    assert_near(sim.data.error.t, 0.63, 1e-12);
+    assert_near(sim.data.t, 0.63, 1e-12);
+    assert_near(sim.data.q[0], 0.63, 1e-12);
+    assert_int_equal(sim.data.stats.steps, 63);
+    /* A braun_step loop: the 64th call refuses and changes nothing. */
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    int calls = 0, st = BRAUN_OK;
+    while (calls < 1000 && (st = braun_step(&sim.data, BRAUN_RK4, 1e-2)) == BRAUN_OK) calls++;
+    assert_int_equal(st, BRAUN_ERR_ARGUMENT);
+    assert_int_equal(calls, 63);
+    assert_string_equal(sim.data.error.where,
+                        "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)");
+    assert_near(sim.data.t, 0.63, 1e-12);
+    assert_near(sim.data.q[0], 0.63, 1e-12);
+    /* It stays refused: after a failed check every call checks again (the
+     * countdown restarts only after a check that passed). */
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_ARGUMENT);
+    assert_near(sim.data.t, 0.63, 1e-12);
     /* M(t): the same at the end of the span. */
     which = 1;
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);

@@ -184,7 +184,7 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
     /* An accepted state is reported once the next attempt's start has
      * passed the accuracy guard (or the final check has): a run the guard
      * stops has reported only states that passed. */
-    int pending = 0;
+    int pending = 0, fresh = 1;
     st = BRAUN_OK;
     while (d->t < t_end) {
         if (h > hmax) h = hmax;
@@ -204,6 +204,12 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
         st = braun__time_step_ok(d, d->t, t_new, (braun_real)h, last);
         if (st) break;
         const braun_real hr = t_new - d->t;
+        /* The mass claim at a new start (a repeated attempt starts where the
+         * rejected one did: counted once, and its kept first stage is left
+         * alone). */
+        if (fresh) st = braun__mass_claim_due(d);
+        if (st) break;
+        fresh = 0;
         braun__load_state(d);
         /* Always per step: with a varying h the literal Δ = Φ/h changes
          * meaning from one trial step to the next and the error test, which
@@ -247,6 +253,7 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
                 pv->step_rank[1] = pv->rank[1];
             }
             braun__commit(d, pv->y1, t_new, 0);
+            fresh = 1;
             d->error.status = BRAUN_OK;
             st = BRAUN_OK;
             accepted++;

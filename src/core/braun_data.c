@@ -179,6 +179,7 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     d->stats = (braun_stats){0, 0, 0, pv->R_is_constant ? 1 : 0, 0, 0, 0, 0};
     pv->state_integrated = 0;
     pv->vel_judged = 0;
+    pv->mass_check_in = BRAUN_MASS_CHECK_EVERY;
     pv->state_set = 1;
     pv->has_prev = 0;
     pv->t_lo = 0;

@@ -91,6 +91,7 @@ typedef struct braun_priv {
     int R_is_constant;    /* R computed once in braun_data_init */
     int state_integrated; /* the state came from a step, not braun_set_state */
     int vel_judged;       /* the first velocity correction since braun_set_state ran (rows' consistency) */
+    int mass_check_in;    /* steps to the next check of BRAUN_MASS_CONSTANT (braun__mass_claim_due) */
     int state_set;        /* braun_set_state was called */
     unsigned flags;       /* sys.flags at braun_data_init (braun__check_system) */
     /* A driver runs on this data (1: braun_step, braun_integrate or
@@ -267,6 +268,30 @@ int braun__stage_mass(braun_data *d);
 int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q);
 /* A driver's last state: the mass claim, then the guard. */
 int braun__final_checks(braun_data *d);
+
+/* Steps between two checks of BRAUN_MASS_CONSTANT within a run. A mass
+ * matrix that varies but equals M(0, 0) where the run starts (relative
+ * coordinates at zero angles) passes braun_set_state; a braun_step loop
+ * never reaches a driver's last state. One check costs a mass callback and
+ * n² products (~300 instructions on the slider-crank, host): every 64th
+ * step makes it ~5 per step, and a false claim stops the run within 64
+ * steps of the first one that saw it. */
+#define BRAUN_MASS_CHECK_EVERY 64
+
+/* The mass claim at a step's start (d->t, d->q), every
+ * BRAUN_MASS_CHECK_EVERY steps since braun_set_state; a countdown
+ * otherwise. The countdown restarts only after a check that passed: once
+ * refused, every later step is refused too. Where it runs the scratch it
+ * uses (pv->ce, pv->tmp) is free. */
+static inline int braun__mass_claim_due(braun_data *d)
+{
+    braun_priv *pv = (braun_priv *)d->priv;
+    if (!pv->R_is_constant || --pv->mass_check_in > 0) return 0;
+    pv->mass_check_in = 0; /* (no count below 0 however many refusals) */
+    const int st = braun__check_mass_claim(d, d->t, d->q);
+    if (!st) pv->mass_check_in = BRAUN_MASS_CHECK_EVERY;
+    return st;
+}
 /* Stage constraints alone at pv->at: A, b_v and, with residuals, Φ, b_q
  * and [Φ̇_q; Φ_v] (the corrections at a step's end re-measure the
  * velocity-level residual at the corrected position). */
