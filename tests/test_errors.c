@@ -487,8 +487,8 @@ static void test_inconsistent_velocities(void **state)
  * (BRAUN_MASS_CHECK_EVERY) and at a driver's last state. */
 static int varying_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
 {
-    const int *which = u; /* 0: M(x), 1: M(t) */
-    M[0] = 1 + (*which == 0 ? q[0] * q[0] : 0);
+    const int *which = u; /* 0: M(x), 1: M(t), 2: NaN away from x = 0 */
+    M[0] = *which == 2 ? (q[0] != 0 ? NAN : 1) : 1 + (*which == 0 ? q[0] * q[0] : 0);
     M[3] = 1 + (*which == 1 ? t : 0);
     M[1] = M[2] = 0;
     return 0;
@@ -541,6 +541,12 @@ static void test_mass_constant_claim_checked(void **state)
     braun_adaptive ctl = {1e-6, 1e-8, 0, 0, 0, 0};
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
     assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 0.5, 0, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    /* A NaN in the check's M is named as such (M is scanned once the
+     * quadratic forms disagree), not reported as a varying M. */
+    which = 2;
+    assert_int_equal(braun_set_state(&sim.data, 0, q1, v0), BRAUN_ERR_NONFINITE);
+    assert_string_equal(sim.data.error.where, "mass");
+    assert_int_equal(sim.data.error.index, 0);
     test_sim_close(&sim);
     /* A mass matrix that is constant passes everywhere (the built-in
      * models, the scenes: every test that runs them). */

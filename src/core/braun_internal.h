@@ -273,10 +273,15 @@ int braun__final_checks(braun_data *d);
  * matrix that varies but equals M(0, 0) where the run starts (relative
  * coordinates at zero angles) passes braun_set_state; a braun_step loop
  * never reaches a driver's last state. One check costs a mass callback and
- * n² products (~300 instructions on the slider-crank, host): every 64th
- * step makes it ~5 per step, and a false claim stops the run within 64
- * steps of the first one that saw it. */
+ * n² products (~720 instructions on the Cortex-M4F for the slider-crank):
+ * every 64th step makes it ~11 per step on average, and a false claim
+ * stops the run within 64 steps of the first one that saw it. The step
+ * that checks is the dearest of a real-time budget: a firmware build whose
+ * M is known constant may define it 0 (no check within a run; braun_set_state
+ * and the drivers' last state still check). */
+#ifndef BRAUN_MASS_CHECK_EVERY
 #define BRAUN_MASS_CHECK_EVERY 64
+#endif
 
 /* The mass claim at a step's start (d->t, d->q), every
  * BRAUN_MASS_CHECK_EVERY steps since braun_set_state; a countdown
@@ -286,7 +291,7 @@ int braun__final_checks(braun_data *d);
 static inline int braun__mass_claim_due(braun_data *d)
 {
     braun_priv *pv = (braun_priv *)d->priv;
-    if (!pv->R_is_constant || --pv->mass_check_in > 0) return 0;
+    if (BRAUN_MASS_CHECK_EVERY <= 0 || !pv->R_is_constant || --pv->mass_check_in > 0) return 0;
     pv->mass_check_in = 0; /* (no count below 0 however many refusals) */
     const int st = braun__check_mass_claim(d, d->t, d->q);
     if (!st) pv->mass_check_in = BRAUN_MASS_CHECK_EVERY;
