@@ -533,6 +533,22 @@ static void test_mass_constant_claim_checked(void **state)
      * countdown restarts only after a check that passed). */
     assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_ARGUMENT);
     assert_near(sim.data.t, 0.63, 1e-12);
+    /* braun_eval, the right-hand side of the caller's own integrator: the
+     * 64th evaluation since braun_set_state, here at x = 0.64. */
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    {
+        double qe[2] = {0, 0}, qd[2], vd[2];
+        int evals = 0;
+        st = BRAUN_OK;
+        while (evals < 1000 && st == BRAUN_OK) {
+            qe[0] = 0.01 * (evals + 1);
+            st = braun_eval(&sim.data, qe[0], qe, v0, 1e-2, qd, vd);
+            if (st == BRAUN_OK) evals++;
+        }
+        assert_int_equal(st, BRAUN_ERR_ARGUMENT);
+        assert_int_equal(evals, 63);
+        assert_near(sim.data.error.t, 0.64, 1e-12);
+    }
     /* M(t): the same at the end of the span. */
     which = 1;
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);

@@ -207,7 +207,7 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
         /* The mass claim at a new start (a repeated attempt starts where the
          * rejected one did: counted once, and its kept first stage is left
          * alone). */
-        if (fresh) st = braun__mass_claim_due(d);
+        if (fresh) st = braun__mass_claim_due(d, d->t, d->q);
         if (st) break;
         fresh = 0;
         braun__load_state(d);

@@ -91,6 +91,7 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->R_is_constant = 0;
     pv->state_integrated = 0;
     pv->vel_judged = 0;
+    pv->mass_check_in = BRAUN_MASS_CHECK_EVERY;
     pv->state_set = 0;
     pv->flags = s->flags;
     pv->busy = 0;

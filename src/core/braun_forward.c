@@ -491,6 +491,10 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
     if (st) return st;
     if (corr && !(h > 0 && braun_is_finite(h)))
         return braun__fail(d, BRAUN_ERR_STEP, "braun_eval h", -1, -1, (double)h, (double)t);
+    /* A right-hand side for the caller's own integrator: the mass claim
+     * every BRAUN_MASS_CHECK_EVERY evaluations, as the drivers' steps. */
+    st = braun__mass_claim_due(d, t, q);
+    if (st) return st;
     braun_priv *pv = braun__priv(d);
     braun__at(pv, t, q, v, d->work_in, h);
     /* An evaluation on its own: the plain rank tolerance. */

@@ -50,7 +50,7 @@ static int integrate(braun_data *d, braun_method method, braun_real h, braun_rea
             t_new = braun__clock_advance(d, pv->t_lo, h, &t_lo);
         }
         st = braun__time_step_ok(d, d->t, t_new, h, i == steps);
-        if (!st) st = braun__mass_claim_due(d);
+        if (!st) st = braun__mass_claim_due(d, d->t, d->q);
         if (st) return finish_failed(d, st, out && every > 0 && i > 1 && (i - 1) % every == 0, out, out_user);
         braun__load_state(d);
         st = braun__rk_attempt(d, tb, hi, per_stage ? BRAUN__CORR_AT_STAGES : BRAUN__CORR_AT_START,

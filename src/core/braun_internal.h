@@ -269,11 +269,13 @@ int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q);
 /* A driver's last state: the mass claim, then the guard. */
 int braun__final_checks(braun_data *d);
 
-/* Steps between two checks of BRAUN_MASS_CONSTANT within a run. A mass
- * matrix that varies but equals M(0, 0) where the run starts (relative
- * coordinates at zero angles) passes braun_set_state; a braun_step loop
- * never reaches a driver's last state. One check costs a mass callback and
- * n² products (~720 instructions on the Cortex-M4F for the slider-crank):
+/* Steps (or braun_eval calls) between two checks of BRAUN_MASS_CONSTANT
+ * within a run. A mass matrix that varies but equals M(0, 0) where the
+ * run starts (relative coordinates at zero angles) passes braun_set_state;
+ * a braun_step loop never reaches a driver's last state, and braun_eval
+ * in the caller's own integrator no last state at all. One check costs a
+ * mass callback and n² products (~720 instructions on the Cortex-M4F for
+ * the slider-crank):
  * every 64th step makes it ~11 per step on average, and a false claim
  * stops the run within 64 steps of the first one that saw it. The step
  * that checks is the dearest of a real-time budget: a firmware build whose
@@ -283,17 +285,17 @@ int braun__final_checks(braun_data *d);
 #define BRAUN_MASS_CHECK_EVERY 64
 #endif
 
-/* The mass claim at a step's start (d->t, d->q), every
- * BRAUN_MASS_CHECK_EVERY steps since braun_set_state; a countdown
- * otherwise. The countdown restarts only after a check that passed: once
- * refused, every later step is refused too. Where it runs the scratch it
- * uses (pv->ce, pv->tmp) is free. */
-static inline int braun__mass_claim_due(braun_data *d)
+/* The mass claim at a step's start (d->t, d->q) or at a braun_eval's
+ * point, every BRAUN_MASS_CHECK_EVERY steps or evaluations since
+ * braun_set_state; a countdown otherwise. The countdown restarts only after
+ * a check that passed: once refused, every later call is refused too.
+ * Where it runs the scratch it uses (pv->ce, pv->tmp) is free. */
+static inline int braun__mass_claim_due(braun_data *d, braun_real t, const braun_real *q)
 {
     braun_priv *pv = (braun_priv *)d->priv;
     if (BRAUN_MASS_CHECK_EVERY <= 0 || !pv->R_is_constant || --pv->mass_check_in > 0) return 0;
     pv->mass_check_in = 0; /* (no count below 0 however many refusals) */
-    const int st = braun__check_mass_claim(d, d->t, d->q);
+    const int st = braun__check_mass_claim(d, t, q);
     if (!st) pv->mass_check_in = BRAUN_MASS_CHECK_EVERY;
     return st;
 }

@@ -289,7 +289,7 @@ int braun_step(braun_data *d, braun_method method, braun_real h)
     braun_real t_lo;
     const braun_real t_new = braun__clock_advance(d, pv->t_lo, h, &t_lo);
     st = braun__time_step_ok(d, d->t, t_new, h, 0);
-    if (!st) st = braun__mass_claim_due(d);
+    if (!st) st = braun__mass_claim_due(d, d->t, d->q);
     if (st) return st;
     braun__load_state(d);
     st = braun__rk_attempt(d, tb, h,
