@@ -65,9 +65,11 @@ static int stage_mass(braun_data *d)
 /* BRAUN_MASS_CONSTANT is a claim: M was evaluated and factored once, at
  * t = 0, q = 0 (braun_data_init). A mass matrix that does vary (relative
  * coordinates, a body's inertia in world axes) would be taken as M(0, 0)
- * everywhere, a wrong motion with no other sign. Checked at braun_set_state
- * and at a driver's last state — a mass callback and n² (block) products,
- * never inside a step: the quadratic forms xᵀM(t, q)x and ‖R x‖² of a
+ * everywhere, a wrong motion with no other sign. Checked at braun_set_state,
+ * at the start of every BRAUN_MASS_CHECK_EVERY-th step or braun_eval
+ * (braun__mass_claim_due) and at a driver's last state — a mass callback
+ * and n² (block) products, never within a step's stages: the quadratic
+ * forms xᵀM(t, q)x and ‖R x‖² of a
  * fixed probe x must agree within sqrt(ε) of Σ|x_i M_ij x_j| (round-off
  * of the factor is about n²ε of it). */
 int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q)

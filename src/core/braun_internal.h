@@ -264,7 +264,8 @@ int braun__guard_final(braun_data *d);
 /* Stage mass alone (braun_data_init factors a constant M with it). */
 int braun__stage_mass(braun_data *d);
 /* BRAUN_MASS_CONSTANT checked at a state: M(t, q) must be the M factored
- * at braun_data_init (braun_set_state, a driver's last state). */
+ * at braun_data_init (braun_set_state, braun__mass_claim_due, a driver's
+ * last state). */
 int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q);
 /* A driver's last state: the mass claim, then the guard. */
 int braun__final_checks(braun_data *d);
@@ -275,12 +276,11 @@ int braun__final_checks(braun_data *d);
  * a braun_step loop never reaches a driver's last state, and braun_eval
  * in the caller's own integrator no last state at all. One check costs a
  * mass callback and n² products (~720 instructions on the Cortex-M4F for
- * the slider-crank):
- * every 64th step makes it ~11 per step on average, and a false claim
- * stops the run within 64 steps of the first one that saw it. The step
- * that checks is the dearest of a real-time budget: a firmware build whose
- * M is known constant may define it 0 (no check within a run; braun_set_state
- * and the drivers' last state still check). */
+ * the slider-crank; with the countdown, +21 per step in the 100 s mean),
+ * and a false claim stops the run within 64 steps of the first one that
+ * saw it. The step that checks is the dearest of a real-time budget: a
+ * firmware build whose M is known constant may define it 0 (no check
+ * within a run; braun_set_state and the drivers' last state still check). */
 #ifndef BRAUN_MASS_CHECK_EVERY
 #define BRAUN_MASS_CHECK_EVERY 64
 #endif
@@ -294,9 +294,10 @@ static inline int braun__mass_claim_due(braun_data *d, braun_real t, const braun
 {
     braun_priv *pv = (braun_priv *)d->priv;
     if (BRAUN_MASS_CHECK_EVERY <= 0 || !pv->R_is_constant || --pv->mass_check_in > 0) return 0;
-    pv->mass_check_in = 0; /* (no count below 0 however many refusals) */
     const int st = braun__check_mass_claim(d, t, q);
-    if (!st) pv->mass_check_in = BRAUN_MASS_CHECK_EVERY;
+    /* Refused: 0, so that the next call checks again (and the count does
+     * not run down however many refusals follow). */
+    pv->mass_check_in = st ? 0 : BRAUN_MASS_CHECK_EVERY;
     return st;
 }
 /* Stage constraints alone at pv->at: A, b_v and, with residuals, Φ, b_q
