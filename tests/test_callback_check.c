@@ -172,8 +172,15 @@ static void test_misprints_found(void **state)
     assert_int_equal(braun_check_callbacks(&s, 0, q, sim.data.v, 0, &rep), BRAUN_ERR_CALLBACK);
     assert_non_null(strstr(rep.worst, "holonomic callback returned -3"));
     mode = 0;
-    /* Bad arguments. */
+    /* Bad arguments: rep->worst says which (it was left unwritten). */
+    memset(&rep, 0x55, sizeof rep);
     assert_int_equal(braun_check_callbacks(NULL, 0, q, q, 0, &rep), BRAUN_ERR_ARGUMENT);
+    assert_string_equal(rep.worst, "system (NULL)");
+    memset(&rep, 0x55, sizeof rep);
+    assert_int_equal(braun_check_callbacks(&s, 0, NULL, q, 0, &rep), BRAUN_ERR_ARGUMENT);
+    assert_string_equal(rep.worst, "state q (NULL)");
+    assert_int_equal(braun_check_callbacks(&s, 0, q, NULL, 0, &rep), BRAUN_ERR_ARGUMENT);
+    assert_string_equal(rep.worst, "state v (NULL)");
     assert_int_equal(braun_check_callbacks(&s, 0, q, q, 0, NULL), BRAUN_ERR_ARGUMENT);
     test_sim_close(&sim);
 }

@@ -196,10 +196,12 @@ static void test_reentry_from_system_callback(void **state)
     test_sim_close(&ref);
 }
 
-/* An output callback: braun_set_state and the drivers refused (a run in
- * progress), braun_residuals and braun_energy allowed. */
+/* An output callback: braun_set_state, the drivers and braun_eval refused
+ * (a run in progress: braun_eval's forward pass would replace the
+ * factorization the next step starts from), braun_residuals and
+ * braun_energy allowed. */
 typedef struct watcher {
-    int calls, set_state, step, adaptive, residuals, energy;
+    int calls, set_state, step, adaptive, eval, residuals, energy;
 } watcher;
 
 static int watch(const braun_data *cd, void *u)
@@ -212,6 +214,9 @@ static int watch(const braun_data *cd, void *u)
     w->set_state |= braun_set_state(d, 0, q0, v0) != BRAUN_ERR_ARGUMENT;
     w->step |= braun_step(d, BRAUN_RK4, 1e-3) != BRAUN_ERR_ARGUMENT;
     w->adaptive |= braun_integrate_adaptive(d, &ctl, 100, 0, NULL, NULL) != BRAUN_ERR_ARGUMENT;
+    braun_real qd[2], vd[2];
+    w->eval |= braun_eval(d, d->t, d->q, d->v, 1e-3, qd, vd) != BRAUN_ERR_ARGUMENT ||
+               !strstr(d->error.where, "re-entrant");
     w->residuals |= braun_residuals(d, d->t, d->q, d->v, &p, NULL, NULL) != BRAUN_OK;
     w->energy |= braun_energy(d, d->t, d->q, d->v, &E) != BRAUN_OK;
     return 0;
@@ -232,7 +237,7 @@ static void test_reentry_from_output_callback(void **state)
         assert_int_equal(st, BRAUN_OK);
         assert_true(sim.data.t == 1.0);
         assert_true(w.calls > 2);
-        assert_int_equal(w.set_state + w.step + w.adaptive + w.residuals + w.energy, 0);
+        assert_int_equal(w.set_state + w.step + w.adaptive + w.eval + w.residuals + w.energy, 0);
     }
     /* After the run the data is free again. */
     assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_OK);

@@ -162,6 +162,17 @@ static void test_bad_state_and_steps(void **state)
     assert_int_equal(braun_eval(&sim.data, 0, q0, v0, 0, qd, vd), BRAUN_ERR_STEP);
     assert_int_equal(braun_eval(&sim.data, 0, qn, v0, 1e-3, qd, vd), BRAUN_ERR_NONFINITE);
     assert_int_equal(braun_eval(NULL, 0, q0, v0, 1e-3, qd, vd), BRAUN_ERR_ARGUMENT);
+    /* braun_energy checks the state as braun_eval does, also where E does
+     * not depend on the entry (the pendulum's potential has no x): it
+     * returned BRAUN_OK with a finite E before. */
+    braun_real E = 0;
+    const double qx[2] = {NAN, 0};
+    assert_int_equal(braun_energy(&sim.data, 0, qx, v0, &E), BRAUN_ERR_NONFINITE);
+    assert_string_equal(sim.data.error.where, "state q");
+    assert_int_equal(sim.data.error.index, 0);
+    assert_int_equal(braun_energy(&sim.data, NAN, q0, v0, &E), BRAUN_ERR_NONFINITE);
+    assert_string_equal(sim.data.error.where, "state t");
+    assert_int_equal(braun_energy(&sim.data, 0, q0, v0, &E), BRAUN_OK);
     test_sim_close(&sim);
 }
 

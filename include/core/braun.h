@@ -57,14 +57,19 @@ typedef enum braun_status {
     BRAUN_ERR_SIZE = -2,          /* negative or inconsistent n, m, p */
     BRAUN_ERR_BUFFER = -3,        /* buffer smaller than braun_data_size() (any alignment
                                      is fine), or a backend could not allocate */
-    BRAUN_ERR_NONFINITE = -4,     /* NaN/Inf in the state or a callback output */
+    BRAUN_ERR_NONFINITE = -4,     /* NaN/Inf in a state given to a call, or in a callback's
+                                     output at it (at a state a step reached: DIVERGED) */
     BRAUN_ERR_MASS_NOT_SYMMETRIC = -5,
     BRAUN_ERR_MASS_NOT_SPD = -6,  /* Cholesky pivot not positive */
     BRAUN_ERR_CALLBACK = -7,      /* a callback returned < 0 (fatal) */
     BRAUN_ERR_CALLBACK_RECOVERABLE = -8, /* callback returned > 0 and no retry possible */
     BRAUN_ERR_STEP = -9,          /* step size not finite and positive */
     BRAUN_ERR_TIME = -10,         /* t_end not after the current time */
-    BRAUN_ERR_DIVERGED = -11,     /* state left the finite range during a step */
+    BRAUN_ERR_DIVERGED = -11,     /* state left the finite range during a step, or a
+                                     callback's output was NaN/Inf at a state a step
+                                     reached (its stage or the next step's start): the
+                                     solution left where the model is defined; d->error
+                                     names the callback output and entry */
     BRAUN_ERR_STEP_TOO_SMALL = -12, /* adaptive step fell below its minimum */
     BRAUN_ERR_TOO_MANY_STEPS = -13,
     BRAUN_ERR_MISSING_CALLBACK = -14, /* m > 0 without holonomic(), ... */
@@ -419,7 +424,10 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
 /* The corrected equation of motion, Eqs. 16, 17, 20, with Δ = Φ/h, at the
  * given state (∫Ė taken from d->work_in). Corrections as in the model options;
  * with none (or at an exact state) vdot is the Udwadia–Kalaba acceleration
- * and qdot = v. qdot, vdot: n entries each. */
+ * and qdot = v. qdot, vdot: n entries each. Refused (BRAUN_ERR_ARGUMENT,
+ * "re-entrant call") while a driver runs on d, from its output callback
+ * too: its forward pass would replace the factorization the next step
+ * starts from. A second braun_data of the same model evaluates anywhere. */
 int braun_eval(braun_data *d, braun_real t, const braun_real *q,
                const braun_real *v, braun_real h, braun_real *qdot,
                braun_real *vdot);
@@ -461,7 +469,9 @@ int braun_step(braun_data *d, braun_method method, braun_real h);
  * it sees only states that passed. It may read d and call braun_residuals
  * and braun_energy on it (through a non-const pointer of its own, e.g. in
  * out_user): that changes neither the run nor d->stats. It must not
- * change the state. Return non-zero to stop: the driver returns
+ * change the state; braun_eval, braun_set_state, braun_step and the
+ * drivers on d are refused there (accelerations at the reported state:
+ * braun_eval on a second braun_data of the same model). Return non-zero to stop: the driver returns
  * BRAUN_STOPPED with d at the state the callback saw. */
 typedef int (*braun_output_fn)(const braun_data *d, void *user);
 

@@ -52,8 +52,11 @@ int braun_error_format(const braun_data *d, char *buf, size_t size);
  * BRAUN_ERR_ARGUMENT when one is above it (rep->worst names the entry of
  * the first such figure in the order above, e.g. "A_q[2][2]", "b_qv[3]",
  * "energy rate" — a wrong A_q also shows in b_qv; rep->worst_value its
- * figure; with none above tol, the largest), or the status of
- * what failed, rep->worst saying what (a state that is not finite:
+ * figure; with none above tol, the largest's entry, or "none (every
+ * difference 0)"), or the status of
+ * what failed, rep->worst saying what (a NULL sys, q or v:
+ * BRAUN_ERR_ARGUMENT, "state q (NULL)"; rep NULL: BRAUN_ERR_ARGUMENT
+ * alone; a state that is not finite:
  * BRAUN_ERR_NONFINITE; a callback's refusal: BRAUN_ERR_CALLBACK; a system
  * the library refuses; BRAUN_ERR_BUFFER). Sparse
  * systems too (their compressed rows are scattered). Check a few states,

@@ -230,18 +230,15 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
             err = 1e10; /* retry smaller, as SUNDIALS does for recoverable failures */
         } else if (st) {
             break;
-        } else {
-            if (pending) {
-                pending = 0;
-                if (out(d, out_user)) return BRAUN_STOPPED;
-            }
         }
         if (err <= 1) {
             /* First same as last: the last stage was evaluated at d->t + hr
              * (c = 1), which is t_new unless hr lost a bit, under the rank
              * rule of a step's later stages (a rank can fall there, not
              * rise): taken when it had full rank, which a new first stage
-             * would find too. */
+             * would find too. Kept before the output callback below, whose
+             * braun_residuals overwrites the residuals and A with the
+             * reported state's. */
             first_known = fsal && d->t + hr == t_new && pv->rank[0] == pv->rows &&
                           (!pv->need_fq || pv->rank[1] == pv->m);
             if (first_known) {
@@ -252,6 +249,13 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
                 pv->step_rank[0] = pv->rank[0];
                 pv->step_rank[1] = pv->rank[1];
             }
+        }
+        /* The last accepted state, once this attempt's start has passed. */
+        if (!st && pending) {
+            pending = 0;
+            if (out(d, out_user)) return BRAUN_STOPPED;
+        }
+        if (err <= 1) {
             braun__commit(d, pv->y1, t_new, 0);
             fresh = 1;
             d->error.status = BRAUN_OK;

@@ -449,10 +449,10 @@ static int check_state(braun_data *d, braun_real t, const braun_real *q,
     return st;
 }
 
-/* The arguments of braun_eval, braun_residuals, braun_energy. Allowed in
- * an output callback, between steps (docs/api.md), not from a system
- * callback while a step's stages run: the call would overwrite the scratch
- * the step is using. */
+/* The arguments of braun_eval, braun_residuals, braun_energy. The last two
+ * are allowed in an output callback, between steps (docs/api.md), none from
+ * a system callback while a step's stages run: the call would overwrite
+ * the scratch the step is using. */
 static int check_call(braun_data *d, const braun_real *q, const braun_real *v)
 {
     const int st = braun__check_usable(d, 1);
@@ -468,7 +468,12 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
                braun_real *vdot)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = check_call(d, q, v);
+    /* Not from a driver's output callback: the forward pass would replace
+     * the factorization, rank and residuals the driver's next step starts
+     * from (a run with it differed at round-off); a second braun_data of
+     * the same model evaluates anywhere. */
+    int st = braun__check_usable(d, 0);
+    if (!st) st = check_call(d, q, v);
     if (st) return st;
     if (!qdot || !vdot) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_eval (NULL output)", -1, -1, 0, (double)t);
     /* The stages read q and v to the end while they write vdot, and qdot is
@@ -529,6 +534,11 @@ int braun_energy(braun_data *d, braun_real t, const braun_real *q,
     int st = check_call(d, q, v);
     if (st) return st;
     if (!E) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_energy (NULL output)", -1, -1, 0, (double)t);
+    /* The state as braun_eval and braun_residuals check it: a NaN the
+     * energy does not depend on (a coordinate absent from E) is still a
+     * state that is no state. */
+    st = check_state(d, t, q, v);
+    if (st) return st;
     return braun__energy(d, t, q, v, E);
 }
 

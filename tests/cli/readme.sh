@@ -105,8 +105,8 @@ check "crank-path.svg draws the path of crank.A: an arc of a circle" awk '
 figure() { sed -n "s/^  \"$1\": \([^,]*\),*$/\1/p"; }
 w=$(braun run four-bar --dt 1e-2 --t-end 1000 --out headline.csv --every 10 | figure max_point_error)
 wo=$(braun run four-bar --dt 1e-2 --t-end 1000 --corrections position,velocity | figure max_point_error)
-check "headline: joint 3 within the README's 3.2e-4 m with the energy correction (got $w)" sh -c '
-    grep -q "within \*\*3.2e-4 m\*\*" "$2" && awk -v a="$1" "BEGIN { exit !(a >= 3.1e-4 && a < 3.3e-4) }"' sh "$w" "$README"
+check "headline: joint 3 within the README's 3.1e-4 m with the energy correction (got $w)" sh -c '
+    grep -q "within \*\*3.1e-4 m\*\*" "$2" && awk -v a="$1" "BEGIN { exit !(a >= 3.1e-4 && a < 3.2e-4) }"' sh "$w" "$README"
 check "headline: the README's 1.29 m without it (got $wo)" sh -c '
     grep -q "\*\*1.29 m\*\* off" "$2" && awk -v a="$1" "BEGIN { exit !(a >= 1.285 && a < 1.295) }"' sh "$wo" "$README"
 # The cranks' turns: the angle of joint 1 about the pivot (0, 0), unwrapped

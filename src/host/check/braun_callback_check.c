@@ -379,9 +379,14 @@ static int check_energy_rate(work *w, double t, const braun_real *q0, const brau
 int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_real *q,
                           const braun_real *v, double tol, braun_callback_report *rep)
 {
-    if (!sys || !q || !v || !rep) return BRAUN_ERR_ARGUMENT;
+    if (!rep) return BRAUN_ERR_ARGUMENT;
     memset(rep, 0, sizeof *rep);
     rep->energy_rate = NAN;
+    /* rep->worst always says what failed, a NULL argument too. */
+    if (!sys || !q || !v) {
+        snprintf(rep->worst, sizeof rep->worst, "%s (NULL)", !sys ? "system" : !q ? "state q" : "state v");
+        return BRAUN_ERR_ARGUMENT;
+    }
     /* A state the differences can use: finite. */
     if (!isfinite((double)t)) {
         snprintf(rep->worst, sizeof rep->worst, "state t");
@@ -445,5 +450,7 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
             snprintf(rep->worst, sizeof rep->worst, "a callback failed");
         return st;
     }
+    /* Every difference exactly 0 names no entry: say so, not "". */
+    if (!rep->worst[0]) snprintf(rep->worst, sizeof rep->worst, "none (every difference 0)");
     return w.named_fail ? BRAUN_ERR_ARGUMENT : BRAUN_OK;
 }
