@@ -234,7 +234,7 @@ int main(void)
            (double)data.t, (double)data.v[2], (double)pos, (double)en, b.worst);
     /* Bounds a few times the values measured (x86-64, gcc 12, -O2): |Phi_q|
      * 3.2e-13; the balance 5.4e-8, the error of Simpson's rule itself
-     * (3.4e-9 at h = 5e-4: h^4), while libbraun's own |Phi_e| is 8.9e-16. */
+     * (3.4e-9 at h = 5e-4: h^4), while libbraun's own |Phi_e| is 2.7e-15. */
     bad |= !(pos < 3e-12) || !(b.worst < 3e-7) || !(en < 5e-14);
 
     kinematics kin = {0};

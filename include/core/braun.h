@@ -451,7 +451,8 @@ typedef enum braun_method {
     BRAUN_RK4 = 2,
     /* Dormand–Prince 5(4): the adaptive driver, or fixed steps through
      * braun_step and braun_integrate (its 5th-order solution, no error
-     * control; 7 right-hand sides per step) */
+     * control; 6 right-hand sides per step: the 7th stage, of weight 0,
+     * serves only the adaptive driver's error estimate, 7 per attempt) */
     BRAUN_DOPRI5 = 3
 } braun_method;
 

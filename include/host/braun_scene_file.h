@@ -103,13 +103,16 @@ int braun_scene_file_diagnose(const braun_scene_file *sf, braun_real t, const br
  * (BRAUN_SINGLE): numbers are written as the exact double the host read,
  * cast to braun_real, which is what the host's own float build does.
  *
- * The generated file defines, for SYMBOL:
+ * The generated file defines, for SYMBOL (SYMBOL_N etc. in upper case; the
+ * declarations also in a header: braun_gen_c_write_header):
  *   #define SYMBOL_N, SYMBOL_M, SYMBOL_P        sizes (for static buffers and
  *                                               BRAUN_FIXED_N/ROWS builds)
  *   extern const unsigned SYMBOL_corrections;   what the scene file asks for
  *   int SYMBOL_build(braun_system *sys, braun_real *q0, braun_real *v0);
  *       braun_scene_build() on the static arrays, then the initial state
- *       (SYMBOL_N entries each; either may be NULL); returns its status.
+ *       (SYMBOL_N entries each; either may be NULL, the other is still
+ *       written); returns braun_scene_build's status, then
+ *       braun_scene_initial_state's.
  * Each element is written with its class's c_name; a class of the program
  * (c_name "&symbol") is declared extern in the file, and the program links
  * its definition. Returns -1 for an element whose class has no c_name.
@@ -146,6 +149,14 @@ int braun_gen_c_write(FILE *out, const braun_scene_file *sf, const char *symbol,
  * BRAUN_GEN_C_INVALID (nothing was written) or BRAUN_GEN_C_WRITE. */
 int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *symbol,
                          const char *source, char *err, size_t err_size);
+
+/* The header for the source above (`braun gen-c --header FILE`): an
+ * include guard BRAUN_GEN_SYMBOL_H, braun.h, SYMBOL_N/M/P, the declarations
+ * of SYMBOL_corrections and SYMBOL_build — what the program's other files
+ * need. Comments written as the source's; the same returns as
+ * braun_gen_c_write_ex (BRAUN_GEN_C_INVALID for a bad symbol). */
+int braun_gen_c_write_header(FILE *out, const braun_scene_file *sf, const char *symbol,
+                             const char *source, char *err, size_t err_size);
 
 #ifdef __cplusplus
 }

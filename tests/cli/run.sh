@@ -118,6 +118,12 @@ bad_msg "plot: the same limit" "more than --max-steps 100000000 allows" \
 bad_msg "--max-steps 999 for 1000 steps: refused" \
     "^braun: --dt 0.001 to --t-end 1 is a fixed-step run of 1000 steps \(T/H = 1000\), more than --max-steps 999" \
     run pendulum --dt 1e-3 --t-end 1 --max-steps 999
+# The library's count: 1/1e-9 is 999999999.9999999 in double, a whole
+# number up to round-off (the allowance is capped at half a step): 1e9
+# steps, as braun_integrate takes them (the tool said 999999999).
+bad_msg "--dt 1e-9 to 1 s counts 1000000000 steps, as the library" \
+    "^braun: --dt 1e-09 to --t-end 1 is a fixed-step run of 1000000000 steps" \
+    run pendulum --dt 1e-9 --t-end 1
 for v in 0 -3; do bad_msg "--max-steps $v" "^braun: --max-steps must be >= 1 \(got $v\)$" $run --dt 1e-3 --max-steps $v; done
 bad_msg "--max-steps 2.5" "^braun: --max-steps must be a whole number of steps" $run --dt 1e-3 --max-steps 2.5
 for v in 1e19 99999999999999999999999; do

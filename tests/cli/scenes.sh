@@ -429,6 +429,45 @@ check "gen-c sleigh: exit 0, defines sleigh_build and SLEIGH_N 3" sh -c '
     sh "$rc" "$TMP/sleigh.c"
 check "gen-c output compiles warning-free (double, -Werror)" \
     ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -Iinclude/core -c "$TMP/sleigh.c" -o "$TMP/sleigh.o"
+# --header: the declarations for the program's other files. A second file
+# uses SLEIGH_N and sleigh_build through it alone, with one output NULL
+# (q0 was left unwritten when v0 was NULL); built with the library next to
+# the tool (build/libbraun.a), warning-free, and the header also as C++.
+"$BRAUN" gen-c data/sleigh.json -o "$TMP/sleigh.c" --header "$TMP/sleigh.h"; rc=$?
+cat > "$TMP/use_sleigh.c" <<'XCODE'
+#include <stdio.h>
+#include "sleigh.h"
+int main(void)
+{
+    braun_system sys;
+    braun_real q[SLEIGH_N], v[SLEIGH_N], q1[SLEIGH_N], v1[SLEIGH_N];
+    for (int i = 0; i < SLEIGH_N; i++) q1[i] = v1[i] = -999;
+    if (sleigh_build(&sys, q, v) || sleigh_build(&sys, q1, NULL) || sleigh_build(&sys, NULL, v1)) return 1;
+    for (int i = 0; i < SLEIGH_N; i++)
+        if (q1[i] != q[i] || v1[i] != v[i]) return 2;
+    printf("n %d p %d corrections %u\n", sys.n, sys.p, sleigh_corrections);
+    return sys.n == SLEIGH_N && sys.p == SLEIGH_P ? 0 : 3;
+}
+XCODE
+lib=$(dirname "$BRAUN")/../libbraun.a
+check "gen-c --header: another file builds on it alone (-Werror) and both outputs are written with one NULL" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^#define SLEIGH_N 3$" "$2/sleigh.h" &&
+    ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -Iinclude/core -I"$2" "$2/use_sleigh.c" "$2/sleigh.c" \
+        "$3" -lm -o "$2/use_sleigh" && "$2/use_sleigh" > "$2/use.out" && grep -q "^n 3 p 1 corrections" "$2/use.out"' \
+    sh "$rc" "$TMP" "$lib"
+if command -v ${CXX:-g++} > /dev/null 2>&1; then
+    printf '#include "sleigh.h"\nint main() { return SLEIGH_N == 3 ? 0 : 1; }\n' > "$TMP/use.cc"
+    check "gen-c --header compiles as C++ too (-Werror)" \
+        ${CXX:-g++} -std=c++11 -Wall -Wextra -pedantic -Werror -Iinclude/core -I"$TMP" -c "$TMP/use.cc" -o "$TMP/use_cc.o"
+else
+    skip "gen-c --header compiles as C++ too" "no C++ compiler"
+fi
+"$BRAUN" gen-c data/sleigh.json -o "$TMP/s2.c" --header - > /dev/null 2> "$TMP/gce"; rc=$?
+check "gen-c --header -: exit 2 (stdout is the source's), one line" sh -c '
+    [ "$1" -eq 2 ] && [ "$(wc -l < "$2")" -eq 1 ] && grep -q "header" "$2"' sh "$rc" "$TMP/gce"
+"$BRAUN" gen-c data/sleigh.json -o "$TMP/s3.c" --header "$TMP/s3.c" > /dev/null 2> "$TMP/gce"; rc=$?
+check "gen-c --header the same file as -o: exit 2, names both" sh -c '
+    [ "$1" -eq 2 ] && grep -q "same file" "$2"' sh "$rc" "$TMP/gce"
 "$BRAUN" gen-c data/sleigh.json --symbol 9bad > /dev/null 2> "$TMP/gce"; rc=$?
 check "gen-c --symbol 9bad: exit 2, one line" sh -c '[ "$1" -eq 2 ] && [ "$(wc -l < "$2")" -eq 1 ]' sh "$rc" "$TMP/gce"
 "$BRAUN" gen-c data/no-such.json > /dev/null 2> "$TMP/gce"; rc=$?

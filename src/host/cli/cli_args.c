@@ -94,11 +94,16 @@ static int parse_max_steps(const char *s, long *out)
 
 double braun_cli_fixed_steps(double h, double t_end)
 {
-    /* braun_integrate's count (braun_integrate.c): a span that is a whole
-     * number of steps up to round-off takes that many, else one more. */
+    /* braun_integrate's count (braun__fixed_step_count, braun_internal.h):
+     * a span that is a whole number of steps up to round-off takes that
+     * many, else one more; the round-off allowed is never half a step (it
+     * was uncapped here: 1e-9 to 1 s counted 999999999 steps, the library
+     * takes 1e9). */
     const double ratio = t_end / h;
     const double slack = 8.0 * (double)BRAUN_EPS > 1e-9 ? 8.0 * (double)BRAUN_EPS : 1e-9;
-    const double steps = ceil(ratio - slack * ratio);
+    double allowance = slack * ratio;
+    if (allowance > 0.5) allowance = 0.5;
+    const double steps = ceil(ratio - allowance);
     return steps < 1 ? 1 : steps;
 }
 

@@ -1,7 +1,9 @@
-/* braun gen-c SCENE [--symbol NAME] [-o FILE]: the scene as a C99 source
- * that defines it statically (braun_gen_c_write, braun_scene.h) — for
- * firmware: no parser, no file, no allocation on the target. The symbol
- * defaults to the file's base name with '-' and '.' turned into '_'. */
+/* braun gen-c SCENE [--symbol NAME] [-o FILE] [--header FILE]: the scene as
+ * a C99 source that defines it statically (braun_gen_c_write, braun_scene.h)
+ * — for firmware: no parser, no file, no allocation on the target — and,
+ * with --header, the header that declares it for the program's other files.
+ * The symbol defaults to the file's base name with '-' and '.' turned into
+ * '_'. */
 #include <errno.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -27,13 +29,14 @@ static void symbol_from_path(const char *path, char *buf, size_t size)
 
 int braun_cli_gen_c(int argc, char **argv)
 {
-    const char *scene = NULL, *out = NULL, *symbol = NULL;
+    const char *scene = NULL, *out = NULL, *symbol = NULL, *header = NULL;
     for (int i = 0; i < argc; i++) {
         if (strcmp(argv[i], "-o") == 0 || strcmp(argv[i], "--out") == 0 ||
-            strcmp(argv[i], "--symbol") == 0) {
+            strcmp(argv[i], "--symbol") == 0 || strcmp(argv[i], "--header") == 0) {
             if (i + 1 >= argc || argv[i + 1][0] == '\0')
                 return braun_cli_error("option %s needs a value", argv[i]);
             if (strcmp(argv[i], "--symbol") == 0) symbol = argv[++i];
+            else if (strcmp(argv[i], "--header") == 0) header = argv[++i];
             else out = argv[++i];
         } else if (argv[i][0] == '-') {
             return braun_cli_error("unknown option '%s' (see braun --help)", argv[i]);
@@ -65,29 +68,43 @@ int braun_cli_gen_c(int argc, char **argv)
     if (!sf) return braun_cli_error("%s", err);
     braun_cli_id input;
     braun_cli_path_id(path, &input);
-    braun_cli_output o;
+    /* The header goes to a file of its own: on stdout it would mix with the
+     * source. */
+    if (header && strcmp(header, "-") == 0) {
+        braun_scene_free(sf);
+        return braun_cli_error("gen-c --header: give a file (stdout is the source's)");
+    }
+    braun_cli_output o, ho = {0};
     int rc = braun_cli_output_open(&o, out ? out : "-", "gen-c -o");
-    if (!rc && (rc = braun_cli_output_distinct(&o, NULL, &input, scene)) == 0)
+    if (!rc && header) rc = braun_cli_output_open(&ho, header, "gen-c --header");
+    if (!rc && (rc = braun_cli_output_distinct(&o, header ? &ho : NULL, &input, scene)) == 0)
         rc = braun_cli_output_begin(&o);
+    if (!rc && header) rc = braun_cli_output_begin(&ho);
     if (rc) {
         braun_cli_output_abandon(&o);
+        if (header) braun_cli_output_abandon(&ho);
         braun_scene_free(sf);
         return rc;
     }
     errno = 0;
-    const int st = braun_gen_c_write_ex(o.f, sf, symbol, scene, err, sizeof err);
-    braun_scene_free(sf);
-    if (st == BRAUN_GEN_C_INVALID) {
-        braun_cli_output_abandon(&o);
-        return braun_cli_error("gen-c: '%s': %s", scene, err);
+    int st = braun_gen_c_write_ex(o.f, sf, symbol, scene, err, sizeof err);
+    const char *failed = out && strcmp(out, "-") != 0 ? out : "stdout";
+    if (!st && header) {
+        errno = 0;
+        st = braun_gen_c_write_header(ho.f, sf, symbol, scene, err, sizeof err);
+        failed = header;
     }
-    /* A write error shows up here (or in the close: a full disk). */
+    braun_scene_free(sf);
     if (st) {
         const int e = errno;
         braun_cli_output_abandon(&o);
-        braun_cli_error("error writing '%s'%s%s", out && strcmp(out, "-") != 0 ? out : "stdout",
-                        e ? ": " : "", e ? strerror(e) : "");
+        if (header) braun_cli_output_abandon(&ho);
+        if (st == BRAUN_GEN_C_INVALID) return braun_cli_error("gen-c: '%s': %s", scene, err);
+        /* A write error shows up here (or in the close: a full disk). */
+        braun_cli_error("error writing '%s'%s%s", failed, e ? ": " : "", e ? strerror(e) : "");
         return BRAUN_CLI_FAILED;
     }
-    return braun_cli_output_close(&o) ? BRAUN_CLI_FAILED : 0;
+    const int bad = braun_cli_output_close(&o);
+    const int hbad = header ? braun_cli_output_close(&ho) : 0;
+    return bad || hbad ? BRAUN_CLI_FAILED : 0;
 }

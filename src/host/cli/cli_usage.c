@@ -28,7 +28,7 @@ void braun_cli_usage(FILE *f)
 "       braun gen ladder N [--angle DEG] [-o FILE]\n"
 "       braun gen n-four-bar N [-o FILE]\n"
 "       braun gen spatial-chain N [--angle DEG] [-o FILE]\n"
-"       braun gen-c SCENE [--symbol NAME] [-o FILE]\n"
+"       braun gen-c SCENE [--symbol NAME] [-o FILE] [--header FILE]\n"
 "       braun list\n"
 "       braun --help | --version | COMMAND --help (nothing after them)\n"
 "\n"
@@ -72,7 +72,8 @@ void braun_cli_usage(FILE *f)
 "                         about the vertical at 1 rad/s, N <= 2000\n"
 "  gen-c SCENE            write the scene as C99 that defines it statically, for\n"
 "                         firmware (no parser, no allocation; docs/firmware.md);\n"
-"                         symbol prefix from --symbol or the file name\n"
+"                         symbol prefix from --symbol or the file name;\n"
+"                         --header FILE also writes its declarations\n"
 "  list                   built-in models, one per line: name, n, m, p,\n"
 "                         description; then the shipped scenes and their place\n"
 "\n",
