@@ -261,6 +261,53 @@ static void test_divergence_is_reported(void **state)
     test_sim_close(&sim);
 }
 
+/* A mass matrix defined for |x| < sqrt(2) only: M = 2 − x². From x = 1 at
+ * rest a spring keeps the motion within |x| <= 1, but a trial step of 10 s
+ * throws a stage state far out, where M has no positive pivot. That is the
+ * solution leaving the model's domain — BRAUN_ERR_DIVERGED, which the
+ * adaptive driver retries smaller — not a bad model: the run used to stop
+ * with BRAUN_ERR_MASS_NOT_SPD at its first trial step (a05's flyball
+ * governor at --dt 0.1). */
+static int shrinking_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t; (void)u;
+    M[0] = 2 - q[0] * q[0];
+    return 0;
+}
+static int spring_force(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,
+                        void *u)
+{
+    (void)t; (void)v; (void)u;
+    Q[0] = -q[0];
+    return 0;
+}
+
+static void test_mass_lost_at_a_stage_is_divergence(void **state)
+{
+    (void)state;
+    braun_system s = {1, 0, 0, 0, shrinking_mass, spring_force, NULL, NULL, NULL, NULL, NULL, NULL};
+    const double q0[1] = {1}, v0[1] = {0};
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_NONE), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    const braun_adaptive ctl = {1e-8, 1e-10, 10, 0, 0, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 5.0, 0, NULL, NULL), BRAUN_OK);
+    assert_true(sim.data.t == 5.0 && sim.data.stats.rejected_steps > 0);
+    assert_true(fabs(sim.data.q[0]) <= 1 + 1e-6);
+    /* A fixed step that large: diverged, naming the mass pivot; the state
+     * stays at the start. */
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 10), BRAUN_ERR_DIVERGED);
+    assert_string_equal(sim.data.error.where, "mass");
+    assert_true(sim.data.q[0] == 1 && sim.data.t == 0);
+    /* At a state given by the caller it is the model's: not positive
+     * definite (the first step's first stage, where M is first needed). */
+    const double far[1] = {3};
+    assert_int_equal(braun_set_state(&sim.data, 0, far, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_ERR_MASS_NOT_SPD);
+    test_sim_close(&sim);
+}
+
 /* Contradictory constraints (x = 0 and x = 1, on one coordinate): no
  * state satisfies both; the step says so instead of drifting to a
  * least-squares compromise. */
@@ -652,6 +699,7 @@ int main(void)
         cmocka_unit_test(test_inconsistent_single_row),
         cmocka_unit_test(test_inconsistent_velocities),
         cmocka_unit_test(test_mass_constant_claim_checked),
+        cmocka_unit_test(test_mass_lost_at_a_stage_is_divergence),
         cmocka_unit_test(test_infinite_jacobian_is_named),
         cmocka_unit_test(test_nonfinite_callback_outputs_are_named),
         cmocka_unit_test(test_status_names),

@@ -60,16 +60,19 @@ typedef enum braun_status {
     BRAUN_ERR_NONFINITE = -4,     /* NaN/Inf in a state given to a call, or in a callback's
                                      output at it (at a state a step reached: DIVERGED) */
     BRAUN_ERR_MASS_NOT_SYMMETRIC = -5,
-    BRAUN_ERR_MASS_NOT_SPD = -6,  /* Cholesky pivot not positive */
+    BRAUN_ERR_MASS_NOT_SPD = -6,  /* Cholesky pivot not above n·ε·max M_ii, at a state
+                                     given to a call (at one a step reached: DIVERGED) */
     BRAUN_ERR_CALLBACK = -7,      /* a callback returned < 0 (fatal) */
     BRAUN_ERR_CALLBACK_RECOVERABLE = -8, /* callback returned > 0 and no retry possible */
     BRAUN_ERR_STEP = -9,          /* step size not finite and positive */
     BRAUN_ERR_TIME = -10,         /* t_end not after the current time */
     BRAUN_ERR_DIVERGED = -11,     /* state left the finite range during a step, or a
-                                     callback's output was NaN/Inf at a state a step
-                                     reached (its stage or the next step's start): the
-                                     solution left where the model is defined; d->error
-                                     names the callback output and entry */
+                                     callback's output was NaN/Inf, or M not positive
+                                     definite, at a state a step reached (its stage or
+                                     the next step's start): the solution left where the
+                                     model is defined (the adaptive driver retries
+                                     smaller); d->error names the output and entry, or
+                                     the mass pivot */
     BRAUN_ERR_STEP_TOO_SMALL = -12, /* adaptive step fell below its minimum */
     BRAUN_ERR_TOO_MANY_STEPS = -13,
     BRAUN_ERR_MISSING_CALLBACK = -14, /* m > 0 without holonomic(), ... */

@@ -7,13 +7,17 @@
  * order. For Euler this is the paper's equation itself. */
 #include "braun_tableau.h"
 
-/* A NaN/Inf from a callback at a state the integrator produced (a later
- * stage, or the start of any step after the first): the solution left the
- * region where the model is defined — it diverged. d->error keeps the
- * callback and entry that overflowed. */
+/* A NaN/Inf from a callback, or a mass matrix that is not positive
+ * definite, at a state the integrator produced (a later stage, or the start
+ * of any step after the first): the solution left the region where the
+ * model is defined — it diverged, and the adaptive driver retries smaller
+ * (a05's flyball governor at a first trial step of 0.1 s reached a stage
+ * whose M lost a pivot, and the run stopped there). d->error keeps the
+ * callback and entry, or the mass pivot. */
 static int diverged_if_integrated(braun_data *d, int stage, int st)
 {
-    if (st == BRAUN_ERR_NONFINITE && (stage > 0 || braun__priv(d)->state_integrated))
+    if ((st == BRAUN_ERR_NONFINITE || st == BRAUN_ERR_MASS_NOT_SPD) &&
+        (stage > 0 || braun__priv(d)->state_integrated))
         d->error.status = st = BRAUN_ERR_DIVERGED;
     return st;
 }

@@ -13,6 +13,13 @@
  *    points coincide has no direction) or gives a non-finite value would
  *    stop the first step.
  *
+ *  - a "reference" model: the scene must move as that model does, or the
+ *    trajectory error a run reports against it measures nothing — the
+ *    same initial state, and the same ideal (Udwadia–Kalaba) acceleration
+ *    at states of the reference's own motion. A size check alone let a
+ *    slider-crank scene name the four-bar (exit 0, "trajectory error" 6.7)
+ *    or change its masses, gravity or starting angle.
+ *
  * sj_diagnose also names the element that makes a callback fail at any
  * state, for the messages of a run (braun_scene_file_diagnose). */
 #include <float.h>
@@ -21,6 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "braun_reference.h"
 #include "scene_json_internal.h"
 
 #ifdef BRAUN_SINGLE
@@ -231,6 +239,114 @@ int sj_check_initial(sj_reader *r)
         index);
     return sj_fail(r, SJ_AT_VALUE, "%s (%s) cannot be evaluated at the initial state: %s", r->who,
                    joint ? s->joints[index].type->name : s->effects[index].type->name, what);
+}
+
+/* The ideal acceleration of sys at (t, q, v) into vdot: a data block of
+ * its own, every correction off (braun_eval is then the Udwadia–Kalaba
+ * acceleration). BRAUN_OK or the status. */
+static int ideal_acceleration(const braun_system *sys, double t, const braun_real *q, const braun_real *v,
+                              braun_real *vdot)
+{
+    braun_model model;
+    int st = braun_model_init(&model, sys);
+    if (st) return st;
+    model.opt.corrections = BRAUN_CORRECT_NONE;
+    const size_t bytes = braun_data_size(&model);
+    void *buf = bytes ? malloc(bytes) : NULL;
+    braun_real *qdot = calloc((size_t)sys->n + 1, sizeof *qdot);
+    braun_data d;
+    st = buf && qdot ? braun_data_init(&d, &model, buf, bytes) : BRAUN_ERR_BUFFER;
+    if (!st) st = braun_eval(&d, (braun_real)t, q, v, 1, qdot, vdot);
+    if (buf && !st) braun_data_release(&d);
+    free(qdot);
+    free(buf);
+    return st;
+}
+
+/* The largest |a_i − b_i| relative to max(|a|∞, |b|∞, floor), and its i. */
+static double rel_gap(int n, const braun_real *a, const braun_real *b, double floor, int *at)
+{
+    double scale = floor, gap = 0;
+    for (int i = 0; i < n; i++) {
+        if (fabs((double)a[i]) > scale) scale = fabs((double)a[i]);
+        if (fabs((double)b[i]) > scale) scale = fabs((double)b[i]);
+    }
+    *at = 0;
+    for (int i = 0; i < n; i++) {
+        const double e = fabs((double)a[i] - (double)b[i]);
+        if (e > gap || e != e) gap = e, *at = i;
+    }
+    return gap / scale;
+}
+
+int sj_check_reference(sj_reader *r, const braun_builtin *b)
+{
+    const braun_scene_file *sf = r->out;
+    const int n = b->sys.n;
+    /* Round-off apart: a scene written as the model (its decimal literals,
+     * its other coordinates' formulas) agrees to ~1e-13 (tests); a slip
+     * of the physics is O(1). */
+    const double tol = sqrt(SJ_EPS);
+    braun_reference ref;
+    const int has_ref = braun_reference_init(&ref, b, 0) == 0;
+    /* The reference's own states: its start, then along its motion. */
+    static const double times[] = {0.0, 0.1, 0.37, 1.0};
+    const int count = has_ref ? (int)(sizeof times / sizeof times[0]) : 1;
+    double *qd = calloc(4 * (size_t)n + 1, sizeof *qd), *vd = qd ? qd + n : NULL;
+    braun_real *q = calloc(4 * (size_t)n + 1, sizeof *q), *v = q ? q + n : NULL;
+    braun_real *a_ref = q ? v + n : NULL, *a_scene = q ? a_ref + n : NULL;
+    int rc = 0;
+    char why[320] = "";
+    if (!qd || !q) {
+        snprintf(why, sizeof why, "out of memory");
+        rc = -1;
+    }
+    for (int k = 0; !rc && k < count; k++) {
+        if (has_ref) {
+            if (braun_reference_eval(&ref, times[k], qd, vd)) {
+                snprintf(why, sizeof why, "its reference cannot be evaluated at t = %g", times[k]);
+                rc = -1;
+                break;
+            }
+            for (int i = 0; i < n; i++) q[i] = (braun_real)qd[i], v[i] = (braun_real)vd[i];
+        } else {
+            for (int i = 0; i < n; i++) q[i] = b->q0[i], v[i] = b->v0[i];
+        }
+        int at = 0;
+        if (k == 0) {
+            /* The reference starts from the model's initial state. */
+            if (rel_gap(n, q, sf->q0, 1, &at) > tol || !(rel_gap(n, v, sf->v0, 1, &at) <= tol)) {
+                const int pos = rel_gap(n, q, sf->q0, 1, &at) > tol;
+                if (!pos) rel_gap(n, v, sf->v0, 1, &at);
+                snprintf(why, sizeof why, "its initial %s[%d] is %.9g, the scene's %.9g (the reference "
+                         "starts where the model does)", pos ? "q" : "v", at,
+                         (double)(pos ? q : v)[at], (double)(pos ? sf->q0 : sf->v0)[at]);
+                rc = -1;
+                break;
+            }
+        }
+        const int sa = ideal_acceleration(&b->sys, times[k], q, v, a_ref);
+        const int sb = ideal_acceleration(&sf->sys, times[k], q, v, a_scene);
+        if (sa || sb) {
+            snprintf(why, sizeof why, "the %s cannot be evaluated at the reference's state at t = %g (%s)",
+                     sa ? "model" : "scene", times[k], braun_status_str(sa ? sa : sb));
+            rc = -1;
+            break;
+        }
+        if (!(rel_gap(n, a_ref, a_scene, 1e-300, &at) <= tol)) {
+            snprintf(why, sizeof why, "at its state at t = %g its acceleration q''[%d] is %.9g, the "
+                     "scene's %.9g (the masses, forces or constraints differ)", times[k], at,
+                     (double)a_ref[at], (double)a_scene[at]);
+            rc = -1;
+        }
+    }
+    free(qd);
+    free(q);
+    if (!rc) return 0;
+    r->depth = 0;
+    sj_push_key(r, "reference");
+    return sj_fail(r, SJ_AT_VALUE, "scene: field 'reference': '%s' does not move as this scene: %s",
+                   b->name, why);
 }
 
 int braun_scene_file_diagnose(const braun_scene_file *sf, braun_real t, const braun_real *q,

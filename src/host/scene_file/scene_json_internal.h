@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include <jansson.h>
 
+#include "braun_models.h"
 #include "braun_scene_file.h"
 
 #define SJ_MAX_DEPTH 8
@@ -122,6 +123,10 @@ void sj_index_free(sj_reader *r);
  * 0, or -1 after a message at the element. */
 int sj_check_mass(sj_reader *r);
 int sj_check_initial(sj_reader *r);
+/* The scene's motion is the reference model's (its "reference" field):
+ * the same initial state and the same ideal acceleration along the
+ * reference's motion; 0, or -1 after a message at "reference". */
+int sj_check_reference(sj_reader *r, const braun_builtin *b);
 
 /* List the reals of the text whose token is not 0 but whose value is
  * below BRAUN_SCENE_MIN_NORMAL (jansson reads "1e-400" as 0 and "1e-310"

@@ -1021,6 +1021,7 @@ int sj_read_scene(sj_reader *r, json_t *root)
 
     out->reference = NULL;
     const char *ref = "";
+    const braun_builtin *ref_model = NULL;
     int got = str_field(r, root, "reference", 0, &ref);
     if (got < 0) return -1;
     if (got == 0) {
@@ -1033,6 +1034,7 @@ int sj_read_scene(sj_reader *r, json_t *root)
                                            "the scene %d", ref, b->sys.n, s->n);
         sj_pop(r);
         out->reference = ref;
+        ref_model = b;
     }
 
     out->q0 = calloc((size_t)s->n, sizeof *out->q0);
@@ -1043,5 +1045,6 @@ int sj_read_scene(sj_reader *r, json_t *root)
     /* What the reader accepted must also compute: M factors, and every
      * element evaluates at the initial state. */
     if (sj_check_mass(r) || sj_check_initial(r)) return -1;
+    if (ref_model && sj_check_reference(r, ref_model)) return -1;
     return 0;
 }
