@@ -491,8 +491,44 @@ static int knife_x(braun_real t, const braun_real *q, const braun_real *v, braun
     return 0;
 }
 
+/* Two holonomic drives of one coordinate, x = t and x = 2t: their
+ * positions agree at t = 0, their velocities cannot. Eq. 16's right-hand
+ * side −(Φ + hΦ̇) carries the velocity error scaled by h, so the position
+ * correction failed first and named positions that "disagree by" h times
+ * it (0.00707 at h = 1e-2): now reported at velocity level, 0.707. */
+static int two_drives(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                      braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    (void)v; (void)u;
+    if (phi) { phi[0] = q[0] - t; phi[1] = q[0] - 2 * t; }
+    if (A) { A[0] = 1; A[1] = 0; A[2] = 1; A[3] = 0; }
+    if (b) { b[0] = 1; b[1] = 2; }
+    if (bv) bv[0] = bv[1] = 0;
+    return 0;
+}
+
 static void test_inconsistent_velocities(void **state)
 {
+    {
+        braun_system s2 = {2, 2, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, two_drives, NULL,
+                           NULL, NULL, NULL, NULL};
+        const double q0[2] = {0, 0}, v0[2] = {1.5, 0};
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &s2, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
+                         BRAUN_OK);
+        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+        assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
+        assert_string_equal(sim.data.error.where, "velocity-level constraint rows");
+        assert_near(sim.data.error.value, sqrt(0.5), 1e-12);
+        /* Positions that disagree (at t = 1: x = 1 and x = 2) are still
+         * the positions' failure. */
+        const double q1[2] = {1, 0};
+        assert_int_equal(braun_set_state(&sim.data, 1, q1, v0), BRAUN_OK);
+        assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
+        assert_string_equal(sim.data.error.where, "holonomic constraints");
+        test_sim_close(&sim);
+    }
+
     (void)state;
     double rate = 1.0;
     braun_system s = {2, 1, 1, BRAUN_MASS_CONSTANT, line_mass, line_forces, drive_x, knife_x,

@@ -17,8 +17,8 @@ static void distance_defaults(const braun_scene *s, braun_scene_joint *j, unsign
 
 static const char *distance_check(const braun_scene *s, const braun_scene_joint *j)
 {
-    if (braun_scene__body_of(s, j->a) == braun_scene__body_of(s, j->b))
-        return "joint connects a body to itself";
+    const char *same = braun_scene__same_body(braun_scene__body_of(s, j->a), braun_scene__body_of(s, j->b), 0);
+    if (same) return same;
     if (!j->driven && !(j->value > 0)) return "distance must be > 0";
     return NULL;
 }

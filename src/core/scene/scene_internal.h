@@ -61,6 +61,22 @@ static inline int braun_scene__body_of(const braun_scene *s, int point)
     return s->points[point].body;
 }
 
+/* The refusal of a joint or spring whose two ends lie on one body (NULL if
+ * they do not): on the ground it constrains nothing or pulls at nothing
+ * and is named so — "connects a body to itself" read as a modelling slip
+ * of a body. body_a, body_b: the ends' bodies (-1 the ground); spring: 0 a
+ * joint, 1 a spring, 2 a rotational spring. */
+static inline const char *braun_scene__same_body(int body_a, int body_b, int spring)
+{
+    static const char *const ground[3] = {"joint has both ends on the ground",
+                                          "spring has both ends on the ground",
+                                          "rotational spring has both ends on the ground"};
+    static const char *const body[3] = {"joint connects a body to itself", "spring connects a body to itself",
+                                        "rotational spring connects a body to itself"};
+    if (body_a != body_b) return NULL;
+    return body_a < 0 ? ground[spring] : body[spring];
+}
+
 /* A body index in range (not the ground). */
 static inline int braun_scene__is_body(const braun_scene *s, int body)
 {

@@ -6,8 +6,8 @@
 static const char *revolute_check(const braun_scene *s, const braun_scene_joint *j)
 {
     if (j->driven) return "a revolute joint cannot be driven";
-    if (braun_scene__body_of(s, j->a) == braun_scene__body_of(s, j->b))
-        return "joint connects a body to itself";
+    const char *same = braun_scene__same_body(braun_scene__body_of(s, j->a), braun_scene__body_of(s, j->b), 0);
+    if (same) return same;
     return NULL;
 }
 

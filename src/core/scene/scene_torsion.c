@@ -65,7 +65,8 @@ static const char *torsion_check(const braun_scene *s, const braun_scene_effect 
     if ((e->a >= 0 && !braun_scene__is_rigid(s, e->a)) ||
         (e->b >= 0 && !braun_scene__is_rigid(s, e->b)))
         return "rotational spring needs rigid bodies (or ground)";
-    if (e->a == e->b) return "rotational spring connects a body to itself";
+    const char *same = braun_scene__same_body(e->a, e->b, 2);
+    if (same) return same;
     if (e->k < 0 || e->c < 0) return "stiffness and damping must be >= 0";
     return NULL;
 }

@@ -1,11 +1,31 @@
 /* braun: command-line front end of libbraun. Dispatches the subcommands. */
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "braun_backends.h"
 #include "braun_cli.h"
 
+static int dispatch(int argc, char **argv);
+
+/* Whatever a command wrote to stdout — the usage, a version, check's
+ * lines, a list — is flushed here and a failed write said (a full disk,
+ * /dev/full, a closed pipe): exit 1 with one line, never 0 with the text
+ * lost, nor 1 in silence. */
 int main(int argc, char **argv)
+{
+    int rc = dispatch(argc, argv);
+    errno = 0;
+    const int bad = fflush(stdout) != 0 || ferror(stdout);
+    if (bad) {
+        const int e = errno;
+        braun_cli_error("error writing stdout%s%s", e ? ": " : "", e ? strerror(e) : "");
+        if (rc == 0 || rc == BRAUN_CLI_FAILED) rc = BRAUN_CLI_FAILED;
+    }
+    return rc;
+}
+
+static int dispatch(int argc, char **argv)
 {
     /* Usage errors are one line, so scripts can show them as they are. */
     if (argc < 2) return braun_cli_error("missing command: run, plot, check, gen, gen-c, list, --help or --version");

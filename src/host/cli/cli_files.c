@@ -133,6 +133,8 @@ int braun_cli_output_close(braun_cli_output *o)
         if (!bad) e = errno;
         bad = 1;
     }
+    /* Reported here: main's last check of stdout must not say it again. */
+    if (o->f == stdout) clearerr(stdout);
     o->f = NULL;
     if (bad)
         braun_cli_error("error writing '%s'%s%s", strcmp(o->path, "-") == 0 ? "stdout" : o->path,
