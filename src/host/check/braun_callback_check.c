@@ -33,7 +33,7 @@ static double fd_step(double x) { return cbrt(DBL_EPSILON) * (fabs(x) > 1 ? fabs
  * differences computed from values of magnitude up to `mag` with step tau.
  * The worst is kept in *fig and, when it is the report's worst so far, named. */
 static void judge(work *w, double *fig, const char *name, int rows, int cols, const double *x,
-                  const double *d, double mag, double tau)
+                  const double *d, const double *spread, double mag, double tau)
 {
     const int count = rows * cols;
     double scale = 0, worst = 0;
@@ -45,11 +45,13 @@ static void judge(work *w, double *fig, const char *name, int rows, int cols, co
     /* Round-off of a central difference of values of size mag (a bound,
      * with room for cancellation inside the callback): what the differences
      * cannot resolve is not held against the callback. */
-    const double noise = 1e2 * DBL_EPSILON * mag / tau;
+    const double noise0 = 1e2 * DBL_EPSILON * mag / tau;
     for (int k = 0; k < count; k++) {
+        /* ... nor what they do not resolve (deriv_best's allowance). */
+        const double noise = noise0 + (spread ? spread[k] : 0);
         const double diff = fabs(x[k] - d[k]);
         const double e = (diff > noise ? diff - noise : (diff == diff ? 0 : diff)) /
-                         (scale + noise + DBL_MIN);
+                         (scale + noise0 + DBL_MIN);
         if (e > worst || (e != e)) {
             worst = e;
             at = k;
@@ -173,21 +175,79 @@ static int value_at(work *w, enum quantity f, enum direction dir, int j, double 
 /* The derivative of the quantity along the line at s = 0: the five-point
  * stencil (f(−τ) − 8f(−τ/2) + 8f(τ/2) − f(τ))/(6τ), exact to O(τ⁴) —
  * a curvature on a length ℓ ≪ 1 leaves (τ/ℓ)⁴, not (τ/ℓ)². *mag: the
- * largest |f| seen (for the round-off bound). */
+ * largest |f| seen (for the round-off bound). spread (count entries, or
+ * NULL): |that estimate − the same stencil at τ/2|, about its truncation
+ * error — a quantity that varies on a scale below τ (a drive of 1e12 rad/s
+ * against τ = 6e-6 s) is not resolved by the differences, and judge() does
+ * not hold that against the callback. */
 static int deriv(work *w, enum quantity f, enum direction dir, int j, double tau, double t0,
-                 const braun_real *q0, const braun_real *v0, int count, double *out, double *mag)
+                 const braun_real *q0, const braun_real *v0, int count, double *out, double *spread,
+                 double *mag)
 {
-    static const double step[4] = {1, -1, 0.5, -0.5}, weight[4] = {-1, 1, 8, -8};
-    for (int i = 0; i < count; i++) out[i] = 0;
-    for (int k = 0; k < 4; k++) {
+    /* Points ±τ, ±τ/2 (the stencil at τ) and ±τ/4 (with ±τ/2, at τ/2). */
+    static const double step[6] = {1, -1, 0.5, -0.5, 0.25, -0.25};
+    static const double weight[6] = {-1, 1, 8, -8, 0, 0}, weight2[6] = {0, 0, -1, 1, 8, -8};
+    const int points = spread ? 6 : 4;
+    for (int i = 0; i < count; i++) {
+        out[i] = 0;
+        if (spread) spread[i] = 0;
+    }
+    for (int k = 0; k < points; k++) {
         if (value_at(w, f, dir, j, step[k] * tau, t0, q0, v0, w->fp)) return BRAUN_ERR_CALLBACK;
         for (int i = 0; i < count; i++) {
             out[i] += weight[k] * w->fp[i];
+            if (spread) spread[i] += weight2[k] * w->fp[i];
             if (fabs(w->fp[i]) > *mag) *mag = fabs(w->fp[i]);
         }
     }
-    for (int i = 0; i < count; i++) out[i] /= 6 * tau;
+    for (int i = 0; i < count; i++) {
+        out[i] /= 6 * tau;
+        if (spread) spread[i] = fabs(out[i] - spread[i] / (3 * tau));
+    }
     return BRAUN_OK;
+}
+
+/* deriv at τ, its count entries compared with the analytic x[i·stride]
+ * (as sign·out). Each estimate carries an allowance: twice its spread (the
+ * stencil's truncation error at τ is 16/15 of it) plus the round-off at τ.
+ * An entry that disagrees beyond it is tried again at τ/16, up to eight
+ * times, and takes the estimate whose allowance is the smallest part of
+ * itself — the one the differences resolve best. A quantity that varies on
+ * a scale far below τ (a drive of 1e12 rad/s: τ = 6e-6 s spans 1e6 of its
+ * periods) gives an estimate as large as its own spread, and a finer step
+ * resolves it; a wrong callback disagrees with the resolved estimate (the
+ * finer ones have more round-off: they are not taken). allow: each entry's
+ * allowance, for judge(). */
+static int deriv_best(work *w, enum quantity f, enum direction dir, int j, double tau, double t0,
+                      const braun_real *q0, const braun_real *v0, int count, const double *x, int stride,
+                      double sign, double *out, double *allow, double *mag)
+{
+    double *alt = calloc(2 * (size_t)count + 1, sizeof(double)), *alt_spread = alt ? alt + count : NULL;
+    if (!alt) return BRAUN_ERR_BUFFER;
+    int st = deriv(w, f, dir, j, tau, t0, q0, v0, count, out, allow, mag);
+    for (int i = 0; i < count && !st; i++) allow[i] = 2 * allow[i] + 1e2 * DBL_EPSILON * *mag / tau;
+    double step = tau;
+    for (int level = 0; level < 8 && !st; level++) {
+        int open = 0;
+        for (int i = 0; i < count; i++) {
+            const double xi = x[(size_t)i * stride], di = sign * out[i];
+            const double scale = fabs(xi) > fabs(di) ? fabs(xi) : fabs(di);
+            if (fabs(xi - di) - allow[i] > w->tol * scale) open = 1;
+        }
+        if (!open) break;
+        step /= 16;
+        double m = *mag;
+        st = deriv(w, f, dir, j, step, t0, q0, v0, count, alt, alt_spread, &m);
+        for (int i = 0; i < count && !st; i++) {
+            const double allow_alt = 2 * alt_spread[i] + 1e2 * DBL_EPSILON * m / step;
+            if (allow_alt / (fabs(alt[i]) + DBL_MIN) < allow[i] / (fabs(out[i]) + DBL_MIN)) {
+                out[i] = alt[i];
+                allow[i] = allow_alt;
+            }
+        }
+    }
+    free(alt);
+    return st;
 }
 
 /* The step along the motion: τ·|v| of the coordinates' scale. */
@@ -208,9 +268,10 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
 {
     const int n = w->n, r = nonholo ? w->p : w->m;
     const enum quantity f = nonholo ? PHI_V : PHI_Q;
-    double *A = calloc((size_t)r * n * 2 + 4 * (size_t)r + 1, sizeof(double));
+    double *A = calloc((size_t)r * n * 3 + 5 * (size_t)r + 1, sizeof(double));
     if (!A) return BRAUN_ERR_BUFFER;
     double *fd = A + (size_t)r * n, *b = fd + (size_t)r * n, *bv = b + r, *col = bv + r, *g0 = col + r;
+    double *spread = g0 + r, *spcol = spread + (size_t)r * n;
     int st = nonholo ? nonholonomic(w, t, q0, v0, g0) : holonomic(w, t, q0, v0, g0);
     if (st) st = BRAUN_ERR_CALLBACK;
     if (!st) {
@@ -220,22 +281,29 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
             bv[i] = (double)w->bv[i];
         }
     }
-    double mag = max_abs(r, g0), tau_max = 0;
+    /* The round-off bound takes the smallest step (the largest noise): a
+     * column's noise grows as its step shrinks, and the largest step let
+     * the noise of a small coordinate's column count as a callback's error. */
+    double mag = max_abs(r, g0), tau_min = HUGE_VAL;
     for (int j = 0; j < n && !st; j++) {
         const double x = nonholo ? (double)v0[j] : (double)q0[j], tau = fd_step(x);
-        if (tau > tau_max) tau_max = tau;
-        st = deriv(w, f, nonholo ? ALONG_V : ALONG_Q, j, tau, t, q0, v0, r, col, &mag);
-        for (int i = 0; i < r && !st; i++) fd[(size_t)i * n + j] = col[i];
+        if (tau < tau_min) tau_min = tau;
+        st = deriv_best(w, f, nonholo ? ALONG_V : ALONG_Q, j, tau, t, q0, v0, r, A + j, n, 1, col, spcol,
+                        &mag);
+        for (int i = 0; i < r && !st; i++) {
+            fd[(size_t)i * n + j] = col[i];
+            spread[(size_t)i * n + j] = spcol[i];
+        }
     }
     if (!st)
         judge(w, nonholo ? &w->rep->jacobian_v : &w->rep->jacobian_q, nonholo ? "A_vv" : "A_q", r, n,
-              A, fd, mag + max_abs(r * n, A), tau_max);
+              A, fd, spread, mag + max_abs(r * n, A), tau_min);
     if (!st && !nonholo) {
         const double tt = fd_step(t);
         double m2 = mag;
-        st = deriv(w, PHI_Q, ALONG_T, 0, tt, t, q0, v0, r, col, &m2);
+        st = deriv_best(w, PHI_Q, ALONG_T, 0, tt, t, q0, v0, r, b, 1, -1, col, spcol, &m2);
         for (int i = 0; i < r && !st; i++) col[i] = -col[i];
-        if (!st) judge(w, &w->rep->b_q, "b_q", r, 1, b, col, m2, tt);
+        if (!st) judge(w, &w->rep->b_q, "b_q", r, 1, b, col, spcol, m2, tt);
     }
     if (!st) {
         const double tv = motion_step(n, q0, v0);
@@ -245,10 +313,11 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
             for (int j = 0; j < n; j++) terms += fabs(A[(size_t)i * n + j] * (double)v0[j]);
             if (terms > gmag) gmag = terms;
         }
-        st = deriv(w, nonholo ? PHI_V : RATE_Q, ALONG_MOTION, 0, tv, t, q0, v0, r, col, &gmag);
+        st = deriv_best(w, nonholo ? PHI_V : RATE_Q, ALONG_MOTION, 0, tv, t, q0, v0, r, bv, 1, -1, col,
+                        spcol, &gmag);
         for (int i = 0; i < r && !st; i++) col[i] = -col[i];
         if (!st) judge(w, nonholo ? &w->rep->b_vv : &w->rep->b_qv, nonholo ? "b_vv" : "b_qv", r, 1, bv,
-                       col, gmag, tv);
+                       col, spcol, gmag, tv);
     }
     free(A);
     return st;
@@ -258,9 +327,9 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
 static int check_energy_gradient(work *w, double t, const braun_real *q0, const braun_real *v0)
 {
     const int n = w->n;
-    double *g = calloc(4 * (size_t)n + 3, sizeof(double));
+    double *g = calloc(6 * (size_t)n + 4, sizeof(double));
     if (!g) return BRAUN_ERR_BUFFER;
-    double *fd = g + 2 * n + 1, E0 = 0;
+    double *fd = g + 2 * n + 1, *spread = fd + 2 * n + 1, E0 = 0;
     braun_real e = 0, dt = 0;
     const int rc = w->s->energy((braun_real)t, q0, v0, &e, w->dq, w->dv, &dt, w->s->user);
     int st = rc ? (failed(w, "energy", rc, t), BRAUN_ERR_CALLBACK) : BRAUN_OK;
@@ -272,20 +341,25 @@ static int check_energy_gradient(work *w, double t, const braun_real *q0, const 
         }
         g[2 * n] = (double)dt;
     }
-    double mag = fabs(E0), tau_max = 0;
+    /* The smallest step of each part sets its round-off bound (check_rows):
+     * with the largest over q and v together, a velocity of 1e6 made the
+     * steps in v 1e6 times those in q, and E's round-off in dE_dq's
+     * differences read as a wrong gradient. */
+    double mag = fabs(E0), tau_min[2] = {HUGE_VAL, HUGE_VAL};
     for (int j = 0; j < 2 * n && !st; j++) {
         const int in_v = j >= n, k = in_v ? j - n : j;
         const double tau = fd_step(in_v ? (double)v0[k] : (double)q0[k]);
-        if (tau > tau_max) tau_max = tau;
-        st = deriv(w, ENERGY, in_v ? ALONG_V : ALONG_Q, k, tau, t, q0, v0, 1, fd + j, &mag);
+        if (tau < tau_min[in_v]) tau_min[in_v] = tau;
+        st = deriv_best(w, ENERGY, in_v ? ALONG_V : ALONG_Q, k, tau, t, q0, v0, 1, g + j, 1, 1, fd + j,
+                        spread + j, &mag);
     }
     const double tt = fd_step(t);
     double mt = mag;
-    if (!st) st = deriv(w, ENERGY, ALONG_T, 0, tt, t, q0, v0, 1, fd + 2 * n, &mt);
+    if (!st) st = deriv_best(w, ENERGY, ALONG_T, 0, tt, t, q0, v0, 1, g + 2 * n, 1, 1, fd + 2 * n, spread + 2 * n, &mt);
     if (!st) {
-        judge(w, &w->rep->energy_gradient, "dE_dq", 1, n, g, fd, mag, tau_max);
-        judge(w, &w->rep->energy_gradient, "dE_dv", 1, n, g + n, fd + n, mag, tau_max);
-        judge(w, &w->rep->energy_gradient, "dE_dt", 1, 1, g + 2 * n, fd + 2 * n, mt, tt);
+        judge(w, &w->rep->energy_gradient, "dE_dq", 1, n, g, fd, spread, mag, tau_min[0]);
+        judge(w, &w->rep->energy_gradient, "dE_dv", 1, n, g + n, fd + n, spread + n, mag, tau_min[1]);
+        judge(w, &w->rep->energy_gradient, "dE_dt", 1, 1, g + 2 * n, fd + 2 * n, spread + 2 * n, mt, tt);
     }
     free(g);
     return st;
@@ -451,6 +525,6 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
         return st;
     }
     /* Every difference exactly 0 names no entry: say so, not "". */
-    if (!rep->worst[0]) snprintf(rep->worst, sizeof rep->worst, "none (every difference 0)");
+    if (!rep->worst[0]) snprintf(rep->worst, sizeof rep->worst, "none (every difference within the round-off of the differences)");
     return w.named_fail ? BRAUN_ERR_ARGUMENT : BRAUN_OK;
 }
