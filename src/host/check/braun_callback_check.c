@@ -97,13 +97,18 @@ static void scatter(work *w, int first, int count)
 }
 
 /* Φ_q (into out, m doubles) at (t, q); A_q, b_q, b_qv stay in w. */
-static int holonomic(work *w, double t, const braun_real *q, const braun_real *v, double *out)
+/* phi_only: the differences of Φ_q need Φ_q alone — asked for alone, as the
+ * library asks for what it needs (NULL outputs): a dense A of m·n entries
+ * written at every point made the differences of a 1000-link chain O(n³)
+ * (170 s; now a few). */
+static int holonomic(work *w, double t, const braun_real *q, const braun_real *v, double *out, int phi_only)
 {
     const int m = w->m;
     for (int i = 0; i < m; i++) w->phi[i] = w->b[i] = w->bv[i] = 0;
-    const int rc = w->s->holonomic((braun_real)t, q, v, w->phi, w->Avals, w->b, w->bv, w->s->user);
+    const int rc = phi_only ? w->s->holonomic((braun_real)t, q, v, w->phi, NULL, NULL, NULL, w->s->user)
+                            : w->s->holonomic((braun_real)t, q, v, w->phi, w->Avals, w->b, w->bv, w->s->user);
     if (rc) return failed(w, "holonomic", rc, t);
-    scatter(w, 0, m);
+    if (!phi_only) scatter(w, 0, m);
     for (int i = 0; i < m; i++) out[i] = (double)w->phi[i];
     return 0;
 }
@@ -112,7 +117,7 @@ static int holonomic(work *w, double t, const braun_real *q, const braun_real *v
  * (1, v) in (t, q) at v̇ = 0 is −b_qv. */
 static int hol_rate(work *w, double t, const braun_real *q, const braun_real *v, double *g)
 {
-    if (holonomic(w, t, q, v, g)) return -1;
+    if (holonomic(w, t, q, v, g, 0)) return -1;
     for (int i = 0; i < w->m; i++) {
         double s = -(double)w->b[i];
         for (int j = 0; j < w->n; j++) s += (double)w->A[(size_t)i * w->n + j] * (double)v[j];
@@ -164,7 +169,7 @@ static int value_at(work *w, enum quantity f, enum direction dir, int j, double 
     /* q and v are work copies: the callbacks get them, not the caller's. */
     braun_real *q = w->q, *v = w->v;
     switch (f) {
-    case PHI_Q: return holonomic(w, t, q, v, out);
+    case PHI_Q: return holonomic(w, t, q, v, out, 1);
     case RATE_Q: return hol_rate(w, t, q, v0, out);
     case PHI_V: return nonholonomic(w, t, q, v, out);
     case ENERGY: return energy(w, t, q, v, out);
@@ -272,7 +277,7 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
     if (!A) return BRAUN_ERR_BUFFER;
     double *fd = A + (size_t)r * n, *b = fd + (size_t)r * n, *bv = b + r, *col = bv + r, *g0 = col + r;
     double *spread = g0 + r, *spcol = spread + (size_t)r * n;
-    int st = nonholo ? nonholonomic(w, t, q0, v0, g0) : holonomic(w, t, q0, v0, g0);
+    int st = nonholo ? nonholonomic(w, t, q0, v0, g0) : holonomic(w, t, q0, v0, g0, 0);
     if (st) st = BRAUN_ERR_CALLBACK;
     if (!st) {
         for (size_t k = 0; k < (size_t)r * n; k++) A[k] = (double)w->A[k];

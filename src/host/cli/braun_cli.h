@@ -11,6 +11,12 @@
 /* Exit statuses: the solver failed at run time / the command line is wrong. */
 enum { BRAUN_CLI_FAILED = 1, BRAUN_CLI_USAGE = 2 };
 
+/* From this many coordinates on, run (on the dense kernels) and check say
+ * on stderr that a step or the analysis costs O(n³): a 500-link chain
+ * takes about 2 s per dense step, against milliseconds with --sparse
+ * --backend suitesparse. */
+#define BRAUN_CLI_DENSE_NOTE_N 600
+
 /* Print "braun: <message>" on stderr as one line; returns BRAUN_CLI_USAGE
  * so argument errors read `return braun_cli_error(...)`. */
 int braun_cli_error(const char *fmt, ...)

@@ -436,6 +436,12 @@ int braun_cli_check(int argc, char **argv)
     braun_cli_target tg;
     int rc = braun_cli_target_open(argv[0], &tg);
     if (rc) return rc;
+    /* check's rank, consistency and callback analyses are dense (O(n³)):
+     * a large scene takes minutes (a 1000-link chain, n = 3000: about two),
+     * which the user is told before the silence. */
+    if (tg.sys.n >= BRAUN_CLI_DENSE_NOTE_N)
+        fprintf(stderr, "braun: note: '%s' has n = %d; check's analyses are dense (O(n^3)): this "
+                        "takes a while\n", tg.name, tg.sys.n);
     rc = report(&tg);
     braun_cli_target_close(&tg);
     return rc;

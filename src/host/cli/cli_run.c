@@ -239,6 +239,12 @@ int braun_cli_run_target(const braun_cli_run_args *a, const braun_cli_target *tg
             rc = BRAUN_CLI_FAILED;
         } else {
             rc = choose_backend(a, tg, &model, none);
+            if (!rc && !model.opt.linsolver && sys.n >= BRAUN_CLI_DENSE_NOTE_N)
+                fprintf(stderr, "braun: note: '%s' has n = %d on the dense kernels: O(n^3) per step%s\n",
+                        tg->name, sys.n,
+                        tg->scene && braun_scene_sparse_size(&tg->scene->scene) > 0 && braun_linsolver_suitesparse()
+                            ? "; --sparse --backend suitesparse takes O(n)"
+                            : "");
         }
     }
     if (!rc) rc = run_model(a, tg, &model, obs);
