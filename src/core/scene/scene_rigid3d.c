@@ -99,6 +99,22 @@ static const char *rigid3d_check(const braun_scene *s, const braun_scene_body *b
     const braun_real m3 = t[0] * (t[1] * t[2] - t[5] * t[5]) - t[3] * (t[3] * t[2] - t[5] * t[4]) +
                           t[4] * (t[3] * t[5] - t[1] * t[4]);
     if (!(m2 > 0) || !(m3 > 0)) return "the inertia tensor of a rigid3d body is not positive definite";
+    /* A mass distribution's tensor J = tr(S) I − S, S = ∫ r rᵀ dm ⪰ 0: its
+     * principal moments satisfy I_a + I_b >= I_c (the flat plate is the
+     * equality). S = ½ tr(J) I − J must be positive semidefinite — all its
+     * principal minors >= 0, taken with a shift of 64 ε tr(J) for the
+     * plate's round-off. [1, 1, 3] is no body: refused, as MuJoCo does. */
+    {
+        const braun_real tr = t[0] + t[1] + t[2], shift = 64 * BRAUN_EPS * tr;
+        const braun_real d0 = tr / 2 - t[0] + shift, d1 = tr / 2 - t[1] + shift, d2 = tr / 2 - t[2] + shift;
+        const braun_real s01 = -t[3], s02 = -t[4], s12 = -t[5];
+        const braun_real det = d0 * (d1 * d2 - s12 * s12) - s01 * (s01 * d2 - s12 * s02) +
+                               s02 * (s01 * s12 - d1 * s02);
+        if (!(d0 >= 0) || !(d1 >= 0) || !(d2 >= 0) || !(d0 * d1 - s01 * s01 >= 0) ||
+            !(d0 * d2 - s02 * s02 >= 0) || !(d1 * d2 - s12 * s12 >= 0) || !(det >= 0))
+            return "the inertia of a rigid3d body breaks the triangle inequality of its principal "
+                   "moments (I_a + I_b >= I_c): no mass distribution has it";
+    }
     const braun_real *p = b->q0 + 3;
     const braun_real nn = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
     /* In float a normalised quaternion is off by a few ε (2·0.70710677f² − 1 = −6e-8). */
