@@ -124,6 +124,18 @@ bad_msg "--max-steps 999 for 1000 steps: refused" \
 bad_msg "--dt 1e-9 to 1 s counts 1000000000 steps, as the library" \
     "^braun: --dt 1e-09 to --t-end 1 is a fixed-step run of 1000000000 steps" \
     run pendulum --dt 1e-9 --t-end 1
+# An option given twice, tolerances to a fixed-step run, a reference
+# coarser than the run: refused, not settled in silence (the last --dt won,
+# --rtol was ignored, --ref-h 10 at --dt 1e-3 made the trajectory error the
+# reference's).
+bad_msg "--dt given twice: refused" "^braun: option --dt given twice: give it once$" \
+    run pendulum --dt 1e-3 --t-end 1 --dt 1e-2
+bad_msg "--out given twice: refused" "^braun: option --out given twice" \
+    run pendulum --dt 1e-3 --t-end 1 --out "$TMP/a.csv" --out "$TMP/b.csv"
+bad_msg "--rtol with rk4: refused" "^braun: --rtol and --atol apply to --integrator dopri5 only" \
+    run pendulum --dt 1e-3 --t-end 1 --rtol 1e-6
+bad_msg "--ref-h not finer than --dt: refused" "^braun: --ref-h 10: the reference's substep must be finer than --dt 0.001" \
+    run slider-crank --dt 1e-3 --t-end 5 --ref-h 10
 for v in 0 -3; do bad_msg "--max-steps $v" "^braun: --max-steps must be >= 1 \(got $v\)$" $run --dt 1e-3 --max-steps $v; done
 bad_msg "--max-steps 2.5" "^braun: --max-steps must be a whole number of steps" $run --dt 1e-3 --max-steps 2.5
 for v in 1e19 99999999999999999999999; do

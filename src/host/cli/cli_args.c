@@ -272,7 +272,11 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
     a->progress = -1;
     a->timing = !plot;
     a->from = NAN;
-    int quiet = 0, loud = 0;
+    int quiet = 0, loud = 0, tol_given = 0;
+    /* An option given twice is refused, not settled by the last one: a
+     * script's "--dt 1e-3 ... --dt 1e-2" is a mistake one of them hides. */
+    char seen[48][32];
+    int nseen = 0;
 
     for (int i = 0; i < argc; i++) {
         const char *arg = argv[i];
@@ -313,6 +317,11 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
         if (*val == '\0') return braun_cli_error("option %s needs a value", name);
         int rc = apply(name, val, a, plot);
         if (rc) return rc;
+        for (int k = 0; k < nseen; k++)
+            if (strcmp(seen[k], name) == 0)
+                return braun_cli_error("option %s given twice: give it once", name);
+        if (nseen < (int)(sizeof seen / sizeof seen[0])) memcpy(seen[nseen++], name, len + 1);
+        if (strcmp(name, "--rtol") == 0 || strcmp(name, "--atol") == 0) tol_given = 1;
     }
 
     const char *cmd = plot ? "plot" : "run";
@@ -343,6 +352,17 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
     if (a->method == BRAUN_DOPRI5 && a->discretization == BRAUN_PER_STAGE)
         return braun_cli_error("--discretization per-stage does not apply to dopri5 "
                                "(the adaptive driver corrects per step)");
+    /* Tolerances steer the adaptive driver only: given to a fixed-step
+     * run they would be ignored in silence. */
+    if (tol_given && a->method != BRAUN_DOPRI5)
+        return braun_cli_error("--rtol and --atol apply to --integrator dopri5 only (a fixed-step run "
+                               "takes its accuracy from --dt)");
+    /* A reference integrated with substeps no finer than the run's step is
+     * no reference: the trajectory error would measure it as much as the
+     * run (--ref-h 10 at --dt 1e-3 moved the error from 1e-3 to 2.9e-2). */
+    if (a->ref_h > 0 && a->method != BRAUN_DOPRI5 && a->dt == a->dt && !(a->ref_h < a->dt))
+        return braun_cli_error("--ref-h %g: the reference's substep must be finer than --dt %g (the "
+                               "trajectory error would measure the reference)", a->ref_h, a->dt);
     if (a->method == BRAUN_DOPRI5 && a->rtol == 0 && a->atol == 0)
         return braun_cli_error("--rtol and --atol cannot both be 0");
     /* rtol >= 1 asks for no correct digit (the library refuses it too). */
