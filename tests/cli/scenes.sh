@@ -444,6 +444,18 @@ for sc in fast drive; do
         [ "$1" -eq 0 ] && grep -q "^callbacks: yes" "$2"' sh "$rc" "$TMP/$sc.out"
 done
 
+# A body whose name holds a control byte (a JSON "\t"): run's CSV writes
+# it as '?', and plot --traj reads that CSV back (it compared the raw name).
+cat > "$TMP/tab.json" <<'EOF'
+{"name": "tab", "bodies": [{"name": "a\tb", "type": "particle", "mass": 1, "position": [1, 0]}],
+ "joints": [{"name": "rod", "type": "distance", "a": [0, 0], "b": "a\tb", "length": 1}],
+ "effects": [{"type": "gravity", "g": [0, -9.81]}]}
+EOF
+"$BRAUN" run "$TMP/tab.json" --dt 1e-2 --t-end 0.1 --out "$TMP/tab.csv" --summary /dev/null 2> /dev/null
+"$BRAUN" plot "$TMP/tab.json" --traj "$TMP/tab.csv" -o "$TMP/tab.svg" 2> "$TMP/tab.err"; rc=$?
+check "plot --traj reads back run's CSV of a body named with a tab" sh -c '[ "$1" -eq 0 ] && [ -s "$2" ]' \
+    sh "$rc" "$TMP/tab.svg"
+
 # ------------------------------------------------------------ gen-c
 "$BRAUN" gen-c data/sleigh.json -o "$TMP/sleigh.c"; rc=$?
 check "gen-c sleigh: exit 0, defines sleigh_build and SLEIGH_N 3" sh -c '
