@@ -116,6 +116,10 @@ void sj_set_centre(sj_reader *r, int body, int point);
 /* The first joint named name (joints read so far), -1 if none, -2 out of
  * memory. */
 int sj_find_joint(sj_reader *r, const char *name);
+/* Two joints of one name (effects refer to joints by name, messages name
+ * them): 1 with the later one's index and the first's, 0 if none, -2 out
+ * of memory. After every joint is read. */
+int sj_duplicate_joint(sj_reader *r, int *later, int *first);
 void sj_index_free(sj_reader *r);
 
 /* After the build (scene_json_check.c): the mass matrix's pivots, and

@@ -998,6 +998,19 @@ int sj_read_scene(sj_reader *r, json_t *root)
         if (element(r, joints, k, "joint", &obj) || read_joint(r, obj, k)) return -1;
         sj_pop(r);
     }
+    {
+        int later = 0, first = 0;
+        const int dup = sj_duplicate_joint(r, &later, &first);
+        if (dup == -2) return sj_fail(r, SJ_AT_VALUE, "out of memory");
+        if (dup) {
+            sj_push_index(r, later);
+            sj_push_key(r, "name");
+            set_who(r, "joint", NULL, later);
+            return sj_fail(r, SJ_AT_VALUE, "%s: field 'name': '%s' is already the name of joint #%d "
+                           "(effects refer to a joint by its name, and messages name it)", r->who,
+                           r->out->joint_names[later], first + 1);
+        }
+    }
     sj_pop(r);
     sj_push_key(r, "effects");
     for (int k = 0; k < ne; k++) {
