@@ -313,6 +313,16 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
     if (!rc) rc = braun_cli_output_distinct(&out_csv, a->plot_output, NULL, NULL);
     if (!rc) rc = braun_cli_output_begin(&out_summary);
     if (!rc) rc = braun_cli_output_begin(&out_csv);
+    /* A fixed-step run's CSV has a row every --every steps (1 by default):
+     * 1e8 steps of a small scene are gigabytes, written without a word
+     * before. Said once, above 1 GB (about 20 bytes a number). */
+    if (!rc && a->out_path && a->method != BRAUN_DOPRI5 && a->every > 0) {
+        const double rows = braun_cli_fixed_steps(a->dt, a->t_end) / (double)a->every + 1;
+        const double gb = rows * braun_cli_csv_column_count(tg, n) * 20 / 1e9;
+        if (gb > 1)
+            fprintf(stderr, "braun: note: --out will hold about %.3g rows, some %.0f GB: --every N "
+                            "writes every N-th step\n", rows, gb);
+    }
     if (rc) {
         braun_cli_output_abandon(&out_csv);
         braun_cli_output_abandon(&out_summary);
