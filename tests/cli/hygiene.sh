@@ -223,6 +223,12 @@ printf '{"name": "a\\nn: 7", "description": "x\\nn: 999", "bodies": [{"name": "b
 check "check: a name or description with a newline cannot forge a 'key: value' line" sh -c '
     [ "$(grep -c "^n: " "$1")" -eq 1 ] && grep -q "^n: 2$" "$1" &&
     grep -q "^description: x\\\\x0An: 999$" "$1"' sh "$TMP/forge.out"
+# A C1 control (U+009B, a CSI to terminals that take 8-bit controls) in a
+# name reached the terminal raw: shown as \u009B.
+printf '{"name": "a\\u009b31mred", "bodies": [{"name": "b", "type": "particle", "mass": 1, "position": [1, 0]}], "joints": [{"type": "distance", "a": [0, 0], "b": "b"}]}\n' > "$TMP/c1.json"
+"$BRAUN" check "$TMP/c1.json" > "$TMP/c1.out" 2>&1
+check "check: a C1 control in a name is shown as \\u009B, not passed to the terminal" sh -c '
+    grep -q "^scene: a\\\\u009B31mred$" "$1" && ! LC_ALL=C grep -q "$(printf "\302\233")" "$1"' sh "$TMP/c1.out"
 expect "an error message naming a path with a newline stays one line" 2 "cannot open '.*nl\?x/y' for writing" \
     gen chain 3 -o "$TMP/nl
 x/y"

@@ -136,6 +136,10 @@ bad_msg "--rtol with rk4: refused" "^braun: --rtol and --atol apply to --integra
     run pendulum --dt 1e-3 --t-end 1 --rtol 1e-6
 bad_msg "--ref-h not finer than --dt: refused" "^braun: --ref-h 10: the reference's substep must be finer than --dt 0.001" \
     run slider-crank --dt 1e-3 --t-end 5 --ref-h 10
+bad_msg "--every beyond a long: too large, not 'an integer >= 1'" "^braun: --every 99999999999999999999 is too large" \
+    run pendulum --dt 1e-3 --t-end 1 --out "$TMP/e.csv" --every 99999999999999999999
+bad_msg "gen-c of a built-in model without a scene file: says so" \
+    "^braun: gen-c: 'andrews' is a built-in model with no scene file" gen-c andrews
 for v in 0 -3; do bad_msg "--max-steps $v" "^braun: --max-steps must be >= 1 \(got $v\)$" $run --dt 1e-3 --max-steps $v; done
 bad_msg "--max-steps 2.5" "^braun: --max-steps must be a whole number of steps" $run --dt 1e-3 --max-steps 2.5
 for v in 1e19 99999999999999999999999; do

@@ -11,6 +11,9 @@
 /* Exit statuses: the solver failed at run time / the command line is wrong. */
 enum { BRAUN_CLI_FAILED = 1, BRAUN_CLI_USAGE = 2 };
 
+/* A built-in model's name (the library's or the tool's own: andrews). */
+int braun_cli_is_model_name(const char *arg);
+
 /* From this many coordinates on, run (on the dense kernels) and check say
  * on stderr that a step or the analysis costs O(n³): a 500-link chain
  * takes about 2 s per dense step, against milliseconds with --sparse

@@ -59,6 +59,9 @@ static int parse_every(const char *s, long *out)
     char *end;
     errno = 0;
     long k = strtol(s, &end, 10);
+    if (end != s && *end == '\0' && errno == ERANGE && k > 0)
+        return braun_cli_error("--every %s is too large: at most %ld (every row but the first and "
+                               "the last is left out beyond the run's steps anyway)", s, LONG_MAX);
     if (end == s || *end != '\0' || errno == ERANGE || k < 1)
         return braun_cli_error("--every must be an integer >= 1 (got '%s')", s);
     *out = k;

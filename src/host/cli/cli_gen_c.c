@@ -63,6 +63,11 @@ int braun_cli_gen_c(int argc, char **argv)
     struct stat st_in;
     const char *path = scene;
     if (stat(scene, &st_in) != 0 && braun_cli_data_file(scene, found, sizeof found)) path = found;
+    /* A built-in model without a scene file (andrews): say that, not
+     * "cannot open". */
+    if (path == scene && stat(scene, &st_in) != 0 && braun_cli_is_model_name(scene))
+        return braun_cli_error("gen-c: '%s' is a built-in model with no scene file: gen-c writes "
+                               "a scene (.json; the shipped ones: braun list)", scene);
     char err[512];
     braun_scene_file *sf = braun_scene_load(path, err, sizeof err);
     if (!sf) return braun_cli_error("%s", err);

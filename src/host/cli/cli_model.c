@@ -63,7 +63,7 @@ static int exists(const char *path)
 }
 
 /* A built-in model's or an extra model's name. */
-static int is_model_name(const char *arg)
+int braun_cli_is_model_name(const char *arg)
 {
     if (braun_builtin_find(arg)) return 1;
     for (int i = 0; i < braun_cli_extra_count(); i++)
@@ -77,10 +77,10 @@ int braun_cli_target_open(const char *arg, braun_cli_target *t)
     /* Not a built-in name and not a file here: a shipped scene by name
      * ("four-bar.json", "damped-motor", "a01-pendulum" or
      * "iftomm/a01-pendulum"). */
-    if (!is_model_name(arg) && !exists(arg) &&
+    if (!braun_cli_is_model_name(arg) && !exists(arg) &&
         braun_cli_data_file(arg, t->path_buf, sizeof t->path_buf))
         arg = t->path_buf;
-    if (is_scene_file(arg) || (!is_model_name(arg) && exists(arg))) {
+    if (is_scene_file(arg) || (!braun_cli_is_model_name(arg) && exists(arg))) {
         char err[512];
         braun_scene_file *f = braun_scene_load(arg, err, sizeof err);
         if (!f) return braun_cli_error("%s", err);

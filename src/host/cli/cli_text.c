@@ -3,7 +3,8 @@
  * `braun check`'s "key: value" lines, a picture's titles. The file is not
  * trusted: a control byte is shown as \xNN and a backslash as \\, so a
  * name cannot add a line (a forged "n: 999"), move the cursor (CR) or
- * colour the terminal (ESC [31m). The one rule for every such place. */
+ * colour the terminal (ESC [31m, or the C1 CSI U+009B). The one rule for
+ * every such place. */
 #include <stdio.h>
 
 #include "braun_cli.h"
@@ -16,9 +17,19 @@ const char *braun_cli_text_byte(unsigned char c, char *buf)
     return buf;
 }
 
+/* The C1 controls too (U+0080–U+009F, UTF-8 C2 80–C2 9F): U+009B is a CSI
+ * to a terminal that takes 8-bit controls, as ESC [ is to every one. Shown
+ * as \u00NN. */
 void braun_cli_put_text(FILE *f, const char *s)
 {
-    char buf[5];
-    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++)
+    char buf[8];
+    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
+        if (p[0] == 0xC2 && p[1] >= 0x80 && p[1] <= 0x9F) {
+            snprintf(buf, sizeof buf, "\\u%04X", p[1]);
+            fputs(buf, f);
+            p++;
+            continue;
+        }
         fputs(braun_cli_text_byte(*p, buf), f);
+    }
 }
