@@ -194,8 +194,9 @@ int braun_gen_c_check_symbol(const char *symbol, char *why, size_t size)
         problem = "must be a C identifier (ASCII letters, digits and '_', not starting with a "
                   "digit)";
     else if (strlen(symbol) > BRAUN_GEN_C_SYMBOL_MAX)
-        problem = "is longer than " BRAUN_GEN_C_SYMBOL_MAX_STR " characters (C99 guarantees 63 "
-                  "significant ones, and '_corrections' is appended)";
+        problem = "is longer than " BRAUN_GEN_C_SYMBOL_MAX_STR " characters ('_corrections' is "
+                  "appended: within the 63 significant characters of GCC's and Clang's, and C99's "
+                  "for macro names; C99 promises external names only 31)";
     else if (symbol[0] == '_')
         problem = "must not start with '_' (reserved for the implementation)";
     else if ((symbol[0] | 0x20) == 'b' && (symbol[1] | 0x20) == 'r' &&
