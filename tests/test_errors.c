@@ -214,6 +214,27 @@ static void test_callback_failures(void **state)
     assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 1.0, 1, NULL, NULL), BRAUN_OK);
     assert_true(sim.data.stats.rejected_steps > rejected0);
     assert_near(sim.data.t, 1.0, 0);
+
+    /* A callback that fails for good, far from t = 0 (t0 = 1e9: the time
+     * resolution is 1.2e-7): the driver shrinks its step to the default
+     * h_min and reports the callback. The default was 1e-12 of the span,
+     * below the resolution, and the run ended BRAUN_ERR_TIME_RESOLUTION
+     * ("the float horizon"), as every float run with such a callback did. */
+    prm.calls = 0;
+    prm.fail_from = 30;
+    prm.fail_to = 1000000000;
+    assert_int_equal(braun_set_state(&sim.data, 1e9, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 1e9 + 1, 1, NULL, NULL),
+                     BRAUN_ERR_CALLBACK_RECOVERABLE);
+    assert_string_equal(sim.data.error.where, "forces");
+    assert_true(sim.data.t >= 1e9 && sim.data.t < 1e9 + 1 && isfinite(sim.data.q[0]));
+    /* A span of a subnormal: the default first step, 1e-3 of it, is 0; the
+     * run takes the span in one step instead of reporting h = 0. */
+    prm.calls = 0;
+    prm.fail_from = prm.fail_to = -1;
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 4.9e-324, 1, NULL, NULL), BRAUN_OK);
+    assert_true(sim.data.t == 4.9e-324);
     test_sim_close(&sim);
 }
 

@@ -486,10 +486,14 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
                     void *out_user);
 
 typedef struct braun_adaptive {
-    braun_real rtol, atol;  /* mixed error test on q, v */
-    braun_real h0;          /* first trial step (<= 0: 1e-3·(t_end - t)) */
-    braun_real h_min, h_max;/* <= 0: 1e-12·|span|, span; every step but the last in
-                             * [h_min, h_max]; not finite or h_min > h_max: refused */
+    braun_real rtol, atol;  /* mixed error test on q, v: 0 <= rtol < 1, atol >= 0 and
+                             * finite, not both 0 (else BRAUN_ERR_ARGUMENT) */
+    braun_real h0;          /* first trial step (<= 0: 1e-3·(t_end - t), the span if
+                             * that is 0) */
+    braun_real h_min, h_max;/* <= 0: 1e-12·|span| but at least 16ε·max(|t|, |t_end|),
+                             * where t + h still advances t by h, and the span; every
+                             * step but the last in [h_min, h_max]; not finite or
+                             * h_min > h_max: refused */
     long max_steps;         /* attempts (accepted + rejected steps) of one call;
                                <= 0: 10^8. Counted per call: the same call from
                                the same state always behaves the same. */

@@ -150,8 +150,21 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
     braun_priv *pv = braun__priv(d);
     const double span = (double)(t_end - d->t);
     double h = ctl->h0 > 0 ? (double)ctl->h0 : 1e-3 * span;
-    const double hmin = ctl->h_min > 0 ? (double)ctl->h_min : 1e-12 * span;
+    /* A span of a few subnormals: 1e-3 of it is 0. */
+    if (!(h > 0)) h = span;
     const double hmax = ctl->h_max > 0 ? (double)ctl->h_max : span;
+    double hmin = ctl->h_min > 0 ? (double)ctl->h_min : 1e-12 * span;
+    if (!(ctl->h_min > 0)) {
+        /* The default stays above the time resolution, where t + h would
+         * no longer advance t by h (braun__time_step_ok): a float run whose
+         * callback failed for good, or whose force jumped, shrank its step
+         * to there and was reported as the float horizon, not as the
+         * callback's failure or a step too small. */
+        const double tmax = fabs((double)d->t) > fabs((double)t_end) ? fabs((double)d->t) : fabs((double)t_end);
+        const double resolution = 16 * (double)BRAUN_EPS * tmax;
+        if (hmin < resolution) hmin = resolution;
+        if (hmin > hmax) hmin = hmax; /* the span itself at the resolution: the step says so */
+    }
     /* No step can lie between a minimum above the maximum. */
     if (hmin > hmax)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "adaptive step limits (h_min > h_max)", -1, -1, hmin,
