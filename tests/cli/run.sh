@@ -136,6 +136,12 @@ bad_msg "--rtol with rk4: refused" "^braun: --rtol and --atol apply to --integra
     run pendulum --dt 1e-3 --t-end 1 --rtol 1e-6
 bad_msg "--ref-h not finer than --dt: refused" "^braun: --ref-h 10: the reference's substep must be finer than --dt 0.001" \
     run slider-crank --dt 1e-3 --t-end 5 --ref-h 10
+# Numbers are decimal, as docs/cli.md says: strtod also took a hexadecimal
+# float and leading blanks.
+bad_msg "--dt 0x1p-10: not a decimal number" "^braun: --dt: '0x1p-10' is not a decimal number" \
+    run pendulum --dt 0x1p-10 --t-end 1
+bad_msg "--dt ' 1e-3': not a decimal number" "^braun: --dt: ' 1e-3' is not a decimal number" \
+    run pendulum --dt " 1e-3" --t-end 1
 bad_msg "--every beyond a long: too large, not 'an integer >= 1'" "^braun: --every 99999999999999999999 is too large" \
     run pendulum --dt 1e-3 --t-end 1 --out "$TMP/e.csv" --every 99999999999999999999
 bad_msg "gen-c of a built-in model without a scene file: says so" \

@@ -11,6 +11,10 @@
 /* Exit statuses: the solver failed at run time / the command line is wrong. */
 enum { BRAUN_CLI_FAILED = 1, BRAUN_CLI_USAGE = 2 };
 
+/* s starts as a decimal number does: an optional sign, then a digit or
+ * '.', and not "0x" (cli_real.c). */
+int braun_cli_decimal(const char *s);
+
 /* A built-in model's name (the library's or the tool's own: andrews). */
 int braun_cli_is_model_name(const char *arg);
 

@@ -13,10 +13,23 @@
  * or nonzero below its smallest normal value (strtod's ERANGE: "1e-400"
  * would read as 0, "1e-310" as a subnormal of a few bits). Each is
  * refused with what is wrong with it. */
+/* A decimal number as the docs promise (digits, '.', an exponent, a
+ * sign): strtod alone also takes leading blanks and hexadecimal floats
+ * ("0x1p-10"), which the tool then read without a word. */
+int braun_cli_decimal(const char *s)
+{
+    const char *p = s;
+    if (*p == '+' || *p == '-') p++;
+    if (!((*p >= '0' && *p <= '9') || *p == '.')) return 0;
+    return !(p[0] == '0' && (p[1] == 'x' || p[1] == 'X'));
+}
+
 int braun_cli_parse_real(const char *opt, const char *s, double *out)
 {
     char *end;
     errno = 0;
+    if (!braun_cli_decimal(s))
+        return braun_cli_error("%s: '%s' is not a decimal number", opt, s);
     double x = strtod(s, &end);
     if (end == s || *end != '\0') return braun_cli_error("%s: '%s' is not a number", opt, s);
     if (!isfinite(x) && errno != ERANGE) return braun_cli_error("%s: '%s' is not finite", opt, s);
