@@ -502,6 +502,17 @@ check "gen-c --header -: exit 2 (stdout is the source's), one line" sh -c '
 "$BRAUN" gen-c data/sleigh.json -o "$TMP/s3.c" --header "$TMP/s3.c" > /dev/null 2> "$TMP/gce"; rc=$?
 check "gen-c --header the same file as -o: exit 2, names both" sh -c '
     [ "$1" -eq 2 ] && grep -q "same file" "$2"' sh "$rc" "$TMP/gce"
+# A value a float cannot hold (1e-100 m): gen-c writes it RD(), which a
+# double build takes and a BRAUN_SINGLE build refuses (the cast made it 0
+# in silence).
+cat > "$TMP/tiny.json" <<'EOF'
+{"name": "tiny", "bodies": [{"name": "b", "type": "particle", "mass": 1, "position": [1, 1e-100]}],
+ "joints": [{"name": "rod", "type": "distance", "a": [0, 0], "b": "b"}]}
+EOF
+"$BRAUN" gen-c "$TMP/tiny.json" -o "$TMP/tiny.c"
+check "gen-c: a value outside float's range compiles in double, not in float" sh -c '
+    grep -q "RD(1e-100)" "$1" && ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -Iinclude/core -c "$1" -o "$2" &&
+    ! ${CC:-cc} -std=c99 -DBRAUN_SINGLE -Iinclude/core -c "$1" -o "$2" 2> /dev/null' sh "$TMP/tiny.c" "$TMP/tiny.o"
 "$BRAUN" gen-c data/sleigh.json --symbol 9bad > /dev/null 2> "$TMP/gce"; rc=$?
 check "gen-c --symbol 9bad: exit 2, one line" sh -c '[ "$1" -eq 2 ] && [ "$(wc -l < "$2")" -eq 1 ]' sh "$rc" "$TMP/gce"
 "$BRAUN" gen-c data/no-such.json > /dev/null 2> "$TMP/gce"; rc=$?

@@ -5,14 +5,21 @@
 #include "braun_scene_file.h"
 
 #include <ctype.h>
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* A real as the exact double the host holds ("%.17g" round-trips), cast to
- * braun_real by the generated R() macro. */
+ * braun_real by the generated R() macro. A value a float cannot hold —
+ * beyond FLT_MAX, or nonzero below FLT_MIN, which the cast would make Inf,
+ * 0 or a subnormal of a few bits in silence — is written RD(), which a
+ * BRAUN_SINGLE build refuses (the preamble). */
 static void real(FILE *f, braun_real x)
 {
-    fprintf(f, "R(%.17g)", (double)x);
+    const double a = fabs((double)x);
+    const int outside = a > FLT_MAX || (a != 0 && a < FLT_MIN);
+    fprintf(f, outside ? "RD(%.17g)" : "R(%.17g)", (double)x);
 }
 
 static void reals(FILE *f, const braun_real *x, int n)
@@ -330,7 +337,11 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
           " * at start-up: no parser, no allocation. Compiles in double and float. */\n", out);
     fputs("#include <stddef.h>\n\n#include \"braun_scene.h\"\n\n", out);
     fputs("/* The exact double of the scene file, rounded once to braun_real. */\n", out);
-    fputs("#define R(x) ((braun_real)(x))\n\n", out);
+    fputs("#define R(x) ((braun_real)(x))\n", out);
+    fputs("/* A value a float cannot hold (beyond FLT_MAX, or below FLT_MIN): a float\n"
+          " * build stops at it rather than read Inf or 0. */\n", out);
+    fputs("#ifdef BRAUN_SINGLE\n#define RD(x) value_outside_the_range_of_float_in_a_BRAUN_SINGLE_build(x)\n"
+          "#else\n#define RD(x) R(x)\n#endif\n\n", out);
     fprintf(out, "#define %s_N %d\n#define %s_M %d\n#define %s_P %d\n", upper, s->n, upper, s->m,
             upper, s->p);
 
@@ -502,7 +513,7 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
             sym);
     fputs("}\n", out);
     /* A file included rather than compiled alone leaves no R behind. */
-    fputs("\n#undef R\n", out);
+    fputs("\n#undef R\n#undef RD\n", out);
     if (ferror(out)) {
         if (err && err_size) snprintf(err, err_size, "write error");
         return BRAUN_GEN_C_WRITE;
