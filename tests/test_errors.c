@@ -528,6 +528,17 @@ static int two_drives(braun_real t, const braun_real *q, const braun_real *v, br
     return 0;
 }
 
+/* Open sim on s with the position and velocity corrections, start at
+ * (0, q0, v0): the first RK4 step is refused as inconsistent at `where`. */
+static void first_step_inconsistent(test_sim *sim, const braun_system *s, const double *q0,
+                                    const double *v0, const char *where)
+{
+    assert_int_equal(test_sim_open(sim, s, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim->data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim->data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
+    assert_string_equal(sim->data.error.where, where);
+}
+
 static void test_inconsistent_velocities(void **state)
 {
     {
@@ -535,11 +546,7 @@ static void test_inconsistent_velocities(void **state)
                            NULL, NULL, NULL, NULL};
         const double q0[2] = {0, 0}, v0[2] = {1.5, 0};
         test_sim sim;
-        assert_int_equal(test_sim_open(&sim, &s2, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
-                         BRAUN_OK);
-        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
-        assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
-        assert_string_equal(sim.data.error.where, "velocity-level constraint rows");
+        first_step_inconsistent(&sim, &s2, q0, v0, "velocity-level constraint rows");
         assert_near(sim.data.error.value, sqrt(0.5), 1e-12);
         /* Positions that disagree (at t = 1: x = 1 and x = 2) are still
          * the positions' failure. */
@@ -556,11 +563,7 @@ static void test_inconsistent_velocities(void **state)
                       NULL, NULL, &rate, NULL};
     const double q0[2] = {0, 0}, v0[2] = {0.5, 1};
     test_sim sim;
-    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
-                     BRAUN_OK);
-    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
-    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_INCONSISTENT);
-    assert_string_equal(sim.data.error.where, "velocity-level constraint rows");
+    first_step_inconsistent(&sim, &s, q0, v0, "velocity-level constraint rows");
     assert_near(sim.data.error.value, sqrt(0.5), 1e-12); /* |(−0.5) − 0.5|/sqrt(2) */
     assert_true((sim.data.error.index == 0 && sim.data.error.index2 == 1) ||
                 (sim.data.error.index == 1 && sim.data.error.index2 == 0));
