@@ -245,6 +245,9 @@ refused_traj() { name=$1; csv=$2; want=$3; shift 3
     done
 }
 refused_traj "a nan" nan.csv "--traj nan.csv:3: column 2 (bob.x) is nan: not a finite number$"
+# Decimal numbers only: strtod also read a hexadecimal float.
+printf '%s\n0,1,0,0,0,0,0,0,\n0.1,0x1p-1,0,0,0,0,0,0,\n' "$ph" > hex.csv
+refused_traj "a hexadecimal float" hex.csv "--traj hex.csv:3: column 2 (bob.x) is not a number"
 refused_traj "1e999 (overflows to inf)" over.csv "--traj over.csv:3: column 3 (bob.y) is 1e999: beyond the range of a double$"
 refused_traj "-inf in energy_err" minf.csv "--traj minf.csv:3: column 8 (energy_err) is -inf"
 refused_traj "the last row's t = inf" tinf.csv "--traj tinf.csv:3: column 1 (t) is inf: not a finite number$"

@@ -14,6 +14,9 @@ enum { BRAUN_CLI_FAILED = 1, BRAUN_CLI_USAGE = 2 };
 /* s starts as a decimal number does: an optional sign, then a digit or
  * '.', and not "0x" (cli_real.c). */
 int braun_cli_decimal(const char *s);
+/* s starts with a blank or is a hexadecimal number ("0x", "-0X"): what
+ * strtod takes and a decimal number is not. */
+int braun_cli_hex_or_blank(const char *s);
 
 /* A built-in model's name (the library's or the tool's own: andrews). */
 int braun_cli_is_model_name(const char *arg);

@@ -55,7 +55,7 @@ static int read_row(const char *p, const char *eol, const braun_cli_target *t, i
         errno = 0;
         if (j == traj && (p >= eol || *p == ','))
             row[j] = NAN; /* traj_err: empty without a reference */
-        else if (!braun_cli_decimal(p) || (row[j] = strtod(p, &stop), stop == p))
+        else if (braun_cli_hex_or_blank(p) || (row[j] = strtod(p, &stop), stop == p))
             return braun_cli_error("--traj %s:%ld: column %d (%s) is not a number (or the row "
                                    "has fewer than %d columns)", path, line, j + 1, name, cols);
         /* The cell ends at the comma before the next one, or the line's end. */

@@ -21,7 +21,15 @@ int braun_cli_decimal(const char *s)
     const char *p = s;
     if (*p == '+' || *p == '-') p++;
     if (!((*p >= '0' && *p <= '9') || *p == '.')) return 0;
-    return !(p[0] == '0' && (p[1] == 'x' || p[1] == 'X'));
+    return !braun_cli_hex_or_blank(s);
+}
+
+int braun_cli_hex_or_blank(const char *s)
+{
+    const char *p = s;
+    if (*p == ' ' || *p == '\t') return 1;
+    if (*p == '+' || *p == '-') p++;
+    return p[0] == '0' && (p[1] == 'x' || p[1] == 'X');
 }
 
 int braun_cli_parse_real(const char *opt, const char *s, double *out)
