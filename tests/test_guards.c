@@ -81,6 +81,10 @@ static void test_guard_last_state_and_outputs(void **state)
     assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1.0, 1.0, 1, NULL, NULL), BRAUN_ERR_ACCURACY);
     assert_true(sim.data.t == 0);
     assert_int_equal(sim.data.stats.steps, 0);
+    /* The residual refused is the position's, and its largest row (the
+     * pendulum has one) is recorded, for a program to name its joint. */
+    assert_non_null(strstr(sim.data.error.where, "position residual"));
+    assert_int_equal(sim.data.error.index, 0);
     /* stop at the first, second and third step's end (h = 0.1 ran to 50 s
      * within its bounds once the energy force was sized at the end of the
      * step; 0.12 and 0.115, which stopped after 3 and 24 steps, do since

@@ -80,7 +80,9 @@ typedef enum braun_status {
     BRAUN_ERR_INCONSISTENT = -16,     /* dependent constraint rows disagree: no solution */
     BRAUN_ERR_TIME_RESOLUTION = -17,  /* t + h is not t + h in this precision: the step
                                          cannot advance time as asked (float horizon) */
-    BRAUN_ERR_ACCURACY = -18,         /* residuals beyond the accuracy guard (braun_guard) */
+    BRAUN_ERR_ACCURACY = -18,         /* residuals beyond the accuracy guard (braun_guard);
+                                         error.index: the largest row of a position or
+                                         velocity residual, -1 for the energy's */
     BRAUN_STOPPED = 1             /* the output callback asked to stop */
 } braun_status;
 

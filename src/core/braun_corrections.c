@@ -51,16 +51,32 @@ BRAUN_FORCE_INLINE int guard_energy(braun_data *d, braun_real phi_e, int accel)
                        "accuracy guard: energy residual |Phi_e|");
 }
 
+/* A residual norm the guard refused: d->error.index is its largest row,
+ * so that a program (the CLI, braun_scene_file) can name the joint whose
+ * rows drift. A rare path. */
+static BRAUN_NOINLINE int worst_row(braun_data *d, int count, const braun_real *r)
+{
+    int at = 0;
+    for (int i = 1; i < count; i++)
+        if (braun_fabs(r[i]) > braun_fabs(r[at])) at = i;
+    d->error.index = at;
+    return BRAUN_ERR_ACCURACY;
+}
+
 BRAUN_FORCE_INLINE int guard_rows(braun_data *d, unsigned corr, int accel)
 {
     braun_priv *pv = braun__priv(d);
     int st = BRAUN_OK;
-    if ((corr & BRAUN_CORRECT_POSITION) && pv->m > 0)
+    if ((corr & BRAUN_CORRECT_POSITION) && pv->m > 0) {
         st = guard_fails(d, braun_dot(pv->m, pv->phi, pv->phi), &d->guard.pos, d->guard.pos0, accel,
                          "accuracy guard: position residual |Phi_q|");
-    if (!st && (corr & BRAUN_CORRECT_VELOCITY) && pv->rows > 0)
+        if (st == BRAUN_ERR_ACCURACY) return worst_row(d, pv->m, pv->phi);
+    }
+    if (!st && (corr & BRAUN_CORRECT_VELOCITY) && pv->rows > 0) {
         st = guard_fails(d, braun_dot(pv->rows, pv->ev, pv->ev), &d->guard.vel, d->guard.vel0, accel,
                          "accuracy guard: velocity residual |[dPhi_q; Phi_v]|");
+        if (st == BRAUN_ERR_ACCURACY) return worst_row(d, pv->rows, pv->ev);
+    }
     return st;
 }
 

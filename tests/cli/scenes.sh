@@ -456,6 +456,13 @@ EOF
 check "plot --traj reads back run's CSV of a body named with a tab" sh -c '[ "$1" -eq 0 ] && [ -s "$2" ]' \
     sh "$rc" "$TMP/tab.svg"
 
+# The accuracy guard's position or velocity stop names the element of the
+# residual's largest row.
+"$BRAUN" run data/pendulum.json --dt 1 --t-end 5 > /dev/null 2> "$TMP/gl.err"; rc=$?
+check "guard stop: exit 1, names the joint of the residual's largest row" sh -c '
+    [ "$1" -eq 1 ] && grep -q "position residual .*; its largest row, 0, is joint .rod. (distance) (BRAUN_ERR_ACCURACY" "$2"' \
+    sh "$rc" "$TMP/gl.err"
+
 # ------------------------------------------------------------ gen-c
 "$BRAUN" gen-c data/sleigh.json -o "$TMP/sleigh.c"; rc=$?
 check "gen-c sleigh: exit 0, defines sleigh_build and SLEIGH_N 3" sh -c '

@@ -119,6 +119,18 @@ static const char *disagreeing_rows(const braun_data *d, const braun_cli_target 
     return buf;
 }
 
+/* For the accuracy guard's position or velocity residual: the element that
+ * owns its largest row (d->error.index), "; its largest row, 5, is joint
+ * 'far' (distance)"; "" without a scene. */
+static const char *largest_row(const braun_data *d, const braun_cli_target *tg, char *buf, size_t size)
+{
+    char a[160];
+    const char *owner = braun_cli_row_owner(tg ? tg->scene : NULL, d->error.index, a, sizeof a);
+    buf[0] = '\0';
+    if (owner) snprintf(buf, size, "; its largest row, %d, is %s", d->error.index, owner);
+    return buf;
+}
+
 /* "braun: [<element>: ]<sentence> (<STATUS: meaning>)"; the sentence only
  * when d->error belongs to this failure (early argument checks record
  * nothing); the element of a scene when the guard saw the failing call;
@@ -131,7 +143,12 @@ static void report_failure(const braun_data *d, int st, const braun_cli_guard *g
         char what[256], rows[400];
         const char *element = guard ? braun_cli_guard_element(guard, d->error.t) : NULL;
         braun_error_format(d, what, sizeof what);
-        const char *owners = st == BRAUN_ERR_INCONSISTENT ? disagreeing_rows(d, tg, rows, sizeof rows) : "";
+        /* The rows that disagree, or the row whose residual the guard
+         * refused (its largest). */
+        const char *owners = st == BRAUN_ERR_INCONSISTENT ? disagreeing_rows(d, tg, rows, sizeof rows)
+                             : st == BRAUN_ERR_ACCURACY && d->error.index >= 0
+                                 ? largest_row(d, tg, rows, sizeof rows)
+                                 : "";
         if (st == BRAUN_ERR_INCONSISTENT && a && a->rank_tol > 0)
             braun_cli_error("%s%s (%s); with --rank-tol %g, rows whose pivot is below %g times "
                             "the largest count as dependent: a smaller tolerance (or the "
@@ -140,9 +157,9 @@ static void report_failure(const braun_data *d, int st, const braun_cli_guard *g
         else if (st == BRAUN_ERR_INCONSISTENT)
             braun_cli_error("%s%s (%s)", what, owners, braun_status_str(st));
         else if (element)
-            braun_cli_error("%s: %s (%s)", element, what, braun_status_str(st));
+            braun_cli_error("%s: %s%s (%s)", element, what, owners, braun_status_str(st));
         else
-            braun_cli_error("%s (%s)", what, braun_status_str(st));
+            braun_cli_error("%s%s (%s)", what, owners, braun_status_str(st));
     } else {
         braun_cli_error("%s", braun_status_str(st));
     }
