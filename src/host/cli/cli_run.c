@@ -154,9 +154,7 @@ static void report_failure(const braun_data *d, int st, const braun_cli_guard *g
                             "the largest count as dependent: a smaller tolerance (or the "
                             "default, 0) may keep them", what, owners, braun_status_str(st),
                             a->rank_tol, a->rank_tol);
-        else if (st == BRAUN_ERR_INCONSISTENT)
-            braun_cli_error("%s%s (%s)", what, owners, braun_status_str(st));
-        else if (element)
+        else if (element && st != BRAUN_ERR_INCONSISTENT)
             braun_cli_error("%s: %s%s (%s)", element, what, owners, braun_status_str(st));
         else
             braun_cli_error("%s%s (%s)", what, owners, braun_status_str(st));
