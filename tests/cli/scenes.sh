@@ -456,6 +456,29 @@ EOF
 check "plot --traj reads back run's CSV of a body named with a tab" sh -c '[ "$1" -eq 0 ] && [ -s "$2" ]' \
     sh "$rc" "$TMP/tab.svg"
 
+# A start off a joint that the mechanism cannot reach (a distance of 5 m
+# between points at most 2 m apart): consistent to first order, so check
+# names the largest row of the position residual and its joint.
+cat > "$TMP/far.json" <<'EOF'
+{"name": "far", "bodies": [
+  {"name": "crank", "type": "rigid", "mass": 1, "inertia": 0.083333333333333329,
+   "position": [0.35355339059327379, 0.35355339059327379], "angle": 0.78539816339744828,
+   "points": {"O": [-0.5, 0], "A": [0.5, 0]}},
+  {"name": "rod", "type": "rigid", "mass": 1, "inertia": 0.083333333333333329,
+   "position": [1.0606601717798214, 0.35355339059327379], "angle": -0.78539816339744828,
+   "points": {"A": [-0.5, 0], "B": [0.5, 0]}}],
+ "joints": [
+  {"name": "pivot", "type": "revolute", "a": "crank.O", "b": [0, 0]},
+  {"name": "knee", "type": "revolute", "a": "crank.A", "b": "rod.A"},
+  {"name": "far", "type": "distance", "a": "crank.O", "b": "rod.B", "length": 5}]}
+EOF
+"$BRAUN" check "$TMP/far.json" > "$TMP/far.out" 2>&1; rc=$?
+check "check: a joint the mechanism cannot reach is named by the largest position residual" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^position_residual_largest: 23 (row 4, joint .far. (distance))$" "$2"' \
+    sh "$rc" "$TMP/far.out"
+check "check: a start on its constraints prints no position_residual_largest" sh -c '
+    ! grep -q "^position_residual_largest" "$1"' sh "$TMP/sc.out"
+
 # The accuracy guard's position or velocity stop names the element of the
 # residual's largest row.
 "$BRAUN" run data/pendulum.json --dt 1 --t-end 5 > /dev/null 2> "$TMP/gl.err"; rc=$?

@@ -380,7 +380,22 @@ static int report(const braun_cli_target *tg)
     text_value("description", tg->description ? tg->description : "");
     printf("n: %d\nm: %d\np: %d\n", n, m, p);
     printf("rank: %d\nredundant: %d\ndof: %d\n", rank, rows - rank, n - rank);
-    printf("position_residual: %.3g\nvelocity_residual: %.3g\n", (double)pos, (double)vel);
+    printf("position_residual: %.3g\n", (double)pos);
+    /* A start off its constraints: which row, and whose. An infeasible
+     * joint (a distance longer than the mechanism reaches) is consistent
+     * to first order and fails only in the run, on the energy guard, which
+     * has no row to name. */
+    if ((double)pos > sqrt((double)BRAUN_EPS) && m > 0) {
+        int worst = 0;
+        for (int i = 1; i < m; i++)
+            if (fabs(phi[i]) > fabs(phi[worst])) worst = i;
+        char owner[160];
+        const char *who = braun_cli_row_owner(tg->scene, worst, owner, sizeof owner);
+        printf("position_residual_largest: %.3g (row %d%s", fabs(phi[worst]), worst, who ? ", " : "");
+        if (who) braun_cli_put_text(stdout, who);
+        printf(")\n");
+    }
+    printf("velocity_residual: %.3g\n", (double)vel);
     printf("consistent: %s\n", consistent && vconsistent ? "yes" : "no");
     printf("mass_matrix: %s\n", s->flags & BRAUN_MASS_CONSTANT ? "constant" : "varies");
     printf("energy_law: %s\n", s->energy ? "yes" : "no");
