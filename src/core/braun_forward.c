@@ -449,13 +449,13 @@ static int check_state(braun_data *d, braun_real t, const braun_real *q,
     return st;
 }
 
-/* The arguments of braun_eval, braun_residuals, braun_energy. The last two
- * are allowed in an output callback, between steps (docs/api.md), none from
- * a system callback while a step's stages run: the call would overwrite
- * the scratch the step is using. */
-static int check_call(braun_data *d, const braun_real *q, const braun_real *v)
+/* The arguments of braun_eval, braun_residuals, braun_energy. busy_allowed
+ * (braun__check_usable): 1 for the last two, allowed in an output callback,
+ * between steps (docs/api.md); none from a system callback while a step's
+ * stages run: the call would overwrite the scratch the step is using. */
+static int check_call(braun_data *d, const braun_real *q, const braun_real *v, int busy_allowed)
 {
-    const int st = braun__check_usable(d, 1);
+    const int st = braun__check_usable(d, busy_allowed);
     if (st) return st;
     if (!q || !v)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, !q ? "state q (NULL)" : "state v (NULL)", -1, -1, 0,
@@ -472,8 +472,7 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
      * the factorization, rank and residuals the driver's next step starts
      * from (a run with it differed at round-off); a second braun_data of
      * the same model evaluates anywhere. */
-    int st = braun__check_usable(d, 0);
-    if (!st) st = check_call(d, q, v);
+    int st = check_call(d, q, v, 0);
     if (st) return st;
     if (!qdot || !vdot) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_eval (NULL output)", -1, -1, 0, (double)t);
     /* The stages read q and v to the end while they write vdot, and qdot is
@@ -531,7 +530,7 @@ int braun_energy(braun_data *d, braun_real t, const braun_real *q,
                  const braun_real *v, braun_real *E)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = check_call(d, q, v);
+    int st = check_call(d, q, v, 1);
     if (st) return st;
     if (!E) return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_energy (NULL output)", -1, -1, 0, (double)t);
     /* The state as braun_eval and braun_residuals check it: a NaN the
@@ -557,7 +556,7 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
                     braun_real *energy)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
-    int st = check_call(d, q, v);
+    int st = check_call(d, q, v, 1);
     if (st) return st;
     braun_priv *pv = braun__priv(d);
     const braun_system *s = &d->model->sys;

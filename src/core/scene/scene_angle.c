@@ -37,9 +37,7 @@ static const char *angle_check(const braun_scene *s, const braun_scene_joint *j)
     if ((j->a >= 0 && !braun_scene__is_rigid(s, j->a)) ||
         (j->b >= 0 && !braun_scene__is_rigid(s, j->b)))
         return "angle joint needs rigid bodies (or the ground)";
-    const char *same = braun_scene__same_body(j->a, j->b, 0);
-    if (same) return same;
-    return NULL;
+    return braun_scene__same_body(j->a, j->b, 0);
 }
 
 static int angle_rows(const braun_scene_joint *j)

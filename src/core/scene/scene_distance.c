@@ -17,7 +17,7 @@ static void distance_defaults(const braun_scene *s, braun_scene_joint *j, unsign
 
 static const char *distance_check(const braun_scene *s, const braun_scene_joint *j)
 {
-    const char *same = braun_scene__same_body(braun_scene__body_of(s, j->a), braun_scene__body_of(s, j->b), 0);
+    const char *same = braun_scene__same_body_points(s, j->a, j->b, 0);
     if (same) return same;
     if (!j->driven && !(j->value > 0)) return "distance must be > 0";
     return NULL;

@@ -289,7 +289,7 @@ void braun_scene__frame_defaults(const braun_scene *s, braun_scene_joint *j, int
 const char *braun_scene__frame_check(const braun_scene *s, const braun_scene_joint *j,
                                      int body1, int body2, int need_b)
 {
-    const char *same = braun_scene__same_body(braun_scene__body_of(s, j->a), braun_scene__body_of(s, j->b), 0);
+    const char *same = braun_scene__same_body_points(s, j->a, j->b, 0);
     if (same) return same;
     if (!braun_scene__has_frame(s, body1) || !braun_scene__has_frame(s, body2))
         return "a body of the joint has no orientation (a particle): its axes need rigid3d "

@@ -77,6 +77,13 @@ static inline const char *braun_scene__same_body(int body_a, int body_b, int spr
     return body_a < 0 ? ground[spring] : body[spring];
 }
 
+/* The same for an element given by its two points. */
+static inline const char *braun_scene__same_body_points(const braun_scene *s, int point_a, int point_b,
+                                                        int spring)
+{
+    return braun_scene__same_body(braun_scene__body_of(s, point_a), braun_scene__body_of(s, point_b), spring);
+}
+
 /* A body index in range (not the ground). */
 static inline int braun_scene__is_body(const braun_scene *s, int body)
 {

@@ -13,7 +13,7 @@ static void point_plane_defaults(const braun_scene *s, braun_scene_joint *j, uns
 static const char *point_plane_check(const braun_scene *s, const braun_scene_joint *j)
 {
     if (j->driven) return "a point_plane joint cannot be driven";
-    const char *same = braun_scene__same_body(braun_scene__body_of(s, j->a), braun_scene__body_of(s, j->b), 0);
+    const char *same = braun_scene__same_body_points(s, j->a, j->b, 0);
     if (same) return same;
     if (!braun_scene__has_frame(s, braun_scene__body_of(s, j->b)))
         return "the plane's body has no orientation (a particle): it must be a rigid3d body or "

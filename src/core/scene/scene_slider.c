@@ -74,7 +74,7 @@ void braun_scene__slider_rows(const braun_scene *s, const braun_scene_joint *j, 
 
 const char *braun_scene__slider_check(const braun_scene *s, const braun_scene_joint *j)
 {
-    const char *same = braun_scene__same_body(braun_scene__body_of(s, j->a), braun_scene__body_of(s, j->b), 0);
+    const char *same = braun_scene__same_body_points(s, j->a, j->b, 0);
     if (same) return same;
     if (j->axis[0] == 0 && j->axis[1] == 0) return "slider axis is the zero vector";
     if (braun_scene__body_of(s, j->a) < 0) return "the sliding point is on the ground";

@@ -5,9 +5,7 @@
 static const char *spherical_check(const braun_scene *s, const braun_scene_joint *j)
 {
     if (j->driven) return "a spherical joint cannot be driven";
-    const char *same = braun_scene__same_body(braun_scene__body_of(s, j->a), braun_scene__body_of(s, j->b), 0);
-    if (same) return same;
-    return NULL;
+    return braun_scene__same_body_points(s, j->a, j->b, 0);
 }
 
 static int spherical_rows(const braun_scene_joint *j)

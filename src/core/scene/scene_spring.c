@@ -82,7 +82,7 @@ static int spring_inputs(const braun_scene_effect *e)
 
 static const char *spring_check(const braun_scene *s, const braun_scene_effect *e)
 {
-    const char *same = braun_scene__same_body(braun_scene__body_of(s, e->a), braun_scene__body_of(s, e->b), 1);
+    const char *same = braun_scene__same_body_points(s, e->a, e->b, 1);
     if (same) return same;
     if (e->k < 0 || e->c < 0 || e->rest < 0)
         return "stiffness, damping and rest length must be >= 0";

@@ -30,10 +30,11 @@ typedef struct work {
 static double fd_step(double x) { return cbrt(DBL_EPSILON) * (fabs(x) > 1 ? fabs(x) : 1); }
 
 /* One figure: analytic x[k] against finite differences d[k] (count k), the
- * differences computed from values of magnitude up to `mag` with step tau.
- * The worst is kept in *fig and, when it is the report's worst so far, named. */
+ * differences computed from values of magnitude up to `mag` with step tau,
+ * each with its allowance (deriv_best; NULL: none). The worst is kept in
+ * *fig and, when it is the report's worst so far, named. */
 static void judge(work *w, double *fig, const char *name, int rows, int cols, const double *x,
-                  const double *d, const double *spread, double mag, double tau)
+                  const double *d, const double *allow, double mag, double tau)
 {
     const int count = rows * cols;
     double scale = 0, worst = 0;
@@ -48,7 +49,7 @@ static void judge(work *w, double *fig, const char *name, int rows, int cols, co
     const double noise0 = 1e2 * DBL_EPSILON * mag / tau;
     for (int k = 0; k < count; k++) {
         /* ... nor what they do not resolve (deriv_best's allowance). */
-        const double noise = noise0 + (spread ? spread[k] : 0);
+        const double noise = noise0 + (allow ? allow[k] : 0);
         const double diff = fabs(x[k] - d[k]);
         const double e = (diff > noise ? diff - noise : (diff == diff ? 0 : diff)) /
                          (scale + noise0 + DBL_MIN);

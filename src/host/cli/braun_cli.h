@@ -49,6 +49,9 @@ void braun_cli_put_number(FILE *f, double x);
  * prints); braun_cli_text_byte: one byte so escaped into buf (5 bytes). */
 void braun_cli_put_text(FILE *f, const char *s);
 const char *braun_cli_text_byte(unsigned char c, char *buf);
+/* Control bytes of s as '?', in place: one line, as error messages and the
+ * trajectory CSV's header write a scene's names (cli_error.c, cli_csv.c). */
+void braun_cli_mask_controls(char *s);
 
 /* ---------------------------------------------------------- files (cli_files.c) */
 /* A file's identity (device, inode) when it is a regular file. */

@@ -16,8 +16,7 @@ int braun_cli_error(const char *fmt, ...)
      * several files at once (not on this file alone): ap is initialized. */
     vsnprintf(line, sizeof line, fmt, ap); /* NOLINT(clang-analyzer-valist.Uninitialized) */
     va_end(ap);
-    for (char *c = line; *c; c++)
-        if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+    braun_cli_mask_controls(line);
     fprintf(stderr, "braun: %s\n", line);
     return BRAUN_CLI_USAGE;
 }

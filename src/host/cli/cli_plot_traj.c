@@ -107,8 +107,7 @@ int plot_traj_read(const char *path, const braun_cli_target *t, plot_samples *s)
         /* As the CSV's header writes it (cli_csv.c): a name's control
          * bytes as '?', or run's own CSV of a scene with a tab in a body's
          * name could not be read back. */
-        for (char *c = want; *c; c++)
-            if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+        braun_cli_mask_controls(want);
         if (p >= eol) {
             rc = braun_cli_error("--traj %s:1: %d columns, '%s' needs %d (the columns of braun "
                                  "run %s --out)", path, j, t->name, cols, t->name);

@@ -8,30 +8,32 @@
 
 #include "braun_cli.h"
 
-/* A real number filling the whole argument. NaN and Inf are never
- * meaningful here; nor are numbers a double cannot hold: beyond its range,
- * or nonzero below its smallest normal value (strtod's ERANGE: "1e-400"
- * would read as 0, "1e-310" as a subnormal of a few bits). Each is
- * refused with what is wrong with it. */
+/* "0x" after an optional sign: a hexadecimal number, which strtod reads. */
+static int hexadecimal(const char *s)
+{
+    const char *p = (*s == '+' || *s == '-') ? s + 1 : s;
+    return p[0] == '0' && (p[1] == 'x' || p[1] == 'X');
+}
+
 /* A decimal number as the docs promise (digits, '.', an exponent, a
  * sign): strtod alone also takes leading blanks and hexadecimal floats
  * ("0x1p-10"), which the tool then read without a word. */
 int braun_cli_decimal(const char *s)
 {
-    const char *p = s;
-    if (*p == '+' || *p == '-') p++;
-    if (!((*p >= '0' && *p <= '9') || *p == '.')) return 0;
-    return !braun_cli_hex_or_blank(s);
+    const char *p = (*s == '+' || *s == '-') ? s + 1 : s;
+    return ((*p >= '0' && *p <= '9') || *p == '.') && !hexadecimal(s);
 }
 
 int braun_cli_hex_or_blank(const char *s)
 {
-    const char *p = s;
-    if (*p == ' ' || *p == '\t') return 1;
-    if (*p == '+' || *p == '-') p++;
-    return p[0] == '0' && (p[1] == 'x' || p[1] == 'X');
+    return *s == ' ' || *s == '\t' || hexadecimal(s);
 }
 
+/* A real number filling the whole argument. NaN and Inf are never
+ * meaningful here; nor are numbers a double cannot hold: beyond its range,
+ * or nonzero below its smallest normal value (strtod's ERANGE: "1e-400"
+ * would read as 0, "1e-310" as a subnormal of a few bits). Each is
+ * refused with what is wrong with it. */
 int braun_cli_parse_real(const char *opt, const char *s, double *out)
 {
     char *end;

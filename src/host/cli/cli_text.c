@@ -33,3 +33,9 @@ void braun_cli_put_text(FILE *f, const char *s)
         fputs(braun_cli_text_byte(*p, buf), f);
     }
 }
+
+void braun_cli_mask_controls(char *s)
+{
+    for (; *s; s++)
+        if ((unsigned char)*s < 0x20 || *s == 0x7f) *s = '?';
+}

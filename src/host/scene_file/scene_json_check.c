@@ -241,26 +241,36 @@ int sj_check_initial(sj_reader *r)
                    joint ? s->joints[index].type->name : s->effects[index].type->name, what);
 }
 
-/* The ideal acceleration of sys at (t, q, v) into vdot: a data block of
- * its own, every correction off (braun_eval is then the Udwadia–Kalaba
- * acceleration). BRAUN_OK or the status. */
-static int ideal_acceleration(const braun_system *sys, double t, const braun_real *q, const braun_real *v,
-                              braun_real *vdot)
-{
+/* A system's ideal acceleration at any state: a data block of its own,
+ * every correction off (braun_eval is then the Udwadia–Kalaba
+ * acceleration), made once for all the states compared. */
+typedef struct {
     braun_model model;
-    int st = braun_model_init(&model, sys);
-    if (st) return st;
-    model.opt.corrections = BRAUN_CORRECT_NONE;
-    const size_t bytes = braun_data_size(&model);
-    void *buf = bytes ? malloc(bytes) : NULL;
-    braun_real *qdot = calloc((size_t)sys->n + 1, sizeof *qdot);
     braun_data d;
-    st = buf && qdot ? braun_data_init(&d, &model, buf, bytes) : BRAUN_ERR_BUFFER;
-    if (!st) st = braun_eval(&d, (braun_real)t, q, v, 1, qdot, vdot);
-    if (buf && !st) braun_data_release(&d);
-    free(qdot);
-    free(buf);
+    void *buf;
+    braun_real *qdot;
+    int ready;
+} ideal_eval;
+
+static int ideal_open(ideal_eval *e, const braun_system *sys)
+{
+    memset(e, 0, sizeof *e);
+    int st = braun_model_init(&e->model, sys);
+    if (st) return st;
+    e->model.opt.corrections = BRAUN_CORRECT_NONE;
+    const size_t bytes = braun_data_size(&e->model);
+    e->buf = bytes ? malloc(bytes) : NULL;
+    e->qdot = calloc((size_t)sys->n + 1, sizeof *e->qdot);
+    st = e->buf && e->qdot ? braun_data_init(&e->d, &e->model, e->buf, bytes) : BRAUN_ERR_BUFFER;
+    e->ready = !st;
     return st;
+}
+
+static void ideal_close(ideal_eval *e)
+{
+    if (e->ready) braun_data_release(&e->d);
+    free(e->qdot);
+    free(e->buf);
 }
 
 /* The largest |a_i − b_i| relative to max(|a|∞, |b|∞, floor), and its i. */
@@ -295,10 +305,16 @@ int sj_check_reference(sj_reader *r, const braun_builtin *b)
     double *qd = calloc(4 * (size_t)n + 1, sizeof *qd), *vd = qd ? qd + n : NULL;
     braun_real *q = calloc(4 * (size_t)n + 1, sizeof *q), *v = q ? q + n : NULL;
     braun_real *a_ref = q ? v + n : NULL, *a_scene = q ? a_ref + n : NULL;
+    ideal_eval model, scene;
+    const int sa = ideal_open(&model, &b->sys), sb = ideal_open(&scene, &sf->sys);
     int rc = 0;
     char why[320] = "";
     if (!qd || !q) {
         snprintf(why, sizeof why, "out of memory");
+        rc = -1;
+    } else if (sa || sb) {
+        snprintf(why, sizeof why, "the %s cannot be evaluated (%s)", sa ? "model" : "scene",
+                 braun_status_str(sa ? sa : sb));
         rc = -1;
     }
     for (int k = 0; !rc && k < count; k++) {
@@ -315,9 +331,10 @@ int sj_check_reference(sj_reader *r, const braun_builtin *b)
         int at = 0;
         if (k == 0) {
             /* The reference starts from the model's initial state. */
-            if (rel_gap(n, q, sf->q0, 1, &at) > tol || !(rel_gap(n, v, sf->v0, 1, &at) <= tol)) {
-                const int pos = rel_gap(n, q, sf->q0, 1, &at) > tol;
-                if (!pos) rel_gap(n, v, sf->v0, 1, &at);
+            int at_v = 0;
+            const int pos = !(rel_gap(n, q, sf->q0, 1, &at) <= tol);
+            if (pos || !(rel_gap(n, v, sf->v0, 1, &at_v) <= tol)) {
+                if (!pos) at = at_v;
                 snprintf(why, sizeof why, "its initial %s[%d] is %.9g, the scene's %.9g (the reference "
                          "starts where the model does)", pos ? "q" : "v", at,
                          (double)(pos ? q : v)[at], (double)(pos ? sf->q0 : sf->v0)[at]);
@@ -325,11 +342,11 @@ int sj_check_reference(sj_reader *r, const braun_builtin *b)
                 break;
             }
         }
-        const int sa = ideal_acceleration(&b->sys, times[k], q, v, a_ref);
-        const int sb = ideal_acceleration(&sf->sys, times[k], q, v, a_scene);
-        if (sa || sb) {
+        const int ea = braun_eval(&model.d, (braun_real)times[k], q, v, 1, model.qdot, a_ref);
+        const int eb = ea ? 0 : braun_eval(&scene.d, (braun_real)times[k], q, v, 1, scene.qdot, a_scene);
+        if (ea || eb) {
             snprintf(why, sizeof why, "the %s cannot be evaluated at the reference's state at t = %g (%s)",
-                     sa ? "model" : "scene", times[k], braun_status_str(sa ? sa : sb));
+                     ea ? "model" : "scene", times[k], braun_status_str(ea ? ea : eb));
             rc = -1;
             break;
         }
@@ -340,6 +357,8 @@ int sj_check_reference(sj_reader *r, const braun_builtin *b)
             rc = -1;
         }
     }
+    ideal_close(&model);
+    ideal_close(&scene);
     free(qd);
     free(q);
     if (!rc) return 0;

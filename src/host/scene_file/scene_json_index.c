@@ -150,22 +150,21 @@ int sj_find_joint(sj_reader *r, const char *name)
 int sj_duplicate_joint(sj_reader *r, int *later, int *first)
 {
     if (sj_find_joint(r, "") == -2) return -2; /* builds the sorted index */
-    /* Equal names are neighbours, ordered by index: the first pair found
-     * by the later one's index is the one a reader meets first. */
-    int best = -1;
+    /* Sorted by name, then index: each run of one name starts at the joint
+     * that has it first, and every other entry of the run repeats it. The
+     * repeat a reader meets first is the one of the lowest index. */
+    int found = 0, start = 0;
     for (int i = 1; i < r->njoint_index; i++) {
         const sj_name *a = &r->joint_index[i - 1], *b = &r->joint_index[i];
-        if (name_cmp(a->s, a->len, b->s, b->len) == 0 && (best < 0 || b->index < *later)) {
-            /* a is the first of the name only if no earlier equal entry: the
-             * run of equal names starts at its lowest index. */
-            int j = i - 1;
-            while (j > 0 && name_cmp(r->joint_index[j - 1].s, r->joint_index[j - 1].len, b->s, b->len) == 0) j--;
+        if (name_cmp(a->s, a->len, b->s, b->len) != 0) {
+            start = i;
+        } else if (!found || b->index < *later) {
             *later = b->index;
-            *first = r->joint_index[j].index;
-            best = i;
+            *first = r->joint_index[start].index;
+            found = 1;
         }
     }
-    return best >= 0;
+    return found;
 }
 
 void sj_index_free(sj_reader *r)
