@@ -472,10 +472,25 @@ cat > "$TMP/far.json" <<'EOF'
   {"name": "knee", "type": "revolute", "a": "crank.A", "b": "rod.A"},
   {"name": "far", "type": "distance", "a": "crank.O", "b": "rod.B", "length": 5}]}
 EOF
-"$BRAUN" check "$TMP/far.json" > "$TMP/far.out" 2>&1; rc=$?
+"$BRAUN" check "$TMP/far.json" > "$TMP/far.out" 2> "$TMP/far.err"; rc=$?
 check "check: a joint the mechanism cannot reach is named by the largest position residual" sh -c '
-    [ "$1" -eq 0 ] && grep -q "^position_residual_largest: 23 (row 4, joint .far. (distance))$" "$2"' \
-    sh "$rc" "$TMP/far.out"
+    grep -q "^position_residual_largest: 23 (row 4, joint .far. (distance))$" "$1"' sh "$TMP/far.out"
+# ... and consistent to first order, but the assembly search (Gauss-Newton
+# from the start) stalls: consistent: no, exit 1, the joints named.
+check "check: no assembly of an unreachable joint: consistent: no, exit 1" sh -c '
+    [ "$1" -eq 1 ] && grep -q "^assembly: none found (Gauss-Newton stalls at residual" "$2" &&
+    grep -q "^consistent: no$" "$2"' sh "$rc" "$TMP/far.out"
+check "check: the unreachable joint is named among the rows that cannot all be met" sh -c '
+    grep -q "no solution near the initial state: .*joint .far. (distance) (row 4).* cannot all be met" "$1"' \
+    sh "$TMP/far.err"
+# The same start with a length the mechanism reaches (1.5 m): off its
+# constraints, assembled in a few steps, consistent.
+sed 's/"length": 5/"length": 1.5/' "$TMP/far.json" > "$TMP/near.json"
+"$BRAUN" check "$TMP/near.json" > "$TMP/near.out" 2>&1; rc=$?
+check "check: a start off a joint the mechanism reaches assembles: consistent: yes" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^position_residual_largest: 0.25 (row 4" "$2" &&
+    grep -q "^assembly: reached (residual [0-9.e+-]* after [1-9] Gauss-Newton steps\{0,1\}, " "$2" &&
+    grep -q "^consistent: yes$" "$2"' sh "$rc" "$TMP/near.out"
 check "check: a start on its constraints prints no position_residual_largest" sh -c '
     ! grep -q "^position_residual_largest" "$1"' sh "$TMP/sc.out"
 

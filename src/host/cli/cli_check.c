@@ -131,13 +131,10 @@ static double lsq_residual(int rows, int n, double *C, int r, double *b)
     return sqrt(e);
 }
 
-/* C = A R^-1 with M = RᵀR (rows of C solve Rᵀ c = a). Returns 0, or -1 if
- * M is not positive definite. */
-static int weight_rows(int rows, int n, const double *M, double *A)
+/* The upper Cholesky factor R of M (M = RᵀR, n x n, row-major). Returns 0,
+ * or -1 if M is not positive definite. */
+static int cholesky_upper(int n, const double *M, double *R)
 {
-    if (n <= 0) return -1;
-    double *R = calloc((size_t)n * n, sizeof(double));
-    if (!R) return -1;
     memcpy(R, M, sizeof(double) * (size_t)n * n);
     for (int j = 0; j < n; j++) {
         for (int i = 0; i < j; i++) {
@@ -147,12 +144,15 @@ static int weight_rows(int rows, int n, const double *M, double *A)
         }
         double s = R[(size_t)j * n + j];
         for (int k = 0; k < j; k++) s -= R[(size_t)k * n + j] * R[(size_t)k * n + j];
-        if (!(s > 0)) {
-            free(R);
-            return -1;
-        }
+        if (!(s > 0)) return -1;
         R[(size_t)j * n + j] = sqrt(s);
     }
+    return 0;
+}
+
+/* Each of the rows rows of A (n wide) := row R⁻¹ (Rᵀ c = a). */
+static void rows_times_rinv(int rows, int n, const double *R, double *A)
+{
     for (int r = 0; r < rows; r++) {
         double *c = A + (size_t)r * n;
         for (int i = 0; i < n; i++) {
@@ -161,8 +161,197 @@ static int weight_rows(int rows, int n, const double *M, double *A)
             c[i] = s / R[(size_t)i * n + i];
         }
     }
-    free(R);
-    return 0;
+}
+
+/* The minimum-norm solution x (n) of C_S x = b_S, S the rows a Householder
+ * QR of Cᵀ with column pivoting keeps under the rank rule of rank_of_rows
+ * (pivots below tol·|r_00| end it): Cᵀ P = Q R gives C_S = R_Sᵀ Qᵀ, so
+ * x = Q [R_S⁻ᵀ b_S; 0]. C (rows x n, row-major) and b (rows) destroyed.
+ * Returns the rank, or -1 out of memory. */
+static int min_norm_solve(int rows, int n, double *C, double *b, double *x, double tol)
+{
+    double *norm = calloc((size_t)(rows > 0 ? rows : 1), sizeof(double));
+    double *alpha = calloc((size_t)(rows > 0 ? rows : 1), sizeof(double));
+    double *vv = calloc((size_t)(rows > 0 ? rows : 1), sizeof(double));
+    int rank = 0;
+    double r00 = 0;
+    if (!norm || !alpha || !vv) {
+        free(norm);
+        free(alpha);
+        free(vv);
+        return -1;
+    }
+    for (int j = 0; j < rows; j++)
+        for (int i = 0; i < n; i++) norm[j] += C[(size_t)j * n + i] * C[(size_t)j * n + i];
+    for (int k = 0; k < rows && k < n; k++) {
+        int p = k;
+        for (int j = k + 1; j < rows; j++)
+            if (norm[j] > norm[p]) p = j;
+        if (p != k) {
+            for (int i = 0; i < n; i++) {
+                const double t = C[(size_t)k * n + i];
+                C[(size_t)k * n + i] = C[(size_t)p * n + i];
+                C[(size_t)p * n + i] = t;
+            }
+            double t = norm[k];
+            norm[k] = norm[p];
+            norm[p] = t;
+            t = b[k];
+            b[k] = b[p];
+            b[p] = t;
+        }
+        double *v = C + (size_t)k * n, s = 0;
+        for (int i = k; i < n; i++) s += v[i] * v[i];
+        const double a = v[k] > 0 ? -sqrt(s) : sqrt(s);
+        if (k == 0) r00 = fabs(a);
+        if (!(fabs(a) > tol * r00) || r00 == 0) break;
+        alpha[k] = a;
+        v[k] -= a;
+        for (int i = k; i < n; i++) vv[k] += v[i] * v[i];
+        rank++;
+        for (int j = k + 1; j < rows; j++) {
+            double *y = C + (size_t)j * n, d = 0;
+            for (int i = k; i < n; i++) d += v[i] * y[i];
+            d = vv[k] > 0 ? 2 * d / vv[k] : 0;
+            for (int i = k; i < n; i++) y[i] -= d * v[i];
+            norm[j] = 0;
+            for (int i = k + 1; i < n; i++) norm[j] += y[i] * y[i];
+        }
+    }
+    /* R_S's entries: R_kk = alpha_k, R_kj (k < j) = entry k of row j. */
+    for (int i = 0; i < n; i++) x[i] = 0;
+    for (int j = 0; j < rank; j++) {
+        double s = b[j];
+        for (int k = 0; k < j; k++) s -= C[(size_t)j * n + k] * x[k];
+        x[j] = s / alpha[j];
+    }
+    for (int k = rank - 1; k >= 0; k--) {
+        const double *v = C + (size_t)k * n;
+        double d = 0;
+        for (int i = k; i < n; i++) d += v[i] * x[i];
+        d = vv[k] > 0 ? 2 * d / vv[k] : 0;
+        for (int i = k; i < n; i++) x[i] -= d * v[i];
+    }
+    free(norm);
+    free(alpha);
+    free(vv);
+    return rank;
+}
+
+/* A start off its holonomic constraints may still be one no motion can
+ * reach (a distance joint longer than the mechanism stretches): first-order
+ * consistency cannot tell, and a run only fails later, on its accuracy
+ * guard. The assembly search tells: Gauss–Newton from q0 in the mass metric
+ * (each step the minimum-norm dq = −R⁻¹C⁺Φ_q, as the position correction
+ * of Eq. 16 takes it), halving a step until ‖Φ_q‖ decreases. It ends
+ * `reached` when ‖Φ_q‖ ≤ ASSEMBLY_TOL_REL·scale — scale = Σ_ij |A_ij|·s_j,
+ * s_j = max(|q_j|, max_k |q_k|, 1e-6), the size Φ_q's rounding has — or
+ * stalled, where no halving decreases ‖Φ_q‖ or after ASSEMBLY_STEPS steps.
+ * Local: a stall says no assembly near q0 was found, and a mechanism whose
+ * constraints meet farther away (another branch) must be started there. */
+#define ASSEMBLY_STEPS 60
+#define ASSEMBLY_HALVINGS 40
+#define ASSEMBLY_TOL_REL 1e-10
+
+typedef struct assembly {
+    int reached;  /* 1 reached, 0 stalled, -1 out of memory or a callback failed */
+    int steps;    /* Gauss–Newton steps taken */
+    double resid; /* ‖Φ_q‖ at the end */
+    double tol;   /* the residual that counts as reached */
+    double dist;  /* ‖R (q_end − q0)‖: the distance moved in the mass metric */
+} assembly;
+
+static int holonomic_at(const braun_system *s, const braun_real *q, const braun_real *v,
+                        braun_real *phi, braun_real *A, braun_real *b, braun_real *bv, double *res)
+{
+    for (size_t i = 0; i < (size_t)s->m * s->n; i++) A[i] = 0;
+    if (s->holonomic(0, q, v, phi, A, b, bv, s->user) != 0) return -1;
+    double r2 = 0;
+    for (int i = 0; i < s->m; i++) r2 += (double)phi[i] * (double)phi[i];
+    *res = sqrt(r2);
+    return isfinite(*res) ? 0 : -1;
+}
+
+/* R: the upper Cholesky factor of M(q0) (the metric of every step);
+ * phi_end (m): Φ_q where the search ended — the rows that cannot all be
+ * met share its residual. */
+static void assemble(const braun_system *s, const braun_real *q0, const braun_real *v0,
+                     const double *R, assembly *out, double *phi_end)
+{
+    const int n = s->n, m = s->m;
+    const size_t mn = (size_t)m * n;
+    braun_real *q = calloc((size_t)n, sizeof(braun_real)), *qt = calloc((size_t)n, sizeof(braun_real));
+    braun_real *phi = calloc((size_t)m, sizeof(braun_real)), *A = calloc(mn, sizeof(braun_real));
+    braun_real *phit = calloc((size_t)m, sizeof(braun_real)), *At = calloc(mn, sizeof(braun_real));
+    braun_real *b = calloc((size_t)m, sizeof(braun_real)), *bv = calloc((size_t)m, sizeof(braun_real));
+    double *C = calloc(mn, sizeof(double)), *rhs = calloc((size_t)m, sizeof(double));
+    double *x = calloc((size_t)n, sizeof(double)), *dq = calloc((size_t)n, sizeof(double));
+    memset(out, 0, sizeof *out);
+    out->reached = -1;
+    if (!q || !qt || !phi || !A || !phit || !At || !b || !bv || !C || !rhs || !x || !dq) goto done;
+    for (int j = 0; j < n; j++) q[j] = q0[j];
+    double res;
+    if (holonomic_at(s, q, v0, phi, A, b, bv, &res)) goto done;
+    double big = 1e-6, scale = 0;
+    for (int j = 0; j < n; j++)
+        if (fabs((double)q0[j]) > big) big = fabs((double)q0[j]);
+    for (size_t i = 0; i < mn; i++) {
+        const double qj = fabs((double)q0[i % (size_t)n]);
+        scale += fabs((double)A[i]) * (qj > big ? qj : big);
+    }
+    out->tol = ASSEMBLY_TOL_REL * (scale > 0 ? scale : 1);
+    const double rank_tol = (double)braun_default_rank_tol(m, n);
+    int steps = 0, stalled = 0;
+    while (res > out->tol && steps < ASSEMBLY_STEPS && !stalled) {
+        for (size_t i = 0; i < mn; i++) C[i] = (double)A[i];
+        for (int i = 0; i < m; i++) rhs[i] = -(double)phi[i];
+        rows_times_rinv(m, n, R, C);
+        if (min_norm_solve(m, n, C, rhs, x, rank_tol) < 0) goto done;
+        /* dq = R⁻¹ x */
+        for (int i = n - 1; i >= 0; i--) {
+            double acc = x[i];
+            for (int k = i + 1; k < n; k++) acc -= R[(size_t)i * n + k] * dq[k];
+            dq[i] = acc / R[(size_t)i * n + i];
+        }
+        double step = 1, rest = 0;
+        stalled = 1;
+        for (int h = 0; h < ASSEMBLY_HALVINGS && stalled; h++, step *= 0.5) {
+            for (int j = 0; j < n; j++) qt[j] = (braun_real)((double)q[j] + step * dq[j]);
+            if (holonomic_at(s, qt, v0, phit, At, b, bv, &rest)) continue; /* outside the callbacks' domain */
+            if (rest < res) stalled = 0;
+        }
+        if (stalled) break;
+        steps++;
+        res = rest;
+        memcpy(q, qt, sizeof(braun_real) * (size_t)n);
+        memcpy(phi, phit, sizeof(braun_real) * (size_t)m);
+        memcpy(A, At, sizeof(braun_real) * mn);
+    }
+    out->reached = res <= out->tol;
+    out->steps = steps;
+    out->resid = res;
+    for (int i = 0; i < m; i++) phi_end[i] = (double)phi[i];
+    /* ‖R (q − q0)‖ */
+    double d2 = 0;
+    for (int i = 0; i < n; i++) {
+        double acc = 0;
+        for (int k = i; k < n; k++) acc += R[(size_t)i * n + k] * ((double)q[k] - (double)q0[k]);
+        d2 += acc * acc;
+    }
+    out->dist = sqrt(d2);
+done:
+    free(q);
+    free(qt);
+    free(phi);
+    free(A);
+    free(phit);
+    free(At);
+    free(b);
+    free(bv);
+    free(C);
+    free(rhs);
+    free(x);
+    free(dq);
 }
 
 /* Whether m rows can all hold at the initial state, to first order: the
@@ -312,6 +501,7 @@ static int report(const braun_cli_target *tg)
     /* ... and of the velocity rows: [A_q v − b_q; Φ_v], then its residual. */
     double *ev = calloc((size_t)rows + 1, sizeof(double));
     double *T = rows > n ? calloc((size_t)rows * n, sizeof(double)) : NULL;
+    double *Rm = NULL; /* M's Cholesky factor */
     int rc = BRAUN_CLI_FAILED;
     if (!buf || !M || !A || !scratch || !Md || !Ad || !phi || !e || !ev || (rows > n && !T)) {
         braun_cli_error("out of memory");
@@ -355,11 +545,22 @@ static int report(const braun_cli_target *tg)
     for (size_t i = 0; i < rn; i++) Ad[i] = (double)A[i];
     int rank = 0, consistent = 1, vconsistent = 1, vrank = 0;
     double resid = 0, vresid = 0;
+    assembly asm_ = {.reached = 1};
+    /* The search costs O(m n²) per Gauss–Newton step: up to the size
+     * from which check says it is slow. */
+    const int off = m > 0 && (double)pos > sqrt((double)BRAUN_EPS);
+    const int search = off && n < BRAUN_CLI_DENSE_NOTE_N;
     if (rows > 0) {
-        if (weight_rows(rows, n, Md, Ad)) {
+        /* C = A R⁻¹, the rows as the solver weighs them (M = RᵀR). */
+        if (!(Rm = calloc(nn, sizeof(double)))) {
+            braun_cli_error("out of memory");
+            goto done;
+        }
+        if (cholesky_upper(n, Md, Rm)) {
             braun_cli_error("%s: the mass matrix is not positive definite", tg->name);
             goto done;
         }
+        rows_times_rinv(rows, n, Rm, Ad);
         /* The holonomic rows are Ad's first m: all of them without
          * nonholonomic rows, whose rank is then the one to print. */
         consistent = consistent_rows(m, n, Ad, phi, T ? T : Md, e, &resid, &rank);
@@ -372,6 +573,9 @@ static int report(const braun_cli_target *tg)
             braun_cli_error("out of memory");
             goto done;
         }
+        /* Rows that agree to first order at a start off them: can they be
+         * met at all near it? */
+        if (search && consistent) assemble(s, tg->q0, tg->v0, Rm, &asm_, e);
     }
     char corr[64];
     const unsigned supported = model.opt.corrections;
@@ -395,8 +599,24 @@ static int report(const braun_cli_target *tg)
         if (who) braun_cli_put_text(stdout, who);
         printf(")\n");
     }
+    if (off && consistent && !search)
+        printf("assembly: not searched (n = %d; the dense search is for n < %d)\n", n,
+               BRAUN_CLI_DENSE_NOTE_N);
+    if (search && consistent) {
+        if (asm_.reached < 0)
+            printf("assembly: not searched (a holonomic callback failed or gave NaN near the "
+                   "initial state, or out of memory)\n");
+        else if (asm_.reached)
+            printf("assembly: reached (residual %.2g after %d Gauss-Newton step%s, %.3g from the "
+                   "initial state in the mass metric)\n",
+                   asm_.resid, asm_.steps, asm_.steps == 1 ? "" : "s", asm_.dist);
+        else
+            printf("assembly: none found (Gauss-Newton stalls at residual %.3g after %d step%s)\n",
+                   asm_.resid, asm_.steps, asm_.steps == 1 ? "" : "s");
+    }
     printf("velocity_residual: %.3g\n", (double)vel);
-    printf("consistent: %s\n", consistent && vconsistent ? "yes" : "no");
+    const int assembled = asm_.reached != 0;
+    printf("consistent: %s\n", consistent && vconsistent && assembled ? "yes" : "no");
     printf("mass_matrix: %s\n", s->flags & BRAUN_MASS_CONSTANT ? "constant" : "varies");
     printf("energy_law: %s\n", s->energy ? "yes" : "no");
     printf("energy_input: %s\n", s->flags & BRAUN_ENERGY_INPUT ? "yes" : "no");
@@ -420,6 +640,19 @@ static int report(const braun_cli_target *tg)
                         tg->name, cb.worst, cb.worst_value);
         rc = BRAUN_CLI_FAILED;
     }
+    if (consistent && !assembled) {
+        /* Where the search stalls the residual is spread over the rows that
+         * cannot all hold: those are named, not the largest alone. */
+        char who[800];
+        name_disagreeing(tg, m, e, who, sizeof who);
+        braun_cli_error("%s: the constraints have no solution near the initial state: %s cannot all "
+                        "be met (Gauss-Newton from the initial state, in the mass metric, stalls at "
+                        "residual %.3g after %d step%s: no configuration near it meets them: "
+                        "a joint longer than the mechanism reaches?); braun run with the position "
+                        "correction stops on its accuracy guard",
+                        tg->name, who, asm_.resid, asm_.steps, asm_.steps == 1 ? "" : "s");
+        rc = BRAUN_CLI_FAILED;
+    }
     if (!consistent || !vconsistent) {
         /* What a run would meet at its first step, said before it: the
          * positions first; positions that hold with velocities that cannot
@@ -441,6 +674,7 @@ done:
     free(e);
     free(ev);
     free(T);
+    free(Rm);
     return rc;
 }
 
