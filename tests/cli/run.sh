@@ -296,5 +296,37 @@ for m in euler:3e-2 heun:2e-5; do
         sh "$rc" "$TMP/$m.json" "$v" "$bound"
 done
 
+# ------------------------------------------------------------ interruption
+# SIGTERM (or Ctrl-C's SIGINT) during the monitored run: it stops at its
+# next reported state; the CSV keeps every row up to it, each whole, the
+# summary says BRAUN_STOPPED; exit 128 + 15. Run 1 (timing, about 1 s here)
+# writes nothing, so the signal is sent once the CSV has rows.
+"$BRAUN" run pendulum --dt 1e-5 --t-end 20 --out "$TMP/int.csv" --summary "$TMP/int.json" \
+    2> "$TMP/int.err" & pid=$!
+i=0
+while [ $i -lt 600 ] && ! { [ -s "$TMP/int.csv" ] && [ "$(lines "$TMP/int.csv")" -gt 3 ]; }; do
+    sleep 0.1; i=$((i + 1))
+done
+kill -TERM $pid 2> /dev/null; wait $pid; rc=$?
+check "run: SIGTERM in the monitored run exits 143 and says where it stopped" sh -c '
+    [ "$1" -eq 143 ] && grep -q "^braun: interrupted by SIGTERM at t = [0-9.e+-]*: the run stopped there" "$2"' \
+    sh "$rc" "$TMP/int.err"
+check "run: SIGTERM: every CSV row whole, the last ends with a newline" sh -c '
+    awk -F, "NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad || NR < 3 }" "$1" &&
+    [ "$(tail -c 1 "$1" | od -An -c | tr -d " ")" = "\\n" ]' sh "$TMP/int.csv"
+t_last=$(tail -n 1 "$TMP/int.csv" | cut -d, -f1)
+check "run: SIGTERM: the summary says BRAUN_STOPPED at the CSV's last time" sh -c '
+    grep -q "\"status\": \"BRAUN_STOPPED\"" "$1" && grep -q "\"cpu_s\": null" "$1" &&
+    awk -v a="$2" -v b="$3" "BEGIN { exit !(a != \"\" && a + 0 == b + 0) }"' \
+    sh "$TMP/int.json" "$(json_value final_t "$TMP/int.json")" "$t_last"
+# ... and in the timing run: nothing kept, the files it created removed.
+"$BRAUN" run pendulum --dt 1e-5 --t-end 900 --out "$TMP/int1.csv" --summary "$TMP/int1.json" \
+    2> "$TMP/int1.err" & pid=$!
+sleep 1
+kill -TERM $pid 2> /dev/null; wait $pid; rc=$?
+check "run: SIGTERM in the timing run exits 143, keeps nothing, removes what it created" sh -c '
+    [ "$1" -eq 143 ] && grep -q "^braun: interrupted by SIGTERM during the timing run" "$2" &&
+    [ ! -e "$3" ] && [ ! -e "$4" ]' sh "$rc" "$TMP/int1.err" "$TMP/int1.csv" "$TMP/int1.json"
+
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

@@ -354,6 +354,7 @@ typedef struct braun_cli_result {
     const char *method;        /* braun, braun-noenergy, braun-custom */
     braun_stats stats;
     double cpu_s;              /* the timed run (no monitoring); NaN if not timed */
+    int interrupted;           /* the signal that stopped the monitored run, or 0 */
     double cpu_monitored_s;    /* the monitored run, monitoring and output included */
     const braun_cli_monitor *mon;
     const char *backend;       /* linear solver used (braun_linsolver_name) */
@@ -382,6 +383,15 @@ void braun_cli_progress_begin(braun_cli_progress *p, int enabled, const char *na
                               const char *phase, double t0, double t_end);
 void braun_cli_progress_update(braun_cli_progress *p, double t, long steps);
 void braun_cli_progress_end(braun_cli_progress *p, double t, long steps);
+
+/* ------------------------------------------ interruption (cli_interrupt.c) */
+/* Catch SIGINT and SIGTERM (unless ignored) for a run; restore them. */
+void braun_cli_interrupt_begin(void);
+void braun_cli_interrupt_end(void);
+/* The signal caught since braun_cli_interrupt_begin, or 0. */
+int braun_cli_interrupted(void);
+/* "SIGINT", "SIGTERM". */
+const char *braun_cli_signal_name(int sig);
 
 /* ------------------------------------------------------- timing (cli_clock.c) */
 /* CPU time of this process in seconds (CLOCK_PROCESS_CPUTIME_ID). */

@@ -71,14 +71,16 @@ static int on_step(const braun_data *d, void *user)
     if (c->obs && c->obs->state)
         c->obs->state(c->obs->user, c->good.t, c->good.q, c->good.v, &c->good.e);
     braun_cli_progress_update(c->progress, (double)d->t, d->stats.steps);
-    return 0;
+    /* Interrupted: this state is the last one kept (BRAUN_STOPPED). */
+    return braun_cli_interrupted() != 0;
 }
 
-/* The timed run's only callback, every few steps: the progress line. */
+/* The timed run's only callback, every few steps: the progress line and
+ * an interruption. */
 static int on_timed(const braun_data *d, void *user)
 {
     braun_cli_progress_update((braun_cli_progress *)user, (double)d->t, d->stats.steps);
-    return 0;
+    return braun_cli_interrupted() != 0;
 }
 
 static int start(braun_data *d, const braun_model *model, const braun_cli_target *tg,
@@ -262,7 +264,11 @@ int braun_cli_run_target(const braun_cli_run_args *a, const braun_cli_target *tg
                             : "");
         }
     }
-    if (!rc) rc = run_model(a, tg, &model, obs);
+    if (!rc) {
+        braun_cli_interrupt_begin();
+        rc = run_model(a, tg, &model, obs);
+        braun_cli_interrupt_end();
+    }
     free(store);
     return rc;
 }
@@ -277,8 +283,9 @@ int braun_cli_run(const braun_cli_run_args *a)
     return rc;
 }
 
-/* Progress every this many steps of the timed run: a clock read per 64
- * steps (each of at least a microsecond) costs well under 0.1 %. */
+/* Progress and interruption every this many steps of the timed run: a
+ * clock read per 64 steps (each of at least a microsecond) costs well
+ * under 0.1 %. */
 #define TIMED_PROGRESS_EVERY 64
 
 static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
@@ -372,11 +379,23 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
         braun_cli_progress_begin(&progress, show, tg->name, "run 1 of 2: timing, no monitoring",
                                  (double)d.t, a->t_end);
         c0 = braun_cli_cpu_seconds();
-        st_timed = show ? integrate(&d, a, TIMED_PROGRESS_EVERY, on_timed, &progress)
-                        : integrate(&d, a, 1, NULL, NULL);
+        st_timed = integrate(&d, a, TIMED_PROGRESS_EVERY, on_timed, &progress);
         cpu_s = braun_cli_cpu_seconds() - c0;
         braun_cli_progress_end(&progress, (double)d.t, d.stats.steps);
         timed_stats = d.stats;
+        const int sig = st_timed == BRAUN_STOPPED ? braun_cli_interrupted() : 0;
+        if (sig) {
+            /* Run 1 writes nothing: the files stay as they were begun. */
+            braun_cli_error("interrupted by %s during the timing run (run 1 of 2) at t = %.10g: "
+                            "nothing integrated is kept (the monitored run writes --out and "
+                            "--summary; 'braun plot' runs without the timing run)",
+                            braun_cli_signal_name(sig), (double)d.t);
+            braun_data_release(&d);
+            braun_cli_output_abandon(&out_csv);
+            braun_cli_output_abandon(&out_summary);
+            free(block);
+            return 128 + sig;
+        }
         braun_data_release(&d);
     }
 
@@ -429,11 +448,21 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
                         ctx.have_good ? ctx.good.t : (double)d.t, what,
                         braun_status_str(ctx.monitor_status));
         exit_status = BRAUN_CLI_FAILED;
+    } else if (st == BRAUN_STOPPED && braun_cli_interrupted()) {
+        const int sig = braun_cli_interrupted(); /* the same test as `interrupted` below */
+        braun_cli_error("interrupted by %s at t = %.10g: the run stopped there; %s", braun_cli_signal_name(sig),
+                        ctx.have_good ? ctx.good.t : (double)d.t,
+                        csv || summary ? "what it wrote ends at that state (--summary: status "
+                                         "BRAUN_STOPPED)"
+                                       : "nothing was written");
+        exit_status = 128 + sig;
     } else if (st) {
         report_failure(&d, st, &guard, a, tg);
         exit_status = BRAUN_CLI_FAILED;
     }
-    if (timed && !ctx.monitor_status &&
+    const int interrupted = st == BRAUN_STOPPED && !ctx.monitor_status && braun_cli_interrupted();
+    if (interrupted) cpu_s = NAN; /* run 1 went further than run 2's stats */
+    if (timed && !ctx.monitor_status && !interrupted &&
         (st_timed != st || timed_stats.steps != d.stats.steps ||
          timed_stats.rhs_evals != d.stats.rhs_evals))
         braun_cli_error("warning: the timed run (%s, %ld steps) differs from the monitored "
@@ -449,6 +478,7 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
     r.method = method_name(model.opt.corrections, supported);
     r.stats = d.stats;
     r.cpu_s = cpu_s;
+    r.interrupted = interrupted ? braun_cli_interrupted() : 0;
     r.cpu_monitored_s = cpu_monitored;
     r.mon = &mon;
     r.backend = braun_linsolver_name(model.opt.linsolver);

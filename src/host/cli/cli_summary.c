@@ -177,9 +177,11 @@ int braun_cli_write_summary(FILE *f, const braun_cli_result *r)
     integer(&j, "max_steps", a->max_steps);
     integer(&j, "every", a->every);
     num(&j, "cpu_s_monitored", r->cpu_monitored_s);
-    str(&j, "cpu_s_note", isnan(r->cpu_s) ? "not timed (braun plot): see cpu_s_monitored"
-                                          : "integration alone: a second run of the same steps "
-                                            "without monitoring or output");
+    str(&j, "cpu_s_note", r->interrupted ? "interrupted: the timing run's time is not this "
+                                           "shorter run's; see cpu_s_monitored"
+                          : isnan(r->cpu_s) ? "not timed (braun plot): see cpu_s_monitored"
+                                            : "integration alone: a second run of the same steps "
+                                              "without monitoring or output");
     key(&j, "defaults");
     fputc('[', f);
     for (int i = 0; i < nd; i++) fprintf(f, "%s\"%s\"", i ? ", " : "", defaulted[i]);
