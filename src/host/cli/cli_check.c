@@ -313,9 +313,10 @@ static void assemble(const braun_system *s, const braun_real *q0, const braun_re
             for (int k = i + 1; k < n; k++) acc -= R[(size_t)i * n + k] * dq[k];
             dq[i] = acc / R[(size_t)i * n + i];
         }
-        double step = 1, rest = 0;
+        double rest = 0;
         stalled = 1;
-        for (int h = 0; h < ASSEMBLY_HALVINGS && stalled; h++, step *= 0.5) {
+        for (int h = 0; h < ASSEMBLY_HALVINGS && stalled; h++) {
+            const double step = ldexp(1.0, -h); /* 1, 1/2, 1/4, ... */
             for (int j = 0; j < n; j++) qt[j] = (braun_real)((double)q[j] + step * dq[j]);
             if (holonomic_at(s, qt, v0, phit, At, b, bv, &rest)) continue; /* outside the callbacks' domain */
             if (rest < res) stalled = 0;
