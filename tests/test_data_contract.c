@@ -18,6 +18,7 @@ typedef struct ring {
     int fail_energy;     /* energy() returns -1 */
     int inner_status;    /* what the call from forces() returned */
     int inner_calls;
+    double nan_phi_after; /* > 0: Φ is NaN for t above it */
 } ring;
 
 static int ring_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
@@ -42,8 +43,9 @@ static int ring_forces(braun_real t, const braun_real *q, const braun_real *v, b
 static int ring_holonomic(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
                           braun_real *A, braun_real *b, braun_real *bv, void *u)
 {
-    (void)t; (void)u;
+    const ring *r = u;
     if (phi) phi[0] = 0.5 * (q[0] * q[0] + q[1] * q[1] - 1);
+    if (phi && r->nan_phi_after > 0 && t > r->nan_phi_after) phi[0] = NAN;
     if (A) { A[0] = q[0]; A[1] = q[1]; }
     if (b) b[0] = 0;
     if (bv) bv[0] = -(v[0] * v[0] + v[1] * v[1]);
@@ -244,6 +246,183 @@ static void test_reentry_from_output_callback(void **state)
     test_sim_close(&sim);
 }
 
+/* What an output callback may not do to the data or the model a driver
+ * runs on: release it (refused, the run goes on), re-initialise it, null a
+ * required callback or set an invalid option (the driver stops with
+ * BRAUN_ERR_ARGUMENT after the callback returns, never runs on them). An
+ * outside client's crashes and silent runs, stop 32. */
+typedef struct meddler {
+    test_sim *sim;
+    int what;    /* 1 release, 2 data_init, 3 holonomic NULL, 4 corrections 99,
+                  * 5 rank_tol NaN, 6 guard scale Inf */
+    int calls;
+    int release_status;
+} meddler;
+
+static int meddle(const braun_data *cd, void *u)
+{
+    meddler *m = u;
+    braun_data *d = (braun_data *)cd;
+    if (++m->calls != 3) return 0;
+    braun_model *model = &m->sim->model;
+    switch (m->what) {
+    case 1: m->release_status = braun_data_release(d); break;
+    case 2: (void)braun_data_init(d, model, m->sim->buffer, braun_data_size(model)); break;
+    case 3: model->sys.holonomic = NULL; break;
+    case 4: model->opt.corrections = 99; break;
+    case 5: model->opt.rank_tol = NAN; break;
+    default: d->guard.pos = INFINITY; break;
+    }
+    return 0;
+}
+
+static void test_output_callback_meddling(void **state)
+{
+    (void)state;
+    for (int what = 1; what <= 6; what++)
+        for (int adaptive = 0; adaptive < 2; adaptive++) {
+            ring r = {0};
+            test_sim sim;
+            open_ring(&sim, &r);
+            meddler m = {&sim, what, 0, 0};
+            assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+            const braun_adaptive ctl = {1e-8, 1e-8, 0, 0, 0, 0};
+            const int st = adaptive ? braun_integrate_adaptive(&sim.data, &ctl, 1.0, 1, meddle, &m)
+                                    : braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 1, meddle, &m);
+            if (what == 1) {
+                /* Refused, nothing released: the run completes. */
+                assert_int_equal(m.release_status, BRAUN_ERR_ARGUMENT);
+                assert_int_equal(st, BRAUN_OK);
+                assert_true(sim.data.t == 1.0);
+            } else {
+                assert_int_equal(st, what == 3 ? BRAUN_ERR_MISSING_CALLBACK : BRAUN_ERR_ARGUMENT);
+                assert_true(sim.data.t < 1.0);
+            }
+            if (what == 2) assert_non_null(strstr(sim.data.error.where, "re-initialised"));
+            if (what == 3) assert_non_null(strstr(sim.data.error.where, "holonomic"));
+            if (what == 4) assert_non_null(strstr(sim.data.error.where, "options.corrections"));
+            if (what == 5) assert_non_null(strstr(sim.data.error.where, "options.rank_tol"));
+            if (what == 6) assert_non_null(strstr(sim.data.error.where, "guard.pos"));
+            sim.model.sys.holonomic = ring_holonomic;
+            test_sim_close(&sim);
+        }
+}
+
+/* braun_data_release from a system callback while the stages run: refused
+ * (the stages would go on without their scratch). */
+static int release_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q,
+                          void *u)
+{
+    ring *r = u;
+    (void)t; (void)q; (void)v;
+    Q[0] = 0;
+    Q[1] = -9.81;
+    if (r->d && r->inner_calls == 0) {
+        r->inner_calls++;
+        r->inner_status = braun_data_release(r->d);
+    }
+    return 0;
+}
+
+static void test_release_from_system_callback(void **state)
+{
+    (void)state;
+    ring r = {0};
+    braun_system s = ring_system(&r);
+    s.forces = release_forces;
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    r.d = &sim.data;
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_OK);
+    assert_int_equal(r.inner_status, BRAUN_ERR_ARGUMENT);
+    assert_non_null(sim.data.priv);
+    r.d = NULL;
+    /* Outside a run release succeeds, and twice. */
+    assert_int_equal(braun_data_release(&sim.data), BRAUN_OK);
+    assert_int_equal(braun_data_release(&sim.data), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_ARGUMENT);
+    free(sim.buffer);
+}
+
+/* A time written into the data that is not finite, and a guard scale a
+ * program set to NaN: refused, named. */
+static void test_written_fields_checked(void **state)
+{
+    (void)state;
+    ring r = {0};
+    test_sim sim;
+    open_ring(&sim, &r);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_OK);
+    sim.data.guard.vel0 = NAN;
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(sim.data.error.where, "guard.vel0"));
+    sim.data.guard.vel0 = 0;
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_OK);
+    const braun_real t = sim.data.t;
+    sim.data.t = NAN;
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1, 0, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(sim.data.error.where, "state t"));
+    sim.data.t = t;
+    test_sim_close(&sim);
+}
+
+/* Φ turns NaN at a state a step reached: every driver says
+ * BRAUN_ERR_DIVERGED naming "constraint Φ" (braun_integrate's final check
+ * of the kept state said BRAUN_ERR_NONFINITE, "position residual norm"). */
+static void test_nan_phi_named_by_every_driver(void **state)
+{
+    (void)state;
+    for (int drv = 0; drv < 3; drv++) {
+        ring r = {0};
+        r.nan_phi_after = 0.503;
+        test_sim sim;
+        open_ring(&sim, &r);
+        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+        int st = BRAUN_OK;
+        const braun_adaptive ctl = {1e-8, 1e-8, 0, 0, 0, 0};
+        if (drv == 0)
+            for (int k = 0; k < 300 && !st; k++) st = braun_step(&sim.data, BRAUN_RK4, 1e-2);
+        else if (drv == 1)
+            st = braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 3, 0, NULL, NULL);
+        else
+            st = braun_integrate_adaptive(&sim.data, &ctl, 3, 0, NULL, NULL);
+        assert_int_equal(st, BRAUN_ERR_DIVERGED);
+        assert_string_equal(sim.data.error.where, "constraint Φ");
+        assert_int_equal(sim.data.error.index, 0);
+        assert_true(sim.data.t <= 0.503 + 1e-2);
+        test_sim_close(&sim);
+    }
+}
+
+/* The adaptive driver's limits: a maximum set below the default minimum
+ * is refused (it ran steps below h_min), and a bad atol is named as atol
+ * (it was reported as rtol, with rtol's value). */
+static void test_adaptive_limits_named(void **state)
+{
+    (void)state;
+    ring r = {0};
+    test_sim sim;
+    open_ring(&sim, &r);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    braun_adaptive ctl = {1e-6, 1e-8, 0, 0, 1e-14, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 1, 0, NULL, NULL), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(sim.data.error.where, "h_max"));
+    assert_true(sim.data.t == 0 && sim.data.stats.steps == 0);
+    ctl.h_min = 1e-15; /* both the program's: a valid pair */
+    ctl.max_steps = 10;
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 1, 0, NULL, NULL),
+                     BRAUN_ERR_TOO_MANY_STEPS);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    const braun_adaptive bad_atol = {1e-6, INFINITY, 0, 0, 0, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &bad_atol, 1, 0, NULL, NULL),
+                     BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(sim.data.error.where, "atol"));
+    assert_true(isinf(sim.data.error.value));
+    test_sim_close(&sim);
+}
+
 /* braun_eval at a state off the constraints with a tiny h: the corrections
  * over h overflow — an error, not Inf with BRAUN_OK. */
 static void test_eval_overflow_refused(void **state)
@@ -341,6 +520,11 @@ int main(void)
         cmocka_unit_test(test_failed_set_state_changes_nothing),
         cmocka_unit_test(test_reentry_from_system_callback),
         cmocka_unit_test(test_reentry_from_output_callback),
+        cmocka_unit_test(test_output_callback_meddling),
+        cmocka_unit_test(test_release_from_system_callback),
+        cmocka_unit_test(test_written_fields_checked),
+        cmocka_unit_test(test_nan_phi_named_by_every_driver),
+        cmocka_unit_test(test_adaptive_limits_named),
         cmocka_unit_test(test_eval_overflow_refused),
         cmocka_unit_test(test_unready_data_named),
         cmocka_unit_test(test_scene_helpers_refuse),

@@ -620,12 +620,23 @@ static void test_mass_constant_claim_checked(void **state)
                       NULL, &which, NULL};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_NONE), BRAUN_OK);
+    /* A fresh data block: a refused claim refuses every later call. */
+#define REOPEN_SIM()                                                                    \
+    do {                                                                                \
+        test_sim_close(&sim);                                                           \
+        assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_NONE), BRAUN_OK);        \
+    } while (0)
     /* M(q) at the start differs: refused, nothing set. */
     const double q1[2] = {0.5, 0}, q0[2] = {0, 0}, v0[2] = {1, 0};
     assert_int_equal(braun_set_state(&sim.data, 0, q1, v0), BRAUN_ERR_ARGUMENT);
     assert_string_equal(sim.data.error.where,
                         "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)");
     assert_true(sim.data.error.value > 0.05);
+    /* The claim is the model's: found false, it stays false. A start where
+     * M happens to agree is refused too, until braun_data_init. */
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(sim.data.error.where, "found at an earlier call"));
+    REOPEN_SIM();
     /* Where M(q) equals M(0, 0) the start passes; the motion leaves it
      * (x = t): the 64th step's start says so, t = 0.63, and the run keeps
      * the state there. A first version checked a driver's last state only
@@ -638,6 +649,7 @@ static void test_mass_constant_claim_checked(void **state)
     assert_near(sim.data.q[0], 0.63, 1e-12);
     assert_int_equal(sim.data.stats.steps, 63);
     /* A braun_step loop: the 64th call refuses and changes nothing. */
+    REOPEN_SIM();
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
     int calls = 0, st = BRAUN_OK;
     while (calls < 1000 && (st = braun_step(&sim.data, BRAUN_RK4, 1e-2)) == BRAUN_OK) calls++;
@@ -647,12 +659,14 @@ static void test_mass_constant_claim_checked(void **state)
                         "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)");
     assert_near(sim.data.t, 0.63, 1e-12);
     assert_near(sim.data.q[0], 0.63, 1e-12);
-    /* It stays refused: after a failed check every call checks again (the
-     * countdown restarts only after a check that passed). */
+    /* It stays refused, at any point. */
     assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_ARGUMENT);
+    assert_near(sim.data.t, 0.63, 1e-12);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_ERR_ARGUMENT);
     assert_near(sim.data.t, 0.63, 1e-12);
     /* braun_eval, the right-hand side of the caller's own integrator: the
      * 64th evaluation since braun_set_state, here at x = 0.64. */
+    REOPEN_SIM();
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
     {
         double qe[2] = {0, 0}, qd[2], vd[2];
@@ -669,19 +683,23 @@ static void test_mass_constant_claim_checked(void **state)
     }
     /* M(t): the same at the end of the span. */
     which = 1;
+    REOPEN_SIM();
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
     assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 0.5, 0, NULL, NULL),
                      BRAUN_ERR_ARGUMENT);
     braun_adaptive ctl = {1e-6, 1e-8, 0, 0, 0, 0};
+    REOPEN_SIM();
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
     assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 0.5, 0, NULL, NULL), BRAUN_ERR_ARGUMENT);
     /* A NaN in the check's M is named as such (M is scanned once the
      * quadratic forms disagree), not reported as a varying M. */
     which = 2;
+    REOPEN_SIM();
     assert_int_equal(braun_set_state(&sim.data, 0, q1, v0), BRAUN_ERR_NONFINITE);
     assert_string_equal(sim.data.error.where, "mass");
     assert_int_equal(sim.data.error.index, 0);
     test_sim_close(&sim);
+#undef REOPEN_SIM
     /* A mass matrix that is constant passes everywhere (the built-in
      * models, the scenes: every test that runs them). */
 }

@@ -93,7 +93,8 @@ const char *braun_status_str(int status);
 /* The system: callbacks in the paper's notation (Sec. 2)              */
 /* ------------------------------------------------------------------ */
 /* All matrices are dense, row-major. Outputs passed as NULL are not wanted
- * by the library at that call and must not be written. */
+ * by the library at that call and must not be written; every other output
+ * must be written whole (the library does not fill it first). */
 
 /* M(t,q), n x n symmetric positive definite (Eq. 1). */
 typedef int (*braun_mass_fn)(braun_real t, const braun_real *q, braun_real *M,
@@ -238,7 +239,9 @@ typedef struct braun_linsolver braun_linsolver;
  * check them again at every call (a few compares), so a change after
  * braun_data_init is honoured, or refused with BRAUN_ERR_ARGUMENT naming
  * the option: unknown correction bits or discretization, a NaN or infinite
- * tolerance, rank_tol >= 1, or another linsolver than the data was made for. */
+ * tolerance, rank_tol >= 1, soft_tol >= 1, or another linsolver than the
+ * data was made for. An output callback may change them between two steps
+ * of a driver: the driver checks them after it returns, as a call would. */
 typedef struct braun_options {
     unsigned corrections;   /* braun_corrections bits; default ALL (ENERGY only if a law exists) */
     braun_discretization discretization; /* default BRAUN_PER_STEP */
@@ -347,7 +350,8 @@ typedef struct braun_stats {
 typedef struct braun_error_info {
     int status;
     const char *where;  /* static string: "mass", "forces", "state q", ... */
-    int index;          /* row/entry involved, or -1 */
+    int index;          /* row/entry involved, or -1; BRAUN_ERR_CALLBACK and
+                         * _RECOVERABLE: the callback's return code (value too) */
     int index2;         /* column, or -1; BRAUN_ERR_INCONSISTENT: index and
                          * index2 are the two rows that disagree most
                          * (largest least-squares residual; holonomic rows,
@@ -412,10 +416,12 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
 
 /* Free what a backend allocated (nothing for the built-in kernels). The
  * buffer stays the caller's; d->q and d->v still show the last state, but
- * every call refuses d until braun_data_init. Safe to call twice. Call it
- * before braun_data_init is called again on a d whose model has a backend:
- * braun_data_init cannot know whether d held one (nothing else is lost). */
-void braun_data_release(braun_data *d);
+ * every call refuses d until braun_data_init. Safe to call twice
+ * (BRAUN_OK). Call it before braun_data_init is called again on a d whose
+ * model has a backend: braun_data_init cannot know whether d held one
+ * (nothing else is lost). Refused (BRAUN_ERR_ARGUMENT, "re-entrant call",
+ * nothing released) from a callback while a driver or a step runs on d. */
+int braun_data_release(braun_data *d);
 
 /* Set time and state, check it is finite, reset ∫Ė and take E0 = E(t,q,v):
  * a new run. The statistics start from zero (braun_stats) and the accuracy
@@ -466,7 +472,10 @@ const char *braun_method_name(braun_method method);
 int braun_method_from_name(const char *name);
 
 /* One fixed step of size h from d->t. On any error the state is left as it
- * was before the step. BRAUN_DOPRI5 takes its 5th-order solution. */
+ * was before the step — except BRAUN_ERR_ACCURACY, refused at this step's
+ * start, which is the state the last step left: the state is then the one
+ * before that step (the last that passed the guard: options.guard,
+ * docs/robustness.md). BRAUN_DOPRI5 takes its 5th-order solution. */
 int braun_step(braun_data *d, braun_method method, braun_real h);
 
 /* Output callback: called at the start, every `every` steps and at the end

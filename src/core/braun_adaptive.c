@@ -139,7 +139,17 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
     /* rtol >= 1 asks for no digit at all; NaN and Inf for nothing. */
     if (!(ctl->rtol >= 0) || !(ctl->rtol < 1) || !(ctl->atol >= 0) || !braun_is_finite(ctl->atol) ||
         (ctl->rtol == 0 && ctl->atol == 0))
-        return braun__fail(d, BRAUN_ERR_ARGUMENT, "tolerances", -1, -1, (double)ctl->rtol, (double)d->t);
+    {
+        /* Name the one at fault, and its value. */
+        const int bad_rtol = !(ctl->rtol >= 0) || !(ctl->rtol < 1);
+        const int both_zero = !bad_rtol && ctl->rtol == 0 && ctl->atol == 0;
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           bad_rtol    ? "tolerance rtol (must be in [0, 1))"
+                           : both_zero ? "tolerances rtol and atol (both 0)"
+                                       : "tolerance atol (must be finite and >= 0)",
+                           -1, -1, bad_rtol || both_zero ? (double)ctl->rtol : (double)ctl->atol,
+                           (double)d->t);
+    }
     if (!braun_is_finite(t_end) || !(t_end > d->t))
         return braun__fail(d, BRAUN_ERR_TIME, "t_end", -1, -1, (double)t_end, (double)d->t);
     /* The step limits: <= 0 selects a default; NaN and Inf mean nothing. */
@@ -163,7 +173,15 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
         const double tmax = fabs((double)d->t) > fabs((double)t_end) ? fabs((double)d->t) : fabs((double)t_end);
         const double resolution = 16 * (double)BRAUN_EPS * tmax;
         if (hmin < resolution) hmin = resolution;
-        if (hmin > hmax) hmin = hmax; /* the span itself at the resolution: the step says so */
+        /* A span below the resolution: the step says so (the float
+         * horizon). A maximum the program set below the default minimum
+         * is refused: no step could lie in [h_min, h_max]. */
+        if (hmin > hmax && !(ctl->h_max > 0)) hmin = hmax;
+        if (hmin > hmax)
+            return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                               "adaptive h_max (below the default h_min, 1e-12 of the span but at least "
+                               "16 eps max(|t|, |t_end|): set h_min too)",
+                               -1, -1, hmax, (double)d->t);
     }
     /* No step can lie between a minimum above the maximum. */
     if (hmin > hmax)
@@ -189,11 +207,12 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
     int first_known = 0;
     /* The first stage holds no correction unless they are computed there
      * (at the start: every placement but the end). */
-    const int first_pure = !(d->model->opt.corrections && where != BRAUN__CORR_AT_END);
-    const int fsal = braun__tableau_fsal(tb) && !d->model->opt.corrections;
+    unsigned corr = d->model->opt.corrections;
+    int first_pure = !(corr && where != BRAUN__CORR_AT_END);
+    int fsal = braun__tableau_fsal(tb) && !corr;
     const int last_stage = tb->stages - 1;
 
-    if (out && out(d, out_user)) return BRAUN_STOPPED;
+    if (out && (st = braun__output(d, out, out_user)) != BRAUN_OK) return st;
     /* An accepted state is reported once the next attempt's start has
      * passed the accuracy guard (or the final check has): a run the guard
      * stops has reported only states that passed. */
@@ -266,7 +285,17 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
         /* The last accepted state, once this attempt's start has passed. */
         if (!st && pending) {
             pending = 0;
-            if (out(d, out_user)) return BRAUN_STOPPED;
+            const int so = braun__output(d, out, out_user);
+            if (so) return so;
+            if (d->model->opt.corrections != corr) {
+                /* The callback changed the corrections (valid between
+                 * steps): the first stage known and first-same-as-last
+                 * follow them. */
+                corr = d->model->opt.corrections;
+                first_pure = !(corr && where != BRAUN__CORR_AT_END);
+                fsal = braun__tableau_fsal(tb) && !corr;
+                first_known = 0;
+            }
         }
         if (err <= 1) {
             braun__commit(d, pv->y1, t_new, 0);
@@ -309,7 +338,7 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
     if (st) return st;
     if (failed) d->error = failure;
-    if (out && (pending || !failed) && out(d, out_user)) return BRAUN_STOPPED;
+    if (out && (pending || !failed) && (st = braun__output(d, out, out_user)) != BRAUN_OK) return st;
     return failed;
 }
 

@@ -97,6 +97,9 @@ int braun__guard_final(braun_data *d)
     const int energy = (corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0;
     braun_real p = 0, v = 0, e = 0;
     int st = braun_residuals(d, d->t, d->q, d->v, &p, &v, energy ? &e : NULL);
+    /* A NaN of a callback at a state a step reached is the run's, as in
+     * the stages (braun_step.c, diverged_if_integrated). */
+    if (st == BRAUN_ERR_NONFINITE && pv->state_integrated) d->error.status = st = BRAUN_ERR_DIVERGED;
     if (st) return st;
     pv->at.t = d->t;
     /* No forward pass here: the scales may grow with q and v only. */

@@ -92,6 +92,7 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->state_integrated = 0;
     pv->vel_judged = 0;
     pv->mass_check_in = BRAUN_MASS_CHECK_EVERY;
+    pv->mass_claim_false = 0;
     pv->state_set = 0;
     pv->flags = s->flags;
     pv->busy = 0;
@@ -134,10 +135,14 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     return BRAUN_OK;
 }
 
-void braun_data_release(braun_data *d)
+int braun_data_release(braun_data *d)
 {
-    if (!d || !d->priv) return;
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    if (!d->priv) return BRAUN_OK;
     braun_priv *pv = braun__priv(d);
+    /* From a callback of a running driver or step: the run would go on
+     * without its scratch. */
+    if (pv->busy) return braun__check_usable(d, 0);
 #ifndef BRAUN_NO_LINSOLVER
     if (pv->ls_owned && pv->ls_state && pv->ls->destroy) pv->ls->destroy(pv->ls_state);
 #endif
@@ -146,6 +151,7 @@ void braun_data_release(braun_data *d)
     /* Released: every call refuses it until braun_data_init (a backend's
      * state is gone); q and v still point at the last state. */
     d->priv = NULL;
+    return BRAUN_OK;
 }
 
 int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
@@ -193,5 +199,7 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     /* The guard's scales come from the first step's start (its forward pass
      * is at this state): no evaluation here. */
     pv->guard_pending = 1;
+    d->guard.pos = d->guard.vel = d->guard.energy = 0;
+    d->guard.pos0 = d->guard.vel0 = d->guard.energy0 = 0;
     return BRAUN_OK;
 }

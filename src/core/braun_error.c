@@ -49,6 +49,59 @@ int braun__check_usable(braun_data *d, int busy_allowed)
     return braun__check_system(d);
 }
 
+/* A guard scale a program set is NaN, Inf or negative: name it. */
+static BRAUN_NOINLINE int bad_guard_scale(braun_data *d)
+{
+    const braun_real g[6] = {d->guard.pos, d->guard.vel, d->guard.energy,
+                             d->guard.pos0, d->guard.vel0, d->guard.energy0};
+    static const char *const name[6] = {
+        "guard.pos (a scale must be finite and >= 0)",    "guard.vel (a scale must be finite and >= 0)",
+        "guard.energy (a scale must be finite and >= 0)", "guard.pos0 (a scale must be finite and >= 0)",
+        "guard.vel0 (a scale must be finite and >= 0)",   "guard.energy0 (a scale must be finite and >= 0)"};
+    int k = 0;
+    while (k < 5 && g[k] >= 0 && braun_is_finite(g[k])) k++;
+    return braun__fail(d, BRAUN_ERR_ARGUMENT, name[k], -1, -1, (double)g[k], (double)d->t);
+}
+
+/* Fields of braun_data a program can write (braun.h): t is set by
+ * braun_set_state only, the guard's scales may be the program's own. */
+static int check_written_fields(braun_data *d)
+{
+    if (!braun_is_finite(d->t))
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "state t (not finite: the state is set by braun_set_state only)", -1, -1,
+                           (double)d->t, 0);
+    if (!braun__priv(d)->guard_pending) {
+        /* (Measured at the first step: till then they are not used.) */
+        const braun_real g0 = d->guard.pos, g1 = d->guard.vel, g2 = d->guard.energy;
+        const braun_real g3 = d->guard.pos0, g4 = d->guard.vel0, g5 = d->guard.energy0;
+        if (!(g0 >= 0 && g1 >= 0 && g2 >= 0 && g3 >= 0 && g4 >= 0 && g5 >= 0) ||
+            !(g0 * 0 + g1 * 0 + g2 * 0 + g3 * 0 + g4 * 0 + g5 * 0 == 0))
+            return bad_guard_scale(d);
+    }
+    return BRAUN_OK;
+}
+
+int braun__data_intact(const braun_data *d, const braun_priv *pv, int busy)
+{
+    return d->priv == pv && pv->busy == busy;
+}
+
+int braun__output(braun_data *d, braun_output_fn out, void *user)
+{
+    const braun_priv *pv = braun__priv(d);
+    if (out(d, user)) return BRAUN_STOPPED;
+    /* braun_data_init in the callback resets busy (and release is refused
+     * there): the driver's scratch is no longer its own. */
+    if (!braun__data_intact(d, pv, 1))
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "the output callback re-initialised the data a driver runs on", -1, -1, 0,
+                           (double)d->t);
+    int st = braun__check_system(d);
+    if (!st) st = check_written_fields(d);
+    return st ? st : braun__check_options(d);
+}
+
 int braun__check_ready(braun_data *d)
 {
     int st = braun__check_usable(d, 0);
@@ -56,5 +109,6 @@ int braun__check_ready(braun_data *d)
     if (!braun__priv(d)->state_set)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "no state: call braun_set_state first", -1, -1,
                            0, (double)d->t);
-    return braun__check_options(d);
+    st = check_written_fields(d);
+    return st ? st : braun__check_options(d);
 }

@@ -76,6 +76,13 @@ int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q)
 {
     braun_priv *pv = braun__priv(d);
     if (!pv->R_is_constant || !pv->Mcheck) return BRAUN_OK;
+    /* The claim is the model's: found false once, it stays false (another
+     * point where M happens to agree does not make it true). */
+    if (pv->mass_claim_false)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0) (found "
+                           "at an earlier call; braun_data_init again with a true claim)",
+                           -1, -1, 0, (double)t);
     const braun_system *s = &d->model->sys;
     const int n = pv->n;
     const int st = braun__callback(d, s->mass(t, q, pv->Mcheck, s->user), "mass", t);
@@ -103,6 +110,7 @@ int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q)
      * every 64th step: the worst step of a firmware budget pays for it). */
     const int bad = braun__check_finite(d, (int)pv->mass_count, pv->Mcheck, "mass", pv->sp ? 0 : n, t);
     if (bad) return bad;
+    pv->mass_claim_false = 1;
     return braun__fail(d, BRAUN_ERR_ARGUMENT,
                        "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)", -1, -1,
                        scale > 0 ? (double)(diff / scale) : (double)diff, (double)t);
@@ -551,6 +559,23 @@ int braun__energy(braun_data *d, braun_real t, const braun_real *q, const braun_
     return st;
 }
 
+/* A residual norm is NaN or Inf: name the callback output that made it,
+ * as a stage does (nonfinite_culprit), or blame the norm (overflow). */
+static BRAUN_NOINLINE int residual_culprit(braun_data *d, braun_real *norm, const char *what)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n, m = pv->m, rows = pv->rows;
+    const braun_real t = pv->at.t;
+    int st = braun__check_finite(d, rows, pv->phi, "constraint Φ", 0, t);
+    if (!st && m > 0) st = braun__check_finite(d, m, pv->b, "constraint b_q", 0, t);
+    if (!st && !pv->sp) st = braun__check_finite(d, rows * n, pv->A, "constraint Jacobian", n, t);
+    if (!st && pv->sp)
+        st = braun__check_finite(d, pv->sp->row_ptr[rows], pv->Avals, "constraint Jacobian (compressed)",
+                                 0, t);
+    if (!st) st = braun__check_finite(d, 1, norm, what, 0, t);
+    return st;
+}
+
 int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
                     const braun_real *v, braun_real *pos, braun_real *vel,
                     braun_real *energy)
@@ -572,13 +597,11 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
     /* Finite rows can still have a norm beyond the largest number. */
     if (pos) {
         *pos = m > 0 ? braun_nrm2(m, pv->phi) : 0;
-        st = braun__check_finite(d, 1, pos, "position residual norm", 0, t);
-        if (st) return st;
+        if (!braun_is_finite(*pos)) return residual_culprit(d, pos, "position residual norm");
     }
     if (vel) {
         *vel = rows > 0 ? braun_nrm2(rows, pv->ev) : 0;
-        st = braun__check_finite(d, 1, vel, "velocity residual norm", 0, t);
-        if (st) return st;
+        if (!braun_is_finite(*vel)) return residual_culprit(d, vel, "velocity residual norm");
     }
     if (energy) {
         braun_real E = 0;

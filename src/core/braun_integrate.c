@@ -13,7 +13,7 @@ static int finish_failed(braun_data *d, int failed, int due, braun_output_fn out
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
     if (st) return st;
     d->error = failure;
-    if (due && out(d, out_user)) return BRAUN_STOPPED;
+    if (due && (st = braun__output(d, out, out_user)) != BRAUN_OK) return st;
     return failed;
 }
 
@@ -28,7 +28,6 @@ static int integrate(braun_data *d, braun_method method, braun_real h, braun_rea
     if (!braun_is_finite(t_end) || !(t_end > d->t))
         return braun__fail(d, BRAUN_ERR_TIME, "t_end", -1, -1, (double)t_end, (double)d->t);
     braun_priv *pv = braun__priv(d);
-    const int per_stage = d->model->opt.discretization == BRAUN_PER_STAGE;
     const double t0 = (double)d->t, span = (double)t_end - t0;
     const double ratio = span / (double)h;
     /* The step counter is a long: 32 bits on a Cortex-M (and Windows), where
@@ -37,7 +36,7 @@ static int integrate(braun_data *d, braun_method method, braun_real h, braun_rea
     if (ratio > most) return braun__fail(d, BRAUN_ERR_TOO_MANY_STEPS, "step count", -1, -1, ratio, t0);
     long steps = braun__fixed_step_count(ratio);
 
-    if (out && out(d, out_user)) return BRAUN_STOPPED;
+    if (out && (st = braun__output(d, out, out_user)) != BRAUN_OK) return st;
     for (long i = 1; i <= steps; i++) {
         /* Each step integrates h (the last one lands on t_end); the clock is
          * compensated, so t stays t0 + i·h to round-off over 10^6 steps
@@ -53,6 +52,8 @@ static int integrate(braun_data *d, braun_method method, braun_real h, braun_rea
         if (!st) st = braun__mass_claim_due(d, d->t, d->q);
         if (st) return finish_failed(d, st, out && every > 0 && i > 1 && (i - 1) % every == 0, out, out_user);
         braun__load_state(d);
+        /* Read at every step: an output callback may change it. */
+        const int per_stage = d->model->opt.discretization == BRAUN_PER_STAGE;
         st = braun__rk_attempt(d, tb, hi, per_stage ? BRAUN__CORR_AT_STAGES : BRAUN__CORR_AT_START,
                                pv->y1, NULL, 0);
         if (st == BRAUN_ERR_ACCURACY) {
@@ -63,14 +64,15 @@ static int integrate(braun_data *d, braun_method method, braun_real h, braun_rea
         /* This step's start passed the guard: only now is the state the
          * last step left reported, so a run the guard stops has reported
          * only states that passed. */
-        if (out && every > 0 && i > 1 && (i - 1) % every == 0 && out(d, out_user))
-            return BRAUN_STOPPED;
+        if (out && every > 0 && i > 1 && (i - 1) % every == 0 &&
+            (st = braun__output(d, out, out_user)) != BRAUN_OK)
+            return st;
         braun__commit(d, pv->y1, t_new, t_lo);
     }
     st = braun__final_checks(d);
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
     if (st) return st;
-    if (out && out(d, out_user)) return BRAUN_STOPPED;
+    if (out && (st = braun__output(d, out, out_user)) != BRAUN_OK) return st;
     return BRAUN_OK;
 }
 

@@ -92,6 +92,7 @@ typedef struct braun_priv {
     int state_integrated; /* the state came from a step, not braun_set_state */
     int vel_judged;       /* the first velocity correction since braun_set_state ran (rows' consistency) */
     int mass_check_in;    /* steps to the next check of BRAUN_MASS_CONSTANT (braun__mass_claim_due) */
+    int mass_claim_false; /* a check found M(t, q) != M(0, 0): every later call is refused */
     int state_set;        /* braun_set_state was called */
     unsigned flags;       /* sys.flags at braun_data_init (braun__check_system) */
     /* A driver runs on this data (1: braun_step, braun_integrate or
@@ -212,6 +213,16 @@ int braun__check_options(braun_data *d);
 int braun__check_usable(braun_data *d, int busy_allowed);
 /* ... and a driver may run: a state is set, the options are valid. */
 int braun__check_ready(braun_data *d);
+/* A driver's output callback at d's state (busy 1): BRAUN_STOPPED when it
+ * asks to stop; then d is checked again as every call checks it, since
+ * the callback is the program's code running between two steps — d still
+ * initialised and not re-initialised, the system as braun_data_init saw
+ * it, the options valid. */
+int braun__output(braun_data *d, braun_output_fn out, void *user);
+/* After the program's code ran inside a driver or a step (busy 1 or 2): d
+ * still holds pv and pv is still that busy — braun_data_init there resets
+ * it. Out of line: the callbacks can change what the caller set. */
+int braun__data_intact(const braun_data *d, const braun_priv *pv, int busy);
 /* E(t, q, v) from the energy callback (0 without one), checked finite; no
  * argument checks (braun_energy's are the caller's). */
 int braun__energy(braun_data *d, braun_real t, const braun_real *q, const braun_real *v, braun_real *E);

@@ -274,6 +274,13 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     const int outer = pv->busy;
     pv->busy = 2;
     const int st = rk_stages(d, tb, h, where, y1, yerr, first_known);
+    /* braun_data_init from a system callback resets busy (release is
+     * refused there): the stages ran on scratch no longer theirs. */
+    if (!braun__data_intact(d, pv, 2))
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "re-entrant call: braun_data_init from a system callback while a step's "
+                           "stages ran on this data",
+                           -1, -1, 0, (double)d->t);
     pv->busy = outer;
     return st;
 }
