@@ -365,6 +365,15 @@ static void test_written_fields_checked(void **state)
     assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1, 0, NULL, NULL), BRAUN_ERR_ARGUMENT);
     assert_non_null(strstr(sim.data.error.where, "state t"));
     sim.data.t = t;
+    /* The state's pointers are the library's: a program that wrote one
+     * (NULL here) is refused by every call, never written through. */
+    braun_real *const q = sim.data.q;
+    sim.data.q = NULL;
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(sim.data.error.where, "state pointer q"));
+    sim.data.q = q;
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-2), BRAUN_OK);
     test_sim_close(&sim);
 }
 

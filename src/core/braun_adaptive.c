@@ -334,6 +334,7 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
      * checked, then reported if it has not been: the final output. */
     const int failed = st;
     const braun_error_info failure = d->error;
+    if (!braun__data_intact(d, pv, 1)) return failed; /* re-initialised by a system callback */
     st = braun__final_checks(d);
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
     if (st) return st;

@@ -110,6 +110,8 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->step_rank[1] = s->m;
     pv->Edot = 0;
     braun__layout(model, base, pv, &d->q, &d->v);
+    pv->q_home = d->q;
+    pv->v_home = d->v;
     for (int i = 0; i < s->n; i++) d->q[i] = d->v[i] = 0;
     /* Off-pattern entries of a scattered A stay zero from here on. */
     if (pv->sp && pv->dense_A)

@@ -46,6 +46,14 @@ int braun__check_usable(braun_data *d, int busy_allowed)
                                      : "re-entrant call: a driver is running on this data (called from "
                                        "its callback)",
                            -1, -1, 0, (double)d->t);
+    /* The state's pointers are the library's (a program that wrote one
+     * would have the library write through it). */
+    const braun_priv *pv = braun__priv(d);
+    if (d->q != pv->q_home || d->v != pv->v_home)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           d->q != pv->q_home ? "state pointer q (changed: it is the library's, into the buffer)"
+                                              : "state pointer v (changed: it is the library's, into the buffer)",
+                           -1, -1, 0, (double)d->t);
     return braun__check_system(d);
 }
 
@@ -67,6 +75,7 @@ static BRAUN_NOINLINE int bad_guard_scale(braun_data *d)
  * braun_set_state only, the guard's scales may be the program's own. */
 static int check_written_fields(braun_data *d)
 {
+
     if (!braun_is_finite(d->t))
         return braun__fail(d, BRAUN_ERR_ARGUMENT,
                            "state t (not finite: the state is set by braun_set_state only)", -1, -1,

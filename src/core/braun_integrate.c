@@ -9,6 +9,9 @@
 static int finish_failed(braun_data *d, int failed, int due, braun_output_fn out, void *out_user)
 {
     const braun_error_info failure = d->error;
+    /* Re-initialised by a system callback: nothing of the run is left to
+     * check (braun__rk_attempt said so). */
+    if (!braun__data_intact(d, braun__priv(d), 1)) return failed;
     int st = braun__final_checks(d);
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
     if (st) return st;

@@ -93,6 +93,7 @@ typedef struct braun_priv {
     int vel_judged;       /* the first velocity correction since braun_set_state ran (rows' consistency) */
     int mass_check_in;    /* steps to the next check of BRAUN_MASS_CONSTANT (braun__mass_claim_due) */
     int mass_claim_false; /* a check found M(t, q) != M(0, 0): every later call is refused */
+    braun_real *q_home, *v_home; /* where braun_data_init put d->q and d->v */
     int state_set;        /* braun_set_state was called */
     unsigned flags;       /* sys.flags at braun_data_init (braun__check_system) */
     /* A driver runs on this data (1: braun_step, braun_integrate or
