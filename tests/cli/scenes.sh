@@ -483,6 +483,31 @@ check "check: no assembly of an unreachable joint: consistent: no, exit 1" sh -c
 check "check: the unreachable joint is named among the rows that cannot all be met" sh -c '
     grep -q "no solution near the initial state: .*joint .far. (distance) (row 4).* cannot all be met" "$1"' \
     sh "$TMP/far.err"
+# A driven revolute3d whose drive starts pi/2 or more from the joint's
+# initial angle (0): the row sin(theta - f) would hold theta = f - pi, the
+# arm half a turn off the drive with exit 0. Refused at load; 1 rad off is
+# on the drive's branch and runs onto it.
+cat > "$TMP/drv3.json" <<'EOF'
+{"name": "drv", "bodies": [{"name": "arm", "type": "rigid3d", "mass": 1,
+  "inertia": [0.0016666666666666668, 0.08416666666666667, 0.08416666666666667],
+  "position": [0.5, 0, 0], "points": {"a": [-0.5, 0, 0], "b": [0.5, 0, 0]}}],
+ "joints": [{"name": "hinge", "type": "revolute3d", "a": "arm.a", "b": [0, 0, 0], "axis": [0, 0, 1],
+  "drive": {"type": "constant", "value": 3.0}}],
+ "report": {"tip": "arm.b"}}
+EOF
+"$BRAUN" check "$TMP/drv3.json" > /dev/null 2> "$TMP/drv3.err"; rc=$?
+check "a revolute3d drive with f(0) = 3 (theta(0) = 0) is refused at load, naming the joint" sh -c '
+    [ "$1" -eq 2 ] && grep -q "joint .hinge.: drive: f(0) is pi/2 or more from the joint.s initial angle" "$2"' \
+    sh "$rc" "$TMP/drv3.err"
+sed 's/"value": 3.0/"value": 1.0/' "$TMP/drv3.json" > "$TMP/drv1.json"
+"$BRAUN" run "$TMP/drv1.json" --dt 1e-3 --t-end 1 --out "$TMP/drv1.csv" --summary /dev/null 2> /dev/null; rc=$?
+# theta is b's angle (the ground) relative to a's (the arm): the arm turns
+# by -1 rad about z, its tip to (cos 1, -sin 1, 0).
+check "a revolute3d drive with f(0) = 1 runs onto theta = 1 (the tip at (cos 1, -sin 1))" sh -c '
+    [ "$1" -eq 0 ] && tail -n 1 "$2" | awk -F, -v h="$(head -n 1 "$2")" "
+      BEGIN { n = split(h, c, \",\"); for (i = 1; i <= n; i++) { if (c[i] ~ /^tip.x/) x = i; if (c[i] ~ /^tip.y/) y = i } }
+      { dx = \$x - cos(1); dy = \$y + sin(1); exit !(x && y && dx * dx + dy * dy < 1e-12) }"' \
+    sh "$rc" "$TMP/drv1.csv"
 # The same start with a length the mechanism reaches (1.5 m): off its
 # constraints, assembled in a few steps, consistent.
 sed 's/"length": 5/"length": 1.5/' "$TMP/far.json" > "$TMP/near.json"

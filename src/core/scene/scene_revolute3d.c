@@ -21,7 +21,21 @@ static const char *revolute3d_check(const braun_scene *s, const braun_scene_join
 {
     int b1, b2;
     braun_scene__frame_bodies(s, j, &b1, &b2);
-    return braun_scene__frame_check(s, j, b1, b2, 1);
+    const char *why = braun_scene__frame_check(s, j, b1, b2, 1);
+    if (why || !j->driven) return why;
+    /* θ(0) = 0: the row's nearest zero is θ = f(0) only while cos f(0) > 0;
+     * beyond π/2 it is f(0) ∓ π, which the run would hold (exit 0, the
+     * mechanism half a turn off the drive). */
+    braun_real f0 = 0, df = 0, ddf = 0;
+    braun_scene_fn_eval(&j->drive, 0, &f0, &df, &ddf);
+    braun_real S, C;
+    braun_sincos(f0, &S, &C);
+    if (!(C > 0))
+        return "drive: f(0) is pi/2 or more from the joint's initial angle, 0 (the angle is measured "
+               "from the initial configuration), where the row sin(theta - f) = 0 would hold "
+               "theta = f - pi instead: give a drive with f(0) near 0, or start the bodies at the "
+               "driven angle";
+    return NULL;
 }
 
 static int revolute3d_rows(const braun_scene_joint *j)
