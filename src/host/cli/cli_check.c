@@ -259,6 +259,8 @@ typedef struct assembly {
     double resid; /* ‖Φ_q‖ at the end */
     double tol;   /* the residual that counts as reached */
     double dist;  /* ‖R (q_end − q0)‖: the distance moved in the mass metric */
+    int damped;   /* steps that needed halving: a run's position correction,
+                   * one undamped step per time step, may not converge */
 } assembly;
 
 static int holonomic_at(const braun_system *s, const braun_real *q, const braun_real *v,
@@ -319,7 +321,10 @@ static void assemble(const braun_system *s, const braun_real *q0, const braun_re
             const double step = ldexp(1.0, -h); /* 1, 1/2, 1/4, ... */
             for (int j = 0; j < n; j++) qt[j] = (braun_real)((double)q[j] + step * dq[j]);
             if (holonomic_at(s, qt, v0, phit, At, b, bv, &rest)) continue; /* outside the callbacks' domain */
-            if (rest < res) stalled = 0;
+            if (rest < res) {
+                stalled = 0;
+                if (h > 0) out->damped++;
+            }
         }
         if (stalled) break;
         steps++;
@@ -503,8 +508,9 @@ static int report(const braun_cli_target *tg)
     double *ev = calloc((size_t)rows + 1, sizeof(double));
     double *T = rows > n ? calloc((size_t)rows * n, sizeof(double)) : NULL;
     double *Rm = NULL; /* M's Cholesky factor */
+    double *pend = calloc((size_t)m + 1, sizeof(double)); /* Φ_q where the assembly search ended */
     int rc = BRAUN_CLI_FAILED;
-    if (!buf || !M || !A || !scratch || !Md || !Ad || !phi || !e || !ev || (rows > n && !T)) {
+    if (!buf || !M || !A || !scratch || !Md || !Ad || !phi || !e || !ev || !pend || (rows > n && !T)) {
         braun_cli_error("out of memory");
         goto done;
     }
@@ -576,7 +582,10 @@ static int report(const braun_cli_target *tg)
         }
         /* Rows that agree to first order at a start off them: can they be
          * met at all near it? */
-        if (search && consistent) assemble(s, tg->q0, tg->v0, Rm, &asm_, e);
+        /* Rows that disagree to first order may still be met near the start
+         * (a singular configuration): the search tells that too. Its Φ_q
+         * goes to pend, e holding the least-squares residual. */
+        if (search) assemble(s, tg->q0, tg->v0, Rm, &asm_, pend);
     }
     char corr[64];
     const unsigned supported = model.opt.corrections;
@@ -603,14 +612,14 @@ static int report(const braun_cli_target *tg)
     if (off && consistent && !search)
         printf("assembly: not searched (n = %d; the dense search is for n < %d)\n", n,
                BRAUN_CLI_DENSE_NOTE_N);
-    if (search && consistent) {
+    if (search) {
         if (asm_.reached < 0)
             printf("assembly: not searched (a holonomic callback failed or gave NaN near the "
                    "initial state, or out of memory)\n");
         else if (asm_.reached)
-            printf("assembly: reached (residual %.2g after %d Gauss-Newton step%s, %.3g from the "
-                   "initial state in the mass metric)\n",
-                   asm_.resid, asm_.steps, asm_.steps == 1 ? "" : "s", asm_.dist);
+            printf("assembly: reached (residual %.2g after %d Gauss-Newton step%s, %d damped, %.3g "
+                   "from the initial state in the mass metric)\n",
+                   asm_.resid, asm_.steps, asm_.steps == 1 ? "" : "s", asm_.damped, asm_.dist);
         else
             printf("assembly: none found (Gauss-Newton stalls at residual %.3g after %d step%s)\n",
                    asm_.resid, asm_.steps, asm_.steps == 1 ? "" : "s");
@@ -641,11 +650,17 @@ static int report(const braun_cli_target *tg)
                         tg->name, cb.worst, cb.worst_value);
         rc = BRAUN_CLI_FAILED;
     }
+    if (consistent && asm_.reached > 0 && asm_.damped > 0)
+        fprintf(stderr, "braun: note: %s: the start is %.3g from a configuration that meets its "
+                        "constraints, far enough that Gauss-Newton had to damp %d of its %d steps; a "
+                        "run's position correction takes one undamped step per time step and may "
+                        "fail from here (its accuracy guard): start the mechanism nearer\n",
+                tg->name, asm_.dist, asm_.damped, asm_.steps);
     if (consistent && !assembled) {
         /* Where the search stalls the residual is spread over the rows that
          * cannot all hold: those are named, not the largest alone. */
         char who[800];
-        name_disagreeing(tg, m, e, who, sizeof who);
+        name_disagreeing(tg, m, pend, who, sizeof who);
         braun_cli_error("%s: the constraints have no solution near the initial state: %s cannot all "
                         "be met (Gauss-Newton from the initial state, in the mass metric, stalls at "
                         "residual %.3g after %d step%s: no configuration near it meets them: "
@@ -662,6 +677,13 @@ static int report(const braun_cli_target *tg)
         const int velocities = consistent;
         say_unsolvable(tg, velocities ? rows : m, velocities ? ev : e, velocities ? vresid : resid,
                        velocities);
+        if (!velocities && asm_.reached > 0)
+            fprintf(stderr, "braun: note: %s: they disagree to first order only: a configuration %.3g "
+                            "from the start (mass metric) meets them (Gauss-Newton, residual %.2g; the "
+                            "assembly line): the start is a singular configuration of these rows, "
+                            "from which the run's position correction cannot move; start the "
+                            "mechanism there\n",
+                    tg->name, asm_.dist, asm_.resid);
         rc = BRAUN_CLI_FAILED;
     }
 done:
@@ -676,6 +698,7 @@ done:
     free(ev);
     free(T);
     free(Rm);
+    free(pend);
     return rc;
 }
 
