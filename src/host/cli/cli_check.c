@@ -10,57 +10,15 @@
 #include "braun_host.h"
 #include "braun_math.h"
 
+static int min_norm_solve(int rows, int n, double *C, double *b, double *x, double tol);
+
 /* Rank of the rows of C (rows x n, row-major, destroyed) by Householder QR
  * with column pivoting of Cᵀ, pivots counted as zero below tol·|r_00| — the
- * rule of the library's pseudoinverse (docs/method.md, "Rank tolerance"). */
+ * rule of the library's pseudoinverse (docs/method.md, "Rank tolerance"):
+ * min_norm_solve's factorization without its solve. */
 static int rank_of_rows(int rows, int n, double *C, double tol)
 {
-    /* Column j of Cᵀ is row j of C: work on rows of C directly. */
-    double *norm = calloc((size_t)(rows > 0 ? rows : 1), sizeof(double));
-    int rank = 0;
-    double r00 = 0;
-    if (!norm) return -1;
-    for (int j = 0; j < rows; j++) {
-        double s = 0;
-        for (int i = 0; i < n; i++) s += C[(size_t)j * n + i] * C[(size_t)j * n + i];
-        norm[j] = s;
-    }
-    for (int k = 0; k < rows && k < n; k++) {
-        int p = k;
-        for (int j = k + 1; j < rows; j++)
-            if (norm[j] > norm[p]) p = j;
-        if (p != k) {
-            for (int i = 0; i < n; i++) {
-                double t = C[(size_t)k * n + i];
-                C[(size_t)k * n + i] = C[(size_t)p * n + i];
-                C[(size_t)p * n + i] = t;
-            }
-            double t = norm[k];
-            norm[k] = norm[p];
-            norm[p] = t;
-        }
-        /* Householder reflection on entries k..n-1 of row k (a column of Cᵀ). */
-        double *x = C + (size_t)k * n;
-        double s = 0;
-        for (int i = k; i < n; i++) s += x[i] * x[i];
-        const double alpha = x[k] > 0 ? -sqrt(s) : sqrt(s);
-        if (k == 0) r00 = fabs(alpha);
-        if (!(fabs(alpha) > tol * r00) || r00 == 0) break;
-        rank++;
-        x[k] -= alpha;
-        double vv = 0;
-        for (int i = k; i < n; i++) vv += x[i] * x[i];
-        for (int j = k + 1; j < rows; j++) {
-            double *y = C + (size_t)j * n, d = 0;
-            for (int i = k; i < n; i++) d += x[i] * y[i];
-            d = vv > 0 ? 2 * d / vv : 0;
-            for (int i = k; i < n; i++) y[i] -= d * x[i];
-            norm[j] = 0;
-            for (int i = k + 1; i < n; i++) norm[j] += y[i] * y[i];
-        }
-    }
-    free(norm);
-    return rank;
+    return min_norm_solve(rows, n, C, NULL, NULL, tol);
 }
 
 /* The least-squares residual e = b − C x* of C x = b, C (rows x n,
@@ -164,9 +122,9 @@ static void rows_times_rinv(int rows, int n, const double *R, double *A)
 }
 
 /* The minimum-norm solution x (n) of C_S x = b_S, S the rows a Householder
- * QR of Cᵀ with column pivoting keeps under the rank rule of rank_of_rows
- * (pivots below tol·|r_00| end it): Cᵀ P = Q R gives C_S = R_Sᵀ Qᵀ, so
- * x = Q [R_S⁻ᵀ b_S; 0]. C (rows x n, row-major) and b (rows) destroyed.
+ * QR of Cᵀ with column pivoting keeps (pivots below tol·|r_00| end it):
+ * Cᵀ P = Q R gives C_S = R_Sᵀ Qᵀ, so x = Q [R_S⁻ᵀ b_S; 0]. C (rows x n,
+ * row-major) and b (rows) destroyed; b and x NULL: the rank alone.
  * Returns the rank, or -1 out of memory. */
 static int min_norm_solve(int rows, int n, double *C, double *b, double *x, double tol)
 {
@@ -196,9 +154,11 @@ static int min_norm_solve(int rows, int n, double *C, double *b, double *x, doub
             double t = norm[k];
             norm[k] = norm[p];
             norm[p] = t;
-            t = b[k];
-            b[k] = b[p];
-            b[p] = t;
+            if (b) {
+                t = b[k];
+                b[k] = b[p];
+                b[p] = t;
+            }
         }
         double *v = C + (size_t)k * n, s = 0;
         for (int i = k; i < n; i++) s += v[i] * v[i];
@@ -218,6 +178,7 @@ static int min_norm_solve(int rows, int n, double *C, double *b, double *x, doub
             for (int i = k + 1; i < n; i++) norm[j] += y[i] * y[i];
         }
     }
+    if (!b || !x) goto done;
     /* R_S's entries: R_kk = alpha_k, R_kj (k < j) = entry k of row j. */
     for (int i = 0; i < n; i++) x[i] = 0;
     for (int j = 0; j < rank; j++) {
@@ -232,6 +193,7 @@ static int min_norm_solve(int rows, int n, double *C, double *b, double *x, doub
         d = vv[k] > 0 ? 2 * d / vv[k] : 0;
         for (int i = k; i < n; i++) x[i] -= d * v[i];
     }
+done:
     free(norm);
     free(alpha);
     free(vv);
