@@ -366,8 +366,16 @@ static int body_ref(sj_reader *r, json_t *obj, const char *key, int ground_ok, i
         *body = find_body(r, name, strlen(name));
         if (*body == -2) st = sj_fail(r, SJ_AT_VALUE, "%s refers to unknown body '%s'", r->who, name);
         else if (angle && r->out->scene.bodies[*body].kind->angle < 0)
-            st = sj_fail(r, SJ_AT_VALUE, "%s: body '%s' in field '%s' must be rigid (it has no "
-                                         "angle)", r->who, name, key);
+            /* A rigid3d body has no single angle either: the element is
+             * planar, and its spatial counterpart is what was meant. */
+            st = r->out->scene.bodies[*body].kind == BRAUN_BODY_RIGID3D
+                     ? sj_fail(r, SJ_AT_VALUE,
+                               "%s: body '%s' in field '%s' is a rigid3d body, and this element is "
+                               "planar (it acts on a planar body's angle): use its spatial "
+                               "counterpart (torque3d, body_torque, torsion3d, motor3d, revolute3d; "
+                               "docs/scene-format.md)", r->who, name, key)
+                     : sj_fail(r, SJ_AT_VALUE, "%s: body '%s' in field '%s' must be rigid (a "
+                                               "particle has no angle)", r->who, name, key);
     }
     sj_pop(r);
     return st;
