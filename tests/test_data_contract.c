@@ -254,9 +254,10 @@ static void test_reentry_from_output_callback(void **state)
 typedef struct meddler {
     test_sim *sim;
     int what;    /* 1 release, 2 data_init, 3 holonomic NULL, 4 corrections 99,
-                  * 5 rank_tol NaN, 6 guard scale Inf */
+                  * 5 rank_tol NaN, 6 guard scale Inf, 7 the state pointer q */
     int calls;
     int release_status;
+    braun_real *q_saved;
 } meddler;
 
 static int meddle(const braun_data *cd, void *u)
@@ -271,7 +272,8 @@ static int meddle(const braun_data *cd, void *u)
     case 3: model->sys.holonomic = NULL; break;
     case 4: model->opt.corrections = 99; break;
     case 5: model->opt.rank_tol = NAN; break;
-    default: d->guard.pos = INFINITY; break;
+    case 6: d->guard.pos = INFINITY; break;
+    default: m->q_saved = d->q, d->q = NULL; break;
     }
     return 0;
 }
@@ -279,12 +281,12 @@ static int meddle(const braun_data *cd, void *u)
 static void test_output_callback_meddling(void **state)
 {
     (void)state;
-    for (int what = 1; what <= 6; what++)
+    for (int what = 1; what <= 7; what++)
         for (int adaptive = 0; adaptive < 2; adaptive++) {
             ring r = {0};
             test_sim sim;
             open_ring(&sim, &r);
-            meddler m = {&sim, what, 0, 0};
+            meddler m = {&sim, what, 0, 0, NULL};
             assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
             const braun_adaptive ctl = {1e-8, 1e-8, 0, 0, 0, 0};
             const int st = adaptive ? braun_integrate_adaptive(&sim.data, &ctl, 1.0, 1, meddle, &m)
@@ -303,6 +305,10 @@ static void test_output_callback_meddling(void **state)
             if (what == 4) assert_non_null(strstr(sim.data.error.where, "options.corrections"));
             if (what == 5) assert_non_null(strstr(sim.data.error.where, "options.rank_tol"));
             if (what == 6) assert_non_null(strstr(sim.data.error.where, "guard.pos"));
+            if (what == 7) {
+                assert_non_null(strstr(sim.data.error.where, "state pointer q"));
+                sim.data.q = m.q_saved;
+            }
             sim.model.sys.holonomic = ring_holonomic;
             test_sim_close(&sim);
         }

@@ -205,11 +205,9 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
      * the end, first same as last). An end that the corrections move is
      * another point: its first stage is evaluated anew. */
     int first_known = 0;
-    /* The first stage holds no correction unless they are computed there
-     * (at the start: every placement but the end). */
+    /* The corrections the attempts follow (an output callback may change
+     * them between steps). */
     unsigned corr = d->model->opt.corrections;
-    int first_pure = !(corr && where != BRAUN__CORR_AT_END);
-    int fsal = braun__tableau_fsal(tb) && !corr;
     const int last_stage = tb->stages - 1;
 
     if (out && (st = braun__output(d, out, out_user)) != BRAUN_OK) return st;
@@ -249,7 +247,9 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
         st = braun__rk_attempt(d, tb, hr, where, pv->y1, pv->yerr, first_known);
         /* k[0] is this start's first stage if it was kept or if a later
          * stage was reached (pv->stage is set before a stage's evaluation). */
-        first_known = first_pure && (first_known || pv->stage > 0);
+        /* The first stage holds no correction unless they are computed
+         * there (at the start: every placement but the end). */
+        first_known = !(corr && where != BRAUN__CORR_AT_END) && (first_known || pv->stage > 0);
         double err = 0;
         if (!st) {
             err = error_norm(d, hr, ctl->rtol, ctl->atol);
@@ -271,7 +271,7 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
              * would find too. Kept before the output callback below, whose
              * braun_residuals overwrites the residuals and A with the
              * reported state's. */
-            first_known = fsal && d->t + hr == t_new && pv->rank[0] == pv->rows &&
+            first_known = braun__tableau_fsal(tb) && !corr && d->t + hr == t_new && pv->rank[0] == pv->rows &&
                           (!pv->need_fq || pv->rank[1] == pv->m);
             if (first_known) {
                 braun_real *k0 = pv->k[0];
@@ -289,11 +289,8 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
             if (so) return so;
             if (d->model->opt.corrections != corr) {
                 /* The callback changed the corrections (valid between
-                 * steps): the first stage known and first-same-as-last
-                 * follow them. */
+                 * steps): the next first stage is evaluated under them. */
                 corr = d->model->opt.corrections;
-                first_pure = !(corr && where != BRAUN__CORR_AT_END);
-                fsal = braun__tableau_fsal(tb) && !corr;
                 first_known = 0;
             }
         }

@@ -75,7 +75,6 @@ static BRAUN_NOINLINE int bad_guard_scale(braun_data *d)
  * braun_set_state only, the guard's scales may be the program's own. */
 static int check_written_fields(braun_data *d)
 {
-
     if (!braun_is_finite(d->t))
         return braun__fail(d, BRAUN_ERR_ARGUMENT,
                            "state t (not finite: the state is set by braun_set_state only)", -1, -1,
@@ -96,6 +95,19 @@ int braun__data_intact(const braun_data *d, const braun_priv *pv, int busy)
     return d->priv == pv && pv->busy == busy;
 }
 
+/* A driver may run on d: usable (busy up to busy_allowed), a state set,
+ * the fields a program writes valid, the options valid. */
+static int check_ready(braun_data *d, int busy_allowed)
+{
+    int st = braun__check_usable(d, busy_allowed);
+    if (st) return st;
+    if (!braun__priv(d)->state_set)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "no state: call braun_set_state first", -1, -1,
+                           0, (double)d->t);
+    st = check_written_fields(d);
+    return st ? st : braun__check_options(d);
+}
+
 int braun__output(braun_data *d, braun_output_fn out, void *user)
 {
     const braun_priv *pv = braun__priv(d);
@@ -106,18 +118,11 @@ int braun__output(braun_data *d, braun_output_fn out, void *user)
         return braun__fail(d, BRAUN_ERR_ARGUMENT,
                            "the output callback re-initialised the data a driver runs on", -1, -1, 0,
                            (double)d->t);
-    int st = braun__check_system(d);
-    if (!st) st = check_written_fields(d);
-    return st ? st : braun__check_options(d);
+    /* Then every check a call makes, the driver's own busy allowed. */
+    return check_ready(d, 1);
 }
 
 int braun__check_ready(braun_data *d)
 {
-    int st = braun__check_usable(d, 0);
-    if (st) return st;
-    if (!braun__priv(d)->state_set)
-        return braun__fail(d, BRAUN_ERR_ARGUMENT, "no state: call braun_set_state first", -1, -1,
-                           0, (double)d->t);
-    st = check_written_fields(d);
-    return st ? st : braun__check_options(d);
+    return check_ready(d, 0);
 }

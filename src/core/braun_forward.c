@@ -247,26 +247,34 @@ static int stage_factor(braun_data *d, int with_residuals)
  *   v' = a + R⁻¹C_v⁺(b_v − A_v a) = R⁻¹(ã + u),  u = C_v⁺ r_v,
  * u the weighted ideal constraint force (Eq. 11: Q_c⊥ = Rᵀu). */
 
+/* The constraint callbacks' outputs at pv->at, in evaluation order: A,
+ * b_v and, with residuals, Φ and b_q; the first NaN/Inf is recorded and
+ * its status returned, else BRAUN_OK. */
+static int constraint_culprit(braun_data *d, int with_residuals)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n, m = pv->m, rows = pv->rows;
+    const braun_real t = pv->at.t;
+    if (rows == 0) return BRAUN_OK;
+    int st = pv->sp ? braun__check_finite(d, pv->sp->row_ptr[rows], pv->Avals,
+                                          "constraint Jacobian (compressed)", 0, t)
+                    : braun__check_finite(d, rows * n, pv->A, "constraint Jacobian", n, t);
+    if (!st) st = braun__check_finite(d, rows, pv->bv, "constraint b_v", 0, t);
+    if (!st && with_residuals) {
+        st = braun__check_finite(d, rows, pv->phi, "constraint Φ", 0, t);
+        if (!st && m > 0) st = braun__check_finite(d, m, pv->b, "constraint b_q", 0, t);
+    }
+    return st;
+}
+
 /* A result was NaN/Inf: find the callback output that made it (in
  * evaluation order), or blame the arithmetic (overflow). */
 static int nonfinite_culprit(braun_data *d, int with_residuals)
 {
     braun_priv *pv = braun__priv(d);
-    const int n = pv->n, m = pv->m, rows = pv->rows;
     const braun_real t = pv->at.t;
-    int st = braun__check_finite(d, n, pv->Q, "forces", 0, t);
-    if (!st && rows > 0) {
-        if (pv->sp)
-            st = braun__check_finite(d, pv->sp->row_ptr[rows], pv->Avals,
-                                     "constraint Jacobian (compressed)", 0, t);
-        else
-            st = braun__check_finite(d, rows * n, pv->A, "constraint Jacobian", n, t);
-    }
-    if (!st && rows > 0) st = braun__check_finite(d, rows, pv->bv, "constraint b_v", 0, t);
-    if (!st && rows > 0 && with_residuals) {
-        st = braun__check_finite(d, rows, pv->phi, "constraint Φ", 0, t);
-        if (!st && m > 0) st = braun__check_finite(d, m, pv->b, "constraint b_q", 0, t);
-    }
+    int st = braun__check_finite(d, pv->n, pv->Q, "forces", 0, t);
+    if (!st) st = constraint_culprit(d, with_residuals);
     if (!st) st = braun__fail(d, BRAUN_ERR_NONFINITE, "acceleration (overflow)", -1, -1, 0, (double)t);
     return st;
 }
@@ -560,20 +568,11 @@ int braun__energy(braun_data *d, braun_real t, const braun_real *q, const braun_
 }
 
 /* A residual norm is NaN or Inf: name the callback output that made it,
- * as a stage does (nonfinite_culprit), or blame the norm (overflow). */
+ * as a stage does (constraint_culprit), or blame the norm (overflow). */
 static BRAUN_NOINLINE int residual_culprit(braun_data *d, braun_real *norm, const char *what)
 {
-    braun_priv *pv = braun__priv(d);
-    const int n = pv->n, m = pv->m, rows = pv->rows;
-    const braun_real t = pv->at.t;
-    int st = braun__check_finite(d, rows, pv->phi, "constraint Φ", 0, t);
-    if (!st && m > 0) st = braun__check_finite(d, m, pv->b, "constraint b_q", 0, t);
-    if (!st && !pv->sp) st = braun__check_finite(d, rows * n, pv->A, "constraint Jacobian", n, t);
-    if (!st && pv->sp)
-        st = braun__check_finite(d, pv->sp->row_ptr[rows], pv->Avals, "constraint Jacobian (compressed)",
-                                 0, t);
-    if (!st) st = braun__check_finite(d, 1, norm, what, 0, t);
-    return st;
+    const int st = constraint_culprit(d, 1);
+    return st ? st : braun__check_finite(d, 1, norm, what, 0, braun__priv(d)->at.t);
 }
 
 int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
