@@ -456,6 +456,31 @@ EOF
 check "plot --traj reads back run's CSV of a body named with a tab" sh -c '[ "$1" -eq 0 ] && [ -s "$2" ]' \
     sh "$rc" "$TMP/tab.svg"
 
+# Names that the CSV header would write alike: two bodies whose names differ
+# only in a control byte (both written 'a?'), and a name longer than a
+# column name keeps (its columns were cut to the same 159 bytes). run wrote
+# a header with repeated column names and exit 0; now every command refuses
+# the scene and names the columns.
+cat > "$TMP/ctl2.json" <<'EOF'
+{"name": "ctl2", "bodies": [{"name": "a\u0001", "type": "particle", "mass": 1, "position": [1, 0]},
+  {"name": "a\u0002", "type": "particle", "mass": 1, "position": [2, 0]}],
+ "joints": [{"type": "distance", "a": "a\u0001", "b": [0, 0], "length": 1},
+  {"type": "distance", "a": "a\u0002", "b": "a\u0001", "length": 1}]}
+EOF
+"$BRAUN" run "$TMP/ctl2.json" --dt 1e-2 --t-end 0.1 --out "$TMP/ctl2.csv" --summary /dev/null \
+    2> "$TMP/ctl2.err"; rc=$?
+check "run refuses bodies whose CSV columns would share a name (a control byte apart)" sh -c '
+    [ "$1" -eq 2 ] && [ ! -e "$2" ] &&
+    grep -q "columns 2 and 4 of the trajectory CSV would both be named .a?\.x." "$3"' \
+    sh "$rc" "$TMP/ctl2.csv" "$TMP/ctl2.err"
+long=$(printf '%0170d' 0)
+sed "s/a\\\\u0001/${long}1/g; s/a\\\\u0002/${long}2/g" "$TMP/ctl2.json" > "$TMP/long.json"
+"$BRAUN" run "$TMP/long.json" --dt 1e-2 --t-end 0.1 --out "$TMP/long.csv" --summary /dev/null \
+    2> "$TMP/long.err"; rc=$?
+check "run refuses a body name too long for a CSV column, naming the column" sh -c '
+    [ "$1" -eq 2 ] && [ ! -e "$2" ] && grep -q "column 2 of the trajectory CSV would be named" "$3" &&
+    grep -q "longer than the 158 bytes" "$3"' sh "$rc" "$TMP/long.csv" "$TMP/long.err"
+
 # A start off a joint that the mechanism cannot reach (a distance of 5 m
 # between points at most 2 m apart): consistent to first order, so check
 # names the largest row of the position residual and its joint.

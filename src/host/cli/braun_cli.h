@@ -316,6 +316,13 @@ const char *braun_cli_column_name(const braun_cli_target *t, int n, int j, char 
  * scenes report their particle), whose NAME.x, NAME.y are the body's own
  * columns already, with the same values. 0, or -1 out of memory. */
 int braun_cli_report_columns(braun_cli_target *t);
+/* A column name's buffer: every column of a scene's CSV fits it whole
+ * (braun_cli_columns_distinct refuses a scene whose names do not). */
+#define BRAUN_CLI_COLUMN_NAME 160
+/* 0 when every column of t's trajectory CSV has a name of its own, as the
+ * header writes it and whole; else the message (braun_cli_error), naming
+ * the columns. */
+int braun_cli_columns_distinct(const braun_cli_target *t);
 /* Index of the state column called want (its " [unit]" optional), or -1;
  * reported points are not among them (braun plot draws them as points). */
 int braun_cli_column_find(const braun_cli_target *t, int n, const char *want);

@@ -113,9 +113,9 @@ static int repeats_body(const braun_cli_target *t, int k)
     const braun_scene_body *b = &sf->scene.bodies[pt->body];
     if (b->kind->dof < dim) return 0;
     for (int c = 0; c < dim; c++) {
-        char own[160], body[160];
+        char own[BRAUN_CLI_COLUMN_NAME], body[BRAUN_CLI_COLUMN_NAME];
         const char *unit;
-        snprintf(own, sizeof own, "%.120s.%c", sf->report_names[k], "xyz"[c]);
+        snprintf(own, sizeof own, "%s.%c", sf->report_names[k], "xyz"[c]);
         if (strcmp(braun_cli_coord_name(t, b->iq + c, 0, body, sizeof body, &unit), own) != 0)
             return 0;
     }
@@ -153,7 +153,7 @@ const char *braun_cli_column_name(const braun_cli_target *t, int n, int j, char 
     const int dim = braun_cli_report_dim(t);
     if (j >= 4 && dim && j - 4 < dim * t->nreports) {
         *unit = "m";
-        snprintf(name, size, "%.120s.%c", t->scene->report_names[t->reports[(j - 4) / dim]],
+        snprintf(name, size, "%s.%c", t->scene->report_names[t->reports[(j - 4) / dim]],
                  "xyz"[(j - 4) % dim]);
         return name;
     }
@@ -166,10 +166,76 @@ const char *braun_cli_column_name(const braun_cli_target *t, int n, int j, char 
 
 int braun_cli_column_count(int n) { return 1 + 2 * n + 4; }
 
+typedef struct column_entry {
+    char name[BRAUN_CLI_COLUMN_NAME];
+    int j;
+} column_entry;
+
+static int column_order(const void *a, const void *b)
+{
+    const column_entry *x = a, *y = b;
+    const int c = strcmp(x->name, y->name);
+    return c ? c : (x->j > y->j) - (x->j < y->j);
+}
+
+/* The header names every column whole and apart, as it writes them
+ * (control bytes as '?'): bodies named "a\x01" and "a\x02", or two long
+ * names cut to the same first bytes, would give two columns one name, and
+ * --plot, --traj and every other reader of the CSV would take one for the
+ * other. Sorted, so that a 2000-body chain's 12k columns cost no more than
+ * reading the scene. */
+int braun_cli_columns_distinct(const braun_cli_target *t)
+{
+    const braun_scene_file *sf = t->scene;
+    if (!sf) return 0;
+    const int n = t->sys.n, cols = braun_cli_csv_column_count(t, n);
+    column_entry *e = malloc((size_t)cols * sizeof *e);
+    if (!e) return braun_cli_error("out of memory");
+    const char *unit;
+    int rc = 0;
+    for (int j = 0; j < cols && !rc; j++) {
+        braun_cli_column_name(t, n, j, e[j].name, sizeof e[j].name, &unit);
+        e[j].j = j;
+        braun_cli_mask_controls(e[j].name);
+        if (strlen(e[j].name) >= sizeof e[j].name - 1)
+            rc = braun_cli_error("%s: column %d of the trajectory CSV would be named '%.60s...', "
+                                 "longer than the %d bytes a column name keeps: shorten the "
+                                 "name of its body or reported point", sf->path, j + 1,
+                                 e[j].name, (int)sizeof e[j].name - 2);
+    }
+    if (!rc) {
+        /* The first clash in the header's order: the pair whose later
+         * column comes first. */
+        qsort(e, (size_t)cols, sizeof *e, column_order);
+        int first = -1, second = cols;
+        for (int k = 1, start = 0; k < cols; k++) {
+            if (strcmp(e[k - 1].name, e[k].name) != 0) {
+                start = k;
+                continue;
+            }
+            if (e[k].j < second) {
+                first = e[start].j;
+                second = e[k].j;
+            }
+        }
+        if (first >= 0) {
+            char name[BRAUN_CLI_COLUMN_NAME];
+            braun_cli_column_name(t, n, first, name, sizeof name, &unit);
+            braun_cli_mask_controls(name);
+            rc = braun_cli_error("%s: columns %d and %d of the trajectory CSV would both be named "
+                                 "'%s' (a name's control characters are written as '?'): give the "
+                                 "bodies or reported points names that differ in printable "
+                                 "characters", sf->path, first + 1, second + 1, name);
+        }
+    }
+    free(e);
+    return rc;
+}
+
 /* Column index of a name (with or without its " [unit]"), or -1. */
 int braun_cli_column_find(const braun_cli_target *t, int n, const char *want)
 {
-    char name[160];
+    char name[BRAUN_CLI_COLUMN_NAME];
     const char *unit;
     size_t len = strlen(want);
     const char *br = strstr(want, " [");

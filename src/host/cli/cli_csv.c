@@ -29,7 +29,7 @@ static void cell(FILE *f, const char *name, const char *unit)
 
 int braun_cli_csv_header(FILE *f, const braun_cli_target *t, int n)
 {
-    char name[160];
+    char name[BRAUN_CLI_COLUMN_NAME];
     const char *unit;
     for (int j = 0; j < braun_cli_csv_column_count(t, n); j++) {
         if (j) fputc(',', f);

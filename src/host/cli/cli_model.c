@@ -99,6 +99,11 @@ int braun_cli_target_open(const char *arg, braun_cli_target *t)
             braun_cli_target_close(t);
             return braun_cli_error("out of memory");
         }
+        const int clash = braun_cli_columns_distinct(t);
+        if (clash) {
+            braun_cli_target_close(t);
+            return clash;
+        }
         return 0;
     }
     const braun_builtin *b = braun_builtin_find(arg);

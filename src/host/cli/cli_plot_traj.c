@@ -47,7 +47,7 @@ static int read_row(const char *p, const char *eol, const braun_cli_target *t, i
     const int n = t->sys.n, traj = braun_cli_column_count(n) - 1;
     if (eol > p && eol[-1] == '\r') eol--;
     for (int j = 0; j < cols; j++) {
-        char name[160];
+        char name[BRAUN_CLI_COLUMN_NAME];
         const char *unit, *start = p;
         char *stop = (char *)p;
         const int last = j == cols - 1;
@@ -101,7 +101,7 @@ int plot_traj_read(const char *path, const braun_cli_target *t, plot_samples *s)
     const char *eol = memchr(p, '\n', (size_t)(end - p));
     if (!eol) eol = end;
     for (int j = 0; !rc && j < cols; j++) {
-        char want[160], got[160];
+        char want[BRAUN_CLI_COLUMN_NAME], got[BRAUN_CLI_COLUMN_NAME];
         const char *unit;
         braun_cli_column_name(t, n, j, want, sizeof want, &unit);
         /* As the CSV's header writes it (cli_csv.c): a name's control
