@@ -185,6 +185,65 @@ static void test_misprints_found(void **state)
     test_sim_close(&sim);
 }
 
+/* A V-shaped potential c|q| (one coordinate, unit mass): at q = 0 its
+ * gradient jumps from −c to c, as a torsion3d's at its rest angle ± π. The
+ * callback gives the slope from above there (kink_slope = 1), which the
+ * check takes with a note; a slope that is neither side (0.5) is still a
+ * wrong callback. check said "no (dE_dq[6])" for the torsion3d. */
+static double kink_slope = 1;
+static int kink_mass(braun_real t, const braun_real *q, braun_real *M, void *user)
+{
+    (void)t; (void)q; (void)user;
+    M[0] = 1;
+    return 0;
+}
+static int kink_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q, void *user)
+{
+    (void)t; (void)v; (void)user;
+    Q[0] = -3 * (q[0] >= 0 ? 1 : -1);
+    return 0;
+}
+static int kink_energy(braun_real t, const braun_real *q, const braun_real *v, braun_real *E,
+                       braun_real *dE_dq, braun_real *dE_dv, braun_real *dE_dt, void *user)
+{
+    (void)t; (void)user;
+    *E = 0.5 * v[0] * v[0] + 3 * fabs(q[0]);
+    if (!dE_dq) return 0; /* the energy alone (docs/api.md) */
+    dE_dq[0] = q[0] == 0 ? 3 * kink_slope : 3 * (q[0] > 0 ? 1 : -1);
+    dE_dv[0] = v[0];
+    *dE_dt = 0;
+    return 0;
+}
+
+static void test_kink_noted(void **state)
+{
+    (void)state;
+    braun_system s = {0};
+    s.n = 1;
+    s.flags = BRAUN_MASS_CONSTANT;
+    s.mass = kink_mass;
+    s.forces = kink_forces;
+    s.energy = kink_energy;
+    const braun_real q0[1] = {0}, v0[1] = {0}, q1[1] = {0.5};
+    braun_callback_report rep;
+    kink_slope = 1;
+    assert_int_equal(braun_check_callbacks(&s, 0, q0, v0, 0, &rep), BRAUN_OK);
+    print_message("kink: %s\n", rep.note);
+    assert_non_null(strstr(rep.note, "dE_dq[0] is not differentiable at this state"));
+    assert_non_null(strstr(rep.note, "from below -3, from above 3; the callback gives 3"));
+    kink_slope = -1; /* the other side: a kink too */
+    assert_int_equal(braun_check_callbacks(&s, 0, q0, v0, 0, &rep), BRAUN_OK);
+    assert_true(rep.note[0] != '\0');
+    kink_slope = 0.5; /* neither side: wrong */
+    assert_int_equal(braun_check_callbacks(&s, 0, q0, v0, 0, &rep), BRAUN_ERR_ARGUMENT);
+    assert_string_equal(rep.worst, "dE_dq[0]");
+    assert_true(rep.note[0] == '\0');
+    /* Away from the kink: no note. */
+    kink_slope = 1;
+    assert_int_equal(braun_check_callbacks(&s, 0, q1, v0, 0, &rep), BRAUN_OK);
+    assert_true(rep.note[0] == '\0');
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -192,6 +251,7 @@ int main(void)
         cmocka_unit_test(test_andrews_passes),
         cmocka_unit_test(test_scenes_pass),
         cmocka_unit_test(test_misprints_found),
+        cmocka_unit_test(test_kink_noted),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -71,6 +71,14 @@ typedef struct braun_callback_report {
     char worst[160]; /* the entry, or what failed ("state q[2]", "holonomic
                       * callback returned -3 at t = 0.1", the library's
                       * sentence for a system it refuses) */
+    char note[200];  /* "" or the first entry where the callback is not
+                      * differentiable at the state — a kink, as a
+                      * torsion3d's potential at θ0 ± π: its one-sided
+                      * differences disagree and the callback gives one of
+                      * them, which is then not held against it ("dE_dq[6]
+                      * is not differentiable at this state (one-sided
+                      * differences: from below -15.7, from above 15.7;
+                      * the callback gives 15.7)") */
 } braun_callback_report;
 int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_real *q,
                           const braun_real *v, double tol, braun_callback_report *rep);

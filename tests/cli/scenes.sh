@@ -456,6 +456,18 @@ EOF
 check "plot --traj reads back run's CSV of a body named with a tab" sh -c '[ "$1" -eq 0 ] && [ -s "$2" ]' \
     sh "$rc" "$TMP/tab.svg"
 
+# A torsion3d whose joint starts at its rest angle + pi: its potential has a
+# kink there (the wrap), the central differences give the mean of its two
+# slopes. check said "callbacks: no (dE_dq[6])" and exit 1; the callback
+# gives one of the one-sided slopes, so yes, with a note naming the entry.
+sed 's/"damping": 0.2}/"damping": 0.2, "rest_angle": 3.141592653589793}/' data/spatial-arm.json \
+    > "$TMP/kink.json"
+"$BRAUN" check "$TMP/kink.json" > "$TMP/kink.out" 2> "$TMP/kink.err"; rc=$?
+check "check: a torsion3d at its rest angle + pi is a kink, noted, not a wrong callback" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^callbacks: yes" "$2" &&
+    grep -q "note: .*dE_dq\[6\] is not differentiable at this state" "$3"' \
+    sh "$rc" "$TMP/kink.out" "$TMP/kink.err"
+
 # Names that the CSV header would write alike: two bodies whose names differ
 # only in a control byte (both written 'a?'), and a name longer than a
 # column name keeps (its columns were cut to the same 159 bytes). run wrote

@@ -213,6 +213,40 @@ static int deriv(work *w, enum quantity f, enum direction dir, int j, double tau
     return BRAUN_OK;
 }
 
+/* How an entry of deriv_best's estimates is named in the report: name[i]
+ * (col < 0; i + offset) or name[i][col]. */
+typedef struct entry_label {
+    const char *name;
+    int col, offset;
+} entry_label;
+
+/* An entry the central differences cannot judge because the callback is
+ * not differentiable at the state — a kink, as a torsion3d's potential at
+ * its wrap θ0 ± π, where the central difference gives the mean of the two
+ * slopes: the one-sided differences (second order, step τ, each side's
+ * points on that side) disagree with each other, and the analytic value x
+ * is one of them. Then x is taken (*est = x) and the report's note names
+ * the entry; 0 when it is not such a kink. */
+static int kink(work *w, double x, double sign, double f0, double fp1, double fp2, double fm1,
+                double fm2, double tau, double mag, const entry_label *lab, int i, double *est)
+{
+    const double up = sign * (-3 * f0 + 4 * fp1 - fp2) / tau, down = sign * (3 * f0 - 4 * fm1 + fm2) / tau;
+    const double scale = fmax(fabs(x), fmax(fabs(up), fabs(down)));
+    const double allow = 1e3 * DBL_EPSILON * mag / tau + w->tol * scale;
+    if (!(fabs(up - down) > 100 * allow)) return 0;
+    if (!(fabs(x - up) <= allow || fabs(x - down) <= allow)) return 0;
+    *est = x;
+    if (!w->rep->note[0]) {
+        char entry[40];
+        if (lab->col >= 0) snprintf(entry, sizeof entry, "%s[%d][%d]", lab->name, i, lab->col);
+        else snprintf(entry, sizeof entry, "%s[%d]", lab->name, i + lab->offset);
+        snprintf(w->rep->note, sizeof w->rep->note,
+                 "%s is not differentiable at this state (one-sided differences: from below "
+                 "%.6g, from above %.6g; the callback gives %.6g)", entry, down, up, x);
+    }
+    return 1;
+}
+
 /* deriv at τ, its count entries compared with the analytic x[i·stride]
  * (as sign·out). Each estimate carries an allowance: twice its spread (the
  * stencil's truncation error at τ is 16/15 of it) plus the round-off at τ.
@@ -226,7 +260,7 @@ static int deriv(work *w, enum quantity f, enum direction dir, int j, double tau
  * allowance, for judge(). */
 static int deriv_best(work *w, enum quantity f, enum direction dir, int j, double tau, double t0,
                       const braun_real *q0, const braun_real *v0, int count, const double *x, int stride,
-                      double sign, double *out, double *allow, double *mag)
+                      double sign, double *out, double *allow, double *mag, const entry_label *lab)
 {
     double *alt = calloc(2 * (size_t)count + 1, sizeof(double)), *alt_spread = alt ? alt + count : NULL;
     if (!alt) return BRAUN_ERR_BUFFER;
@@ -251,6 +285,36 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
                 allow[i] = allow_alt;
             }
         }
+    }
+    /* Entries the differences still do not resolve: a kink at the state? */
+    int open = 0;
+    for (int i = 0; i < count && !st; i++) {
+        const double xi = x[(size_t)i * stride], di = sign * out[i];
+        const double scale = fabs(xi) > fabs(di) ? fabs(xi) : fabs(di);
+        if (fabs(xi - di) - allow[i] > w->tol * scale) open = 1;
+    }
+    if (open && !st) {
+        /* f(0), f(τ/2), f(τ), f(−τ/2), f(−τ) into alt-sized scratch. */
+        double *v5 = calloc(5 * (size_t)count + 1, sizeof(double));
+        if (!v5) return BRAUN_ERR_BUFFER;
+        static const double at[5] = {0, 0.5, 1, -0.5, -1};
+        for (int k = 0; k < 5 && !st; k++) {
+            if (value_at(w, f, dir, j, at[k] * tau, t0, q0, v0, w->fp)) st = BRAUN_ERR_CALLBACK;
+            for (int i = 0; i < count && !st; i++) {
+                v5[(size_t)k * count + i] = w->fp[i];
+                if (fabs(w->fp[i]) > *mag) *mag = fabs(w->fp[i]);
+            }
+        }
+        for (int i = 0; i < count && !st; i++) {
+            const double xi = x[(size_t)i * stride], di = sign * out[i];
+            const double scale = fabs(xi) > fabs(di) ? fabs(xi) : fabs(di);
+            double est;
+            if (fabs(xi - di) - allow[i] > w->tol * scale &&
+                kink(w, xi, sign, v5[i], v5[count + i], v5[2 * (size_t)count + i],
+                     v5[3 * (size_t)count + i], v5[4 * (size_t)count + i], tau, *mag, lab, i, &est))
+                out[i] = sign * est;
+        }
+        free(v5);
     }
     free(alt);
     return st;
@@ -294,8 +358,9 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
     for (int j = 0; j < n && !st; j++) {
         const double x = nonholo ? (double)v0[j] : (double)q0[j], tau = fd_step(x);
         if (tau < tau_min) tau_min = tau;
+        const entry_label lab = {nonholo ? "A_vv" : "A_q", j, 0};
         st = deriv_best(w, f, nonholo ? ALONG_V : ALONG_Q, j, tau, t, q0, v0, r, A + j, n, 1, col, spcol,
-                        &mag);
+                        &mag, &lab);
         for (int i = 0; i < r && !st; i++) {
             fd[(size_t)i * n + j] = col[i];
             spread[(size_t)i * n + j] = spcol[i];
@@ -307,7 +372,8 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
     if (!st && !nonholo) {
         const double tt = fd_step(t);
         double m2 = mag;
-        st = deriv_best(w, PHI_Q, ALONG_T, 0, tt, t, q0, v0, r, b, 1, -1, col, spcol, &m2);
+        const entry_label lab = {"b_q", -1, 0};
+        st = deriv_best(w, PHI_Q, ALONG_T, 0, tt, t, q0, v0, r, b, 1, -1, col, spcol, &m2, &lab);
         for (int i = 0; i < r && !st; i++) col[i] = -col[i];
         if (!st) judge(w, &w->rep->b_q, "b_q", r, 1, b, col, spcol, m2, tt);
     }
@@ -319,8 +385,9 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
             for (int j = 0; j < n; j++) terms += fabs(A[(size_t)i * n + j] * (double)v0[j]);
             if (terms > gmag) gmag = terms;
         }
+        const entry_label lab = {nonholo ? "b_vv" : "b_qv", -1, 0};
         st = deriv_best(w, nonholo ? PHI_V : RATE_Q, ALONG_MOTION, 0, tv, t, q0, v0, r, bv, 1, -1, col,
-                        spcol, &gmag);
+                        spcol, &gmag, &lab);
         for (int i = 0; i < r && !st; i++) col[i] = -col[i];
         if (!st) judge(w, nonholo ? &w->rep->b_vv : &w->rep->b_qv, nonholo ? "b_vv" : "b_qv", r, 1, bv,
                        col, spcol, gmag, tv);
@@ -356,12 +423,16 @@ static int check_energy_gradient(work *w, double t, const braun_real *q0, const 
         const int in_v = j >= n, k = in_v ? j - n : j;
         const double tau = fd_step(in_v ? (double)v0[k] : (double)q0[k]);
         if (tau < tau_min[in_v]) tau_min[in_v] = tau;
+        const entry_label lab = {in_v ? "dE_dv" : "dE_dq", -1, k};
         st = deriv_best(w, ENERGY, in_v ? ALONG_V : ALONG_Q, k, tau, t, q0, v0, 1, g + j, 1, 1, fd + j,
-                        spread + j, &mag);
+                        spread + j, &mag, &lab);
     }
     const double tt = fd_step(t);
     double mt = mag;
-    if (!st) st = deriv_best(w, ENERGY, ALONG_T, 0, tt, t, q0, v0, 1, g + 2 * n, 1, 1, fd + 2 * n, spread + 2 * n, &mt);
+    const entry_label lab_t = {"dE_dt", -1, 0};
+    if (!st)
+        st = deriv_best(w, ENERGY, ALONG_T, 0, tt, t, q0, v0, 1, g + 2 * n, 1, 1, fd + 2 * n,
+                        spread + 2 * n, &mt, &lab_t);
     if (!st) {
         judge(w, &w->rep->energy_gradient, "dE_dq", 1, n, g, fd, spread, mag, tau_min[0]);
         judge(w, &w->rep->energy_gradient, "dE_dv", 1, n, g + n, fd + n, spread + n, mag, tau_min[1]);

@@ -606,6 +606,10 @@ static int report(const braun_cli_target *tg)
     else
         printf("callbacks: not checked (%s)\n", braun_status_str(cst));
     rc = fflush(stdout) == 0 ? 0 : BRAUN_CLI_FAILED;
+    if ((cst == BRAUN_OK || cst == BRAUN_ERR_ARGUMENT) && cb.note[0])
+        fprintf(stderr, "braun: note: %s: %s: a kink of the model there (as a torsion3d's "
+                        "potential where the joint's angle is its rest angle +- pi), not held "
+                        "against the callback\n", tg->name, cb.note);
     if (cst == BRAUN_ERR_ARGUMENT) {
         braun_cli_error("%s: a callback disagrees with the finite differences of its own outputs at "
                         "the initial state: %s off by %.3g of its scale (braun_check_callbacks)",
