@@ -506,6 +506,17 @@ static void test_scene_helpers_refuse(void **state)
     assert_true(isnan(braun_scene_initial_distance(sc, 0, 1000)));
     assert_true(isnan(braun_scene_initial_angle(sc, 7)));
     assert_true(braun_scene_initial_angle(sc, -1) == 0); /* the ground */
+    assert_true(isnan(braun_scene_initial_angle(sc, -2)));   /* it gave 0 */
+    /* A body past the last: body_angle read beyond the bodies (a crash). */
+    braun_real th = 0, om = 0;
+    assert_int_equal(braun_scene_body_angle(sc, sc->nbodies, q, v, &th, &om), BRAUN_ERR_ARGUMENT);
+    assert_true(isnan(th) && isnan(om));
+    assert_int_equal(braun_scene_body_angle(sc, 100000000, q, v, &th, &om), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_scene_body_angle(sc, -2, q, v, &th, &om), BRAUN_ERR_ARGUMENT);
+    assert_true(isnan(th));
+    assert_int_equal(braun_scene_body_angle(NULL, 0, q, v, &th, &om), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_scene_body_angle(sc, -1, q, v, &th, &om), -1); /* the ground: no angle */
+    assert_true(th == 0 && om == 0);
     assert_int_equal(braun_scene_initial_state(sc, q, v), BRAUN_OK);
     assert_int_equal(braun_scene_initial_state(sc, NULL, v), BRAUN_ERR_ARGUMENT);
     braun_scene unbuilt;

@@ -272,6 +272,24 @@ static void test_scene_file(void **state)
         " \"centre\": [0, 0], \"radius\": -1}]}";
     assert_null(braun_scene_load_text_ex("c.json", bad, strlen(bad), &extra, err, sizeof err));
     assert_string_equal(err, "c.json:3:30: joint #1: field 'radius' must be > 0 (got -1)");
+    /* A program class without a name: refused, naming it (the lookup
+     * compared its NULL name with strcmp: a crash). */
+    braun_scene_joint_class unnamed = toy_circle;
+    unnamed.name = NULL;
+    const braun_scene_joint_class *const unnamed_joints[] = {&toy_circle, &unnamed, NULL};
+    const braun_scene_classes extra2 = {NULL, unnamed_joints, NULL};
+    assert_null(braun_scene_load_text_ex("u.json", circle_text, strlen(circle_text), &extra2, err,
+                                         sizeof err));
+    assert_string_equal(err, "u.json:1:1: program joint class 2 (braun_scene_classes.joints[1]) has "
+                             "no name: a file names its class by it (\"type\")");
+    /* No path: the text is named "(text)" (it said "no text"). */
+    f = braun_scene_load_text_ex(NULL, circle_text, strlen(circle_text), &extra, err, sizeof err);
+    if (!f) fail_msg("%s", err);
+    braun_scene_free(f);
+    assert_null(braun_scene_load_text_ex(NULL, bad, strlen(bad), &extra, err, sizeof err));
+    assert_string_equal(err, "(text):3:30: joint #1: field 'radius' must be > 0 (got -1)");
+    assert_null(braun_scene_load_text(NULL, NULL, 3, err, sizeof err));
+    assert_string_equal(err, "(text):1:1: no text (NULL)");
 }
 
 int main(void)

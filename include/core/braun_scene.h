@@ -231,7 +231,10 @@ int braun_scene_point_state(const braun_scene *s, int i, const braun_real *q,
 
 /* Angle θ and angular velocity ω of a body that has one (0 for the ground
  * or a body without angle; omega 0 when v is NULL); returns θ's column, or
- * -1 when the body has none. theta and omega may be NULL. */
+ * -1 when the body has none. theta and omega may be NULL. A body that does
+ * not exist (an index other than BRAUN_SCENE_GROUND and 0 … nbodies − 1),
+ * or a NULL q where the body has an angle: BRAUN_ERR_ARGUMENT (−1) and NaN
+ * in theta and omega. */
 int braun_scene_body_angle(const braun_scene *s, int body, const braun_real *q,
                            const braun_real *v, braun_real *theta, braun_real *omega);
 

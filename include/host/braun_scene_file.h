@@ -68,7 +68,8 @@ typedef struct braun_scene_classes {
  * returned from a half-read file. */
 braun_scene_file *braun_scene_load(const char *path, char *err, size_t err_size);
 
-/* The same from text in memory; path names it in messages. */
+/* The same from text in memory; path names it in messages ("(text)" when
+ * NULL). */
 braun_scene_file *braun_scene_load_text(const char *path, const char *text, size_t len,
                                         char *err, size_t err_size);
 

@@ -75,6 +75,16 @@ void braun_scene_pt_grad(const scene_pt *P, const braun_real *g, braun_real *row
 int braun_scene_body_angle(const braun_scene *s, int body, const braun_real *q,
                            const braun_real *v, braun_real *theta, braun_real *omega)
 {
+    /* A body that does not exist, or no q to read: -1 (BRAUN_ERR_ARGUMENT)
+     * and NaN, as the initial angle says (an index past the bodies read
+     * beyond them). */
+    if (!s || body < BRAUN_SCENE_GROUND || body >= s->nbodies ||
+        (body >= 0 && (!s->bodies || !s->bodies[body].kind)) ||
+        (!q && braun_scene__theta_col(s, body) >= 0)) {
+        if (theta) *theta = (braun_real)NAN;
+        if (omega) *omega = (braun_real)NAN;
+        return BRAUN_ERR_ARGUMENT;
+    }
     const int col = braun_scene__theta_col(s, body);
     if (theta) *theta = col >= 0 ? q[col] : 0;
     if (omega) *omega = col >= 0 && v ? v[col] : 0;
@@ -132,7 +142,8 @@ braun_real braun_scene_initial_distance(const braun_scene *s, int a, int b)
 
 braun_real braun_scene_initial_angle(const braun_scene *s, int body)
 {
-    if (!s || body >= s->nbodies || (body >= 0 && (!s->bodies || !s->bodies[body].kind)))
+    if (!s || body < BRAUN_SCENE_GROUND || body >= s->nbodies ||
+        (body >= 0 && (!s->bodies || !s->bodies[body].kind)))
         return (braun_real)NAN; /* no such body */
     if (body < 0 || s->bodies[body].kind->angle < 0) return 0;
     return s->bodies[body].q0[s->bodies[body].kind->angle];

@@ -98,6 +98,25 @@ void braun_scene_free(braun_scene_file *f)
 }
 
 /* Takes ownership of text (malloc'd, len bytes plus a NUL). */
+/* A program's class without a name could never be a file's "type" (and
+ * the lookup compared it as a string: a crash). 1 with the message. */
+#define UNNAMED(field, what)                                                                 \
+    for (int k = 0; extra->field && extra->field[k]; k++)                                    \
+        if (!extra->field[k]->name || !extra->field[k]->name[0]) {                           \
+            snprintf(msg, size, "program %s class %d (braun_scene_classes." #field "[%d]) has " \
+                                "no name: a file names its class by it (\"type\")", what, k + 1, \
+                     k);                                                                     \
+            return 1;                                                                        \
+        }
+static int unnamed_class(const braun_scene_classes *extra, char *msg, size_t size)
+{
+    UNNAMED(bodies, "body")
+    UNNAMED(joints, "joint")
+    UNNAMED(effects, "effect")
+    return 0;
+}
+#undef UNNAMED
+
 static braun_scene_file *load_owned(const char *path, char *text, size_t len,
                                     const braun_scene_classes *extra, char *err, size_t err_size)
 {
@@ -147,8 +166,10 @@ static braun_scene_file *load_owned(const char *path, char *text, size_t len,
     r.err_size = err_size;
     r.out = &o->file;
     if (extra) r.extra = *extra;
-    int st = sj_find_underflows(&r, root);
-    if (st) set_err(err, err_size, path, 1, 1, "out of memory");
+    char bad[160];
+    int st = -1;
+    if (extra && unnamed_class(extra, bad, sizeof bad)) set_err(err, err_size, path, 1, 1, bad);
+    else if (sj_find_underflows(&r, root)) set_err(err, err_size, path, 1, 1, "out of memory");
     else st = sj_read_scene(&r, root);
     free(r.underflows);
     free(r.point_names);
@@ -166,8 +187,10 @@ braun_scene_file *braun_scene_load_text_ex(const char *path, const char *text, s
                                            size_t err_size)
 {
     if (err && err_size) err[0] = '\0';
-    if (!path || !text) {
-        set_err(err, err_size, path ? path : "(null)", 1, 1, "no text");
+    /* Without a path the messages name the text "(text)". */
+    if (!path) path = "(text)";
+    if (!text) {
+        set_err(err, err_size, path, 1, 1, "no text (NULL)");
         return NULL;
     }
     char *copy = malloc(len + 1);
@@ -267,7 +290,7 @@ braun_scene_file *braun_scene_load_ex(const char *path, const braun_scene_classe
 {
     if (err && err_size) err[0] = '\0';
     if (!path) {
-        set_err(err, err_size, "(null)", 1, 1, "no file name");
+        set_err(err, err_size, "(no path)", 1, 1, "no file name (NULL path)");
         return NULL;
     }
     char *text;
