@@ -153,6 +153,32 @@ static void test_gen_c_names_and_symbols(void **state)
     assert_string_equal(ebuf, "joint 'rod': the c_name of its class 'distance' is not a C "
                               "identifier or '&identifier'");
     free(buf);
+    /* A keyword is no identifier: "&int" was written (extern const
+     * braun_scene_joint_class int;) and the output did not compile. */
+    static const char *const keywords[] = {"&int", "&while", "static", "&_Bool"};
+    for (size_t k = 0; k < sizeof keywords / sizeof keywords[0]; k++) {
+        evil.c_name = keywords[k];
+        buf = NULL;
+        mem = open_memstream(&buf, &len);
+        rc = braun_gen_c_write_ex(mem, &bad_class, "p", "s.json", ebuf, sizeof ebuf);
+        fclose(mem);
+        assert_int_equal(rc, BRAUN_GEN_C_INVALID);
+        assert_int_equal(len, 0);
+        free(buf);
+    }
+    assert_int_equal(braun_gen_c_check_symbol("braun", why, sizeof why), -1);
+    assert_non_null(strstr(why, "must not be 'braun'")); /* it said "start with 'braun_'" */
+    braun_scene_free(f);
+    /* −0 keeps its sign: "%.17g" wrote R(-0), an int, whose cast is +0. */
+    f = load("{\"name\": \"z\", \"bodies\": [{\"name\": \"b\", \"type\": \"particle\", "
+             "\"mass\": 1, \"position\": [-0.0, 1]}], \"joints\": [{\"type\": \"distance\", "
+             "\"a\": [0, 0], \"b\": \"b\"}]}", err, sizeof err);
+    if (!f) fail_msg("%s", err);
+    out = gen(f, "z", "z.json", &rc);
+    assert_int_equal(rc, 0);
+    assert_non_null(strstr(out, "R(-0.0)"));
+    assert_null(strstr(out, "R(-0)"));
+    free(out);
     braun_scene_free(f);
 }
 

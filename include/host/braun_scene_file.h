@@ -123,15 +123,16 @@ int braun_scene_file_diagnose(const braun_scene_file *sf, braun_real t, const br
  * or nest a comment, form a trigraph or splice a line (other bytes as
  * \xNN, UTF-8 as \uXXXX; "*\/", "/\*", "?\?"; at most 160 bytes of each
  * text, then "..."). The only identifiers it writes are the symbol's
- * (checked here) and the classes' c_names (a C identifier or
- * "&identifier", checked before anything is written). It writes no string
- * literals. */
+ * (checked here) and the classes' c_names (a C identifier, not a keyword,
+ * or "&identifier", checked before anything is written). It writes no
+ * string literals. */
 #define BRAUN_GEN_C_SYMBOL_MAX 48 /* + "_corrections": within C99's 63 */
 #define BRAUN_GEN_C_SYMBOL_MAX_STR "48"
 
 /* 0 if symbol can prefix the generated names: an ASCII C identifier of at
- * most BRAUN_GEN_C_SYMBOL_MAX characters, not starting with '_' or
- * 'braun_' (any case). Else -1 and why ("the symbol must ...") in why. */
+ * most BRAUN_GEN_C_SYMBOL_MAX characters, not 'braun' and not starting
+ * with '_' or 'braun_' (any case). Else -1 and why ("the symbol must ...")
+ * in why. */
 int braun_gen_c_check_symbol(const char *symbol, char *why, size_t size);
 
 /* braun_gen_c_write_ex's failures. */

@@ -94,6 +94,20 @@ check "gen-c of 100 000-character names: every line < 4096 characters, compiles"
     sh "$rc" "$TMP/long.c" "$CC"
 
 # ------------------------------------------------------- gen-c: symbols, files
+# Symbols that differ only in case give one set of macros (ARM_N): the
+# headers shared their guard, the second was skipped in silence and a
+# program sized the second scene's buffers with the first one's ARM_N. Now
+# each has its own guard and the second stops at its sizes' check; one
+# scene's source with its own header still compiles.
+"$BRAUN" gen-c data/pendulum.json --symbol arm -o "$TMP/arm.c" --header "$TMP/arm.h"
+"$BRAUN" gen-c data/chain-5.json --symbol ARM -o "$TMP/ARM.c" --header "$TMP/ARM.h"
+printf '#include "arm.h"\n#include "ARM.h"\nint main(void) { return ARM_N; }\n' > "$TMP/both.c"
+printf '#include "arm.c"\n#include "arm.h"\n' > "$TMP/same.c"
+check "gen-c: headers whose symbols differ only in case stop the compile, naming the clash" sh -c '
+    ! $1 -std=c99 -I"$2" -Iinclude/core -c "$2/both.c" -o "$2/both.o" 2> "$2/both.err" &&
+    grep -q "error: #error ARM_N, ARM_M or ARM_P defined already" "$2/both.err" &&
+    $1 -std=c99 -Wall -Wextra -Wpedantic -Werror -I"$2" -Iinclude/core -c "$2/same.c" -o "$2/same.o"' \
+    sh "$CC" "$TMP"
 expect "gen-c --symbol braun_scene refused (braun_scene_build is libbraun's)" 2 \
     "symbol must not start with 'braun_'" gen-c data/pendulum.json --symbol braun_scene
 expect "gen-c --symbol of 49 characters refused" 2 "longer than 48" \

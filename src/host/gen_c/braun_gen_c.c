@@ -19,7 +19,10 @@ static void real(FILE *f, braun_real x)
 {
     const double a = fabs((double)x);
     const int outside = a > FLT_MAX || (a != 0 && a < FLT_MIN);
-    fprintf(f, outside ? "RD(%.17g)" : "R(%.17g)", (double)x);
+    /* "%.17g" writes −0 as "-0", an int, whose cast is +0: the sign kept
+     * as a double constant. */
+    if (x == 0 && signbit((double)x)) fputs("R(-0.0)", f);
+    else fprintf(f, outside ? "RD(%.17g)" : "R(%.17g)", (double)x);
 }
 
 static void reals(FILE *f, const braun_real *x, int n)
@@ -209,8 +212,10 @@ int braun_gen_c_check_symbol(const char *symbol, char *why, size_t size)
     else if ((symbol[0] | 0x20) == 'b' && (symbol[1] | 0x20) == 'r' &&
              (symbol[2] | 0x20) == 'a' && (symbol[3] | 0x20) == 'u' &&
              (symbol[4] | 0x20) == 'n' && (symbol[5] == '\0' || symbol[5] == '_'))
-        problem = "must not start with 'braun_' (libbraun's own names: SYMBOL_build could be "
-                  "one of them)";
+        problem = symbol[5] ? "must not start with 'braun_' (libbraun's own names: SYMBOL_build "
+                              "could be one of them)"
+                            : "must not be 'braun' (libbraun's own names: 'braun_scene' and the "
+                              "other names made from it are libbraun's)";
     if (why && size) {
         why[0] = '\0';
         if (problem) snprintf(why, size, "the symbol %s", problem);
@@ -220,11 +225,26 @@ int braun_gen_c_check_symbol(const char *symbol, char *why, size_t size)
 
 /* What gen-c writes for a class: a C identifier (a macro of braun_scene.h)
  * or "&identifier" (the program's own class, declared extern). */
+static int keyword(const char *id)
+{
+    /* C99's keywords and C11's (an identifier cannot be one). */
+    static const char *const words[] = {
+        "auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else",
+        "enum", "extern", "float", "for", "goto", "if", "inline", "int", "long", "register",
+        "restrict", "return", "short", "signed", "sizeof", "static", "struct", "switch", "typedef",
+        "union", "unsigned", "void", "volatile", "while", "_Bool", "_Complex", "_Imaginary",
+        "_Alignas", "_Alignof", "_Atomic", "_Generic", "_Noreturn", "_Static_assert",
+        "_Thread_local"};
+    for (size_t k = 0; k < sizeof words / sizeof words[0]; k++)
+        if (strcmp(id, words[k]) == 0) return 1;
+    return 0;
+}
+
 static int c_name_ok(const char *c_name)
 {
     if (!c_name) return 0;
     const char *id = c_name[0] == '&' ? c_name + 1 : c_name;
-    return ascii_identifier(id) && strlen(id) <= 63;
+    return ascii_identifier(id) && strlen(id) <= 63 && !keyword(id);
 }
 
 /* The class of every element has a c_name gen-c can write. */
@@ -263,7 +283,25 @@ static int check_classes(const braun_scene_file *sf, char *err, size_t size)
     return 0;
 }
 
-/* The symbol in upper case, for its macros (SYMBOL_N, the include guard). */
+/* SYMBOL_N, _M, _P, after a check that another scene's did not define
+ * them: the symbols of two generated files that differ only in case (arm,
+ * ARM) give one set of macros, and a program that included both read one
+ * scene's sizes for the other's buffers. The same values pass (the source
+ * and its header in one file). */
+static void sizes(FILE *out, const braun_scene *s, const char *upper)
+{
+    /* No quotes in the #error (the generated file has no string literals)
+     * and no line splice. */
+    fprintf(out, "#if (defined(%s_N) && %s_N != %d) || (defined(%s_M) && %s_M != %d) || "
+                 "(defined(%s_P) && %s_P != %d)\n"
+                 "#error %s_N, %s_M or %s_P defined already with the sizes of another scene: two "
+                 "generated files whose symbols differ only in case (gen-c --symbol)\n#endif\n",
+            upper, upper, s->n, upper, upper, s->m, upper, upper, s->p, upper, upper, upper);
+    fprintf(out, "#define %s_N %d\n#define %s_M %d\n#define %s_P %d\n", upper, s->n, upper, s->m,
+            upper, s->p);
+}
+
+/* The symbol in upper case, for its macros (SYMBOL_N). */
 static void upper_symbol(const char *sym, char upper[BRAUN_GEN_C_SYMBOL_MAX + 1])
 {
     for (size_t i = 0; i <= strlen(sym); i++) upper[i] = (char)toupper((unsigned char)sym[i]);
@@ -293,20 +331,23 @@ int braun_gen_c_write_header(FILE *out, const braun_scene_file *sf, const char *
     const braun_scene *s = &sf->scene;
     banner(out, sf, source);
     fputs("What the generated source defines, for the program's other files. */\n", out);
-    /* BRAUN_GEN_ + at most 48 + _H: within C99's 63 significant characters. */
-    fprintf(out, "#ifndef BRAUN_GEN_%s_H\n#define BRAUN_GEN_%s_H\n\n", upper, upper);
+    /* BRAUN_GEN_ + at most 48 + _H: within C99's 63 significant characters.
+     * The symbol as given: two symbols that differ only in case (arm, ARM)
+     * have guards of their own, and the second header stops at the sizes'
+     * check instead of being skipped in silence. */
+    fprintf(out, "#ifndef BRAUN_GEN_%s_H\n#define BRAUN_GEN_%s_H\n\n", sym, sym);
     fputs("#include \"braun.h\"\n\n", out);
     fputs("#ifdef __cplusplus\nextern \"C\" {\n#endif\n\n", out);
     /* The same tokens as the source's: a file that includes both is valid C. */
-    fprintf(out, "#define %s_N %d\n#define %s_M %d\n#define %s_P %d\n\n", upper, s->n, upper, s->m,
-            upper, s->p);
+    sizes(out, s, upper);
+    fputc('\n', out);
     fprintf(out, "/* The corrections the scene file asks for (braun_options.corrections). */\n");
     fprintf(out, "extern const unsigned %s_corrections;\n", sym);
     fprintf(out, "/* braun_scene_build() on the static scene, then its initial state into\n"
                  " * q0, v0 (%s_N entries each; either may be NULL). Returns the status. */\n", upper);
     fprintf(out, "int %s_build(braun_system *sys, braun_real *q0, braun_real *v0);\n", sym);
     fputs("\n#ifdef __cplusplus\n}\n#endif\n", out);
-    fprintf(out, "#endif /* BRAUN_GEN_%s_H */\n", upper);
+    fprintf(out, "#endif /* BRAUN_GEN_%s_H */\n", sym);
     if (ferror(out)) {
         if (err && err_size) snprintf(err, err_size, "write error");
         return BRAUN_GEN_C_WRITE;
@@ -351,8 +392,7 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
           " * build stops at it rather than read Inf or 0. */\n", out);
     fputs("#ifdef BRAUN_SINGLE\n#define RD(x) value_outside_the_range_of_float_in_a_BRAUN_SINGLE_build(x)\n"
           "#else\n#define RD(x) R(x)\n#endif\n\n", out);
-    fprintf(out, "#define %s_N %d\n#define %s_M %d\n#define %s_P %d\n", upper, s->n, upper, s->m,
-            upper, s->p);
+    sizes(out, s, upper);
 
     /* Classes defined by the program (not libbraun's): declared here, the
      * program links their definitions. */
