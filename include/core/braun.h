@@ -370,7 +370,10 @@ typedef struct braun_data {
     braun_real *q;
     braun_real *v;
     braun_real work_in;   /* ∫_0^t Ė dτ (Eq. 18) */
-    braun_real E0;        /* energy at braun_set_state() */
+    braun_real E0;        /* energy at braun_set_state(); a start off the
+                           * constraints, energy correction on: re-taken
+                           * (E − ∫Ė) once the corrections have brought the
+                           * state onto them (docs/api.md) */
     int has_E0;
     braun_stats stats;
     braun_error_info error;

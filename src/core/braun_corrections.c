@@ -329,6 +329,48 @@ static braun_real energy_max_rel(const braun_data *d)
     return d->model->opt.energy_max_rel > 0 ? d->model->opt.energy_max_rel : BRAUN_R(0.01);
 }
 
+static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_out,
+                           braun_real *vel_out, braun_real *energy_out);
+
+/* The point's residuals above sqrt(ε) of their scales (the guard's,
+ * measured here): the corrections are still removing a start's error. */
+static int off_constraints(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    braun_real pos, vel, energy, rp = 0, rv = 0;
+    measure_scales(d, 1, 0, &pos, &vel, &energy);
+    for (int i = 0; i < pv->m; i++)
+        if (braun_fabs(pv->phi[i]) > rp) rp = braun_fabs(pv->phi[i]);
+    for (int i = 0; i < pv->rows; i++)
+        if (braun_fabs(pv->ev[i]) > rv) rv = braun_fabs(pv->ev[i]);
+    const braun_real tol = braun_sqrt(BRAUN_EPS);
+    return rp > tol * pos || rv > tol * vel;
+}
+
+/* A start off the constraints: its first corrections remove the error, and
+ * change the energy by what the error held (a velocity along a rod: its
+ * kinetic energy). E0 taken at the start would have the energy force put
+ * that back into the admissible motion — a pendulum released from the
+ * horizontal with a velocity along its rod rose above its pivot, status
+ * OK. So no energy force while the point is off the constraints; where
+ * the corrections have brought it onto them, E0 is re-taken there:
+ * E0 = E − ∫Ė (docs/api.md, E0). A start on the constraints keeps its E0.
+ * In a step or driver only (busy): braun_eval is the literal Eq. 20 at any
+ * point, with the E0 the data holds. 1: no energy force at this point. */
+static int energy_deferred(braun_data *d, braun_real E)
+{
+    braun_priv *pv = braun__priv(d);
+    if (!pv->e0_pending || !pv->busy) return 0;
+    const int off = pv->rows > 0 && off_constraints(d);
+    if (off) {
+        pv->e0_pending = 2;
+        return 1;
+    }
+    if (pv->e0_pending == 2) d->E0 = E - pv->at.W;
+    pv->e0_pending = 0;
+    return 0;
+}
+
 static int stage_energy(braun_data *d, const braun_real *vdot)
 {
     braun_priv *pv = braun__priv(d);
@@ -351,6 +393,10 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
         if (st) return st;
     }
 
+    if (energy_deferred(d, E)) {
+        pv->de_ok = 0; /* nor at the step's end (braun__energy_at_end) */
+        return BRAUN_OK;
+    }
     /* Eq. 18 and Eq. 19. */
     const braun_real phi_e = E - d->E0 - pv->at.W;
     if (pv->guard_on && pv->guard_first) {
@@ -633,7 +679,10 @@ int braun__guard_start(braun_data *d, const braun_real *vdot)
     if (st) return st;
     /* (Measuring the scales sets guard_first.) */
     st = guard_start_rows(d, vdot, corr);
-    if (st || pv->guard_first || !((corr & BRAUN_CORRECT_ENERGY) && s->energy && d->has_E0)) return st;
+    /* (Nor while E0 waits for a start's error to be removed.) */
+    if (st || pv->guard_first || pv->e0_pending == 2 ||
+        !((corr & BRAUN_CORRECT_ENERGY) && s->energy && d->has_E0))
+        return st;
     const braun_real t = pv->at.t;
     braun_real E = 0;
     st = braun__callback(d, s->energy(t, pv->at.q, pv->at.v, &E, NULL, NULL, NULL, s->user), "energy", t);

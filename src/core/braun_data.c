@@ -91,6 +91,7 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->R_is_constant = 0;
     pv->state_integrated = 0;
     pv->vel_judged = 0;
+    pv->e0_pending = 1;
     pv->mass_check_in = BRAUN_MASS_CHECK_EVERY;
     pv->mass_claim_false = 0;
     pv->state_set = 0;
@@ -188,6 +189,7 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     d->stats = (braun_stats){0, 0, 0, pv->R_is_constant ? 1 : 0, 0, 0, 0, 0};
     pv->state_integrated = 0;
     pv->vel_judged = 0;
+    pv->e0_pending = 1;
     pv->mass_check_in = BRAUN_MASS_CHECK_EVERY;
     pv->state_set = 1;
     pv->has_prev = 0;
