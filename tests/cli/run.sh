@@ -327,6 +327,30 @@ kill -TERM $pid 2> /dev/null; wait $pid; rc=$?
 check "run: SIGTERM in the timing run exits 143, keeps nothing, removes what it created" sh -c '
     [ "$1" -eq 143 ] && grep -q "^braun: interrupted by SIGTERM during the timing run" "$2" &&
     [ ! -e "$3" ] && [ ! -e "$4" ]' sh "$rc" "$TMP/int1.err" "$TMP/int1.csv" "$TMP/int1.json"
+# ... files that existed stay as they were (they were left empty).
+echo "old rows" > "$TMP/int2.csv"; echo "old summary" > "$TMP/int2.json"
+"$BRAUN" run pendulum --dt 1e-5 --t-end 900 --out "$TMP/int2.csv" --summary "$TMP/int2.json" \
+    2> "$TMP/int2.err" & pid=$!
+sleep 1
+kill -TERM $pid 2> /dev/null; wait $pid; rc=$?
+check "run: SIGTERM in the timing run leaves files that existed as they were" sh -c '
+    [ "$1" -eq 143 ] && [ "$(cat "$2")" = "old rows" ] && [ "$(cat "$3")" = "old summary" ]' \
+    sh "$rc" "$TMP/int2.csv" "$TMP/int2.json"
+# The same signal twice at once (GNU timeout signals the tool, then its
+# process group): one request. The copy found the default disposition
+# (signal() resets it) and killed the tool mid-row, the summary empty.
+"$BRAUN" run pendulum --dt 1e-5 --t-end 20 --out "$TMP/int3.csv" --summary "$TMP/int3.json" \
+    2> "$TMP/int3.err" & pid=$!
+i=0
+while [ $i -lt 600 ] && ! { [ -s "$TMP/int3.csv" ] && [ "$(lines "$TMP/int3.csv")" -gt 3 ]; }; do
+    sleep 0.1; i=$((i + 1))
+done
+kill -TERM $pid 2> /dev/null; kill -TERM $pid 2> /dev/null; wait $pid; rc=$?
+check "run: two SIGTERMs at once are one request: rows whole, summary BRAUN_STOPPED, exit 143" sh -c '
+    [ "$1" -eq 143 ] && grep -q "^braun: interrupted by SIGTERM at t = " "$2" &&
+    awk -F, "NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad || NR < 3 }" "$3" &&
+    grep -q "\"status\": \"BRAUN_STOPPED\"" "$4"' \
+    sh "$rc" "$TMP/int3.err" "$TMP/int3.csv" "$TMP/int3.json"
 
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

@@ -323,7 +323,9 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
     unsigned char *buf_mon = buf_run + bytes;
 
     /* Both outputs opened (without blocking, nothing truncated yet), then
-     * checked against each other and the scene file, then truncated. */
+     * checked against each other and the scene file; truncated when the
+     * monitored run begins (an interrupted timing run leaves a file that
+     * existed as it was: it was left empty). */
     braun_cli_output out_summary, out_csv;
     memset(&out_csv, 0, sizeof out_csv);
     memset(&out_summary, 0, sizeof out_summary);
@@ -333,8 +335,6 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
     if (!rc) rc = braun_cli_output_distinct(&out_summary, &out_csv, &tg->id, tg->source);
     if (!rc) rc = braun_cli_output_distinct(&out_summary, a->plot_output, NULL, NULL);
     if (!rc) rc = braun_cli_output_distinct(&out_csv, a->plot_output, NULL, NULL);
-    if (!rc) rc = braun_cli_output_begin(&out_summary);
-    if (!rc) rc = braun_cli_output_begin(&out_csv);
     /* A fixed-step run's CSV has a row every --every steps (1 by default):
      * 1e8 steps of a small scene are gigabytes, written without a word
      * before. Said once, above 1 GB (about 20 bytes a number). */
@@ -399,6 +399,14 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
         braun_data_release(&d);
     }
 
+    rc = braun_cli_output_begin(&out_summary);
+    if (!rc) rc = braun_cli_output_begin(&out_csv);
+    if (rc) {
+        braun_cli_output_abandon(&out_csv);
+        braun_cli_output_abandon(&out_summary);
+        free(block);
+        return rc;
+    }
     /* Run 2: the same steps, monitored (a fresh backend state, too), a
      * scene's callbacks through the guard that names a failing element. */
     braun_cli_guard_wrap(&guard, &model.sys, tg->scene, &model2.sys);
