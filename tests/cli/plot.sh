@@ -140,9 +140,30 @@ if have gnuplot; then
         sh -c '[ "$1" -eq 0 ] && [ "$(head -c 4 four-bar.png | od -An -c | tr -d " ")" = "211PNG" ] && "$2" four-bar.png > /dev/null' \
         sh "$rc" "$INK"
     ink four-bar.png 0.01 || not_ok "the gnuplot PNG has ink over the picture" "$("$INK" four-bar.png)"
+    # A .png that cannot be written (/dev/full): gnuplot exits 0 there, and
+    # so did the tool.
+    ln -s /dev/full full.png
+    "$BRAUN" plot four-bar.json --dt 1e-2 --t-end 1 -o full.png 2> full.err; rc=$?
+    check "-o full.png on /dev/full: exit 1, the write error named" sh -c '
+        [ "$1" -eq 1 ] && grep -q "error writing .full.png.: No space left on device" full.err' sh "$rc"
 else
     skip "-o four-bar.png through gnuplot" "gnuplot not found (gnuplot-nox)"
 fi
+# A gnuplot that exits 0 and writes nothing (no pngcairo terminal), or is
+# killed: exit 1, no empty .png left, a file that existed kept.
+mkdir -p fakebin
+printf '#!/bin/sh\ncat > /dev/null\nexit 0\n' > fakebin/gnuplot
+chmod +x fakebin/gnuplot
+echo "old picture" > kept.png
+PATH="$TMP/fakebin:$PATH" "$BRAUN" plot four-bar.json --dt 1e-2 --t-end 1 -o none.png 2> none.err; rc=$?
+PATH="$TMP/fakebin:$PATH" "$BRAUN" plot four-bar.json --dt 1e-2 --t-end 1 -o kept.png 2> /dev/null; rc2=$?
+check "a gnuplot that writes no .png: exit 1, said, no empty file, an old file kept" sh -c '
+    [ "$1" -eq 1 ] && [ "$2" -eq 1 ] && grep -q "gnuplot exited 0 but wrote no .png" none.err &&
+    [ ! -e none.png ] && [ "$(cat kept.png)" = "old picture" ]' sh "$rc" "$rc2"
+printf '#!/bin/sh\nkill -9 $$\n' > fakebin/gnuplot
+PATH="$TMP/fakebin:$PATH" "$BRAUN" plot four-bar.json --dt 1e-2 --t-end 1 -o killed.png 2> killed.err; rc=$?
+check "a gnuplot killed by a signal: exit 1, the signal named" sh -c '
+    [ "$1" -eq 1 ] && grep -q "gnuplot was killed by signal 9" killed.err && [ ! -e killed.png ]' sh "$rc"
 
 # ------------------------------------------------------------------ a point's path and coordinates
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 5 --points rod.B --plot x,y,crank.theta -o chart.svg; rc=$?

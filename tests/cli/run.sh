@@ -352,5 +352,15 @@ check "run: two SIGTERMs at once are one request: rows whole, summary BRAUN_STOP
     grep -q "\"status\": \"BRAUN_STOPPED\"" "$4"' \
     sh "$rc" "$TMP/int3.err" "$TMP/int3.csv" "$TMP/int3.json"
 
+# An interrupted plot draws what it has (it wrote nothing, and said so,
+# where the docs promised the picture up to the stop).
+"$BRAUN" plot four-bar --dt 1e-3 --t-end 100000 -o "$TMP/int4.svg" 2> "$TMP/int4.err" & pid=$!
+sleep 1
+kill -TERM $pid 2> /dev/null; wait $pid; rc=$?
+check "plot: SIGTERM draws the picture up to the stop, exit 143" sh -c '
+    [ "$1" -eq 143 ] && grep -q "the picture is drawn up to that state" "$2" &&
+    grep -q "<title>four-bar: rk4, h = 0.001 s, t = 0 \.\.\. [0-9.e+]* s" "$3" && grep -q "</svg>" "$3"' \
+    sh "$rc" "$TMP/int4.err" "$TMP/int4.svg"
+
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

@@ -197,7 +197,10 @@ int braun_cli_plot(int argc, char **argv)
                          samples.count ? samples.rows[(size_t)(samples.count - 1) * (size_t)samples.cols] : from);
         }
     }
-    if (!(rc == 0 || rc == BRAUN_CLI_FAILED) || samples.count == 0) {
+    /* A failed or interrupted run (128 + the signal) draws up to its last
+     * good state and keeps its exit status. */
+    const int interrupted = rc > 128 && rc < 128 + 65;
+    if (!(rc == 0 || rc == BRAUN_CLI_FAILED || interrupted) || samples.count == 0) {
         if (!rc) rc = braun_cli_error("nothing to draw: no state in the window");
         goto finish;
     }
@@ -216,12 +219,20 @@ int braun_cli_plot(int argc, char **argv)
             rc = a.traj_path ? BRAUN_CLI_USAGE : BRAUN_CLI_FAILED;
             goto finish;
         }
-        int wrc = braun_cli_output_begin(&out);
+        /* A .png is rendered before the output is touched: a gnuplot that
+         * fails leaves a file that existed as it was (and removes one this
+         * command created, at finish). */
+        FILE *img = fmt == FMT_PNG ? plot_render_png(&job) : NULL;
+        int wrc = fmt == FMT_PNG && !img ? -1 : braun_cli_output_begin(&out);
         if (!wrc)
             wrc = fmt == FMT_SVG ? plot_write_svg(out.f, &job)
                   : fmt == FMT_HTML ? plot_write_html(out.f, &job)
-                                    : plot_write_png(out.f, &job);
-        if (braun_cli_output_close(&out) || wrc) rc = BRAUN_CLI_FAILED;
+                                    : plot_copy_png(img, out.f);
+        else if (img) fclose(img);
+        if (wrc && img) braun_cli_output_failed(&out); /* the write's errno, for the message */
+        if (fmt == FMT_PNG && !img) rc = BRAUN_CLI_FAILED; /* out abandoned at finish */
+        else if (braun_cli_output_close(&out) || wrc) rc = BRAUN_CLI_FAILED;
+        else if (interrupted) (void)0; /* drawn; the exit status stays 128 + the signal */
         else if (a.progress > 0 || (a.progress < 0 && braun_cli_stderr_is_terminal()))
             fprintf(stderr, "braun: wrote %s (%s)\n", a.plot_path,
                     a.plot_columns ? "chart" : fmt == FMT_HTML ? "animation" : "stroboscopic view");

@@ -117,7 +117,10 @@ typedef struct plot_job {
  * cli_plot_gnuplot.c). */
 int plot_write_svg(FILE *f, const plot_job *job);
 int plot_write_html(FILE *f, const plot_job *job);
-int plot_write_png(FILE *f, const plot_job *job);
+/* The PNG through gnuplot, into a temporary file checked to hold a PNG
+ * (NULL after a message); then copied to the output (closes img). */
+FILE *plot_render_png(const plot_job *job);
+int plot_copy_png(FILE *img, FILE *out);
 
 /* Shared by the writers (cli_plot_svg.c). */
 typedef struct plot_canvas {

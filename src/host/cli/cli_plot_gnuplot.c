@@ -1,7 +1,7 @@
 /* PNG of `braun plot` through gnuplot (the pngcairo terminal of Debian's
  * gnuplot-nox): the stroboscopic view as lines and marks, or the --plot
  * chart. gnuplot reads the script and its data on a pipe and writes the
- * image to the output file's descriptor, so no file name ever goes into
+ * image to a temporary file's descriptor, so no file name ever goes into
  * the script; names in titles are single-quoted with quotes doubled and
  * control bytes as \xNN (braun_cli_text_byte). POSIX (fork, exec, pipe), confined to this file. */
 #ifndef _POSIX_C_SOURCE
@@ -185,24 +185,34 @@ static int script(FILE *g, const plot_job *job)
     return ferror(g) ? -1 : 0;
 }
 
-int plot_write_png(FILE *out, const plot_job *job)
+/* gnuplot's image in a temporary file (unlinked: tmpfile), checked to be
+ * a PNG: gnuplot exits 0 when its own write fails (a .png on /dev/full
+ * said exit 0) and a gnuplot that writes nothing left an empty file. NULL
+ * after a message. */
+FILE *plot_render_png(const plot_job *job)
 {
+    FILE *img = tmpfile();
+    if (!img) {
+        braun_cli_error("cannot make a temporary file for the .png: %s", strerror(errno));
+        return NULL;
+    }
     int fds[2];
-    fflush(out);
     if (pipe(fds) != 0) {
         braun_cli_error("cannot start gnuplot: %s", strerror(errno));
-        return -1;
+        fclose(img);
+        return NULL;
     }
     const pid_t pid = fork();
     if (pid < 0) {
         close(fds[0]);
         close(fds[1]);
         braun_cli_error("cannot start gnuplot: %s", strerror(errno));
-        return -1;
+        fclose(img);
+        return NULL;
     }
     if (pid == 0) {
-        /* gnuplot: the script on stdin, the image on stdout (the output). */
-        if (dup2(fds[0], STDIN_FILENO) < 0 || dup2(fileno(out), STDOUT_FILENO) < 0) _exit(126);
+        /* gnuplot: the script on stdin, the image on stdout (the file). */
+        if (dup2(fds[0], STDIN_FILENO) < 0 || dup2(fileno(img), STDOUT_FILENO) < 0) _exit(126);
         close(fds[0]);
         close(fds[1]);
         execlp("gnuplot", "gnuplot", (char *)NULL);
@@ -221,15 +231,58 @@ int plot_write_png(FILE *out, const plot_job *job)
         waited = waitpid(pid, &status, 0);
     } while (waited < 0 && errno == EINTR);
     signal(SIGPIPE, old);
+    if (waited < 0) {
+        braun_cli_error("gnuplot: cannot wait for it: %s", strerror(errno));
+        fclose(img);
+        return NULL;
+    }
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127) {
         braun_cli_error("a .png needs gnuplot, which was not found (Debian: apt-get install "
                         "gnuplot-nox); .svg and .html need nothing");
-        return -1;
+        fclose(img);
+        return NULL;
+    }
+    if (WIFSIGNALED(status)) {
+        braun_cli_error("gnuplot was killed by signal %d before the .png was written",
+                        WTERMSIG(status));
+        fclose(img);
+        return NULL;
     }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || rc) {
         braun_cli_error("gnuplot failed to write the .png (exit %d)",
                         WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-        return -1;
+        fclose(img);
+        return NULL;
     }
-    return 0;
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    unsigned char head[8];
+    rewind(img);
+    if (fread(head, 1, sizeof head, img) != sizeof head || memcmp(head, sig, sizeof sig) != 0) {
+        braun_cli_error("gnuplot exited 0 but wrote no .png (is its pngcairo terminal there? "
+                        "Debian: gnuplot-nox)");
+        fclose(img);
+        return NULL;
+    }
+    rewind(img);
+    return img;
+}
+
+/* The rendered image into out; errors are out's (braun_cli_output_close
+ * reports them). */
+int plot_copy_png(FILE *img, FILE *out)
+{
+    char buf[65536];
+    size_t got;
+    int rc = 0;
+    while ((got = fread(buf, 1, sizeof buf, img)) > 0)
+        if (fwrite(buf, 1, got, out) != got) {
+            rc = -1;
+            break;
+        }
+    if (ferror(img)) {
+        braun_cli_error("cannot read back the rendered .png: %s", strerror(errno));
+        rc = -1;
+    }
+    fclose(img);
+    return rc;
 }

@@ -460,9 +460,12 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
         const int sig = braun_cli_interrupted(); /* the same test as `interrupted` below */
         braun_cli_error("interrupted by %s at t = %.10g: the run stopped there; %s", braun_cli_signal_name(sig),
                         ctx.have_good ? ctx.good.t : (double)d.t,
-                        csv || summary ? "what it wrote ends at that state (--summary: status "
-                                         "BRAUN_STOPPED)"
-                                       : "nothing was written");
+                        a->plot_output ? (summary ? "the picture is drawn up to that state "
+                                                    "(--summary: status BRAUN_STOPPED)"
+                                                  : "the picture is drawn up to that state")
+                        : csv || summary ? "what it wrote ends at that state (--summary: status "
+                                           "BRAUN_STOPPED)"
+                                         : "nothing was written");
         exit_status = 128 + sig;
     } else if (st) {
         report_failure(&d, st, &guard, a, tg);
