@@ -489,6 +489,21 @@ for how in "--dt 1e-3" "--integrator dopri5 --dt 1e-3 --rtol 1e-8" "--dt 1e-3 --
             END { exit !(m != \"\" && m < 1e-3) }" "$2"' sh "$rc" "$TMP/radial.csv"
 done
 
+# A scene naming a built-in reference with a force switched on at t = 2:
+# the reference check sampled t = 0 ... 1 s and let it through, and the run
+# measured a trajectory error against a model the scene is not. The models
+# do not depend on time: a field that does is refused, named.
+cat > "$TMP/reftime.json" <<'EOF'
+{"name": "pendulum", "bodies": [{"name": "bob", "type": "particle", "mass": 1, "position": [1, 0]}],
+ "joints": [{"name": "rod", "type": "distance", "a": [0, 0], "b": "bob", "length": 1}],
+ "effects": [{"type": "gravity", "g": [0, -9.81]}, {"name": "push", "type": "force", "point": "bob",
+   "fx": {"type": "step", "before": 0, "after": 100, "time": 2}, "fy": 0}], "reference": "pendulum"}
+EOF
+"$BRAUN" run "$TMP/reftime.json" --dt 1e-2 --t-end 3 --summary /dev/null 2> "$TMP/reftime.err"; rc=$?
+check "a reference scene with a force that varies with time: refused, the effect named" sh -c '
+    [ "$1" -eq 2 ] && grep -q "effect .push. (force): its .fx. varies with time" "$2"' \
+    sh "$rc" "$TMP/reftime.err"
+
 # Names that the CSV header would write alike: two bodies whose names differ
 # only in a control byte (both written 'a?'), and a name longer than a
 # column name keeps (its columns were cut to the same 159 bytes). run wrote
