@@ -111,6 +111,12 @@ grep -q "^braun_integrate$" "$tmp/libbraun.exported" && grep -q "^braun_scene_bu
     grep -q "^braun_scene_load$" "$tmp/libbraun_host.exported" && ! grep -q "^sj_" "$tmp/libbraun_host.exported" &&
     ok "braun_integrate, braun_scene_build, braun_scene_load exported; braun__*, braun_qrcp_*, braun_chol_*, sj_* not" ||
     no "exports: the API or the internals"
+# The static libraries: every global symbol they define braun_-prefixed
+# (the reader's sj_* clashed with a program's own sj_fail at link time).
+stray=$(for l in libbraun libbraun_host libbraun_backends; do
+    nm --defined-only -g "$L/$l.a" 2>/dev/null | awk 'NF == 3 { print $3 }'; done | grep -v '^braun' | sort -u | tr '\n' ' ')
+[ -z "$stray" ] && ok "the static libraries define braun_* globals only" ||
+    no "the static libraries define globals without the prefix: $stray"
 for f in lib/cmake/braun/braunConfig.cmake lib/cmake/braun/braunConfigVersion.cmake share/braun/data/four-bar.json \
     share/braun/examples/pendulum.c share/braun/examples/CMakeLists.txt share/doc/braun/README.md share/doc/braun/CHANGELOG.md; do
     [ -f "$P/$f" ] && ok "installed $f" || no "installed $f"

@@ -16,6 +16,31 @@
 #include "braun_models.h"
 #include "braun_scene_file.h"
 
+/* The reader's functions shared between its files have external linkage:
+ * in the static library they are named braun__sj_* (a program's own
+ * sj_fail would clash with them at link time; the shared library exports
+ * braun_* only). */
+#define sj_check_initial braun__sj_check_initial
+#define sj_check_mass braun__sj_check_mass
+#define sj_check_reference braun__sj_check_reference
+#define sj_context braun__sj_context
+#define sj_duplicate_joint braun__sj_duplicate_joint
+#define sj_fail braun__sj_fail
+#define sj_find_body braun__sj_find_body
+#define sj_find_joint braun__sj_find_joint
+#define sj_find_point braun__sj_find_point
+#define sj_find_underflows braun__sj_find_underflows
+#define sj_index_bodies braun__sj_index_bodies
+#define sj_index_free braun__sj_index_free
+#define sj_index_points braun__sj_index_points
+#define sj_locate braun__sj_locate
+#define sj_pop braun__sj_pop
+#define sj_push_index braun__sj_push_index
+#define sj_push_key braun__sj_push_key
+#define sj_read_scene braun__sj_read_scene
+#define sj_set_centre braun__sj_set_centre
+#define sj_underflow_of braun__sj_underflow_of
+
 #define SJ_MAX_DEPTH 8
 
 /* One step of a JSON path: an object key, or an array index (key NULL). */
