@@ -57,13 +57,26 @@ static int missing(sj_reader *r, const char *key)
  * slow too. Both are refused, with the least nonzero magnitude the field
  * accepts: least, BRAUN_SCENE_MIN_NORMAL or, for a parameter with a
  * domain, BRAUN_SCENE_MIN_SCALE (scale_value). */
+/* x in the fewest digits that read back as x: "%g" wrote 1000000000001
+ * as 1e+12, the limit it breaks. */
+static const char *shortest(double x, char *buf, size_t size)
+{
+    for (int digits = 6; digits <= 17; digits++) {
+        snprintf(buf, size, "%.*g", digits, x);
+        if (strtod(buf, NULL) == x) break;
+    }
+    return buf;
+}
+
 static int number_in(sj_reader *r, json_t *v, const char *field, double least, double *x)
 {
     if (!json_is_number(v)) return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' must be a number", r->who, field);
     *x = json_number_value(v);
-    if (!isfinite(*x) || fabs(*x) > BRAUN_SCENE_MAX_ABS)
-        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' is out of range (%g; the limit is |x| <= %g)",
-                       r->who, field, *x, BRAUN_SCENE_MAX_ABS);
+    if (!isfinite(*x) || fabs(*x) > BRAUN_SCENE_MAX_ABS) {
+        char value[32];
+        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' is out of range (%s; the limit is |x| <= %g)",
+                       r->who, field, shortest(*x, value, sizeof value), BRAUN_SCENE_MAX_ABS);
+    }
     const sj_underflow *u = sj_underflow_of(r, v);
     if (u || (*x != 0 && fabs(*x) < BRAUN_SCENE_MIN_NORMAL)) {
         char written[48], read[64];
