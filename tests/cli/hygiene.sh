@@ -94,6 +94,17 @@ check "gen-c of 100 000-character names: every line < 4096 characters, compiles"
     sh "$rc" "$TMP/long.c" "$CC"
 
 # ------------------------------------------------------- gen-c: symbols, files
+# gen and gen-c parse their options as run does: each once, "--name=VALUE"
+# too (the last of two won in silence; --angle=30 was an unknown option).
+expect "gen-c -o twice refused" 2 "option -o given twice" gen-c data/pendulum.json -o "$TMP/a.c" -o "$TMP/b.c"
+expect "gen-c --symbol twice refused" 2 "option --symbol given twice" \
+    gen-c data/pendulum.json --symbol a --symbol b
+expect "gen chain --angle twice refused" 2 "option --angle given twice" gen chain 2 --angle 30 --angle 40
+expect "gen chain -o and --out refused (one option)" 2 "option --out given twice" \
+    gen chain 2 -o "$TMP/a.json" --out "$TMP/b.json"
+expect "gen chain --angle=30 as --angle 30" 0 "" gen chain 2 --angle=30 -o "$TMP/eq.json"
+expect "gen-c --symbol=p --out=FILE" 0 "" gen-c data/pendulum.json --symbol=p --out="$TMP/eq.c"
+expect "gen chain --rods=1 refused" 2 "option --rods takes no value" gen chain 2 --rods=1
 # Symbols that differ only in case give one set of macros (ARM_N): the
 # headers shared their guard, the second was skipped in silence and a
 # program sized the second scene's buffers with the first one's ARM_N. Now

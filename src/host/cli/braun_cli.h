@@ -80,6 +80,17 @@ struct braun_cli_output {
     braun_cli_id id;
 };
 
+/* Option argv[*i] of the commands with their own parsers (gen, gen-c), as
+ * run's: its name ("--symbol" of "--symbol=x") into name; with val, its
+ * value — after '=' or the next argument (*i moves on) — and "needs a
+ * value" when there is none; without, the name alone. 0, or
+ * BRAUN_CLI_USAGE after one message. */
+int braun_cli_option(int argc, char **argv, int *i, char *name, size_t size, const char **val);
+/* An option given twice is refused, as run refuses it: canon (its one
+ * name, "-o" for "--out" too) against the seen[] so far (cap entries). */
+int braun_cli_option_once(const char *canon, const char *name, const char **seen, int *nseen,
+                          int cap);
+
 /* 0, or BRAUN_CLI_USAGE after one message. */
 int braun_cli_output_open(braun_cli_output *o, const char *path, const char *what);
 /* Refuse (BRAUN_CLI_USAGE, one message) two outputs that are one file, or

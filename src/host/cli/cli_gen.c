@@ -238,7 +238,23 @@ int braun_cli_gen(int argc, char **argv)
     else return braun_cli_error("unknown scene kind '%s' (chain, ladder, n-four-bar, "
                                 "spatial-chain)", argv[0]);
     deg = ladder ? 30 : 0;
+    const char *seen[4];
+    int nseen = 0;
     for (int i = 1; i < argc; i++) {
+        char name[32];
+        const char *val = NULL;
+        if (argv[i][0] == '-' && argv[i][1] != '\0') {
+            /* "--angle=30" as "--angle 30" (run's forms); each option once. */
+            if ((rc = braun_cli_option(argc, argv, &i, name, sizeof name, NULL)) != 0) return rc;
+            const int is_out = strcmp(name, "-o") == 0 || strcmp(name, "--out") == 0;
+            if (is_out || strcmp(name, "--angle") == 0 || strcmp(name, "--rods") == 0) {
+                if ((rc = braun_cli_option_once(is_out ? "-o" : name[2] == 'a' ? "--angle" : "--rods",
+                                                name, seen, &nseen, 4)) != 0)
+                    return rc;
+            }
+            if (strcmp(name, "--rods") == 0 && strchr(argv[i], '='))
+                return braun_cli_error("option --rods takes no value");
+        }
         if (strcmp(argv[i], "--rods") == 0) {
             if (ladder || fourbar || spatial)
                 return braun_cli_error("--rods applies to gen chain only (%s)",
@@ -246,17 +262,15 @@ int braun_cli_gen(int argc, char **argv)
                                        : spatial ? "a spatial chain's bars are rigid3d bodies"
                                                  : "an n-four-bar is made of rods already");
             rods = 1;
-        } else if (strcmp(argv[i], "--angle") == 0) {
+        } else if (argv[i][0] == '-' && strcmp(name, "--angle") == 0) {
             if (fourbar)
                 return braun_cli_error("--angle does not apply to gen n-four-bar (it starts "
                                        "with its cranks vertical, as the benchmark)");
-            if (i + 1 >= argc || argv[i + 1][0] == '\0')
-                return braun_cli_error("option %s needs a value", argv[i]);
-            if ((rc = parse_angle(argv[++i], &deg)) != 0) return rc;
-        } else if (strcmp(argv[i], "-o") == 0 || strcmp(argv[i], "--out") == 0) {
-            if (i + 1 >= argc || argv[i + 1][0] == '\0')
-                return braun_cli_error("option %s needs a value", argv[i]);
-            out = argv[++i];
+            if ((rc = braun_cli_option(argc, argv, &i, name, sizeof name, &val)) != 0) return rc;
+            if ((rc = parse_angle(val, &deg)) != 0) return rc;
+        } else if (argv[i][0] == '-' && (strcmp(name, "-o") == 0 || strcmp(name, "--out") == 0)) {
+            if ((rc = braun_cli_option(argc, argv, &i, name, sizeof name, &val)) != 0) return rc;
+            out = val;
         } else if (argv[i][0] == '-') {
             return braun_cli_error("unknown option '%s' (see braun --help)", argv[i]);
         } else if (count) {

@@ -30,14 +30,24 @@ static void symbol_from_path(const char *path, char *buf, size_t size)
 int braun_cli_gen_c(int argc, char **argv)
 {
     const char *scene = NULL, *out = NULL, *symbol = NULL, *header = NULL;
+    const char *seen[4];
+    int nseen = 0;
     for (int i = 0; i < argc; i++) {
-        if (strcmp(argv[i], "-o") == 0 || strcmp(argv[i], "--out") == 0 ||
-            strcmp(argv[i], "--symbol") == 0 || strcmp(argv[i], "--header") == 0) {
-            if (i + 1 >= argc || argv[i + 1][0] == '\0')
-                return braun_cli_error("option %s needs a value", argv[i]);
-            if (strcmp(argv[i], "--symbol") == 0) symbol = argv[++i];
-            else if (strcmp(argv[i], "--header") == 0) header = argv[++i];
-            else out = argv[++i];
+        char name[32];
+        const char *val = NULL;
+        if (argv[i][0] == '-' && argv[i][1] != '\0') {
+            int rc = braun_cli_option(argc, argv, &i, name, sizeof name, NULL);
+            if (rc) return rc;
+            const int is_out = strcmp(name, "-o") == 0 || strcmp(name, "--out") == 0;
+            if (!is_out && strcmp(name, "--symbol") != 0 && strcmp(name, "--header") != 0)
+                return braun_cli_error("unknown option '%s' (see braun --help)", argv[i]);
+            if ((rc = braun_cli_option(argc, argv, &i, name, sizeof name, &val)) != 0 ||
+                (rc = braun_cli_option_once(is_out ? "-o" : name[2] == 's' ? "--symbol" : "--header",
+                                            name, seen, &nseen, 4)) != 0)
+                return rc;
+            if (is_out) out = val;
+            else if (name[2] == 's') symbol = val;
+            else header = val;
         } else if (argv[i][0] == '-') {
             return braun_cli_error("unknown option '%s' (see braun --help)", argv[i]);
         } else if (scene) {
