@@ -1061,8 +1061,17 @@ int sj_read_scene(sj_reader *r, json_t *root)
     if (got == 0) {
         const braun_builtin *b = braun_builtin_find(ref);
         sj_push_key(r, "reference");
-        if (!b) return sj_fail(r, SJ_AT_VALUE, "scene: field 'reference': unknown built-in model "
-                                               "'%s' (see braun list)", ref);
+        if (!b) {
+            /* The models with a reference solution, by name (braun list
+             * also lists andrews, whose reference is not this kind). */
+            char names[160] = "";
+            for (int k = 0; braun_builtin_at(k); k++) {
+                if (k) strncat(names, ", ", sizeof names - strlen(names) - 1);
+                strncat(names, braun_builtin_at(k)->name, sizeof names - strlen(names) - 1);
+            }
+            return sj_fail(r, SJ_AT_VALUE, "scene: field 'reference': '%.60s' is not a built-in "
+                                           "model with a reference (one of %s)", ref, names);
+        }
         if (b->sys.n != s->n)
             return sj_fail(r, SJ_AT_VALUE, "scene: field 'reference': '%s' has %d coordinates, "
                                            "the scene %d", ref, b->sys.n, s->n);
