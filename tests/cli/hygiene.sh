@@ -93,6 +93,20 @@ check "gen-c of 100 000-character names: every line < 4096 characters, compiles"
     $3 -std=c99 -Wall -Wextra -Wpedantic -Werror -Iinclude/core -c "$2" -o "$2.o"' \
     sh "$rc" "$TMP/long.c" "$CC"
 
+# braun list shows a data directory's file names as check does (an ESC and
+# a newline in a name reached the terminal raw), and says when the
+# directory is not there (an empty list, without a word).
+mkdir -p "$TMP/dd"
+cp data/pendulum.json "$TMP/dd/$(printf 'evil\033[31m\nname.json')"
+BRAUN_DATA_DIR="$TMP/dd" "$BRAUN" list > "$TMP/list.out" 2> /dev/null
+check "list: a file name's control bytes as \\xNN, on one line" sh -c '
+    grep -q "^evil\\\\x1B\[31m\\\\x0Aname.json n=2" "$1" && ! LC_ALL=C grep -q "$(printf "\033")" "$1"' \
+    sh "$TMP/list.out"
+BRAUN_DATA_DIR="$TMP/nonexistent" "$BRAUN" list > /dev/null 2> "$TMP/list.err"; rc=$?
+check "list: a data directory that is not there is noted" sh -c '
+    [ "$1" -eq 0 ] && grep -q "note: the data directory .*nonexistent. is not a directory" "$2"' \
+    sh "$rc" "$TMP/list.err"
+
 # ------------------------------------------------------- gen-c: symbols, files
 # gen and gen-c parse their options as run does: each once, "--name=VALUE"
 # too (the last of two won in silence; --angle=30 was an unknown option).

@@ -257,6 +257,8 @@ const char *braun_cli_data_dir(void);
 /* 1 and its path when NAME (or NAME.json) is a shipped scene, else 0. */
 int braun_cli_data_file(const char *name, char *path, size_t size);
 /* Calls fn for each shipped scene, in name order; returns how many. */
+/* 1 if path is a directory this process can list. */
+int braun_cli_is_directory(const char *path);
 int braun_cli_data_each(void (*fn)(const char *path, void *user), void *user);
 
 /* Built-in models of this tool beyond braun_models.h (Andrews). */

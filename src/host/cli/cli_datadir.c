@@ -135,3 +135,9 @@ int braun_cli_data_each(void (*fn)(const char *path, void *user), void *user)
     if (count >= 0) free(list);
     return shown;
 }
+
+int braun_cli_is_directory(const char *path)
+{
+    struct stat st;
+    return path && stat(path, &st) == 0 && S_ISDIR(st.st_mode) && access(path, R_OK | X_OK) == 0;
+}
