@@ -136,6 +136,13 @@ bad_msg "--rtol with rk4: refused" "^braun: --rtol and --atol apply to --integra
     run pendulum --dt 1e-3 --t-end 1 --rtol 1e-6
 bad_msg "--ref-h not finer than --dt: refused" "^braun: --ref-h 10: the reference's substep must be finer than --dt 0.001" \
     run slider-crank --dt 1e-3 --t-end 5 --ref-h 10
+# ... and the default keeps the same rule: dt/10 below --dt 1e-3 (the
+# default 1e-4 at --dt 1e-5 was the run's own step, which --ref-h 1e-4 is
+# refused for).
+"$BRAUN" run slider-crank --dt 1e-5 --t-end 0.01 --quiet > "$TMP/refh.json" 2> /dev/null
+check "the default reference substep at --dt 1e-5 is finer than the step (1e-6)" sh -c '
+    awk -v h="$1" "BEGIN { exit !(h != \"\" && h + 0 < 1e-5 && h + 0 > 9.9e-7) }"' \
+    sh "$(json_value ref_h "$TMP/refh.json")"
 # Numbers are decimal, as docs/cli.md says: strtod also took a hexadecimal
 # float and leading blanks.
 bad_msg "--dt 0x1p-10: not a decimal number" "^braun: --dt: '0x1p-10' is not a decimal number" \

@@ -414,7 +414,13 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
     st = start(&d, &model2, tg, buf_run, bytes);
     if (st) goto init_failed;
     failed = &mon.scratch;
-    st = braun_cli_monitor_init(&mon, &model2, tg->reference, a->ref_h, buf_mon, bytes);
+    /* The reference's default substep, 1e-4 s, finer than a fixed step as
+     * an explicit --ref-h must be: dt/10 below 1e-3 (--dt 1e-5 ran against
+     * a reference at the run's own step, which --ref-h 1e-4 is refused for). */
+    const double ref_h = a->ref_h > 0 ? a->ref_h
+                         : a->method != BRAUN_DOPRI5 && a->dt < 1e-3 ? a->dt / 10
+                                                                     : 0; /* the reference's 1e-4 */
+    st = braun_cli_monitor_init(&mon, &model2, tg->reference, ref_h, buf_mon, bytes);
     if (st) goto init_failed;
     memset(&ctx, 0, sizeof ctx);
     ctx.mon = &mon;
