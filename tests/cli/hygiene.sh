@@ -119,6 +119,15 @@ expect "gen chain -o and --out refused (one option)" 2 "option --out given twice
 expect "gen chain --angle=30 as --angle 30" 0 "" gen chain 2 --angle=30 -o "$TMP/eq.json"
 expect "gen-c --symbol=p --out=FILE" 0 "" gen-c data/pendulum.json --symbol=p --out="$TMP/eq.c"
 expect "gen chain --rods=1 refused" 2 "option --rods takes no value" gen chain 2 --rods=1
+# "--" ends the options: a scene named "-x.json" after it (run called it an
+# unknown option, check read it).
+cp data/pendulum.json "$TMP/-x.json"
+abs_braun=$(cd "$(dirname "$BRAUN")" && pwd)/$(basename "$BRAUN")
+(cd "$TMP" && "$abs_braun" run --dt 1e-2 --t-end 0.1 --summary /dev/null -- -x.json &&
+    "$abs_braun" check -- -x.json > /dev/null &&
+    "$abs_braun" gen-c --symbol p -o /dev/null -- -x.json) 2> "$TMP/dash.err"; rc=$?
+check "run, check, gen-c take a scene named -x.json after --" sh -c '[ "$1" -eq 0 ] && [ ! -s "$2" ]' \
+    sh "$rc" "$TMP/dash.err"
 # Symbols that differ only in case give one set of macros (ARM_N): the
 # headers shared their guard, the second was skipped in silence and a
 # program sized the second scene's buffers with the first one's ARM_N. Now

@@ -281,10 +281,16 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
     char seen[48][32];
     int nseen = 0;
 
+    int options_end = 0;
     for (int i = 0; i < argc; i++) {
         const char *arg = argv[i];
+        /* "--" ends the options: a scene file named "-x.json" after it. */
+        if (!options_end && strcmp(arg, "--") == 0) {
+            options_end = 1;
+            continue;
+        }
         /* "-" alone and negative numbers are values, not options. */
-        if (arg[0] != '-' || strcmp(arg, "-") == 0) {
+        if (options_end || arg[0] != '-' || strcmp(arg, "-") == 0) {
             if (a->model) return braun_cli_error("unexpected argument '%s' (one MODEL only)", arg);
             a->model = arg;
             continue;

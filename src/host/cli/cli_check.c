@@ -670,6 +670,8 @@ done:
 
 int braun_cli_check(int argc, char **argv)
 {
+    /* "--" before the scene, as run takes it: a file named "-x.json". */
+    if (argc == 2 && strcmp(argv[0], "--") == 0) argc--, argv++;
     if (argc != 1) return braun_cli_error("check needs exactly one SCENE (a .json file or a "
                                           "built-in model)");
     braun_cli_target tg;

@@ -31,11 +31,15 @@ int braun_cli_gen_c(int argc, char **argv)
 {
     const char *scene = NULL, *out = NULL, *symbol = NULL, *header = NULL;
     const char *seen[4];
-    int nseen = 0;
+    int nseen = 0, options_end = 0;
     for (int i = 0; i < argc; i++) {
         char name[32];
         const char *val = NULL;
-        if (argv[i][0] == '-' && argv[i][1] != '\0') {
+        if (!options_end && strcmp(argv[i], "--") == 0) { /* a scene named "-x.json" after it */
+            options_end = 1;
+            continue;
+        }
+        if (!options_end && argv[i][0] == '-' && argv[i][1] != '\0') {
             int rc = braun_cli_option(argc, argv, &i, name, sizeof name, NULL);
             if (rc) return rc;
             const int is_out = strcmp(name, "-o") == 0 || strcmp(name, "--out") == 0;
@@ -48,7 +52,7 @@ int braun_cli_gen_c(int argc, char **argv)
             if (is_out) out = val;
             else if (name[2] == 's') symbol = val;
             else header = val;
-        } else if (argv[i][0] == '-') {
+        } else if (!options_end && argv[i][0] == '-') {
             return braun_cli_error("unknown option '%s' (see braun --help)", argv[i]);
         } else if (scene) {
             return braun_cli_error("unexpected argument '%s' (one SCENE only)", argv[i]);
