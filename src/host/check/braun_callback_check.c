@@ -296,7 +296,10 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
     if (open && !st) {
         /* f(0), f(τ/2), f(τ), f(−τ/2), f(−τ) into alt-sized scratch. */
         double *v5 = calloc(5 * (size_t)count + 1, sizeof(double));
-        if (!v5) return BRAUN_ERR_BUFFER;
+        if (!v5) {
+            free(alt);
+            return BRAUN_ERR_BUFFER;
+        }
         static const double at[5] = {0, 0.5, 1, -0.5, -1};
         for (int k = 0; k < 5 && !st; k++) {
             if (value_at(w, f, dir, j, at[k] * tau, t0, q0, v0, w->fp)) st = BRAUN_ERR_CALLBACK;

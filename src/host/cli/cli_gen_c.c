@@ -33,13 +33,13 @@ int braun_cli_gen_c(int argc, char **argv)
     const char *seen[4];
     int nseen = 0, options_end = 0;
     for (int i = 0; i < argc; i++) {
-        char name[32];
-        const char *val = NULL;
         if (!options_end && strcmp(argv[i], "--") == 0) { /* a scene named "-x.json" after it */
             options_end = 1;
             continue;
         }
         if (!options_end && argv[i][0] == '-' && argv[i][1] != '\0') {
+            char name[32];
+            const char *val = NULL;
             int rc = braun_cli_option(argc, argv, &i, name, sizeof name, NULL);
             if (rc) return rc;
             const int is_out = strcmp(name, "-o") == 0 || strcmp(name, "--out") == 0;

@@ -222,20 +222,29 @@ int braun_cli_plot(int argc, char **argv)
         /* A .png is rendered before the output is touched: a gnuplot that
          * fails leaves a file that existed as it was (and removes one this
          * command created, at finish). */
-        FILE *img = fmt == FMT_PNG ? plot_render_png(&job) : NULL;
-        int wrc = fmt == FMT_PNG && !img ? -1 : braun_cli_output_begin(&out);
-        if (!wrc)
-            wrc = fmt == FMT_SVG ? plot_write_svg(out.f, &job)
-                  : fmt == FMT_HTML ? plot_write_html(out.f, &job)
-                                    : plot_copy_png(img, out.f);
-        else if (img) fclose(img);
-        if (wrc && img) braun_cli_output_failed(&out); /* the write's errno, for the message */
-        if (fmt == FMT_PNG && !img) rc = BRAUN_CLI_FAILED; /* out abandoned at finish */
-        else if (braun_cli_output_close(&out) || wrc) rc = BRAUN_CLI_FAILED;
-        else if (interrupted) (void)0; /* drawn; the exit status stays 128 + the signal */
-        else if (a.progress > 0 || (a.progress < 0 && braun_cli_stderr_is_terminal()))
-            fprintf(stderr, "braun: wrote %s (%s)\n", a.plot_path,
-                    a.plot_columns ? "chart" : fmt == FMT_HTML ? "animation" : "stroboscopic view");
+        FILE *img = NULL;
+        if (fmt == FMT_PNG && !(img = plot_render_png(&job))) {
+            rc = BRAUN_CLI_FAILED; /* out abandoned at finish */
+        } else {
+            int wrc = braun_cli_output_begin(&out);
+            if (!wrc) {
+                if (fmt == FMT_SVG) {
+                    wrc = plot_write_svg(out.f, &job);
+                } else if (fmt == FMT_HTML) {
+                    wrc = plot_write_html(out.f, &job);
+                } else {
+                    wrc = plot_copy_png(img, out.f); /* closes img */
+                    img = NULL;
+                    if (wrc) braun_cli_output_failed(&out); /* the write's errno, for the message */
+                }
+            }
+            if (img) fclose(img);
+            if (braun_cli_output_close(&out) || wrc) rc = BRAUN_CLI_FAILED;
+            /* Interrupted: drawn, and the exit status stays 128 + the signal. */
+            else if (!interrupted && (a.progress > 0 || (a.progress < 0 && braun_cli_stderr_is_terminal())))
+                fprintf(stderr, "braun: wrote %s (%s)\n", a.plot_path,
+                        a.plot_columns ? "chart" : fmt == FMT_HTML ? "animation" : "stroboscopic view");
+        }
     }
 finish:
     if (out.f) braun_cli_output_abandon(&out);
