@@ -18,6 +18,7 @@
 
 /* ------------------------------------------ the generator of `braun gen` */
 #include "../src/host/cli/cli_gen.c"
+#include "../src/host/cli/cli_option.c"
 /* ... which writes its file through cli_files.c (braun gen -o) and reads
  * --angle as every real option is read. */
 #include "../src/host/cli/cli_files.c"

@@ -405,28 +405,3 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
                                BRAUN_CLI_MAX_REF_STEPS);
     return 0;
 }
-
-int braun_cli_option(int argc, char **argv, int *i, char *name, size_t size, const char **val)
-{
-    const char *arg = argv[*i], *eq = strchr(arg, '=');
-    const size_t len = eq && strncmp(arg, "--", 2) == 0 ? (size_t)(eq - arg) : strlen(arg);
-    if (len >= size) return braun_cli_error("unknown option '%s' (see braun --help)", arg);
-    memcpy(name, arg, len);
-    name[len] = '\0';
-    if (!val) return 0; /* the name alone */
-    if (arg[len] == '=') *val = arg + len + 1;
-    else if (*i + 1 < argc) *val = argv[++*i];
-    else *val = "";
-    if (**val == '\0') return braun_cli_error("option %s needs a value", name);
-    return 0;
-}
-
-int braun_cli_option_once(const char *canon, const char *name, const char **seen, int *nseen,
-                          int cap)
-{
-    for (int k = 0; k < *nseen; k++)
-        if (strcmp(seen[k], canon) == 0)
-            return braun_cli_error("option %s given twice: give it once", name);
-    if (*nseen < cap) seen[(*nseen)++] = canon;
-    return 0;
-}
