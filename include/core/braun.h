@@ -389,8 +389,10 @@ typedef struct braun_data {
      *            of a fall over L;
      *   energy = max(|E0|, ½ s_vᵀ M s_v, |∫Ė|, 1e-30) (measured again:
      *            ½ vᵀ M v in place of ½ s_vᵀ M s_v);
-     * and the residuals at the initial state (pos0, vel0, energy0). A
-     * program may set its own scales after braun_set_state. */
+     * and the residuals at the initial state (pos0, vel0, energy0: the
+     * allowance of a start off the constraints, set to 0 once the residual
+     * comes within guard × scale). A program may set its own scales after
+     * braun_set_state. */
     struct {
         braun_real pos, vel, energy;
         braun_real pos0, vel0, energy0;

@@ -37,17 +37,24 @@ static int guard_fails_again(braun_data *d, braun_real r2, const braun_real *sca
  * may raise it); r0: its value at the start; accel: a forward pass at the
  * point has ã (the forces' acceleration enters the velocity scale).
  * Inline: the check runs at every step, the slow path almost never. */
-BRAUN_FORCE_INLINE int guard_fails(braun_data *d, braun_real r2, const braun_real *scale, braun_real r0,
+BRAUN_FORCE_INLINE int guard_fails(braun_data *d, braun_real r2, const braun_real *scale, braun_real *r0,
                                    int accel, const char *what)
 {
-    if (!guard_exceeds(d, r2, *scale, r0)) return BRAUN_OK;
-    return guard_fails_again(d, r2, scale, r0, accel, what);
+    if (!guard_exceeds(d, r2, *scale, *r0)) {
+        /* Within its bound without the start's allowance: the corrections
+         * have removed the start's error, and the allowance ends (it let a
+         * run from a start far off its constraints drift that far for
+         * good). */
+        if (*r0 > 0 && !guard_exceeds(d, r2, *scale, 0)) *r0 = 0;
+        return BRAUN_OK;
+    }
+    return guard_fails_again(d, r2, scale, *r0, accel, what);
 }
 
 /* The energy residual Φ_e of a point against its bound. */
 BRAUN_FORCE_INLINE int guard_energy(braun_data *d, braun_real phi_e, int accel)
 {
-    return guard_fails(d, phi_e * phi_e, &d->guard.energy, d->guard.energy0, accel,
+    return guard_fails(d, phi_e * phi_e, &d->guard.energy, &d->guard.energy0, accel,
                        "accuracy guard: energy residual |Phi_e|");
 }
 
@@ -68,12 +75,12 @@ BRAUN_FORCE_INLINE int guard_rows(braun_data *d, unsigned corr, int accel)
     braun_priv *pv = braun__priv(d);
     int st = BRAUN_OK;
     if ((corr & BRAUN_CORRECT_POSITION) && pv->m > 0) {
-        st = guard_fails(d, braun_dot(pv->m, pv->phi, pv->phi), &d->guard.pos, d->guard.pos0, accel,
+        st = guard_fails(d, braun_dot(pv->m, pv->phi, pv->phi), &d->guard.pos, &d->guard.pos0, accel,
                          "accuracy guard: position residual |Phi_q|");
         if (st == BRAUN_ERR_ACCURACY) return worst_row(d, pv->m, pv->phi);
     }
     if (!st && (corr & BRAUN_CORRECT_VELOCITY) && pv->rows > 0) {
-        st = guard_fails(d, braun_dot(pv->rows, pv->ev, pv->ev), &d->guard.vel, d->guard.vel0, accel,
+        st = guard_fails(d, braun_dot(pv->rows, pv->ev, pv->ev), &d->guard.vel, &d->guard.vel0, accel,
                          "accuracy guard: velocity residual |[dPhi_q; Phi_v]|");
         if (st == BRAUN_ERR_ACCURACY) return worst_row(d, pv->rows, pv->ev);
     }
@@ -332,9 +339,9 @@ static braun_real energy_max_rel(const braun_data *d)
 static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_out,
                            braun_real *vel_out, braun_real *energy_out);
 
-/* The point's residuals above sqrt(ε) of their scales (the guard's,
- * measured here): the corrections are still removing a start's error. */
-static int off_constraints(braun_data *d)
+/* The point's residuals relative to their scales (the guard's, measured
+ * here): max(‖Φ_q‖∞ / pos, ‖[Φ̇_q; Φ_v]‖∞ / vel). */
+static braun_real relative_residual(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
     braun_real pos, vel, energy, rp = 0, rv = 0;
@@ -343,8 +350,8 @@ static int off_constraints(braun_data *d)
         if (braun_fabs(pv->phi[i]) > rp) rp = braun_fabs(pv->phi[i]);
     for (int i = 0; i < pv->rows; i++)
         if (braun_fabs(pv->ev[i]) > rv) rv = braun_fabs(pv->ev[i]);
-    const braun_real tol = braun_sqrt(BRAUN_EPS);
-    return rp > tol * pos || rv > tol * vel;
+    const braun_real a = pos > 0 ? rp / pos : 0, b = vel > 0 ? rv / vel : 0;
+    return a > b ? a : b;
 }
 
 /* A start off the constraints: its first corrections remove the error, and
@@ -352,21 +359,30 @@ static int off_constraints(braun_data *d)
  * kinetic energy). E0 taken at the start would have the energy force put
  * that back into the admissible motion — a pendulum released from the
  * horizontal with a velocity along its rod rose above its pivot, status
- * OK. So no energy force while the point is off the constraints; where
- * the corrections have brought it onto them, E0 is re-taken there:
- * E0 = E − ∫Ė (docs/api.md, E0). A start on the constraints keeps its E0.
- * In a step or driver only (busy): braun_eval is the literal Eq. 20 at any
- * point, with the E0 the data holds. 1: no energy force at this point. */
+ * OK. So a start whose residuals exceed sqrt(ε) of their scales gets no
+ * energy force while the corrections remove them, and E0 is re-taken
+ * where they have — E0 = E − ∫Ė (docs/api.md, E0): at the first point
+ * whose residuals are within sqrt(ε), or, with the ordinary drift of a
+ * large step above that, at the first that has not fallen to half of the
+ * point before's (the start's error gone, what remains the step's own)
+ * and is within 1e-3. A start on the constraints keeps its E0. In a step
+ * or driver only (busy): braun_eval is the literal Eq. 20 at any point,
+ * with the E0 the data holds. 1: no energy force at this point. */
 static int energy_deferred(braun_data *d, braun_real E)
 {
     braun_priv *pv = braun__priv(d);
     if (!pv->e0_pending || !pv->busy) return 0;
-    const int off = pv->rows > 0 && off_constraints(d);
-    if (off) {
-        pv->e0_pending = 2;
+    const braun_real r = pv->rows > 0 ? relative_residual(d) : 0, tol = braun_sqrt(BRAUN_EPS);
+    if (pv->e0_pending == 1) { /* the start */
+        pv->e0_pending = r > tol ? 2 : 0;
+        pv->e0_last = r;
+        return pv->e0_pending != 0;
+    }
+    if (r > tol && !(r >= BRAUN_R(0.5) * pv->e0_last && r <= BRAUN_R(1e-3))) {
+        pv->e0_last = r;
         return 1;
     }
-    if (pv->e0_pending == 2) d->E0 = E - pv->at.W;
+    d->E0 = E - pv->at.W;
     pv->e0_pending = 0;
     return 0;
 }
