@@ -101,7 +101,10 @@ int braun__guard_final(braun_data *d)
     braun_priv *pv = braun__priv(d);
     if (d->model->opt.guard < 0 || pv->guard_pending) return BRAUN_OK;
     const unsigned corr = d->model->opt.corrections;
-    const int energy = (corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0;
+    /* The energy law is judged where the steps judged it: not while E0
+     * waits for a start's error to be removed (stage_energy). */
+    const int energy = (corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0 &&
+                       pv->e0_pending != 2;
     braun_real p = 0, v = 0, e = 0;
     int st = braun_residuals(d, d->t, d->q, d->v, &p, &v, energy ? &e : NULL);
     /* A NaN of a callback at a state a step reached is the run's, as in
@@ -340,15 +343,19 @@ static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_
                            braun_real *vel_out, braun_real *energy_out);
 
 /* The point's residuals relative to their scales (the guard's, measured
- * here): max(‖Φ_q‖∞ / pos, ‖[Φ̇_q; Φ_v]‖∞ / vel). */
+ * here): max(‖Φ_q‖∞ / pos, ‖[Φ̇_q; Φ_v]‖∞ / vel), of those the corrections
+ * remove. */
 static braun_real relative_residual(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
+    const unsigned corr = d->model->opt.corrections;
     braun_real pos, vel, energy, rp = 0, rv = 0;
     measure_scales(d, 1, 0, &pos, &vel, &energy);
-    for (int i = 0; i < pv->m; i++)
+    /* Only what the corrections remove: with the velocity correction off
+     * a velocity residual stays, and E0 waited for it for good. */
+    for (int i = 0; (corr & BRAUN_CORRECT_POSITION) && i < pv->m; i++)
         if (braun_fabs(pv->phi[i]) > rp) rp = braun_fabs(pv->phi[i]);
-    for (int i = 0; i < pv->rows; i++)
+    for (int i = 0; (corr & BRAUN_CORRECT_VELOCITY) && i < pv->rows; i++)
         if (braun_fabs(pv->ev[i]) > rv) rv = braun_fabs(pv->ev[i]);
     const braun_real a = pos > 0 ? rp / pos : 0, b = vel > 0 ? rv / vel : 0;
     return a > b ? a : b;

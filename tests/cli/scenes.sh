@@ -507,6 +507,24 @@ num_le "$(json_value final_energy_error "$TMP/off3.out")" 1e-3 &&
 check "a start off its rod at a large step: energy corrected after it, the start's allowance ended" \
     sh -c '[ "$1" -eq 0 ] && [ "$2" -eq 1 ]' sh "$rc" "$small"
 
+# Off its rod by 5 cm with --corrections position,energy: the velocity
+# residual the start leaves stays (no velocity correction), and E0 waited
+# for it for good — no energy force, no energy check in the run, and the
+# final check refused the last state alone. Only the rows the enabled
+# corrections remove decide when the start's error is gone.
+cat > "$TMP/poff.json" <<'EOF'
+{"name": "poff", "bodies": [{"name": "bob", "type": "particle", "mass": 1,
+  "position": [0.9214616899848914, -0.5033968155344132], "velocity": [0.479425538604203, 0.8775825618903728]}],
+ "joints": [{"name": "rod", "type": "distance", "a": [0, 0], "b": "bob", "length": 1}],
+ "effects": [{"type": "gravity", "g": [0, -9.81]}]}
+EOF
+"$BRAUN" run "$TMP/poff.json" --dt 1e-3 --t-end 3 --corrections position,energy --quiet > "$TMP/poff.out" \
+    2> /dev/null; rc=$?
+small=0
+num_le "$(json_value final_energy_error "$TMP/poff.out")" 1e-9 && small=1
+check "a start off its rod, corrections position,energy: the energy law holds after it, exit 0" \
+    sh -c '[ "$1" -eq 0 ] && [ "$2" -eq 1 ]' sh "$rc" "$small"
+
 # A scene naming a built-in reference with a force switched on at t = 2:
 # the reference check sampled t = 0 ... 1 s and let it through, and the run
 # measured a trajectory error against a model the scene is not. The models
