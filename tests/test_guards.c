@@ -158,6 +158,57 @@ static void test_guard_allows_inconsistent_start(void **state)
     test_sim_close(&sim);
 }
 
+/* The guard's scales after a refusal are the kept state's: the slow path
+ * measured them at the refused state and they stayed (here, the built-in
+ * four-bar at RK4 h = 0.15: pos 28 -> 39.6, vel 68.7 -> 94.3; a client's
+ * four-bar blown up at its singular crossing: vel 60.1 -> 5.87e4, energy
+ * 170 -> 1.05e7, and a retry from the kept state at another step passed a
+ * velocity residual 12 times the kept state's bound). */
+typedef struct guard_seen {
+    braun_real g[6];
+} guard_seen;
+
+static int guard_out(const braun_data *d, void *user)
+{
+    guard_seen *w = user;
+    w->g[0] = d->guard.pos, w->g[1] = d->guard.vel, w->g[2] = d->guard.energy;
+    w->g[3] = d->guard.pos0, w->g[4] = d->guard.vel0, w->g[5] = d->guard.energy0;
+    return 0;
+}
+
+static void test_guard_rollback_restores_scales(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("four-bar");
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    for (int drv = 0; drv < 2; drv++) {
+        assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+        guard_seen w;
+        memset(&w, 0, sizeof w);
+        int st = BRAUN_OK;
+        if (drv == 0) {
+            st = braun_integrate(&sim.data, BRAUN_RK4, 0.15, 10.0, 1, guard_out, &w);
+        } else {
+            /* braun_step: the refusal comes at the call after the bad step. */
+            for (int k = 0; k < 200 && st == BRAUN_OK; k++) {
+                guard_out(&sim.data, &w);
+                st = braun_step(&sim.data, BRAUN_RK4, 0.15);
+            }
+        }
+        print_message("four-bar RK4 h = 0.15 (%s): %s at t = %g; scales kept %.3g %.3g %.3g, "
+                      "after %.3g %.3g %.3g\n", drv ? "braun_step" : "braun_integrate",
+                      braun_status_str(st), (double)sim.data.t, (double)w.g[0], (double)w.g[1],
+                      (double)w.g[2], (double)sim.data.guard.pos, (double)sim.data.guard.vel,
+                      (double)sim.data.guard.energy);
+        assert_int_equal(st, BRAUN_ERR_ACCURACY);
+        assert_true(sim.data.guard.pos == w.g[0] && sim.data.guard.vel == w.g[1] &&
+                    sim.data.guard.energy == w.g[2] && sim.data.guard.pos0 == w.g[3] &&
+                    sim.data.guard.vel0 == w.g[4] && sim.data.guard.energy0 == w.g[5]);
+    }
+    test_sim_close(&sim);
+}
+
 /* A step that cannot advance time: h below the resolution of t. */
 #ifdef BRAUN_SINGLE
 #define BRAUN_EPS FLT_EPSILON
@@ -457,6 +508,7 @@ int main(void)
         cmocka_unit_test(test_guard_last_state_and_outputs),
         cmocka_unit_test(test_guard_adaptive_tolerances),
         cmocka_unit_test(test_guard_allows_inconsistent_start),
+        cmocka_unit_test(test_guard_rollback_restores_scales),
         cmocka_unit_test(test_time_resolution),
         cmocka_unit_test(test_adaptive_no_free_motion),
         cmocka_unit_test(test_guard_start_at_rest),

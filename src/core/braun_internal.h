@@ -95,6 +95,7 @@ typedef struct braun_priv {
                            * re-taken once the corrections have brought the state onto them
                            * (stage_energy) */
     braun_real e0_last;   /* the relative residual where that was last judged */
+    braun_real guard_prev[6]; /* d->guard at the kept state (braun__commit), for a rollback */
     int mass_check_in;    /* steps to the next check of BRAUN_MASS_CONSTANT (braun__mass_claim_due) */
     int mass_claim_false; /* a check found M(t, q) != M(0, 0): every later call is refused */
     braun_real *q_home, *v_home; /* where braun_data_init put d->q and d->v */

@@ -228,6 +228,12 @@ void braun__guard_rollback(braun_data *d)
     d->work_in = pv->yprev[2 * n];
     d->t = pv->tprev;
     pv->t_lo = pv->tprev_lo;
+    d->guard.pos = pv->guard_prev[0];
+    d->guard.vel = pv->guard_prev[1];
+    d->guard.energy = pv->guard_prev[2];
+    d->guard.pos0 = pv->guard_prev[3];
+    d->guard.vel0 = pv->guard_prev[4];
+    d->guard.energy0 = pv->guard_prev[5];
     d->stats.steps--;
     pv->has_prev = 0;
 }
@@ -255,6 +261,16 @@ void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new, braun_
     pv->tprev_lo = pv->t_lo;
     pv->t_lo = t_lo;
     pv->has_prev = 1;
+    /* ... and its guard scales: a refused state raised them (the slow
+     * path measures them at the state it judges), and a retry from the
+     * kept state was judged by the blown-up state's (a velocity residual
+     * 12 times its bound passed). */
+    pv->guard_prev[0] = d->guard.pos;
+    pv->guard_prev[1] = d->guard.vel;
+    pv->guard_prev[2] = d->guard.energy;
+    pv->guard_prev[3] = d->guard.pos0;
+    pv->guard_prev[4] = d->guard.vel0;
+    pv->guard_prev[5] = d->guard.energy0;
     for (int i = 0; i < n; i++) {
         d->q[i] = y1[i];
         d->v[i] = y1[n + i];
