@@ -165,6 +165,71 @@ static void test_damped_motor_energy_balance(void **state)
     braun_scene_free(f);
 }
 
+/* A program's own RK4 over braun_eval on the damped motor: the energy law
+ * holds E = E0 + d->work_in, so the program integrates Ė (braun_energy_rate)
+ * with q and v and writes it there before each evaluation. Left at 0 (the
+ * only way before braun_energy_rate: the docs forbade writing it) the
+ * energy correction took the motor's work out of the motion again. Judged
+ * against the library's own driver at a tenth of the step. */
+static double own_rk4_motor(braun_scene_file *f, int keep_work, double h, double T)
+{
+    test_sim sim;
+    open_scene(&sim, f, BRAUN_CORRECT_ALL);
+    const int n = f->sys.n;
+    double Y[32], K[4][32], Z[32];
+    braun_real q[15], v[15], qd[15], vd[15], Edot = 0;
+    assert_true(2 * n + 1 <= 32 && n <= 15);
+    for (int i = 0; i < n; i++) Y[i] = sim.data.q[i], Y[n + i] = sim.data.v[i];
+    Y[2 * n] = 0;
+    static const double cc[4] = {0, 0.5, 0.5, 1}, ww[4] = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
+    const long N = lround(T / h);
+    for (long s = 0; s < N; s++)
+        for (int j = 0; j < 4; j++) {
+            for (int i = 0; i <= 2 * n; i++) Z[i] = Y[i] + (j ? cc[j] * h * K[j - 1][i] : 0);
+            for (int i = 0; i < n; i++) q[i] = (braun_real)Z[i], v[i] = (braun_real)Z[n + i];
+            const braun_real t = (braun_real)((double)s * h + cc[j] * h);
+            if (keep_work) sim.data.work_in = (braun_real)Z[2 * n];
+            assert_int_equal(braun_energy_rate(&sim.data, t, q, v, &Edot), BRAUN_OK);
+            assert_int_equal(braun_eval(&sim.data, t, q, v, (braun_real)h, qd, vd), BRAUN_OK);
+            for (int i = 0; i < n; i++) K[j][i] = qd[i], K[j][n + i] = vd[i];
+            K[j][2 * n] = Edot;
+            if (j == 3)
+                for (int i = 0; i <= 2 * n; i++)
+                    Y[i] += h * (ww[0] * K[0][i] + ww[1] * K[1][i] + ww[2] * K[2][i] + ww[3] * K[3][i]);
+        }
+    test_sim_close(&sim);
+    return Y[n + 2]; /* the crank's rate */
+}
+
+static void test_own_integrator_energy_input(void **state)
+{
+    (void)state;
+    braun_scene_file *f = load("data/damped-motor.json");
+    test_sim sim;
+    open_scene(&sim, f, BRAUN_CORRECT_ALL);
+    /* Ė at a moving state (t = 1 s) against the driver's ∫Ė over a tiny step. */
+    braun_real Edot = 0;
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, 1.0, 0, NULL, NULL), BRAUN_OK);
+    assert_int_equal(braun_energy_rate(&sim.data, sim.data.t, sim.data.q, sim.data.v, &Edot), BRAUN_OK);
+    const double w1 = (double)sim.data.work_in;
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-7, 1.0 + 1e-7, 0, NULL, NULL), BRAUN_OK);
+    const double slope = ((double)sim.data.work_in - w1) / 1e-7;
+    assert_true(fabs(slope) > 1);
+    assert_near((double)Edot, slope, 1e-5 * fabs(slope));
+    /* The reference: the library's driver at h / 10. */
+    assert_int_equal(braun_set_state(&sim.data, 0, f->q0, f->v0), BRAUN_OK);
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-4, 2.0, 0, NULL, NULL), BRAUN_OK);
+    const double ref = sim.data.v[2];
+    test_sim_close(&sim);
+    const double kept = own_rk4_motor(f, 1, 1e-3, 2.0), left = own_rk4_motor(f, 0, 1e-3, 2.0);
+    print_message("damped-motor, own RK4 on braun_eval h = 1e-3, 2 s: crank %.9g rad/s with "
+                  "work_in kept, %.9g left at 0; the driver at 1e-4: %.9g (Edot(0) %.6g, the "
+                  "driver's %.6g)\n", kept, left, ref, (double)Edot, slope);
+    assert_near(kept, ref, 1e-5 * fabs(ref));
+    assert_true(fabs(left - ref) > 100 * fabs(kept - ref));
+    braun_scene_free(f);
+}
+
 /* ------------------------------------------------------- driven crank */
 /* Crank angle θ = 2πt; the slider end of the rod is at
  * x_s = r cos θ + sqrt(L² - r² sin² θ). */
@@ -292,6 +357,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sleigh),
         cmocka_unit_test(test_damped_motor_energy_balance),
+        cmocka_unit_test(test_own_integrator_energy_input),
         cmocka_unit_test(test_driven_crank),
         cmocka_unit_test(test_parallelogram),
         cmocka_unit_test(test_double_pendulum),

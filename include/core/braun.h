@@ -438,7 +438,8 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
 /* Evaluation (no time advance)                                        */
 /* ------------------------------------------------------------------ */
 /* The corrected equation of motion, Eqs. 16, 17, 20, with Δ = Φ/h, at the
- * given state (∫Ė taken from d->work_in). Corrections as in the model options;
+ * given state (∫Ė taken from d->work_in: a program's own integrator keeps
+ * it there, braun_energy_rate). Corrections as in the model options;
  * with none (or at an exact state) vdot is the Udwadia–Kalaba acceleration
  * and qdot = v. qdot, vdot: n entries each. Refused (BRAUN_ERR_ARGUMENT,
  * "re-entrant call") while a driver runs on d, from its output callback
@@ -457,6 +458,17 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
 /* Total energy E(t,q,v) (0 without a law). */
 int braun_energy(braun_data *d, braun_real t, const braun_real *q,
                  const braun_real *v, braun_real *E);
+
+/* Ė of the energy law (Eq. 18) at a state: the power callback's input plus
+ * the work rate of moving constraints, as the drivers integrate it into
+ * d->work_in. A program that steps braun_eval with its own integrator and
+ * corrects the energy integrates Ė along with q and v and writes the
+ * integral into d->work_in before each braun_eval (its energy law is then
+ * E = E0 + ∫Ė; left at 0, a motor's or a drive's work is taken out of the
+ * motion again). 0 for a system without energy input or moving
+ * constraints. Refused where braun_eval is (a forward pass). */
+int braun_energy_rate(braun_data *d, braun_real t, const braun_real *q,
+                      const braun_real *v, braun_real *Edot);
 
 /* ------------------------------------------------------------------ */
 /* Integrators                                                         */

@@ -79,6 +79,10 @@ static int check_written_fields(braun_data *d)
         return braun__fail(d, BRAUN_ERR_ARGUMENT,
                            "state t (not finite: the state is set by braun_set_state only)", -1, -1,
                            (double)d->t, 0);
+    /* A program's own integrator keeps ∫Ė there (braun_energy_rate). */
+    if (!braun_is_finite(d->work_in))
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "state work_in (not finite)", -1, -1,
+                           (double)d->work_in, (double)d->t);
     if (!braun__priv(d)->guard_pending) {
         /* (Measured at the first step: till then they are not used.) */
         const braun_real g0 = d->guard.pos, g1 = d->guard.vel, g2 = d->guard.energy;

@@ -542,6 +542,29 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
     return st;
 }
 
+int braun_energy_rate(braun_data *d, braun_real t, const braun_real *q, const braun_real *v,
+                      braun_real *Edot)
+{
+    if (!d) return BRAUN_ERR_ARGUMENT;
+    /* A forward pass, as braun_eval's (not from a driver's callbacks). */
+    int st = check_call(d, q, v, 0);
+    if (st) return st;
+    if (!Edot)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_energy_rate (NULL output)", -1, -1, 0, (double)t);
+    st = braun__check_options(d);
+    if (!st) st = check_state(d, t, q, v);
+    if (!st) st = braun__mass_claim_due(d, t, q);
+    if (st) return st;
+    braun_priv *pv = braun__priv(d);
+    braun__at(pv, t, q, v, d->work_in, 0);
+    braun__rank_rule_plain(pv);
+    pv->soft_on = 0;
+    pv->energy_end = 0;
+    st = braun__forward(d, BRAUN_WITH_POWER, NULL);
+    *Edot = st ? (braun_real)NAN : pv->Edot;
+    return st;
+}
+
 int braun_energy(braun_data *d, braun_real t, const braun_real *q,
                  const braun_real *v, braun_real *E)
 {
