@@ -11,6 +11,19 @@
  * its bound and its size at braun_set_state stops the run. */
 static void guard_rescale(braun_data *d, int accel);
 
+/* The energy correction applies: asked for, a law, and E0 taken. */
+static int energy_corrected(const braun_data *d)
+{
+    return (d->model->opt.corrections & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0;
+}
+
+/* ... and the accuracy guard judges the law: not while E0 waits for a
+ * start's error to be removed (stage_energy). */
+static int energy_judged(const braun_data *d)
+{
+    return energy_corrected(d) && braun__priv(d)->e0_pending != 2;
+}
+
 BRAUN_FORCE_INLINE int guard_exceeds(const braun_data *d, braun_real r2, braun_real scale, braun_real r0)
 {
     const braun_real g = d->model->opt.guard > 0 ? d->model->opt.guard : BRAUN_R(1e-3);
@@ -101,10 +114,8 @@ int braun__guard_final(braun_data *d)
     braun_priv *pv = braun__priv(d);
     if (d->model->opt.guard < 0 || pv->guard_pending) return BRAUN_OK;
     const unsigned corr = d->model->opt.corrections;
-    /* The energy law is judged where the steps judged it: not while E0
-     * waits for a start's error to be removed (stage_energy). */
-    const int energy = (corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0 &&
-                       pv->e0_pending != 2;
+    /* The energy law judged where the steps judge it. */
+    const int energy = energy_judged(d);
     braun_real p = 0, v = 0, e = 0;
     int st = braun_residuals(d, d->t, d->q, d->v, &p, &v, energy ? &e : NULL);
     /* A NaN of a callback at a state a step reached is the run's, as in
@@ -667,7 +678,7 @@ int braun__corrections(braun_data *d, const braun_real *vdot, int guard_run)
 {
     braun_priv *pv = braun__priv(d);
     const unsigned corr = d->model->opt.corrections;
-    const int energy = (corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0;
+    const int energy = energy_corrected(d);
     const int guard = guard_run && d->model->opt.guard >= 0;
     pv->guard_on = guard;
     /* The forward pass at this point with the residuals (and Ė for the
@@ -702,10 +713,7 @@ int braun__guard_start(braun_data *d, const braun_real *vdot)
     if (st) return st;
     /* (Measuring the scales sets guard_first.) */
     st = guard_start_rows(d, vdot, corr);
-    /* (Nor while E0 waits for a start's error to be removed.) */
-    if (st || pv->guard_first || pv->e0_pending == 2 ||
-        !((corr & BRAUN_CORRECT_ENERGY) && s->energy && d->has_E0))
-        return st;
+    if (st || pv->guard_first || !energy_judged(d)) return st;
     const braun_real t = pv->at.t;
     braun_real E = 0;
     st = braun__callback(d, s->energy(t, pv->at.q, pv->at.v, &E, NULL, NULL, NULL, s->user), "energy", t);
@@ -760,7 +768,7 @@ int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real 
     const unsigned corr = d->model->opt.corrections;
     const int n = BRAUN_N(pv->n);
     if (!corr) return BRAUN_OK;
-    const int energy = (corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && d->has_E0;
+    const int energy = energy_corrected(d);
     const int guard = d->model->opt.guard >= 0;
     int st = braun__need(d, BRAUN_DONE_IDEAL | BRAUN_DONE_RESIDUALS |
                                 (energy ? BRAUN_DONE_POWER : 0u),

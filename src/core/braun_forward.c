@@ -479,6 +479,30 @@ static int check_call(braun_data *d, const braun_real *q, const braun_real *v, i
     return BRAUN_OK;
 }
 
+/* The checks and set-up of an evaluation on its own at (t, q, v) — the
+ * options, the state, h where a correction needs it (named by what), the
+ * mass claim every BRAUN_MASS_CHECK_EVERY evaluations as the drivers'
+ * steps — and the point: the plain rank tolerance, the plain
+ * Udwadia–Kalaba acceleration (no soft filter), the literal Eq. 20 sized
+ * at the point. braun_eval and braun_energy_rate. */
+static int point_begin(braun_data *d, braun_real t, const braun_real *q, const braun_real *v,
+                       int needs_h, braun_real h, const char *what)
+{
+    int st = braun__check_options(d);
+    if (!st) st = check_state(d, t, q, v);
+    if (st) return st;
+    if (needs_h && !(h > 0 && braun_is_finite(h)))
+        return braun__fail(d, BRAUN_ERR_STEP, what, -1, -1, (double)h, (double)t);
+    st = braun__mass_claim_due(d, t, q);
+    if (st) return st;
+    braun_priv *pv = braun__priv(d);
+    braun__at(pv, t, q, v, d->work_in, h);
+    braun__rank_rule_plain(pv);
+    pv->soft_on = 0;
+    pv->energy_end = 0;
+    return BRAUN_OK;
+}
+
 int braun_eval(braun_data *d, braun_real t, const braun_real *q,
                const braun_real *v, braun_real h, braun_real *qdot,
                braun_real *vdot)
@@ -505,24 +529,11 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
             return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_eval (outputs overlap the inputs)", -1,
                                -1, 0, (double)t);
     }
-    st = braun__check_options(d);
-    if (st) return st;
     const unsigned corr = d->model->opt.corrections;
     const int n = d->model->sys.n;
-    st = check_state(d, t, q, v);
-    if (st) return st;
-    if (corr && !(h > 0 && braun_is_finite(h)))
-        return braun__fail(d, BRAUN_ERR_STEP, "braun_eval h", -1, -1, (double)h, (double)t);
-    /* A right-hand side for the caller's own integrator: the mass claim
-     * every BRAUN_MASS_CHECK_EVERY evaluations, as the drivers' steps. */
-    st = braun__mass_claim_due(d, t, q);
+    st = point_begin(d, t, q, v, corr != 0, h, "braun_eval h");
     if (st) return st;
     braun_priv *pv = braun__priv(d);
-    braun__at(pv, t, q, v, d->work_in, h);
-    /* An evaluation on its own: the plain rank tolerance. */
-    braun__rank_rule_plain(pv);
-    pv->soft_on = 0; /* braun_eval is the plain Udwadia–Kalaba acceleration */
-    pv->energy_end = 0; /* and the literal Eq. 20, sized at the point */
     st = braun__forward(d, (corr ? BRAUN_WITH_RESIDUALS : 0u) |
                                (corr & BRAUN_CORRECT_ENERGY ? BRAUN_WITH_POWER : 0u),
                         vdot);
@@ -551,17 +562,9 @@ int braun_energy_rate(braun_data *d, braun_real t, const braun_real *q, const br
     if (st) return st;
     if (!Edot)
         return braun__fail(d, BRAUN_ERR_ARGUMENT, "braun_energy_rate (NULL output)", -1, -1, 0, (double)t);
-    st = braun__check_options(d);
-    if (!st) st = check_state(d, t, q, v);
-    if (!st) st = braun__mass_claim_due(d, t, q);
-    if (st) return st;
-    braun_priv *pv = braun__priv(d);
-    braun__at(pv, t, q, v, d->work_in, 0);
-    braun__rank_rule_plain(pv);
-    pv->soft_on = 0;
-    pv->energy_end = 0;
-    st = braun__forward(d, BRAUN_WITH_POWER, NULL);
-    *Edot = st ? (braun_real)NAN : pv->Edot;
+    st = point_begin(d, t, q, v, 0, 0, NULL);
+    if (!st) st = braun__forward(d, BRAUN_WITH_POWER, NULL);
+    *Edot = st ? (braun_real)NAN : braun__priv(d)->Edot;
     return st;
 }
 

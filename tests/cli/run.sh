@@ -25,6 +25,14 @@ num_le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a != "null" && a +
 num_lt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a != "null" && a + 0 < b + 0) }'; }
 num_eq() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a + 0 == b + 0) }'; }
 lines() { wc -l < "$1" | tr -d ' '; }
+# await_rows FILE: until the CSV a background run writes has a few rows
+# (the timing run writes nothing), at most 60 s.
+await_rows() {
+    i=0
+    while [ $i -lt 600 ] && ! { [ -s "$1" ] && [ "$(lines "$1")" -gt 3 ]; }; do
+        sleep 0.1; i=$((i + 1))
+    done
+}
 
 if command -v python3 > /dev/null 2>&1; then HAVE_PY=1; else HAVE_PY=0; fi
 json_parses() { python3 -c 'import json,sys; json.load(sys.stdin)' < "$1" 2> /dev/null; }
@@ -310,10 +318,7 @@ done
 # writes nothing, so the signal is sent once the CSV has rows.
 "$BRAUN" run pendulum --dt 1e-5 --t-end 20 --out "$TMP/int.csv" --summary "$TMP/int.json" \
     2> "$TMP/int.err" & pid=$!
-i=0
-while [ $i -lt 600 ] && ! { [ -s "$TMP/int.csv" ] && [ "$(lines "$TMP/int.csv")" -gt 3 ]; }; do
-    sleep 0.1; i=$((i + 1))
-done
+await_rows "$TMP/int.csv"
 kill -TERM $pid 2> /dev/null; wait $pid; rc=$?
 check "run: SIGTERM in the monitored run exits 143 and says where it stopped" sh -c '
     [ "$1" -eq 143 ] && grep -q "^braun: interrupted by SIGTERM at t = [0-9.e+-]*: the run stopped there" "$2"' \
@@ -348,10 +353,7 @@ check "run: SIGTERM in the timing run leaves files that existed as they were" sh
 # (signal() resets it) and killed the tool mid-row, the summary empty.
 "$BRAUN" run pendulum --dt 1e-5 --t-end 20 --out "$TMP/int3.csv" --summary "$TMP/int3.json" \
     2> "$TMP/int3.err" & pid=$!
-i=0
-while [ $i -lt 600 ] && ! { [ -s "$TMP/int3.csv" ] && [ "$(lines "$TMP/int3.csv")" -gt 3 ]; }; do
-    sleep 0.1; i=$((i + 1))
-done
+await_rows "$TMP/int3.csv"
 kill -TERM $pid 2> /dev/null; kill -TERM $pid 2> /dev/null; wait $pid; rc=$?
 check "run: two SIGTERMs at once are one request: rows whole, summary BRAUN_STOPPED, exit 143" sh -c '
     [ "$1" -eq 143 ] && grep -q "^braun: interrupted by SIGTERM at t = " "$2" &&

@@ -288,6 +288,16 @@ int braun_cli_run(const braun_cli_run_args *a)
  * under 0.1 %. */
 #define TIMED_PROGRESS_EVERY 64
 
+/* A run that ends before its monitored run writes: the outputs it
+ * created are removed, files that existed stay as they were. rc back. */
+static int give_up(braun_cli_output *csv, braun_cli_output *summary, double *block, int rc)
+{
+    braun_cli_output_abandon(csv);
+    braun_cli_output_abandon(summary);
+    free(block);
+    return rc;
+}
+
 static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
                      const braun_model *model_in, const braun_cli_observer *obs)
 {
@@ -345,12 +355,7 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
             fprintf(stderr, "braun: note: --out will hold about %.3g rows, some %.0f GB: --every N "
                             "writes every N-th step\n", rows, gb);
     }
-    if (rc) {
-        braun_cli_output_abandon(&out_csv);
-        braun_cli_output_abandon(&out_summary);
-        free(block);
-        return rc;
-    }
+    if (rc) return give_up(&out_csv, &out_summary, block, rc);
     FILE *csv = out_csv.f, *summary = out_summary.f;
 
     braun_data d;
@@ -391,22 +396,14 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
                             "--summary; 'braun plot' runs without the timing run)",
                             braun_cli_signal_name(sig), (double)d.t);
             braun_data_release(&d);
-            braun_cli_output_abandon(&out_csv);
-            braun_cli_output_abandon(&out_summary);
-            free(block);
-            return 128 + sig;
+            return give_up(&out_csv, &out_summary, block, 128 + sig);
         }
         braun_data_release(&d);
     }
 
     rc = braun_cli_output_begin(&out_summary);
     if (!rc) rc = braun_cli_output_begin(&out_csv);
-    if (rc) {
-        braun_cli_output_abandon(&out_csv);
-        braun_cli_output_abandon(&out_summary);
-        free(block);
-        return rc;
-    }
+    if (rc) return give_up(&out_csv, &out_summary, block, rc);
     /* Run 2: the same steps, monitored (a fresh backend state, too), a
      * scene's callbacks through the guard that names a failing element. */
     braun_cli_guard_wrap(&guard, &model.sys, tg->scene, &model2.sys);
