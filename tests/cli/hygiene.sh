@@ -108,6 +108,7 @@ check "list: a data directory that is not there is noted" sh -c '
     sh "$rc" "$TMP/list.err"
 
 # ------------------------------------------------------- gen-c: symbols, files
+abs_braun_early=$(cd "$(dirname "$BRAUN")" && pwd)/$(basename "$BRAUN")
 # gen and gen-c parse their options as run does: each once, "--name=VALUE"
 # too (the last of two won in silence; --angle=30 was an unknown option).
 expect "gen-c -o twice refused" 2 "option -o given twice" gen-c data/pendulum.json -o "$TMP/a.c" -o "$TMP/b.c"
@@ -119,6 +120,14 @@ expect "gen chain -o and --out refused (one option)" 2 "option --out given twice
 expect "gen chain --angle=30 as --angle 30" 0 "" gen chain 2 --angle=30 -o "$TMP/eq.json"
 expect "gen-c --symbol=p --out=FILE" 0 "" gen-c data/pendulum.json --symbol=p --out="$TMP/eq.c"
 expect "gen chain --rods=1 refused" 2 "option --rods takes no value" gen chain 2 --rods=1
+# A value that begins with "--" is a forgotten value in every command (gen-c
+# wrote its C to a file named "--symbol"; run refused it already).
+(cd "$TMP" && "$abs_braun_early" gen-c "$OLDPWD/data/pendulum.json" -o --symbol p) 2> "$TMP/fv.err"; rc=$?
+check "gen-c -o --symbol: a forgotten value, no file '--symbol'" sh -c '
+    [ "$1" -eq 2 ] && grep -q "option -o needs a value" "$2" && [ ! -e "$3/--symbol" ]' \
+    sh "$rc" "$TMP/fv.err" "$TMP"
+expect "gen chain -o --angle 30: a forgotten value" 2 "option -o needs a value" gen chain 2 -o --angle 30
+expect "plot -o --dt: a forgotten value" 2 "option -o needs a value" plot data/pendulum.json -o --dt 1e-2 --t-end 1
 # "--" ends the options: a scene named "-x.json" after it (run called it an
 # unknown option, check read it).
 cp data/pendulum.json "$TMP/-x.json"

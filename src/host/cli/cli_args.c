@@ -297,17 +297,15 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
         }
         if (strncmp(arg, "--", 2) != 0 && !(plot && strcmp(arg, "-o") == 0))
             return braun_cli_error("unknown option '%s' (see braun --help)", arg);
-        /* Both "--dt 1e-3" and "--dt=1e-3". */
+        /* Both "--dt 1e-3" and "--dt=1e-3" (braun_cli_option, as gen's). */
         char name[32];
-        const char *eq = strchr(arg, '=');
         const char *val;
-        size_t len = eq ? (size_t)(eq - arg) : strlen(arg);
-        if (len >= sizeof name) return braun_cli_error("unknown option '%s' (see braun --help)", arg);
-        memcpy(name, arg, len);
-        name[len] = '\0';
+        int rc = braun_cli_option(argc, argv, &i, name, sizeof name, NULL);
+        if (rc) return rc;
+        const size_t len = strlen(name);
         if (strcmp(name, "--sparse") == 0 || strcmp(name, "--progress") == 0 ||
             strcmp(name, "--quiet") == 0) { /* the flags */
-            if (eq) return braun_cli_error("option %s takes no value", name);
+            if (arg[len] == '=') return braun_cli_error("option %s takes no value", name);
             if (name[2] == 's') a->sparse = 1, a->run_given = 1;
             else if (name[2] == 'p') loud = 1;
             else quiet = 1;
@@ -315,16 +313,8 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
         }
         if (!takes_value(name, plot))
             return braun_cli_error("unknown option '%s' (see braun --help)", name);
-        if (eq) {
-            val = eq + 1;
-        } else {
-            /* A following option is a forgotten value, not a file name. */
-            if (i + 1 >= argc || strncmp(argv[i + 1], "--", 2) == 0)
-                return braun_cli_error("option %s needs a value", name);
-            val = argv[++i];
-        }
-        if (*val == '\0') return braun_cli_error("option %s needs a value", name);
-        int rc = apply(name, val, a, plot);
+        if ((rc = braun_cli_option(argc, argv, &i, name, sizeof name, &val)) != 0) return rc;
+        rc = apply(name, val, a, plot);
         if (rc) return rc;
         for (int k = 0; k < nseen; k++)
             if (strcmp(seen[k], name) == 0)

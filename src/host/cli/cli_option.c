@@ -1,6 +1,6 @@
 /* The options of the commands with their own parsers (gen, gen-c), read
  * as run reads its own (cli_args.c): "--name VALUE" or "--name=VALUE",
- * each option once. */
+ * each option once; a value that begins with "--" is given as --name=VALUE. */
 #include <string.h>
 
 #include "braun_cli.h"
@@ -14,8 +14,8 @@ int braun_cli_option(int argc, char **argv, int *i, char *name, size_t size, con
     name[len] = '\0';
     if (!val) return 0; /* the name alone */
     if (arg[len] == '=') *val = arg + len + 1;
-    else if (*i + 1 < argc) *val = argv[++*i];
-    else *val = "";
+    else if (*i + 1 < argc && strncmp(argv[*i + 1], "--", 2) != 0) *val = argv[++*i];
+    else *val = ""; /* a following option is a forgotten value, not a file name */
     if (**val == '\0') return braun_cli_error("option %s needs a value", name);
     return 0;
 }
