@@ -549,6 +549,12 @@ static void clean(char *s)
  * like a solver's own. */
 #define CMP_APART 0.1
 
+/* The status a row, its progress line and a cross-check print: one word. */
+static const char *run_status(const cmp_outcome *o, const cmp_metrics *mt)
+{
+    return o->status ? o->status_name : mt->pos_max > CMP_APART ? "FLEW_APART" : "ok";
+}
+
 static void write_row(FILE *f, const job *j, const cmp_outcome *o, double cpu_min,
                       double cpu_max, int reps, const cmp_metrics *mt, double sigma,
                       const char *ref)
@@ -568,7 +574,7 @@ static void write_row(FILE *f, const job *j, const cmp_outcome *o, double cpu_mi
     else fprintf(f, "nan,%g,%g,", s->rtol, s->atol);
     if (s->method == CMP_BAUMGARTE) fprintf(f, "%.6g,%.6g,", s->alpha, s->beta);
     else fprintf(f, "nan,nan,");
-    fprintf(f, "%s,%.10g,%.6g,%.6g,%d,", o->status ? o->status_name : apart ? "FLEW_APART" : "ok",
+    fprintf(f, "%s,%.10g,%.6g,%.6g,%d,", run_status(o, mt),
             o->t_reached, cpu_min, cpu_max, reps);
     const cmp_counts *k = &o->counts;
     fprintf(f, "%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,", k->steps, k->rejected, k->rhs_evals,
@@ -792,7 +798,7 @@ static void cross_check(FILE *rf, const cmp_target *tg, double T, double dt, cmp
     fprintf(rf, "%s,%g,%s,%g,%s,%g,%.6e,%.6e,%.6e,cross-check,%s up to t = %g%s%s\n", tg->name,
             T, name, tol, method == CMP_IDA_GGL ? "ida-ggl" : "projection-rk4-fine",
             method == CMP_IDA_GGL ? 1e-10 : sp.h, mt.traj_max, mt.traj_final, mt.point_max,
-            out.status ? out.status_name : "ok", out.t_reached, out.status ? " " : "",
+            run_status(&out, &mt), out.t_reached, out.status ? " " : "",
             out.status ? detail : "");
     cmp_traj_free(&tr);
 }
@@ -1255,7 +1261,7 @@ static void run_one(const cmp_study_opts *o, const study *st, int i, const cmp_t
     snprintf(line, sizeof line, "[%4d/%d %s] %s T=%g %s %s%s%s %s: %s%s traj=%.2e cpu=%.3gs\n",
              i + 1, st->l.n, el, tg->name, j->spec.T, cmp_method_name(j->spec.method),
              integrator_name(j->spec.integrator), j->spec.variant[0] ? " " : "",
-             j->spec.variant, what, out.status ? out.status_name : "ok",
+             j->spec.variant, what, run_status(&out, &mt),
              j->probe ? " (probe)" : "", mt.traj_max, cmin);
     fputs(line, stderr);
 }

@@ -84,6 +84,12 @@ check "failed runs keep their row and time reached" sh -c \
 # FLEW_APART, not ok (Simbody's fixed-step slider-crank: 26-334 m, "ok").
 check "no run that reached T as ok has max |Phi_q| above 0.1; FLEW_APART ones have" sh -c \
     "awk -F, 'NR > 1 && \$11 == \"ok\" && \$25 + 0 > 0.1 { bad = 1 } NR > 1 && \$11 == \"FLEW_APART\" && !(\$25 + 0 > 0.1) { bad = 1 } END { exit bad }' '$out/runs.csv'"
+# The progress lines say what the rows say (they said "ok" for FLEW_APART).
+check "progress lines and runs.csv agree on every status" sh -c '
+    a=$(grep -v "(probe)" "$1" | sed -n "s/^\[.*: \([A-Za-z_]*\)  *traj=.*/\1/p" | sort | uniq -c)
+    b=$(awk -F, "NR > 1 { print \$11 }" "$2" | sort | uniq -c)
+    [ -n "$a" ] && [ "$a" = "$b" ] || { echo "#   progress: $a"; echo "#   runs.csv: $b"; exit 1; }' \
+    sh "$TMP/log" "$out/runs.csv"
 # braun RK4 over 20 s, trajectory error (traj_max) measured at h = 0.01:
 # four-bar 1.02e-5, slider-crank 7.28e-6 (the bound was 1e-3); at h = 0.005
 # 6.3e-7 and 4.5e-7: observed order 4.01 on both.
