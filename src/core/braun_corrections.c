@@ -575,6 +575,16 @@ static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_
             if (braun_fabs(sq[j]) > amax) amax = braun_fabs(sq[j]);
         if (braun_sqrt(L * amax) > V) V = braun_sqrt(L * amax);
     }
+    /* A row's own velocity, c = ev − A v (a drive's rate, −Φ_t), moves its
+     * coordinates at |c| / Σ|A_ij|: a body at rest driven at 1 rad/s had
+     * velocity and energy scales of 0, its start's residual was not seen
+     * and E0 kept the energy of the wrong start. */
+    for (int i = 0; i < rows; i++) {
+        for (int j = 0; j < n; j++) sv[j] = 1;
+        const braun_real c = braun_fabs(pv->ev[i] - braun__row_dot(pv, i, v)),
+                         a = braun__row_abs_dot(pv, i, sv);
+        if (a > 0 && c > V * a) V = c / a;
+    }
     for (int j = 0; j < n; j++) {
         sq[j] = braun_fabs(q[j]) > L ? braun_fabs(q[j]) : L;
         sv[j] = braun_fabs(v[j]) > V ? braun_fabs(v[j]) : V;

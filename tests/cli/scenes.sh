@@ -392,6 +392,15 @@ sed 's/"bob": \[5, 5\]/"arm": "bob"/' "$TMP/dup.json" > "$TMP/dup2.json"
 refused "report named as a rigid body (arm), braun check" \
     "braun: $TMP/dup2.json:6:13: reported point 'arm': body 1 is named 'arm' too: the trajectory CSV's columns arm.x, arm.y would name both; give the point a name no body has" \
     check "$TMP/dup2.json"
+# In a spatial scene the body's columns are NAME.q[k]: the reason given is
+# the plot's (it named planar columns that a spatial CSV has not).
+printf '{"name": "dup3d", "bodies": [
+  {"name": "b", "type": "rigid3d", "mass": 1, "inertia": [1, 1, 1], "position": [0, 0, -1]}],
+ "joints": [{"type": "spherical", "a": "b", "b": [0, 0, 0]}],
+ "report": {"b": [1, 1, 1]}}\n' > "$TMP/dup3d.json"
+refused "report named as a spatial body: the reason is the plot's, not planar columns" \
+    "braun: $TMP/dup3d.json:4:13: reported point 'b': body 0 is named 'b' too: --points and --plot b.x would mean either; give the point a name no body has" \
+    run "$TMP/dup3d.json" --dt 1e-2 --t-end 0.1
 sed 's/"bob": \[5, 5\]/"tip": "bob"/' "$TMP/dup.json" > "$TMP/dup3.json"
 "$BRAUN" run "$TMP/dup3.json" --dt 1e-2 --t-end 0.1 --out "$TMP/dup3.csv" --summary /dev/null; rc=$?
 check "a report name no body has still runs, each CSV column once" sh -c '
@@ -523,6 +532,47 @@ EOF
 small=0
 num_le "$(json_value final_energy_error "$TMP/poff.out")" 1e-9 && small=1
 check "a start off its rod, corrections position,energy: the energy law holds after it, exit 0" \
+    sh -c '[ "$1" -eq 0 ] && [ "$2" -eq 1 ]' sh "$rc" "$small"
+
+# A drive that starts its body at rest, no gravity: every velocity of the
+# start was 0, so were the guard's velocity and energy scales, the start's
+# residual (the drive's 2 rad/s) was not seen, E0 stayed the energy at rest,
+# and the energy force took the 0.2 J the drive gave the arm out of the
+# bob's free swing (1.2 m off at t = 5, status OK). A row's own velocity
+# (the drive's rate) is a velocity scale now: the motion is the one of the
+# position and velocity corrections alone (their difference is the energy
+# correction's O(h^4) effect), and the energy law holds.
+cat > "$TMP/drvrest.json" <<'EOF'
+{"name": "drvrest",
+ "bodies": [{"name": "arm", "type": "rigid", "mass": 1, "inertia": 0.1, "position": [0.5, 0],
+             "points": {"root": [-0.5, 0], "tip": [0.5, 0]}},
+            {"name": "bob", "type": "particle", "mass": 1, "position": [1.5, 0.8]}],
+ "joints": [{"name": "pin", "type": "revolute", "a": "arm.root", "b": [0, 0]},
+            {"name": "drv", "type": "angle", "a": "ground", "b": "arm",
+             "drive": {"type": "linear", "value": 0, "rate": 2}},
+            {"name": "rod", "type": "distance", "a": "arm.tip", "b": "bob"}]}
+EOF
+"$BRAUN" run "$TMP/drvrest.json" --dt 1e-3 --t-end 5 --quiet > "$TMP/drvrest.all" 2> /dev/null; rc=$?
+"$BRAUN" run "$TMP/drvrest.json" --dt 1e-3 --t-end 5 --corrections position,velocity --quiet \
+    > "$TMP/drvrest.pv" 2> /dev/null
+printf '%s|%s\n' "$(json_value final_q "$TMP/drvrest.all")" "$(json_value final_q "$TMP/drvrest.pv")" |
+    tr -d '[] ' > "$TMP/drvrest.q"
+check "a drive that starts its body at rest: the motion of the position/velocity corrections" sh -c '
+    [ "$1" -eq 0 ] && awk -F"|" "{ n = split(\$1, x, \",\"); split(\$2, y, \",\"); m = 0
+        for (i = 1; i <= n; i++) { d = x[i] - y[i]; if (d < 0) d = -d; if (d > m) m = d }
+        exit !(n == 5 && m < 1e-6) }" "$2"' sh "$rc" "$TMP/drvrest.q"
+small=0
+num_le "$(json_value final_energy_error "$TMP/drvrest.all")" 1e-12 && small=1
+check "... and its energy law holds (final_energy_error <= 1e-12)" [ "$small" -eq 1 ]
+# A body alone, driven from rest: the energy error read 0.05 J (the
+# kinetic energy the drive gives it) for the whole run, status OK.
+printf '{"name": "spin", "bodies": [{"name": "b", "type": "rigid", "mass": 1, "inertia": 0.1,
+  "position": [1, 0]}], "joints": [{"name": "d", "type": "angle", "a": "ground", "b": "b",
+  "drive": {"type": "linear", "value": 0, "rate": 1}}]}\n' > "$TMP/spin.json"
+"$BRAUN" run "$TMP/spin.json" --dt 1e-2 --t-end 1 --quiet > "$TMP/spin.out" 2> /dev/null; rc=$?
+small=0
+num_le "$(json_value max_energy_error "$TMP/spin.out")" 1e-12 && small=1
+check "a body alone driven from rest: no energy error after its start (was 0.05 J)" \
     sh -c '[ "$1" -eq 0 ] && [ "$2" -eq 1 ]' sh "$rc" "$small"
 
 # A scene naming a built-in reference with a force switched on at t = 2:

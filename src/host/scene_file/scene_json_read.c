@@ -849,6 +849,10 @@ static int read_report(sj_reader *r, json_t *report)
         const braun_scene_point *pt = &out->scene.points[point];
         if (clash >= 0 && !(pt->body == clash && pt->x == 0 && pt->y == 0 && pt->z == 0)) {
             sj_push_key(r, key);
+            if (r->dim == 3) /* a spatial body's columns are NAME.q[k]: no clash there */
+                return sj_fail(r, SJ_AT_KEY, "%s: body %d is named '%.120s' too: --points and "
+                                             "--plot %.120s.x would mean either; give the point a "
+                                             "name no body has", r->who, clash, key, key);
             return sj_fail(r, SJ_AT_KEY, "%s: body %d is named '%.120s' too: the trajectory CSV's "
                                          "columns %.120s.x, %.120s.y would name both; give the "
                                          "point a name no body has", r->who, clash, key, key, key);
