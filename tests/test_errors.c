@@ -648,6 +648,11 @@ static void test_mass_constant_claim_checked(void **state)
     assert_near(sim.data.t, 0.63, 1e-12);
     assert_near(sim.data.q[0], 0.63, 1e-12);
     assert_int_equal(sim.data.stats.steps, 63);
+    /* The finding's report, with its difference: the driver's check of the
+     * kept state repeated it as "found at an earlier call", value 0. */
+    assert_string_equal(sim.data.error.where,
+                        "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)");
+    assert_true(sim.data.error.value > 0.05);
     /* A braun_step loop: the 64th call refuses and changes nothing. */
     REOPEN_SIM();
     assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
@@ -680,6 +685,17 @@ static void test_mass_constant_claim_checked(void **state)
         assert_int_equal(st, BRAUN_ERR_ARGUMENT);
         assert_int_equal(evals, 63);
         assert_near(sim.data.error.t, 0.64, 1e-12);
+    }
+    /* The adaptive driver reports the finding too, with its difference. */
+    REOPEN_SIM();
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    {
+        braun_adaptive ctl = {1e-8, 1e-10, 0, 0, 0, 0};
+        assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 100.0, 0, NULL, NULL),
+                         BRAUN_ERR_ARGUMENT);
+        assert_string_equal(sim.data.error.where,
+                            "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)");
+        assert_true(sim.data.error.value > 0.05);
     }
     /* M(t): the same at the end of the span. */
     which = 1;

@@ -51,7 +51,8 @@ int braun_error_format(const braun_data *d, char *buf, size_t size);
  * scale), each with an allowance for its own round-off and truncation; an
  * entry that disagrees is differenced again at steps down to 16⁻⁸ of the
  * first, and judged by the estimate the differences resolve best (a drive
- * of 1e12 rad/s; a velocity of 1e6 m/s). Returns BRAUN_OK when every figure is at most tol (≤ 0: 1e-6),
+ * of 1e12 rad/s; a velocity of 1e6 m/s). Returns BRAUN_OK when every figure is at most tol (≤ 0: 1e-6;
+ * 1e-3 in a float build, whose differences resolve no better),
  * BRAUN_ERR_ARGUMENT when one is above it (rep->worst names the entry of
  * the first such figure in the order above, e.g. "A_q[2][2]", "b_qv[3]",
  * "energy rate" — a wrong A_q also shows in b_qv; rep->worst_value its

@@ -98,6 +98,7 @@ typedef struct braun_priv {
     braun_real guard_prev[6]; /* d->guard at the kept state (braun__commit), for a rollback */
     int mass_check_in;    /* steps to the next check of BRAUN_MASS_CONSTANT (braun__mass_claim_due) */
     int mass_claim_false; /* a check found M(t, q) != M(0, 0): every later call is refused */
+    double mass_claim_diff; /* the relative difference it found */
     braun_real *q_home, *v_home; /* where braun_data_init put d->q and d->v */
     int state_set;        /* braun_set_state was called */
     unsigned flags;       /* sys.flags at braun_data_init (braun__check_system) */

@@ -27,7 +27,12 @@ typedef struct work {
                      * go through A_q; the gradient before the rate) */
 } work;
 
-static double fd_step(double x) { return cbrt(DBL_EPSILON) * (fabs(x) > 1 ? fabs(x) : 1); }
+/* The precision the callbacks compute in: a float build's differences of
+ * float values were judged by double's round-off, and correct callbacks
+ * (the built-in models' too) failed by 2e-3. */
+#define REAL_EPS (sizeof(braun_real) < sizeof(double) ? (double)FLT_EPSILON : DBL_EPSILON)
+
+static double fd_step(double x) { return cbrt(REAL_EPS) * (fabs(x) > 1 ? fabs(x) : 1); }
 
 /* One figure: analytic x[k] against finite differences d[k] (count k), the
  * differences computed from values of magnitude up to `mag` with step tau,
@@ -46,7 +51,7 @@ static void judge(work *w, double *fig, const char *name, int rows, int cols, co
     /* Round-off of a central difference of values of size mag (a bound,
      * with room for cancellation inside the callback): what the differences
      * cannot resolve is not held against the callback. */
-    const double noise0 = 1e2 * DBL_EPSILON * mag / tau;
+    const double noise0 = 1e2 * REAL_EPS * mag / tau;
     for (int k = 0; k < count; k++) {
         /* ... nor what they do not resolve (deriv_best's allowance). */
         const double noise = noise0 + (allow ? allow[k] : 0);
@@ -232,7 +237,7 @@ static int kink(work *w, double x, double sign, double f0, double fp1, double fp
 {
     const double up = sign * (-3 * f0 + 4 * fp1 - fp2) / tau, down = sign * (3 * f0 - 4 * fm1 + fm2) / tau;
     const double scale = fmax(fabs(x), fmax(fabs(up), fabs(down)));
-    const double allow = 1e3 * DBL_EPSILON * mag / tau + w->tol * scale;
+    const double allow = 1e3 * REAL_EPS * mag / tau + w->tol * scale;
     if (!(fabs(up - down) > 100 * allow)) return 0;
     if (!(fabs(x - up) <= allow || fabs(x - down) <= allow)) return 0;
     *est = x;
@@ -265,7 +270,7 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
     double *alt = calloc(2 * (size_t)count + 1, sizeof(double)), *alt_spread = alt ? alt + count : NULL;
     if (!alt) return BRAUN_ERR_BUFFER;
     int st = deriv(w, f, dir, j, tau, t0, q0, v0, count, out, allow, mag);
-    for (int i = 0; i < count && !st; i++) allow[i] = 2 * allow[i] + 1e2 * DBL_EPSILON * *mag / tau;
+    for (int i = 0; i < count && !st; i++) allow[i] = 2 * allow[i] + 1e2 * REAL_EPS * *mag / tau;
     double step = tau;
     for (int level = 0; level < 8 && !st; level++) {
         int open = 0;
@@ -279,7 +284,7 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
         double m = *mag;
         st = deriv(w, f, dir, j, step, t0, q0, v0, count, alt, alt_spread, &m);
         for (int i = 0; i < count && !st; i++) {
-            const double allow_alt = 2 * alt_spread[i] + 1e2 * DBL_EPSILON * m / step;
+            const double allow_alt = 2 * alt_spread[i] + 1e2 * REAL_EPS * m / step;
             if (allow_alt / (fabs(alt[i]) + DBL_MIN) < allow[i] / (fabs(out[i]) + DBL_MIN)) {
                 out[i] = alt[i];
                 allow[i] = allow_alt;
@@ -331,7 +336,7 @@ static double motion_step(int n, const braun_real *q0, const braun_real *v0)
         if (fabs((double)v0[j]) > vmax) vmax = fabs((double)v0[j]);
         if (fabs((double)q0[j]) > qmax) qmax = fabs((double)q0[j]);
     }
-    return cbrt(DBL_EPSILON) * (1 + qmax) / (vmax > 1 ? vmax : 1);
+    return cbrt(REAL_EPS) * (1 + qmax) / (vmax > 1 ? vmax : 1);
 }
 
 /* The rows of one kind: the Jacobian (holonomic in q, nonholonomic in v),
@@ -479,7 +484,8 @@ static int check_energy_rate(work *w, double t, const braun_real *q0, const brau
         vn = fabs((double)v0[j]) > vn ? fabs((double)v0[j]) : vn;
     }
     w->rep->state_residual = (double)pos + (double)vel;
-    if (!st && ((double)pos > 1e-8 * (1 + qn) || (double)vel > 1e-8 * (1 + vn))) {
+    const double on = 1e-8 * sqrt(REAL_EPS / DBL_EPSILON); /* 1e-8 in double, 2.3e-4 in float */
+    if (!st && ((double)pos > on * (1 + qn) || (double)vel > on * (1 + vn))) {
         /* Off the constraints the identity does not hold: not judged. */
         w->rep->energy_rate = NAN;
         free(buf);
@@ -563,7 +569,7 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
     w.m = sys->m;
     w.p = sys->p;
     w.rep = rep;
-    w.tol = tol > 0 ? tol : 1e-6;
+    w.tol = tol > 0 ? tol : sizeof(braun_real) < sizeof(double) ? 1e-3 : 1e-6;
     const int n = sys->n, rows = sys->m + sys->p + 1;
     const size_t mass = sys->sparsity ? 0 : (size_t)n * n;
     size_t mblocks = 0;
