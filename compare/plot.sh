@@ -191,7 +191,16 @@ keyfor() { # keyfor PANEL BEST ROWS
 # The legend below the plot in two columns: legend_rows for N entries, the
 # canvas height that leaves 850 px to the panels, and the bottom margin
 # (a fraction of the canvas) that holds the legend.
-legend_rows() { echo $(( ($1 + 1) / 2 )); }
+# A column is as wide as its longest title: two columns of titles over
+# about 64 characters do not fit 1400 px, and gnuplot's PNG terminal then
+# drew the first column alone (the MuJoCo and Simbody series of four
+# work-precision plots had no legend); those legends get one column.
+# legend_rows N [PLOT]: PLOT is the plot command whose titles are measured.
+legend_rows() {
+    if [ -n "${2:-}" ] && [ "$(longest_title "$2")" -gt 64 ]; then echo "$1"
+    else echo $(( ($1 + 1) / 2 )); fi
+}
+longest_title() { printf '%s' "$1" | grep -o ' title "[^"]*"' | awk '{ n = length($0) - 9; if (n > m) m = n } END { print m + 0 }'; }
 canvas_height() { echo $(( 850 + 19 * $1 + 30 )); }
 bottom_margin() { awk -v r="$1" -v h="$2" 'BEGIN { printf "%.3f\n", (19 * r + 60) / h }'; }
 entries() { printf '%s' "$1" | grep -o ' title "' | wc -l; }
@@ -273,7 +282,7 @@ plot_pair() {
     done
     p=$(plot_cmd "$base.wp" "1:2" "$sc" "$T")
     if [ -n "$p" ]; then
-        rows=$(legend_rows $(( $(entries "$p") + 1 )))
+        rows=$(legend_rows $(( $(entries "$p") + 1 )) "$p")
         ht=$(canvas_height "$rows")
         cat > "$base.gp" <<EOF
 $common
@@ -298,7 +307,7 @@ EOF
     if [ -n "$p1$p2$p3$p4" ]; then
         k=$(mostkeyed "$p1" "$p2" "$p3" "$p4")
         eval "pk=\$p$k"
-        rows=$(legend_rows "$(entries "$pk")")
+        rows=$(legend_rows "$(entries "$pk")" "$pk")
         ht=$(canvas_height "$rows")
         bm=$(bottom_margin "$rows" "$ht")
         p1=${p1:-$blank} p2=${p2:-$blank} p3=${p3:-$blank} p4=${p4:-$blank}
@@ -333,7 +342,7 @@ EOF
     p1=$(plot_cmd "$base.ie" "1:2" "$sc" "$T" "$tolk")
     p2=$(plot_cmd "$base.it" "1:2" "$sc" "$T" "$tolk")
     if [ -n "$p2" ]; then
-        rows=$(legend_rows "$(entries "$p2")")
+        rows=$(legend_rows "$(entries "$p2")" "$p2")
         ht=$(canvas_height "$rows")
         bm=$(bottom_margin "$rows" "$ht")
         cat > "$base.gp" <<EOF
@@ -391,7 +400,7 @@ EOF
             [ $pcol -eq 6 ] || { plabel="‖q − q_{ref}‖ [$qu]"; pf=$floor; }
             k=$(mostkeyed "$p1" "$p2" "$p3" "$p4")
             eval "pk=\$p$k"
-            rows=$(legend_rows "$(entries "$pk")")
+            rows=$(legend_rows "$(entries "$pk")" "$pk")
             ht=$(canvas_height "$rows")
             bm=$(bottom_margin "$rows" "$ht")
             # A reference known at one time only (Andrews): points, not lines.

@@ -86,6 +86,9 @@ merge() {
         echo "cores=$(nproc 2>/dev/null || echo '?')"
         echo "sundials=$(dpkg-query -W -f='${Version}' libsundials-dev 2>/dev/null || echo '?')"
         echo "gsl=$(dpkg-query -W -f='${Version}' libgsl-dev 2>/dev/null || echo '?')"
+        # The LAPACK Simbody factors with (Debian's alternatives: OpenBLAS or
+        # the reference one move its results; docs/compare.md).
+        echo "lapack=$(readlink -f "$(ldconfig -p 2>/dev/null | awk '$1 == "liblapack.so.3" { print $NF; exit }')" 2>/dev/null || echo '?')"
         "$bin" versions
     } > "$out/meta.txt"
     if [ $report -eq 0 ]; then

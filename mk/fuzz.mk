@@ -16,7 +16,7 @@ FUZZ_COMMON := -g -O1 -fno-sanitize-recover=all \
                $(HOST_CPPFLAGS) -Isrc/host/cli -std=c99 -D_POSIX_C_SOURCE=200809L
 FUZZ_FLAGS := -fsanitize=fuzzer,address,undefined $(FUZZ_COMMON)
 FUZZ_LIB_SRC = $(CORE_SRC) $(HOST_SRC)
-FUZZ_CLI_SRC = src/host/cli/cli_args.c src/host/cli/cli_error.c src/host/cli/cli_usage.c \
+FUZZ_CLI_SRC = src/host/cli/cli_args.c src/host/cli/cli_option.c src/host/cli/cli_error.c src/host/cli/cli_usage.c \
                src/host/cli/cli_real.c src/host/cli/cli_text.c
 
 # Every source is compiled once with coverage and sanitizers

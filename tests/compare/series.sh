@@ -125,6 +125,33 @@ check "... clips its axes and notes it in plots.tsv" grep -q "^history_four-bar_
 check "... and in the plot" grep -q "clipped at" "$clip/history_four-bar_20.svg"
 check "... whose legend says the run stopped" grep -q "stopped: BRAUN" "$clip/history_four-bar_20.svg"
 
+# The report's sentences per fixed-step series, on made-up runs: the
+# largest step with an error below 0.01 (a shared buffer printed
+# "h = 0.01" for every series), and an observed order only from errors
+# between 10x the reference's and 0.1 (MuJoCo's 7.3 m and 78.6 m gave
+# "order 3.4"; 3.7e4 and 3.8e4 "order 0.0").
+words="$TMP/words"
+mkdir -p "$words"
+{
+    echo "$hdr"
+    for r in "braun rk4 - 0.02 5e-3" "braun rk4 - 0.01 3.2e-4" "braun rk4 - 0.005 2e-5" \
+             "braun heun - 0.01 0.17" "braun heun - 0.005 0.043" "braun heun - 0.002 6.8e-3" \
+             "braun heun - 0.001 1.7e-3" \
+             "mujoco mj-euler - 0.002 78.6" "mujoco mj-euler - 0.001 7.3"; do
+        set -- $r
+        printf 'four-bar,20,%s,%s,%s,%s,nan,nan,nan,nan,ok,20,0.1,0.1,1,100,0,400,0,0,0,0,0,0,1e-9,1e-9,1e-8,1e-8,1e-6,1e-6,%s,%s,%s,%s,401,0.5,1e-10,1e-7,0,closed-form,-\n' \
+            "$1" "$2" "$3" "$4" "$5" "$5" "$5" "$5"
+    done
+} > "$words/runs.csv"
+"$BIN" report --dir "$words" 2> "$TMP/words.log"
+check "report: braun RK4's largest step with an error below 0.01 is 0.02, order 4.0" \
+    grep -q '^- braun, RK4: the largest step with an error below 0.01: h = 0.02\. Observed order .*: 4\.0\.$' "$words/report.md"
+check "report: braun Heun's is 0.002, not 0.01" \
+    grep -q '^- braun, Heun: the largest step with an error below 0.01: h = 0.002\.' "$words/report.md"
+check "report: no order from MuJoCo's errors of 7.3 and 78.6 m" sh -c '
+    grep "^- MuJoCo 2.2.2 semi-implicit Euler" "$1" | grep -q "No observed order: .* 2 above 0.1" &&
+    ! grep "^- MuJoCo 2.2.2 semi-implicit Euler" "$1" | grep -q "Observed order"' sh "$words/report.md"
+
 # A malformed table is refused with its line.
 printf 'braun:rk4\tbraun, RK4\t#1f4e9c\t1\t7\tsteps\n' > "$TMP/bad.tsv"
 check "a key without a variant is refused" sh -c \

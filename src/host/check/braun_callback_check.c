@@ -30,7 +30,13 @@ typedef struct work {
 /* The precision the callbacks compute in: a float build's differences of
  * float values were judged by double's round-off, and correct callbacks
  * (the built-in models' too) failed by 2e-3. */
-#define REAL_EPS (sizeof(braun_real) < sizeof(double) ? (double)FLT_EPSILON : DBL_EPSILON)
+#ifdef BRAUN_SINGLE
+#define REAL_EPS ((double)FLT_EPSILON)
+#define DEFAULT_TOL 1e-3 /* what float differences resolve */
+#else
+#define REAL_EPS DBL_EPSILON
+#define DEFAULT_TOL 1e-6
+#endif
 
 static double fd_step(double x) { return cbrt(REAL_EPS) * (fabs(x) > 1 ? fabs(x) : 1); }
 
@@ -569,7 +575,7 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
     w.m = sys->m;
     w.p = sys->p;
     w.rep = rep;
-    w.tol = tol > 0 ? tol : sizeof(braun_real) < sizeof(double) ? 1e-3 : 1e-6;
+    w.tol = tol > 0 ? tol : DEFAULT_TOL;
     const int n = sys->n, rows = sys->m + sys->p + 1;
     const size_t mass = sys->sparsity ? 0 : (size_t)n * n;
     size_t mblocks = 0;
