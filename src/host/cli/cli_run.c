@@ -247,15 +247,20 @@ int braun_cli_run_target(const braun_cli_run_args *a, const braun_cli_target *tg
         const int big = sys.n > BRAUN_MAX_DENSE || sys.m > BRAUN_MAX_DENSE ||
                         sys.p > BRAUN_MAX_DENSE;
         int st = braun_model_init(&model, &sys);
-        if (st && !sys.sparsity && big) {
+        if (!st) rc = choose_backend(a, tg, &model, none);
+        if ((st || (!rc && (!model.opt.linsolver ||
+                               model.opt.linsolver != braun_linsolver_suitesparse()))) &&
+            big) {
+            /* Only SuiteSparse goes beyond: the core's own kernels stop there
+             * with --sparse too, and LAPACK's (they gave
+             * "invalid sizes" at the data's initialisation, exit 1). */
             rc = braun_cli_error("'%s' has n = %d, m = %d, p = %d: more than a dense system "
-                                 "allows (%d); run it with --sparse", tg->name, sys.n, sys.m,
-                                 sys.p, BRAUN_MAX_DENSE);
+                                 "allows (%d); run it with --backend suitesparse (or auto)",
+                                 tg->name, sys.n, sys.m, sys.p, BRAUN_MAX_DENSE);
         } else if (st) {
             braun_cli_error("model '%s' is invalid: %s", tg->name, braun_status_str(st));
             rc = BRAUN_CLI_FAILED;
         } else {
-            rc = choose_backend(a, tg, &model, none);
             if (!rc && !model.opt.linsolver && sys.n >= BRAUN_CLI_DENSE_NOTE_N)
                 fprintf(stderr, "braun: note: '%s' has n = %d on the dense kernels: O(n^3) per step%s\n",
                         tg->name, sys.n,
