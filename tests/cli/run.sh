@@ -371,5 +371,16 @@ check "plot: SIGTERM draws the picture up to the stop, exit 143" sh -c '
     grep -q "<title>four-bar: rk4, h = 0.001 s, t = 0 \.\.\. [0-9.e+]* s" "$3" && grep -q "</svg>" "$3"' \
     sh "$rc" "$TMP/int4.err" "$TMP/int4.svg"
 
+# A run that overflows where the library has no check of its own (Heun,
+# no corrections: the monitor's energy is +Inf first) said BRAUN_STOPPED,
+# which means a signal or a callback stopped it; the status is the
+# monitor's, with its time.
+"$BRAUN" run slider-crank --dt 2.5e-4 --t-end 10 --integrator heun --corrections none --quiet \
+    > "$TMP/ovf.json" 2> "$TMP/ovf.err"; rc=$?
+check "run: an overflow caught by the monitoring is BRAUN_ERR_NONFINITE, not BRAUN_STOPPED, exit 1" sh -c '
+    [ "$1" -eq 1 ] && grep -q "\"status\": \"BRAUN_ERR_NONFINITE\"" "$2" &&
+    ! grep -q "BRAUN_STOPPED" "$2" && grep -q "monitoring failed after t = " "$3"' \
+    sh "$rc" "$TMP/ovf.json" "$TMP/ovf.err"
+
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

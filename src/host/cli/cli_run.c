@@ -515,9 +515,12 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
         r.final_q = ctx.good.q;
         r.final_v = ctx.good.v;
     }
-    r.status = ctx.monitor_status ? BRAUN_STOPPED : st;
+    /* A failure of the monitoring (the state's energy +Inf: a run without
+     * corrections overflowing) is the run's status: it read BRAUN_STOPPED,
+     * which says a signal or callback stopped it. */
+    r.status = ctx.monitor_status ? ctx.monitor_status : st;
     r.stop = stop;
-    r.error_t = st && d.error.status == st ? d.error.t : NAN;
+    r.error_t = ctx.monitor_status ? r.final_t : st && d.error.status == st ? d.error.t : NAN;
     if (summary && braun_cli_write_summary(summary, &r)) braun_cli_output_failed(&out_summary);
     if (show) braun_cli_write_human(stderr, &r);
     if (braun_cli_output_close(&out_summary)) exit_status = BRAUN_CLI_FAILED;
