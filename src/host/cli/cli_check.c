@@ -635,7 +635,10 @@ static int report(const braun_cli_target *tg)
                         "be met (Gauss-Newton from the initial state, in the mass metric, stalls at "
                         "residual %.3g after %d step%s: no configuration near it meets them: "
                         "a joint longer than the mechanism reaches?); braun run with the position "
-                        "correction stops on its accuracy guard",
+                        "correction cannot meet them: its accuracy guard stops it where the "
+                        "residual grows, and a residual no larger than the start's, which the "
+                        "guard allows, is carried through a motion of the mechanism the rows "
+                        "nearly describe",
                         tg->name, who, asm_.resid, asm_.steps, asm_.steps == 1 ? "" : "s");
         rc = BRAUN_CLI_FAILED;
     }
