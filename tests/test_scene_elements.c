@@ -48,6 +48,9 @@ static void playground_init(playground *g)
 
 static const braun_scene_fn SINE = {BRAUN_FN_SINE, 0.2, 0.7, 2.3, 0.4};
 static const braun_scene_fn LINEAR = {BRAUN_FN_LINEAR, 0.4, -1.3, 0, 0};
+/* A driven length stays above 0 (offset > |amplitude|: the builder refuses
+ * a sine length that reaches 0, which the row cannot tell from -L). */
+static const braun_scene_fn LENGTH_SINE = {BRAUN_FN_SINE, 0.9, 0.7, 2.3, 0.4};
 
 static braun_scene_joint joint(const braun_scene_joint_class *type, int a, int b, double ax,
                                double ay, double value, const braun_scene_fn *drive)
@@ -125,7 +128,7 @@ static void test_distance(void **state)
     playground g;
     playground_init(&g);
     g.joints[0] = joint(BRAUN_JOINT_DISTANCE, B0_P, B1_P, 0, 0, 0.8, NULL);
-    g.joints[1] = joint(BRAUN_JOINT_DISTANCE, PART2, B1_Q, 0, 0, 0, &SINE);
+    g.joints[1] = joint(BRAUN_JOINT_DISTANCE, PART2, B1_Q, 0, 0, 0, &LENGTH_SINE);
     g.joints[2] = joint(BRAUN_JOINT_DISTANCE, GROUND_P, PART3, 0, 0, 0, &LINEAR);
     g.s.njoints = 3;
     check_playground(&g, "distance");

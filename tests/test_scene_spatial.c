@@ -68,6 +68,9 @@ static void spatial_init(spatial *g)
 
 static const braun_scene_fn SINE = {BRAUN_FN_SINE, 0.2, 0.7, 2.3, 0.4};
 static const braun_scene_fn LINEAR = {BRAUN_FN_LINEAR, 0.4, -1.3, 0, 0};
+/* A driven length stays above 0 (offset > |amplitude|: the builder refuses
+ * a sine length that reaches 0, which the row cannot tell from -L). */
+static const braun_scene_fn LENGTH_SINE = {BRAUN_FN_SINE, 0.9, 0.7, 2.3, 0.4};
 
 static braun_scene_joint joint(const braun_scene_joint_class *type, int a, int b,
                                const double *axis, const double *axis_b,
@@ -251,7 +254,7 @@ static void test_point_line_plane_distance(void **state)
     g.joints[3] = joint(BRAUN_JOINT_POINT_PLANE, B0_Q, GROUND_Q, AZ, NULL, NULL);
     g.joints[4] = joint(BRAUN_JOINT_DISTANCE, B0_P, B1_Q, NULL, NULL, NULL);
     g.joints[4].value = 0.9;
-    g.joints[5] = joint(BRAUN_JOINT_DISTANCE, PART, GROUND_P, NULL, NULL, &SINE);
+    g.joints[5] = joint(BRAUN_JOINT_DISTANCE, PART, GROUND_P, NULL, NULL, &LENGTH_SINE);
     g.s.njoints = 6;
     check_spatial(&g, "point_line, point_plane, distance");
     assert_int_equal(g.s.m, 2 + 2 + 1 + 1 + 1 + 1 + 2);

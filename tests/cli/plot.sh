@@ -421,6 +421,34 @@ check "... and draws by its name without .json (sleigh)" sh -c '[ "$1" -eq 0 ] &
 check "the IFToMM scenes by name (a01-pendulum, iftomm/a05-flyball-governor.json); no .. out of the data directory" sh -c '
     [ "$1" -eq 0 ] && [ "$2" -eq 0 ] && [ "$3" -eq 2 ] && grep -q "^scene: a01-pendulum$" a01.out &&
     grep -q "^file: .*/iftomm/a05-flyball-governor.json$" a05.out' sh "$rc" "$rc2" "$rc3"
+# A torque's arrow shows its sense: +1 and -1 drew the same arc, and that
+# arc's centre was 15 px off the body's (SVG's large-arc and sweep flags
+# chose the other circle). Now both are three quarters of a circle about
+# the body's origin, from the right (counter-clockwise, sweep 0) or the left
+# (clockwise, sweep 1) to the bottom.
+for s in 1 -1; do
+    printf '{"name": "tq", "bodies": [{"name": "wheel", "type": "rigid", "mass": 1, "inertia": 0.1,
+      "position": [0, 0], "points": {"O": [0, 0], "A": [0.5, 0]}}],
+     "joints": [{"type": "revolute", "a": "wheel.O", "b": [0, 0]}],
+     "effects": [{"type": "torque", "body": "wheel", "torque": %s}]}\n' "$s" > "tq$s.json"
+    "$BRAUN" plot "tq$s.json" --dt 1e-2 --t-end 1 --frames 2 -o "tq$s.svg" 2> /dev/null
+done
+arc() { grep -o '<path d="M [^"]* A 15.0 15.0 0 1 [01] [^"]*"' "$1" | head -n 1 | sed 's/<path d="M //; s/"$//'; }
+check "plot: a torque's arrow turns with its sign, about the body's origin" sh -c '
+    a=$1 b=$2; [ -n "$a" ] && [ -n "$b" ] || exit 1
+    # M x0 y0 A 15 15 0 1 sweep x1 y1: the end 15 px below the start'"'"'s row, x1 = x0 -+ 15
+    echo "$a" | awk "{ exit !(\$8 == 0 && (\$1 - \$9) > 14.99 && (\$1 - \$9) < 15.01 && (\$10 - \$2) > 14.99 && (\$10 - \$2) < 15.01) }" &&
+    echo "$b" | awk "{ exit !(\$8 == 1 && (\$9 - \$1) > 14.99 && (\$9 - \$1) < 15.01 && (\$10 - \$2) > 14.99 && (\$10 - \$2) < 15.01) }"' \
+    sh "$(arc tq1.svg)" "$(arc tq-1.svg)"
+
+# A picture of a run that stopped says so in itself (only stderr did; its
+# caption read like a finished run's).
+"$BRAUN" plot four-bar.json --dt 1e-2 --t-end 3 --integrator dopri5 --max-steps 40 -o stop.svg \
+    2> /dev/null; rc=$?
+check "plot: a run that stopped: exit 1, the caption names the asked end and the status" sh -c '
+    [ "$1" -eq 1 ] && grep -q "t = 0 \.\.\. [0-9.]* s (of 3 s: stopped, BRAUN_ERR_TOO_MANY_STEPS)" "$2"' \
+    sh "$rc" stop.svg
+
 cd .. || exit 1
 
 echo "$passed passed, $failed failed, $skipped skipped"

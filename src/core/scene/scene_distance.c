@@ -20,6 +20,18 @@ static const char *distance_check(const braun_scene *s, const braun_scene_joint 
     const char *same = braun_scene__same_body_points(s, j->a, j->b, 0);
     if (same) return same;
     if (!j->driven && !(j->value > 0)) return "distance must be > 0";
+    /* The row |P_b - P_a|^2 - L^2 cannot tell L from -L: a drive of -1 ran
+     * as a length of 1, status OK. A length that starts at or below 0, or a
+     * sine that reaches 0 (a + b sin: a <= |b|), is refused as `length`
+     * is; a linear drive that shrinks reaches 0 at t = -a/b, where the row
+     * loses its rank and the run stops. */
+    if (j->driven) {
+        braun_real L0 = 0;
+        if (braun_scene_fn_eval(&j->drive, 0, &L0, NULL, NULL) != BRAUN_OK || !(L0 > 0))
+            return "drive: the length at t = 0 must be > 0 (the row cannot tell L from -L)";
+        if (j->drive.kind == BRAUN_FN_SINE && !(j->drive.a > braun_fabs(j->drive.b)))
+            return "drive: a sine length a + b sin(...) must stay > 0 (offset a > |amplitude b|)";
+    }
     return NULL;
 }
 

@@ -52,6 +52,9 @@ const char *braun_cli_text_byte(unsigned char c, char *buf);
 /* Control bytes of s as '?', in place: one line, as error messages and the
  * trajectory CSV's header write a scene's names (cli_error.c, cli_csv.c). */
 void braun_cli_mask_controls(char *s);
+/* "BRAUN_ERR_DIVERGED" out of braun_status_str's "BRAUN_ERR_DIVERGED: ...":
+ * into buf, which it returns. */
+const char *braun_cli_status_name(int status, char *buf, size_t size);
 
 /* ---------------------------------------------------------- files (cli_files.c) */
 /* A file's identity (device, inode) when it is a regular file. */

@@ -6,15 +6,6 @@
 
 #include "braun_cli.h"
 
-static void status_name(int status, char *buf, size_t size)
-{
-    const char *s = braun_status_str(status);
-    size_t len = strcspn(s, ":");
-    if (len >= size) len = size - 1;
-    memcpy(buf, s, len);
-    buf[len] = '\0';
-}
-
 /* "1.3e-07", or "-" for a quantity that does not exist. */
 static const char *g3(double x, char *buf, size_t size)
 {
@@ -29,7 +20,7 @@ void braun_cli_write_human(FILE *f, const braun_cli_result *r)
     const braun_cli_monitor *mon = r->mon;
     const braun_cli_bounds *b = &r->stop.bounds;
     char st[64], p[16], v[16], e[16];
-    status_name(r->status, st, sizeof st);
+    braun_cli_status_name(r->status, st, sizeof st);
     fputs("braun: ", f);
     braun_cli_put_text(f, r->scene); /* the scene's name, escaped as braun check does */
     fprintf(f, ": %s", st);

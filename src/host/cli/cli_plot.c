@@ -32,6 +32,7 @@ typedef struct plot_run {
     plot_samples *samples;
     double *row;
     int n;
+    int status; /* the run's (done) */
 } plot_run;
 
 static void on_state(void *user, double t, const double *q, const double *v,
@@ -112,7 +113,7 @@ static int resolve_series(plot_job *job, plot_drawing *dr, const braun_cli_targe
 
 static int done(void *user, const braun_cli_result *r)
 {
-    (void)r;
+    ((plot_run *)user)->status = r->status;
     plot_samples_finish(((plot_run *)user)->samples);
     return 0;
 }
@@ -181,7 +182,7 @@ int braun_cli_plot(int argc, char **argv)
         row = rc ? NULL : malloc((size_t)samples.cols * sizeof *row);
         if (!rc && !row) rc = braun_cli_error("out of memory");
         if (!rc) {
-            plot_run pr = {&samples, row, tg.sys.n};
+            plot_run pr = {&samples, row, tg.sys.n, BRAUN_OK};
             braun_cli_observer obs = {on_state, done, &pr};
             a.plot_output = &out;
             /* A failed run still draws up to its last good state. */
@@ -195,6 +196,13 @@ int braun_cli_plot(int argc, char **argv)
                 snprintf(caption, sizeof caption, "%s: %s, h = %g s, t = %g ... %g s", tg.name,
                          braun_method_name(a.method), a.dt, samples.count ? samples.rows[0] : from,
                          samples.count ? samples.rows[(size_t)(samples.count - 1) * (size_t)samples.cols] : from);
+            /* A picture of a run that stopped says so, in itself: only
+             * stderr did, and the file looked like a finished run's. */
+            const size_t len = strlen(caption);
+            char st[64];
+            if (rc && pr.status != BRAUN_OK && len < sizeof caption)
+                snprintf(caption + len, sizeof caption - len, " (of %g s: stopped, %s)", a.t_end,
+                         braun_cli_status_name(pr.status, st, sizeof st));
         }
     }
     /* A failed or interrupted run (128 + the signal) draws up to its last

@@ -39,7 +39,15 @@ typedef struct plot_item {
     int a, b, c;       /* anchors */
     int count;         /* PLOT_OUTLINE: anchors a .. a + count - 1 */
     int fixed;         /* every anchor on the ground: drawn once, not per frame */
+    /* PLOT_ROTOR: its sense at time t — the sign of *fn(t) (a torque), of
+     * its rate (a drive: fn_rate), else of sense (a motor's no-load
+     * speed); counter-clockwise when positive (plot_item_sense). */
+    const braun_scene_fn *fn;
+    int fn_rate;
+    double sense;
 } plot_item;
+/* +1 counter-clockwise, -1 clockwise: a rotor's arrow at time t. */
+int plot_item_sense(const plot_item *it, double t);
 
 /* A traced point (--points): an anchor and its name. */
 typedef struct plot_trace {
@@ -144,7 +152,7 @@ enum {
     PLOT_LAYER_MARKS        /* the ground marks, drawn last */
 };
 void plot_svg_items(FILE *f, const plot_job *job, const plot_canvas *cv, const double *pos,
-                    int layer, const char *indent);
+                    double t, int layer, const char *indent);
 /* XML text: &, <, >, " as entities, control bytes and backslashes as
  * braun_cli_put_text shows them (\xNN, \\). */
 void plot_xml_text(FILE *f, const char *s);

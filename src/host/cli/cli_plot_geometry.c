@@ -54,6 +54,9 @@ static int add_item(plot_drawing *dr, int kind, int a, int b, int c, int count)
     it->b = b;
     it->c = c;
     it->count = count;
+    it->fn = NULL;
+    it->fn_rate = 0;
+    it->sense = 1;
     /* The anchors the kind uses: on the ground, the item is drawn once. */
     const int used = kind == PLOT_OUTLINE ? count
                      : kind == PLOT_BLOCK ? 3
@@ -209,10 +212,30 @@ static int unknown_points(plot_drawing *dr, const braun_scene_field *fields, con
     return 0;
 }
 
-static int rotor(plot_drawing *dr, int body)
+/* A rotor turns the way its torque (fn), its drive's rate (fn, rate) or a
+ * motor's no-load speed (sense) says: the arrow was counter-clockwise for
+ * every one, a torque of -1 and a drive run backwards alike. */
+static int rotor(plot_drawing *dr, int body, const braun_scene_fn *fn, int rate, double sense)
 {
     if (body < 0 || body >= dr->scene->nbodies) return 0;
-    return add_item(dr, PLOT_ROTOR, add_anchor(dr, -1, body, 0, 0), 0, 0, 0);
+    const int rc = add_item(dr, PLOT_ROTOR, add_anchor(dr, -1, body, 0, 0), 0, 0, 0);
+    if (rc) return rc;
+    plot_item *it = &dr->items[dr->nitems - 1];
+    it->fn = fn;
+    it->fn_rate = rate;
+    it->sense = sense;
+    return 0;
+}
+
+int plot_item_sense(const plot_item *it, double t)
+{
+    double s = it->sense;
+    if (it->fn) {
+        braun_real v = 0, r = 0;
+        if (braun_scene_fn_eval(it->fn, (braun_real)t, &v, &r, NULL) == BRAUN_OK)
+            s = (double)(it->fn_rate ? r : v);
+    }
+    return s < 0 ? -1 : 1;
 }
 
 /* A ground point an element uses gets a ground mark. */
@@ -270,14 +293,15 @@ static int build(plot_drawing *dr)
         } else if (j->type == BRAUN_JOINT_KNIFE) {
             rc = blade(dr, j, reach);
         } else if (j->type == BRAUN_JOINT_ANGLE) {
-            if (j->driven) rc = rotor(dr, j->b);
+            if (j->driven) rc = rotor(dr, j->b, &j->drive, 1, 1);
         } else if (j->type != BRAUN_JOINT_DISTANCE) {
             rc = unknown_points(dr, j->type->fields, j);
         }
     }
     for (int e = 0; e < s->neffects && !rc; e++) {
         const braun_scene_effect *ef = &s->effects[e];
-        if (ef->type == BRAUN_EFFECT_MOTOR || ef->type == BRAUN_EFFECT_TORQUE) rc = rotor(dr, ef->a);
+        if (ef->type == BRAUN_EFFECT_MOTOR) rc = rotor(dr, ef->a, NULL, 0, (double)ef->tau0); /* its torque at rest */
+        else if (ef->type == BRAUN_EFFECT_TORQUE) rc = rotor(dr, ef->a, &ef->f[0], 0, 1);
         else if (ef->type != BRAUN_EFFECT_SPRING && ef->type != BRAUN_EFFECT_GRAVITY &&
                  ef->type != BRAUN_EFFECT_TORSION && ef->type != BRAUN_EFFECT_FORCE)
             rc = unknown_points(dr, ef->type->fields, ef);

@@ -67,7 +67,7 @@ int plot_write_html(FILE *f, const plot_job *job)
     const long frames = job->frames < s->count ? job->frames : s->count;
     plot_svg_header(f, cv.width, cv.height, job->caption, 1);
     plot_drawing_eval(dr, s->rows + 1, qr, pos);
-    plot_svg_items(f, job, &cv, pos, PLOT_LAYER_UNDER, "  ");
+    plot_svg_items(f, job, &cv, pos, s->rows[0], PLOT_LAYER_UNDER, "  ");
     plot_svg_paths(f, job, &cv, "stroke-width=\"1.2\" stroke-opacity=\"0.45\"");
     fputs("  <g id=\"frames\">\n", f);
     for (long k = 0; k < frames; k++) {
@@ -76,7 +76,7 @@ int plot_write_html(FILE *f, const plot_job *job)
         char t[BRAUN_CLI_NUMBER_SIZE];
         plot_drawing_eval(dr, row + 1, qr, pos);
         fprintf(f, "  <g data-t=\"%s\" style=\"display:none\">\n", braun_cli_number(row[0], t));
-        plot_svg_items(f, job, &cv, pos, PLOT_LAYER_ALL_MOVING, "    ");
+        plot_svg_items(f, job, &cv, pos, row[0], PLOT_LAYER_ALL_MOVING, "    ");
         for (int i = 0; i < dr->ntraces; i++) {
             double x, y;
             plot_canvas_xy(&cv, dr, pos + 3 * dr->traces[i].anchor, &x, &y);
@@ -87,7 +87,7 @@ int plot_write_html(FILE *f, const plot_job *job)
     }
     fputs("  </g>\n", f);
     plot_drawing_eval(dr, s->rows + 1, qr, pos);
-    plot_svg_items(f, job, &cv, pos, PLOT_LAYER_MARKS, "  ");
+    plot_svg_items(f, job, &cv, pos, s->rows[0], PLOT_LAYER_MARKS, "  ");
     plot_svg_caption(f, job, &cv);
     plot_svg_scale_bar(f, &cv);
     fputs("</svg>\n", f);

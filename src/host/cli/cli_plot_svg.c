@@ -172,14 +172,19 @@ static void block(FILE *f, const char *in, double x, double y, double gx0, doubl
             x + a * ux + b * nx, y + a * uy + b * ny, x - a * ux + b * nx, y - a * uy + b * ny);
 }
 
-static void rotor(FILE *f, const char *in, double x, double y)
+/* Three quarters of a circle about (x, y), from the side and over the top
+ * to the bottom, and its head there: counter-clockwise on screen for
+ * sense > 0 (from the right; SVG's sweep 0 in y-down coordinates), else
+ * clockwise (from the left). The arc ended at the top, with sweep 0 and the
+ * large-arc flag, which put its centre 15 px off the body's. */
+static void rotor(FILE *f, const char *in, double x, double y, int sense)
 {
-    const double r = 15;
-    /* Three quarters of a circle, counter-clockwise on screen, and its head. */
-    fprintf(f, "%s<path d=\"M %.2f %.2f A %.1f %.1f 0 1 0 %.2f %.2f\" fill=\"none\" "
-               "stroke=\"#b8322f\" stroke-width=\"1.6\"/>\n", in, x + r, y, r, r, x, y - r);
+    const double r = 15, s = sense < 0 ? -1 : 1;
+    fprintf(f, "%s<path d=\"M %.2f %.2f A %.1f %.1f 0 1 %d %.2f %.2f\" fill=\"none\" "
+               "stroke=\"#b8322f\" stroke-width=\"1.6\"/>\n", in, x + s * r, y, r, r,
+            sense < 0 ? 1 : 0, x, y + r);
     fprintf(f, "%s<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"#b8322f\"/>\n", in,
-            x, y - r - 4.5, x, y - r + 4.5, x + 7, y - r);
+            x, y + r - 4.5, x, y + r + 4.5, x + s * 7, y + r);
 }
 
 static void ground(FILE *f, const char *in, double x, double y)
@@ -193,7 +198,7 @@ static void ground(FILE *f, const char *in, double x, double y)
 }
 
 void plot_svg_items(FILE *f, const plot_job *job, const plot_canvas *cv, const double *pos,
-                    int layer, const char *in)
+                    double t, int layer, const char *in)
 {
     const plot_drawing *dr = job->drawing;
     for (int i = 0; i < dr->nitems; i++) {
@@ -251,7 +256,7 @@ void plot_svg_items(FILE *f, const plot_job *job, const plot_canvas *cv, const d
             spring(f, in, xa, ya, xb, yb);
             break;
         case PLOT_ROTOR:
-            rotor(f, in, xa, ya);
+            rotor(f, in, xa, ya, plot_item_sense(it, t));
             break;
         case PLOT_GROUND:
             ground(f, in, xa, ya);
@@ -354,7 +359,7 @@ int plot_write_svg(FILE *f, const plot_job *job)
     const long frames = job->frames < s->count ? job->frames : s->count;
     plot_drawing_eval(dr, s->rows + 1, qr, pos);
     fputs("  <g id=\"ground\">\n", f);
-    plot_svg_items(f, job, &cv, pos, PLOT_LAYER_UNDER, "    ");
+    plot_svg_items(f, job, &cv, pos, s->rows[0], PLOT_LAYER_UNDER, "    ");
     fputs("  </g>\n", f);
     plot_svg_paths(f, job, &cv, "stroke-width=\"1.5\" stroke-opacity=\"0.9\"");
     /* Earlier configurations fainter: opacity 0.2 ... 1. */
@@ -367,7 +372,8 @@ int plot_write_svg(FILE *f, const plot_job *job)
         fprintf(f, "  <g class=\"frame\" data-t=\"%s\" opacity=\"%.3f\">\n",
                 braun_cli_number(row[0], t), op);
         /* Motors and torques once, on the newest configuration. */
-        plot_svg_items(f, job, &cv, pos, k == frames - 1 ? PLOT_LAYER_ALL_MOVING : PLOT_LAYER_MOVING,
+        plot_svg_items(f, job, &cv, pos, row[0],
+                       k == frames - 1 ? PLOT_LAYER_ALL_MOVING : PLOT_LAYER_MOVING,
                        "    ");
         for (int i = 0; i < dr->ntraces; i++) {
             double x, y;
@@ -378,7 +384,7 @@ int plot_write_svg(FILE *f, const plot_job *job)
         fputs("  </g>\n", f);
     }
     plot_drawing_eval(dr, s->rows + 1, qr, pos);
-    plot_svg_items(f, job, &cv, pos, PLOT_LAYER_MARKS, "  ");
+    plot_svg_items(f, job, &cv, pos, s->rows[0], PLOT_LAYER_MARKS, "  ");
     plot_svg_caption(f, job, &cv);
     plot_svg_scale_bar(f, &cv);
     fputs("</svg>\n", f);

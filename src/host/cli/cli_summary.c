@@ -61,17 +61,6 @@ static void array(json *j, const char *k, const double *x, int n)
     fputc(']', j->f);
 }
 
-/* "BRAUN_ERR_DIVERGED" out of "BRAUN_ERR_DIVERGED: the solution left ...". */
-static const char *status_name(int status, char *buf, size_t size)
-{
-    const char *s = braun_status_str(status);
-    size_t len = strcspn(s, ":");
-    if (len >= size) len = size - 1;
-    memcpy(buf, s, len);
-    buf[len] = '\0';
-    return buf;
-}
-
 static const char *discretization_name(braun_discretization d)
 {
     return d == BRAUN_PER_STAGE ? "per-stage" : "per-step";
@@ -116,7 +105,7 @@ int braun_cli_write_summary(FILE *f, const braun_cli_result *r)
     num(&j, "final_t", r->final_t);
     array(&j, "final_q", r->final_q, sys->n);
     array(&j, "final_v", r->final_v, sys->n);
-    str(&j, "status", status_name(r->status, status, sizeof status));
+    str(&j, "status", braun_cli_status_name(r->status, status, sizeof status));
     integer(&j, "n", sys->n);
     integer(&j, "m", sys->m);
     integer(&j, "p", sys->p);

@@ -6,6 +6,7 @@
  * colour the terminal (ESC [31m, or the C1 CSI U+009B). The one rule for
  * every such place. */
 #include <stdio.h>
+#include <string.h>
 
 #include "braun_cli.h"
 
@@ -38,4 +39,14 @@ void braun_cli_mask_controls(char *s)
 {
     for (; *s; s++)
         if ((unsigned char)*s < 0x20 || *s == 0x7f) *s = '?';
+}
+
+const char *braun_cli_status_name(int status, char *buf, size_t size)
+{
+    const char *s = braun_status_str(status);
+    size_t len = strcspn(s, ":");
+    if (len >= size) len = size - 1;
+    memcpy(buf, s, len);
+    buf[len] = '\0';
+    return buf;
 }
