@@ -449,6 +449,12 @@ check "plot: a run that stopped: exit 1, the caption names the asked end and the
     [ "$1" -eq 1 ] && grep -q "t = 0 \.\.\. [0-9.]* s (of 3 s: stopped, BRAUN_ERR_TOO_MANY_STEPS)" "$2"' \
     sh "$rc" stop.svg
 
+# A spatial joint's ground point gets its ground mark, as a planar one's
+# does (the spatial arm's hinge pivot had a ring and no mark).
+"$BRAUN" plot "$TOP/data/spatial-arm.json" --dt 1e-2 --t-end 0.5 --frames 2 --view xz -o sa.svg 2> /dev/null
+check "plot: the spatial arm's two ground points (hinge pivot, cord anchor) both have marks" sh -c '
+    [ "$(grep -c "fill=\"#ffffff\" stroke=\"#222222\"" "$1")" -eq 2 ]' sh sa.svg
+
 cd .. || exit 1
 
 echo "$passed passed, $failed failed, $skipped skipped"

@@ -199,10 +199,11 @@ int braun_cli_plot(int argc, char **argv)
             /* A picture of a run that stopped says so, in itself: only
              * stderr did, and the file looked like a finished run's. */
             const size_t len = strlen(caption);
-            char st[64];
-            if (rc && pr.status != BRAUN_OK && len < sizeof caption)
+            if (rc && pr.status != BRAUN_OK && len < sizeof caption) {
+                char st[64];
                 snprintf(caption + len, sizeof caption - len, " (of %g s: stopped, %s)", a.t_end,
                          braun_cli_status_name(pr.status, st, sizeof st));
+            }
         }
     }
     /* A failed or interrupted run (128 + the signal) draws up to its last

@@ -40,8 +40,8 @@ typedef struct plot_item {
     int count;         /* PLOT_OUTLINE: anchors a .. a + count - 1 */
     int fixed;         /* every anchor on the ground: drawn once, not per frame */
     /* PLOT_ROTOR: its sense at time t — the sign of *fn(t) (a torque), of
-     * its rate (a drive: fn_rate), else of sense (a motor's no-load
-     * speed); counter-clockwise when positive (plot_item_sense). */
+     * its rate (a drive: fn_rate), else of sense (a motor's stall
+     * torque); counter-clockwise when positive (plot_item_sense). */
     const braun_scene_fn *fn;
     int fn_rate;
     double sense;

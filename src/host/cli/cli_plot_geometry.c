@@ -198,22 +198,31 @@ static int blade(plot_drawing *dr, const braun_scene_joint *j, double reach)
                     0, 0);
 }
 
+/* A ground point an element uses gets a ground mark. */
+static void mark(char *grounded, const braun_scene *s, int i)
+{
+    if (i >= 0 && i < s->npoints && s->points[i].body == BRAUN_SCENE_GROUND) grounded[i] = 1;
+}
+
 /* Rings at every point field of an element of a class the tool does not know. */
-static int unknown_points(plot_drawing *dr, const braun_scene_field *fields, const void *element)
+static int unknown_points(plot_drawing *dr, const braun_scene_field *fields, const void *element,
+                          char *grounded)
 {
     for (const braun_scene_field *f = fields; f && f->key; f++)
         if (f->kind == BRAUN_FIELD_POINT || f->kind == BRAUN_FIELD_BODY_POINT) {
             int idx;
             memcpy(&idx, (const char *)element + f->offset, sizeof idx);
-            if (idx >= 0 && idx < dr->scene->npoints &&
-                add_item(dr, PLOT_PIN, add_anchor(dr, idx, 0, 0, 0), 0, 0, 0))
-                return -1;
+            if (idx < 0 || idx >= dr->scene->npoints) continue;
+            /* Its ground points get their marks, as a planar joint's do (a
+             * spatial hinge's pivot had a ring and no mark). */
+            mark(grounded, dr->scene, idx);
+            if (add_item(dr, PLOT_PIN, add_anchor(dr, idx, 0, 0, 0), 0, 0, 0)) return -1;
         }
     return 0;
 }
 
 /* A rotor turns the way its torque (fn), its drive's rate (fn, rate) or a
- * motor's no-load speed (sense) says: the arrow was counter-clockwise for
+ * motor's stall torque (sense) says: the arrow was counter-clockwise for
  * every one, a torque of -1 and a drive run backwards alike. */
 static int rotor(plot_drawing *dr, int body, const braun_scene_fn *fn, int rate, double sense)
 {
@@ -238,11 +247,6 @@ int plot_item_sense(const plot_item *it, double t)
     return s < 0 ? -1 : 1;
 }
 
-/* A ground point an element uses gets a ground mark. */
-static void mark(char *grounded, const braun_scene *s, int i)
-{
-    if (i >= 0 && i < s->npoints && s->points[i].body == BRAUN_SCENE_GROUND) grounded[i] = 1;
-}
 #define MARK(i) mark(grounded, s, (i))
 
 static int build(plot_drawing *dr)
@@ -295,7 +299,7 @@ static int build(plot_drawing *dr)
         } else if (j->type == BRAUN_JOINT_ANGLE) {
             if (j->driven) rc = rotor(dr, j->b, &j->drive, 1, 1);
         } else if (j->type != BRAUN_JOINT_DISTANCE) {
-            rc = unknown_points(dr, j->type->fields, j);
+            rc = unknown_points(dr, j->type->fields, j, grounded);
         }
     }
     for (int e = 0; e < s->neffects && !rc; e++) {
@@ -304,7 +308,7 @@ static int build(plot_drawing *dr)
         else if (ef->type == BRAUN_EFFECT_TORQUE) rc = rotor(dr, ef->a, &ef->f[0], 0, 1);
         else if (ef->type != BRAUN_EFFECT_SPRING && ef->type != BRAUN_EFFECT_GRAVITY &&
                  ef->type != BRAUN_EFFECT_TORSION && ef->type != BRAUN_EFFECT_FORCE)
-            rc = unknown_points(dr, ef->type->fields, ef);
+            rc = unknown_points(dr, ef->type->fields, ef, grounded);
     }
     for (int i = 0; i < s->npoints && !rc; i++)
         if (grounded[i]) rc = add_item(dr, PLOT_GROUND, add_anchor(dr, i, 0, 0, 0), 0, 0, 0);
