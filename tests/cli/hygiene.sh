@@ -120,6 +120,7 @@ expect "gen chain -o and --out refused (one option)" 2 "option --out given twice
 expect "gen chain --angle=30 as --angle 30" 0 "" gen chain 2 --angle=30 -o "$TMP/eq.json"
 expect "gen-c --symbol=p --out=FILE" 0 "" gen-c data/pendulum.json --symbol=p --out="$TMP/eq.c"
 expect "gen chain --rods=1 refused" 2 "option --rods takes no value" gen chain 2 --rods=1
+expect "gen chain -1: N out of range, not an unknown option" 2 "N must be an integer in \\[1, 2000\\] \\(got '-1'\\)" gen chain -1
 # A value that begins with "--" is a forgotten value in every command (gen-c
 # wrote its C to a file named "--symbol"; run refused it already).
 (cd "$TMP" && "$abs_braun_early" gen-c "$OLDPWD/data/pendulum.json" -o --symbol p) 2> "$TMP/fv.err"; rc=$?

@@ -241,9 +241,11 @@ int braun_cli_gen(int argc, char **argv)
     const char *seen[4];
     int nseen = 0;
     for (int i = 1; i < argc; i++) {
-        char name[32];
+        char name[32] = ""; /* a negative N leaves it unread */
         const char *val = NULL;
-        if (argv[i][0] == '-' && argv[i][1] != '\0') {
+        /* A negative N is N out of range, not an unknown option "-1". */
+        const int negative_n = argv[i][0] == '-' && argv[i][1] >= '0' && argv[i][1] <= '9';
+        if (argv[i][0] == '-' && argv[i][1] != '\0' && !negative_n) {
             /* "--angle=30" as "--angle 30" (run's forms); each option once. */
             if ((rc = braun_cli_option(argc, argv, &i, name, sizeof name, NULL)) != 0) return rc;
             const int is_out = strcmp(name, "-o") == 0 || strcmp(name, "--out") == 0;
@@ -271,7 +273,7 @@ int braun_cli_gen(int argc, char **argv)
         } else if (argv[i][0] == '-' && (strcmp(name, "-o") == 0 || strcmp(name, "--out") == 0)) {
             if ((rc = braun_cli_option(argc, argv, &i, name, sizeof name, &val)) != 0) return rc;
             out = val;
-        } else if (argv[i][0] == '-') {
+        } else if (argv[i][0] == '-' && !negative_n) {
             return braun_cli_error("unknown option '%s' (see braun --help)", argv[i]);
         } else if (count) {
             return braun_cli_error("unexpected argument '%s' (one N only)", argv[i]);
