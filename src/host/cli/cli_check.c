@@ -695,7 +695,8 @@ int braun_cli_check(int argc, char **argv)
     /* check's rank, consistency and callback analyses are dense (O(n³)):
      * a large scene takes minutes (a 1000-link chain, n = 3000: about two),
      * which the user is told before the silence. */
-    if (tg.sys.n >= BRAUN_CLI_DENSE_NOTE_N)
+    if (tg.sys.n >= BRAUN_CLI_DENSE_NOTE_N && tg.sys.n <= BRAUN_MAX_DENSE &&
+        tg.sys.m + tg.sys.p <= BRAUN_MAX_DENSE) /* beyond, report refuses at once */
         fprintf(stderr, "braun: note: '%s' has n = %d; check's analyses are dense (O(n^3)): this "
                         "takes a while\n", tg.name, tg.sys.n);
     rc = report(&tg);
