@@ -43,9 +43,10 @@ static void segment(FILE *g, const double *p, const double *q, const plot_drawin
             q[dr->axis_v]);
 }
 
-/* The lines and marks of one configuration as two data blocks; bit 0 set
- * if there are lines, bit 1 if marks (an empty block is not plotted:
- * gnuplot warns about it). */
+/* The lines, marks and springs of one configuration as three data blocks;
+ * bit 0 set if there are lines, bit 1 if marks, bit 2 if springs (an empty
+ * block is not plotted: gnuplot warns about it). Springs apart: drawn as
+ * the bodies' thick lines they looked like rigid links. */
 static int frame_blocks(FILE *g, const plot_drawing *dr, const double *pos, const char *k,
                         int fixed)
 {
@@ -59,8 +60,15 @@ static int frame_blocks(FILE *g, const plot_drawing *dr, const double *pos, cons
             for (int e = 0; e < it->count; e++, have |= 1)
                 segment(g, pos + 3 * (it->a + e), pos + 3 * (it->a + (e + 1) % it->count), dr);
         else if (it->kind == PLOT_BAR || it->kind == PLOT_LINK || it->kind == PLOT_BLADE ||
-                 it->kind == PLOT_SPRING || it->kind == PLOT_GUIDE)
+                 it->kind == PLOT_GUIDE)
             segment(g, a, b, dr), have |= 1;
+    }
+    fputs("EOD\n", g);
+    fprintf(g, "$W%s << EOD\n", k);
+    for (int i = 0; i < dr->nitems; i++) {
+        const plot_item *it = &dr->items[i];
+        if (it->fixed == fixed && it->kind == PLOT_SPRING)
+            segment(g, pos + 3 * it->a, pos + 3 * it->b, dr), have |= 4;
     }
     fputs("EOD\n", g);
     fprintf(g, "$P%s << EOD\n", k);
@@ -161,6 +169,7 @@ static int script(FILE *g, const plot_job *job)
         /* Every configuration has the same items: one's blocks say for all. */
         const char *sep = "plot ";
         if (ground & 1) fprintf(g, "%s$LG with lines dt 2 lw 1.5 lc rgb '#777777'", sep), sep = ", ";
+        if (ground & 4) fprintf(g, "%s$WG with lines dt 3 lw 2 lc rgb '#2e7d32'", sep), sep = ", ";
         if (ground & 2)
             fprintf(g, "%s$PG using 1:2 with points pt 9 ps 2 lc rgb '#222222'", sep), sep = ", ";
         for (int i = 0; i < dr->ntraces; i++, sep = ", ")
@@ -170,6 +179,11 @@ static int script(FILE *g, const plot_job *job)
             if (moving & 1) {
                 fprintf(g, "%s$L%ld with lines lw 4 lc rgb ", sep, k);
                 gp_colour(g, "#1f4e79", op);
+                sep = ", ";
+            }
+            if (moving & 4) { /* springs: dotted green, as the SVG's zigzags are green */
+                fprintf(g, "%s$W%ld with lines dt 3 lw 2 lc rgb ", sep, k);
+                gp_colour(g, "#2e7d32", op);
                 sep = ", ";
             }
             if (moving & 2) {
