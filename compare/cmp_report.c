@@ -584,12 +584,16 @@ static void baumgarte_section(FILE *md, const cmp_rows *d, const pair *pr, int n
                 rv[v] = cmp_rows_fixed(d, pr[i].scene, pr[i].T, "baumgarte", "rk4", vs[v], hs[j]);
                 if (rv[v] && rv[v]->ok && rv[v]->traj < best) best = rv[v]->traj;
             }
+            int top[5], ntop = 0; /* within 1 % of the row's best */
+            for (int v = 0; v < 5; v++) {
+                top[v] = rv[v] && rv[v]->ok && isfinite(best) && rv[v]->traj <= 1.01 * best;
+                ntop += top[v];
+            }
             for (int v = 0; v < 5; v++) {
                 const cmp_row *r = rv[v];
-                const int top = r && r->ok && isfinite(best) && r->traj <= 1.01 * best;
                 if (!r) fprintf(md, " – |");
                 else if (r->ok)
-                    fprintf(md, top ? " **%s** |" : " %s |", cmp_fmt_e(r->traj, b));
+                    fprintf(md, top[v] ? " **%s** |" : " %s |", cmp_fmt_e(r->traj, b));
                 else
                     fprintf(md, " %s at t = %s |", r->status, cmp_fmt_e(r->t_reached, c));
             }
@@ -599,12 +603,8 @@ static void baumgarte_section(FILE *md, const cmp_rows *d, const pair *pr, int n
                 continue;
             }
             rows_ranked++;
-            const cmp_row *def = rv[1];
-            if (def && def->ok && def->traj <= 1.01 * best) {
-                int alone = 1;
-                for (int v = 0; v < 5; v++)
-                    if (v != 1 && rv[v] && rv[v]->ok && rv[v]->traj <= 1.01 * best) alone = 0;
-                if (alone) default_best++;
+            if (top[1]) { /* the default, 0.1/h */
+                if (ntop == 1) default_best++;
                 else default_tied++;
             }
         }

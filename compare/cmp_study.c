@@ -549,10 +549,15 @@ static void clean(char *s)
  * like a solver's own. */
 #define CMP_APART 0.1
 
+static int flew_apart(const cmp_outcome *o, const cmp_metrics *mt)
+{
+    return !o->status && mt->pos_max > CMP_APART;
+}
+
 /* The status a row, its progress line and a cross-check print: one word. */
 static const char *run_status(const cmp_outcome *o, const cmp_metrics *mt)
 {
-    return o->status ? o->status_name : mt->pos_max > CMP_APART ? "FLEW_APART" : "ok";
+    return o->status ? o->status_name : flew_apart(o, mt) ? "FLEW_APART" : "ok";
 }
 
 static void write_row(FILE *f, const job *j, const cmp_outcome *o, double cpu_min,
@@ -561,8 +566,7 @@ static void write_row(FILE *f, const job *j, const cmp_outcome *o, double cpu_mi
 {
     const cmp_spec *s = &j->spec;
     char detail[sizeof o->detail];
-    const int apart = !o->status && mt->pos_max > CMP_APART;
-    if (apart && !o->detail[0])
+    if (flew_apart(o, mt) && !o->detail[0])
         snprintf(detail, sizeof detail, "reached T with max |Phi_q| %.3g above %g", mt->pos_max,
                  CMP_APART);
     else snprintf(detail, sizeof detail, "%s", o->detail);

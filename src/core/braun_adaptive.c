@@ -334,7 +334,6 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
     if (!braun__data_intact(d, pv, 1)) return failed; /* re-initialised by a system callback */
     st = braun__final_checks(d);
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
-    if (st && failed && pv->mass_claim_false) st = BRAUN_OK; /* as braun_integrate's finish_failed */
     if (st) return st;
     if (failed) d->error = failure;
     if (out && (pending || !failed) && (st = braun__output(d, out, out_user)) != BRAUN_OK) return st;

@@ -102,6 +102,10 @@ BRAUN_FORCE_INLINE int guard_rows(braun_data *d, unsigned corr, int accel)
 
 int braun__final_checks(braun_data *d)
 {
+    /* A claim already found false failed this call and reported it (the
+     * finding, with its difference, or "found at an earlier call"): checked
+     * again it wrote the second over the first. */
+    if (braun__priv(d)->mass_claim_false) return BRAUN_ERR_ARGUMENT;
     const int st = braun__check_mass_claim(d, d->t, d->q);
     return st ? st : braun__guard_final(d);
 }
@@ -579,8 +583,8 @@ static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_
      * coordinates at |c| / Σ|A_ij|: a body at rest driven at 1 rad/s had
      * velocity and energy scales of 0, its start's residual was not seen
      * and E0 kept the energy of the wrong start. */
+    for (int j = 0; j < n; j++) sv[j] = 1; /* row_abs_dot(ones): Σ|A_ij| */
     for (int i = 0; i < rows; i++) {
-        for (int j = 0; j < n; j++) sv[j] = 1;
         const braun_real c = braun_fabs(pv->ev[i] - braun__row_dot(pv, i, v)),
                          a = braun__row_abs_dot(pv, i, sv);
         if (a > 0 && c > V * a) V = c / a;

@@ -72,8 +72,7 @@ static int stage_mass(braun_data *d)
  * forms xᵀM(t, q)x and ‖R x‖² of a
  * fixed probe x must agree within sqrt(ε) of Σ|x_i M_ij x_j| (round-off
  * of the factor is about n²ε of it). */
-static const char claim_false[] =
-    "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)";
+#define CLAIM_FALSE "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0)"
 
 int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q)
 {
@@ -81,12 +80,11 @@ int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q)
     if (!pv->R_is_constant || !pv->Mcheck) return BRAUN_OK;
     /* The claim is the model's: found false once, it stays false (another
      * point where M happens to agree does not make it true). */
-    if (pv->mass_claim_false) {
+    if (pv->mass_claim_false)
         return braun__fail(d, BRAUN_ERR_ARGUMENT,
-                           "system declared BRAUN_MASS_CONSTANT but M(t, q) differs from M(0, 0) (found "
-                           "at an earlier call; braun_data_init again with a true claim)",
+                           CLAIM_FALSE " (found at an earlier call; braun_data_init again with a "
+                           "true claim)",
                            -1, -1, pv->mass_claim_diff, (double)t);
-    }
     const braun_system *s = &d->model->sys;
     const int n = pv->n;
     const int st = braun__callback(d, s->mass(t, q, pv->Mcheck, s->user), "mass", t);
@@ -116,7 +114,7 @@ int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q)
     if (bad) return bad;
     pv->mass_claim_false = 1;
     pv->mass_claim_diff = scale > 0 ? (double)(diff / scale) : (double)diff;
-    return braun__fail(d, BRAUN_ERR_ARGUMENT, claim_false, -1, -1, pv->mass_claim_diff, (double)t);
+    return braun__fail(d, BRAUN_ERR_ARGUMENT, CLAIM_FALSE, -1, -1, pv->mass_claim_diff, (double)t);
 }
 
 /* ================================================================ */

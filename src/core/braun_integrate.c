@@ -14,10 +14,6 @@ static int finish_failed(braun_data *d, int failed, int due, braun_output_fn out
     if (!braun__data_intact(d, braun__priv(d), 1)) return failed;
     int st = braun__final_checks(d);
     if (st == BRAUN_ERR_ACCURACY) braun__guard_rollback(d);
-    /* A false BRAUN_MASS_CONSTANT found by this run's step: the check of
-     * the kept state only repeats it, as "found at an earlier call" and
-     * without the difference; the finding's report stays. */
-    if (st && braun__priv(d)->mass_claim_false) st = BRAUN_OK;
     if (st) return st;
     d->error = failure;
     if (due && (st = braun__output(d, out, out_user)) != BRAUN_OK) return st;
