@@ -341,7 +341,7 @@ typedef struct braun_stats {
     long mass_factorizations;
     long constraint_factorizations; /* QR factorizations of C^T */
     long rank_deficient;    /* factorizations whose rank < rows (redundancy or singularity) */
-    long energy_guard_hits; /* energy corrections saturated by energy_max_rel */
+    long energy_guard_hits; /* energy corrections saturated by energy_max_rel (none where no motion is free) */
     long soft_filtered;     /* stages whose soft directions the filter took from continuity
                              * (options.soft_tol) */
 } braun_stats;

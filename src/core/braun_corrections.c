@@ -463,6 +463,10 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
     const braun_real smax = energy_max_rel(d);
     braun_real sigma;
     const int saturated = !(braun_fabs(r) <= smax * xx);
+    /* No direction at all where the rows leave no motion free (every
+     * coordinate driven): nothing to saturate, no hit (at rest there is a
+     * direction, which the motion does not yet have). */
+    const int free_motion = pv->rank[0] < n;
     if (!saturated) sigma = xx > 0 ? r / xx : 0;
     else sigma = r > 0 ? smax : -smax;
     if (pv->energy_end) {
@@ -473,10 +477,10 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
         pv->sigma0 = sigma;
         pv->sat0 = saturated;
         if (pv->de_ok) braun__solve_r(pv, pv->ce, pv->de);
-        else if (saturated) BRAUN__COUNT(d->stats.energy_guard_hits); /* at rest: no direction */
+        else if (saturated && free_motion) BRAUN__COUNT(d->stats.energy_guard_hits); /* at rest */
         return BRAUN_OK;
     }
-    if (saturated) BRAUN__COUNT(d->stats.energy_guard_hits);
+    if (saturated && (xx > 0 || free_motion)) BRAUN__COUNT(d->stats.energy_guard_hits);
     if (sigma == 0) return BRAUN_OK;
     for (int i = 0; i < n; i++) pv->tmp[i] = sigma * pv->ce[i];
     braun__solve_r(pv, pv->tmp, pv->tmp);

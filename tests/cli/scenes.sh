@@ -209,6 +209,11 @@ check "driven-crank: declared corrections position,velocity, method braun-noener
 "$BRAUN" run data/driven-crank.json --dt 1e-3 --t-end 0.5 --corrections energy > /dev/null 2> "$TMP/dce"; rc=$?
 check "driven-crank --corrections energy: runs (the drive's work is in the law)" sh -c '
     [ "$1" -eq 0 ] && [ ! -s "$2" ]' sh "$rc" "$TMP/dce"
+# Every coordinate driven: the energy force has no direction, and a step
+# is no saturation (it counted one per step: 500 here).
+"$BRAUN" run data/driven-crank.json --dt 1e-3 --t-end 0.5 --corrections all > "$TMP/dca.json"
+check "driven-crank --corrections all: no energy guard hits (no motion free)" \
+    [ "$(json_value energy_guard_hits "$TMP/dca.json")" = 0 ]
 "$BRAUN" run data/sleigh.json --dt 1e-2 --t-end 1 --corrections position,velocity > "$TMP/sl.json"
 check "sleigh --corrections position,velocity: overrides the scene, braun-noenergy" sh -c '
     grep -q "^  \"corrections\": \"position,velocity\",$" "$1" &&
