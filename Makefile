@@ -163,15 +163,17 @@ convergence: $(BUILD)/bin/braun
 # Headers flat under include/, the three archives, pkg-config files from
 # their .pc.in templates (braun, braun-host, braun-backends), the tool.
 PC_SUBST = sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' \
-               -e 's|@BACKEND_LDLIBS@|$(BACKEND_LDLIBS)|g'
+               -e 's|@BACKEND_LDLIBS@|$(BACKEND_LDLIBS)|g' \
+               -e 's|@PRECISION_CFLAGS@|$(if $(filter 1,$(BRAUN_SINGLE)), -DBRAUN_SINGLE,)|g'
+# Every path quoted: PREFIX and DESTDIR may hold spaces.
 install: all $(BUILD)/libbraun_backends.a
-	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
-	install -m 644 include/core/*.h include/host/*.h $(DESTDIR)$(PREFIX)/include/
+	install -d "$(DESTDIR)$(PREFIX)/include" "$(DESTDIR)$(PREFIX)/lib/pkgconfig" "$(DESTDIR)$(PREFIX)/bin"
+	install -m 644 include/core/*.h include/host/*.h "$(DESTDIR)$(PREFIX)/include/"
 	install -m 644 $(BUILD)/libbraun.a $(BUILD)/libbraun_host.a $(BUILD)/libbraun_backends.a \
-	    $(DESTDIR)$(PREFIX)/lib/
-	install -m 755 $(BUILD)/bin/braun $(DESTDIR)$(PREFIX)/bin/
+	    "$(DESTDIR)$(PREFIX)/lib/"
+	install -m 755 $(BUILD)/bin/braun "$(DESTDIR)$(PREFIX)/bin/"
 	for pc in braun braun-host braun-backends; do \
-	    $(PC_SUBST) $$pc.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/$$pc.pc || exit 1; done
+	    $(PC_SUBST) $$pc.pc.in > "$(DESTDIR)$(PREFIX)/lib/pkgconfig/$$pc.pc" || exit 1; done
 
 clean:
 	rm -rf $(BUILD)

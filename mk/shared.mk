@@ -70,11 +70,11 @@ lib: $(BUILD)/libbraun.so.$(VERSION) $(BUILD)/libbraun_host.so.$(VERSION)
 LIBDIR := $(DESTDIR)$(PREFIX)/lib
 install: install-shared install-cmake install-data
 install-shared: $(SHARED_LIBS)
-	install -d $(LIBDIR)
+	install -d "$(LIBDIR)"
 	for l in libbraun libbraun_host libbraun_backends; do \
-	    install -m 755 $(BUILD)/$$l.so.$(VERSION) $(LIBDIR)/ && \
-	    ln -sf $$l.so.$(VERSION) $(LIBDIR)/$$l.so.$(SOVERSION) && \
-	    ln -sf $$l.so.$(SOVERSION) $(LIBDIR)/$$l.so || exit 1; done
+	    install -m 755 $(BUILD)/$$l.so.$(VERSION) "$(LIBDIR)/" && \
+	    ln -sf $$l.so.$(VERSION) "$(LIBDIR)/$$l.so.$(SOVERSION)" && \
+	    ln -sf $$l.so.$(SOVERSION) "$(LIBDIR)/$$l.so" || exit 1; done
 	@# The loader's cache, when installing into the system itself as root.
 	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" = 0 ] && command -v ldconfig > /dev/null; then \
 	    ldconfig; fi
@@ -86,27 +86,29 @@ CMAKE_SUBST = sed -e 's|@VERSION@|$(VERSION)|g' -e 's|@SOVERSION@|$(SOVERSION)|g
                   -e 's|@VERSION_MAJOR@|$(VERSION_MAJOR)|g' -e 's|@VERSION_MINOR@|$(VERSION_MINOR)|g' \
                   -e 's|@BACKEND_LIBS@|$(BACKEND_CMAKE_LIBS)|g' \
                   -e 's|@BACKEND_LIBS_TEXT@|$(or $(BACKEND_LDLIBS),nothing for the backends)|g' \
-                  -e 's|@SIZEOF_VOID_P@|$(SIZEOF_POINTER)|g'
+                  -e 's|@SIZEOF_VOID_P@|$(SIZEOF_POINTER)|g' \
+                  -e 's|@PRECISION_DEFINES@|$(if $(filter 1,$(BRAUN_SINGLE)),BRAUN_SINGLE,)|g'
 install-cmake: cmake/braunConfig.cmake.in cmake/braunConfigVersion.cmake.in
-	install -d $(LIBDIR)/cmake/braun
-	$(CMAKE_SUBST) cmake/braunConfig.cmake.in > $(LIBDIR)/cmake/braun/braunConfig.cmake
-	$(CMAKE_SUBST) cmake/braunConfigVersion.cmake.in > $(LIBDIR)/cmake/braun/braunConfigVersion.cmake
+	install -d "$(LIBDIR)/cmake/braun"
+	$(CMAKE_SUBST) cmake/braunConfig.cmake.in > "$(LIBDIR)/cmake/braun/braunConfig.cmake"
+	$(CMAKE_SUBST) cmake/braunConfigVersion.cmake.in > "$(LIBDIR)/cmake/braun/braunConfigVersion.cmake"
 
 SHARE := $(DESTDIR)$(PREFIX)/share
 install-data:
-	install -d $(SHARE)/braun/data/iftomm $(SHARE)/braun/examples $(SHARE)/doc/braun
-	install -m 644 data/*.json $(SHARE)/braun/data/
-	install -m 644 data/iftomm/*.json $(SHARE)/braun/data/iftomm/
-	install -m 644 examples/*.c examples/CMakeLists.txt examples/Makefile $(SHARE)/braun/examples/
-	install -m 644 README.md CHANGELOG.md docs/*.md $(SHARE)/doc/braun/
+	install -d "$(SHARE)/braun/data/iftomm" "$(SHARE)/braun/examples" "$(SHARE)/doc/braun"
+	install -m 644 data/*.json "$(SHARE)/braun/data/"
+	install -m 644 data/iftomm/*.json "$(SHARE)/braun/data/iftomm/"
+	install -m 644 examples/*.c examples/CMakeLists.txt examples/Makefile "$(SHARE)/braun/examples/"
+	install -m 644 README.md CHANGELOG.md docs/*.md "$(SHARE)/doc/braun/"
 
 uninstall:
-	rm -f $(addprefix $(DESTDIR)$(PREFIX)/include/,$(notdir $(PUBLIC_HEADERS)))
+	for h in $(notdir $(PUBLIC_HEADERS)); do rm -f "$(DESTDIR)$(PREFIX)/include/$$h"; done
 	for l in libbraun libbraun_host libbraun_backends; do \
-	    rm -f $(LIBDIR)/$$l.a $(LIBDIR)/$$l.so $(LIBDIR)/$$l.so.$(SOVERSION) $(LIBDIR)/$$l.so.$(VERSION); done
-	rm -f $(LIBDIR)/pkgconfig/braun.pc $(LIBDIR)/pkgconfig/braun-host.pc $(LIBDIR)/pkgconfig/braun-backends.pc
-	rm -rf $(LIBDIR)/cmake/braun $(SHARE)/braun $(SHARE)/doc/braun
-	rm -f $(DESTDIR)$(PREFIX)/bin/braun
+	    rm -f "$(LIBDIR)/$$l.a" "$(LIBDIR)/$$l.so" "$(LIBDIR)/$$l.so.$(SOVERSION)" \
+	          "$(LIBDIR)/$$l.so.$(VERSION)"; done
+	rm -f "$(LIBDIR)/pkgconfig/braun.pc" "$(LIBDIR)/pkgconfig/braun-host.pc" "$(LIBDIR)/pkgconfig/braun-backends.pc"
+	rm -rf "$(LIBDIR)/cmake/braun" "$(SHARE)/braun" "$(SHARE)/doc/braun"
+	rm -f "$(DESTDIR)$(PREFIX)/bin/braun"
 
 # Installed, the libraries export exactly their maps and the examples build
 # and run against a DESTDIR installation with pkg-config and with CMake,

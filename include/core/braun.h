@@ -48,6 +48,19 @@ typedef double braun_real;
 
 #define BRAUN_VERSION "0.1.0"
 
+/* A program compiled for one precision and linked with a library built for
+ * the other would hand every struct over at the wrong size (a crash, or
+ * worse, a plausible status). The calls every program makes before a step
+ * carry the precision in their link names, so the mismatch fails to link —
+ * "undefined reference to braun_data_init_float" (a float program, a
+ * double library) or "to braun_data_init" (the reverse). A float
+ * installation's pkg-config and CMake files define BRAUN_SINGLE. */
+#ifdef BRAUN_SINGLE
+#define braun_model_init braun_model_init_float
+#define braun_data_size braun_data_size_float
+#define braun_data_init braun_data_init_float
+#endif
+
 /* ------------------------------------------------------------------ */
 /* Status codes                                                        */
 /* ------------------------------------------------------------------ */

@@ -209,5 +209,32 @@ else
     no "CMake: cmake not found (Debian: apt-get install cmake)"
 fi
 
+# A program compiled for the other precision (float, -DBRAUN_SINGLE) does
+# not link with this double library: it named a precision-less
+# braun_data_init and then wrote its model and data at the wrong size.
+if ${CC:-cc} -std=c99 -DBRAUN_SINGLE "$top/examples/pendulum.c" $flags -o "$tmp/pend-float" 2>"$tmp/prec.log"; then
+    no "a float program links with the double library (it must not: its structs differ)"
+elif grep -q 'braun_data_init_float\|braun_data_size_float\|braun_model_init_float' "$tmp/prec.log"; then
+    ok "a float program against the double library: a link error naming the precision"
+else
+    no "a float program against the double library: link error without the precision's name"; cat "$tmp/prec.log"
+fi
+# PREFIX and DESTDIR with spaces: installed there and removed again, no stray
+# directories in the tree (the unquoted paths were split into words).
+sp="$tmp/st age"
+if make -s -C "$top" install BUILD="${BUILD:-build}" PREFIX="/opt/my braun" DESTDIR="$sp" >"$tmp/sp.log" 2>&1 &&
+   [ -f "$sp/opt/my braun/lib/libbraun.a" ] && [ -f "$sp/opt/my braun/include/braun.h" ] &&
+   [ -f "$sp/opt/my braun/lib/cmake/braun/braunConfig.cmake" ] && [ -f "$sp/opt/my braun/bin/braun" ]; then
+    ok "make install into a PREFIX and DESTDIR with spaces"
+else
+    no "make install into a PREFIX and DESTDIR with spaces"; cat "$tmp/sp.log"
+fi
+if make -s -C "$top" uninstall BUILD="${BUILD:-build}" PREFIX="/opt/my braun" DESTDIR="$sp" >"$tmp/su.log" 2>&1 &&
+   [ -z "$(find "$sp" -type f)" ] && [ ! -e "$top/age" ] && [ ! -e "$top/braun" ]; then
+    ok "make uninstall from a PREFIX and DESTDIR with spaces removes every file"
+else
+    no "make uninstall from a PREFIX and DESTDIR with spaces"; cat "$tmp/su.log"; find "$sp" -type f
+fi
+
 echo "$pass passed, $fail failed, 0 skipped"
 [ "$fail" -eq 0 ]
