@@ -158,6 +158,63 @@ static void test_guard_allows_inconsistent_start(void **state)
     test_sim_close(&sim);
 }
 
+/* The adaptive driver judged a start on its constraints at the end of its
+ * first step: the step's own residual made it "inconsistent", the energy
+ * force waited, and E0 was re-taken from the drifted energy (the pendulum
+ * released from the horizontal at rtol = atol = 2.661e-3: E0 0 -> 0.74 J at
+ * t = 3.5 s, status OK, 1.2 m from the exact position at t = 100). An
+ * exact start keeps its E0 whatever the tolerance; a run the energy law
+ * cannot follow stops on the guard. */
+static double seen_e0_max;
+static int e0_out(const braun_data *d, void *user)
+{
+    (void)user;
+    if (fabs((double)d->E0) > seen_e0_max) seen_e0_max = fabs((double)d->E0);
+    return 0;
+}
+
+static void test_adaptive_exact_start_keeps_e0(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    const double tols[] = {2.661e-3, 1e-3, 1e-5, 1e-8};
+    for (int k = 0; k < 4; k++) {
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+        assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+        const double e0 = (double)sim.data.E0;
+        braun_adaptive ctl = {tols[k], tols[k], 0, 0, 0, 0};
+        seen_e0_max = 0;
+        const int st = braun_integrate_adaptive(&sim.data, &ctl, 100.0, 1, e0_out, NULL);
+        assert_true(st == BRAUN_OK || st == BRAUN_ERR_ACCURACY);
+        assert_near(seen_e0_max, fabs(e0), 0);
+        assert_near(sim.data.E0, e0, 0);
+        test_sim_close(&sim);
+    }
+}
+
+/* An inconsistent start: the adaptive driver integrated it uncorrected over
+ * its first step and re-took E0 2 % off at every rtol (0.1228 J for the
+ * pendulum at (1, 0) with 1 m/s along its rod and 0.5 m/s across it, where
+ * the start on its constraints holds 0.125 J). Now its first steps are
+ * corrected at their start, as fixed steps: E0 within 1e-4 of 0.125. */
+static void test_adaptive_inconsistent_start_e0(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    const braun_real q0[2] = {1, 0}, v0[2] = {1, BRAUN_R(0.5)};
+    for (int k = 0; k < 3; k++) {
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+        const double rtol = k == 0 ? 1e-6 : (k == 1 ? 1e-8 : 1e-10);
+        braun_adaptive ctl = {rtol, rtol / 100, 0, 0, 0, 0};
+        assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 10.0, 0, NULL, NULL), BRAUN_OK);
+        assert_near(sim.data.E0, 0.125, 1e-4);
+        test_sim_close(&sim);
+    }
+}
+
 /* The guard's scales after a refusal are the kept state's: the slow path
  * measured them at the refused state and they stayed (here, the built-in
  * four-bar at RK4 h = 0.15: pos 28 -> 39.6, vel 68.7 -> 94.3; a client's
@@ -508,6 +565,8 @@ int main(void)
         cmocka_unit_test(test_guard_last_state_and_outputs),
         cmocka_unit_test(test_guard_adaptive_tolerances),
         cmocka_unit_test(test_guard_allows_inconsistent_start),
+        cmocka_unit_test(test_adaptive_exact_start_keeps_e0),
+        cmocka_unit_test(test_adaptive_inconsistent_start_e0),
         cmocka_unit_test(test_guard_rollback_restores_scales),
         cmocka_unit_test(test_time_resolution),
         cmocka_unit_test(test_adaptive_no_free_motion),

@@ -398,15 +398,25 @@ static int energy_deferred(braun_data *d, braun_real E)
     if (pv->e0_pending == 1) { /* the start */
         pv->e0_pending = r > tol ? 2 : 0;
         pv->e0_last = r;
+        pv->e0_t = pv->at.t;
         return pv->e0_pending != 0;
     }
+    /* The point judged last, again (an adaptive attempt rejected and tried
+     * anew from its start): the same residual has not "stopped halving". */
+    if (pv->at.t == pv->e0_t) return 1;
     if (r > tol && !(r >= BRAUN_R(0.5) * pv->e0_last && r <= BRAUN_R(1e-3))) {
         pv->e0_last = r;
+        pv->e0_t = pv->at.t;
         return 1;
     }
     d->E0 = E - pv->at.W;
     pv->e0_pending = 0;
     return 0;
+}
+
+int braun__energy_start_pending(const braun_data *d)
+{
+    return energy_corrected(d) && braun__priv(d)->e0_pending != 0;
 }
 
 static int stage_energy(braun_data *d, const braun_real *vdot)

@@ -95,6 +95,7 @@ typedef struct braun_priv {
                            * re-taken once the corrections have brought the state onto them
                            * (stage_energy) */
     braun_real e0_last;   /* the relative residual where that was last judged */
+    braun_real e0_t;      /* the time of that point (a rejected attempt's start is judged once) */
     braun_real guard_prev[6]; /* d->guard at the kept state (braun__commit), for a rollback */
     int mass_check_in;    /* steps to the next check of BRAUN_MASS_CONSTANT (braun__mass_claim_due) */
     int mass_claim_false; /* a check found M(t, q) != M(0, 0): every later call is refused */
@@ -342,6 +343,10 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1);
  * point (src/core/braun_corrections.c). */
 int braun__guard_start(braun_data *d, const braun_real *vdot);
 int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real *y1, braun_real h);
+/* The energy force is on and the start's energy law not yet settled
+ * (braun_set_state's start not judged, or off its constraints and E0 not
+ * yet re-taken): an adaptive step then corrects at its start. */
+int braun__energy_start_pending(const braun_data *d);
 
 /* A stage's inputs are done at this point, else BRAUN_ERR_ARGUMENT. */
 static inline int braun__need(braun_data *d, unsigned bits, const char *stage)
