@@ -371,7 +371,8 @@ typedef struct braun_error_info {
                          * or rows of [A_q; A_vv] when `where` says
                          * "velocity-level"); index2 is
                          * -1 when no other row's residual exceeds the
-                         * tolerance (one row that cannot be met alone) */
+                         * tolerance (one row that cannot be met alone),
+                         * -2 when that row's gradient is zero there */
     double value;       /* offending value (pivot, asymmetry, ...) */
     double t;           /* time of the failing evaluation */
 } braun_error_info;

@@ -177,6 +177,12 @@ static BRAUN_NOINLINE int disagreeing_rows(braun_data *d, int rows, const braun_
         }
     }
     if (!(rn > tol)) next = -1;
+    if (next < 0 && worst >= 0) {
+        /* One row alone: a gradient of zero (index2 -2) is named as such,
+         * not as one that depends on the others. */
+        for (int j = 0; j < pv->n; j++) pv->tmp[j] = 1;
+        if (braun__row_abs_dot(pv, worst, pv->tmp) == 0) next = -2;
+    }
     return braun__fail(d, BRAUN_ERR_INCONSISTENT, what, worst, next, (double)resid, (double)pv->at.t);
 }
 

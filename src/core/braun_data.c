@@ -64,6 +64,17 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     if (bytes < need)
         return braun__fail(d, BRAUN_ERR_BUFFER, "buffer (smaller than braun_data_size)", -1, -1,
                            (double)bytes, 0);
+    {
+        /* The data and the model are the caller's structs, not part of the
+         * scratch: carved over, the model's callbacks became wild jumps. */
+        const uintptr_t lo = (uintptr_t)buffer, hi = lo + bytes;
+        const uintptr_t dl = (uintptr_t)d, ml = (uintptr_t)model;
+        if ((dl < hi && lo < dl + sizeof *d) || (ml < hi && lo < ml + sizeof *model))
+            return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                               (dl < hi && lo < dl + sizeof *d) ? "buffer (holds the braun_data itself)"
+                                                               : "buffer (holds the braun_model)",
+                               -1, -1, 0, 0);
+    }
     d->t = 0;
     d->work_in = 0;
     d->E0 = 0;

@@ -532,6 +532,12 @@ int braun_eval(braun_data *d, braun_real t, const braun_real *q,
     }
     const unsigned corr = d->model->opt.corrections;
     const int n = d->model->sys.n;
+    /* The energy force needs E0: before braun_set_state it was left out,
+     * the result status OK (vdot up to 1.0 off a pendulum's). */
+    if ((corr & BRAUN_CORRECT_ENERGY) && d->model->sys.energy && !d->has_E0)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "braun_eval with the energy correction before braun_set_state (no E0)", -1,
+                           -1, 0, (double)t);
     st = point_begin(d, t, q, v, corr != 0, h, "braun_eval h");
     if (st) return st;
     braun_priv *pv = braun__priv(d);
@@ -581,7 +587,11 @@ int braun_energy(braun_data *d, braun_real t, const braun_real *q,
      * state that is no state. */
     st = check_state(d, t, q, v);
     if (st) return st;
-    return braun__energy(d, t, q, v, E);
+    /* Computed, then written: E may share memory with q or v. */
+    braun_real e = 0;
+    st = braun__energy(d, t, q, v, &e);
+    *E = e;
+    return st;
 }
 
 int braun__energy(braun_data *d, braun_real t, const braun_real *q, const braun_real *v, braun_real *E)
@@ -620,25 +630,28 @@ int braun_residuals(braun_data *d, braun_real t, const braun_real *q,
         if (st) return st;
     }
     pv->done |= BRAUN_DONE_CONSTRAINTS | BRAUN_DONE_RESIDUALS;
+    /* All computed before any is written: an output may share memory with
+     * q or v (the energy residual read a q the position norm overwrote). */
+    braun_real rp = 0, rv = 0, re = 0;
     /* Finite rows can still have a norm beyond the largest number. */
     if (pos) {
-        *pos = m > 0 ? braun_nrm2(m, pv->phi) : 0;
-        if (!braun_is_finite(*pos)) return residual_culprit(d, pos, "position residual norm");
+        rp = m > 0 ? braun_nrm2(m, pv->phi) : 0;
+        if (!braun_is_finite(rp)) return residual_culprit(d, &rp, "position residual norm");
     }
     if (vel) {
-        *vel = rows > 0 ? braun_nrm2(rows, pv->ev) : 0;
-        if (!braun_is_finite(*vel)) return residual_culprit(d, vel, "velocity residual norm");
+        rv = rows > 0 ? braun_nrm2(rows, pv->ev) : 0;
+        if (!braun_is_finite(rv)) return residual_culprit(d, &rv, "velocity residual norm");
     }
-    if (energy) {
+    if (energy && s->energy && d->has_E0) {
         braun_real E = 0;
-        *energy = 0;
-        if (s->energy && d->has_E0) {
-            st = braun__energy(d, t, q, v, &E);
-            if (st) return st;
-            *energy = braun_fabs(E - d->E0 - d->work_in);
-            st = braun__check_finite(d, 1, energy, "energy residual", 0, t);
-            if (st) return st;
-        }
+        st = braun__energy(d, t, q, v, &E);
+        if (st) return st;
+        re = braun_fabs(E - d->E0 - d->work_in);
+        st = braun__check_finite(d, 1, &re, "energy residual", 0, t);
+        if (st) return st;
     }
+    if (pos) *pos = rp;
+    if (vel) *vel = rv;
+    if (energy) *energy = re;
     return BRAUN_OK;
 }

@@ -199,6 +199,8 @@ static void describe(msg *w, const braun_data *d)
         put(w, "dependent %s disagree by %.3g: the constraints have no solution here",
             where ? where : "constraints", e->value);
         if (e->index >= 0 && e->index2 >= 0) put(w, " (rows %d and %d disagree most)", e->index, e->index2);
+        else if (e->index >= 0 && e->index2 == -2)
+            put(w, " (row %d: its gradient is zero here, its error is not)", e->index);
         else if (e->index >= 0)
             put(w, " (row %d: its gradient depends on the other rows' here, its error does not)", e->index);
         break;
