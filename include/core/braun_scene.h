@@ -568,7 +568,9 @@ extern const braun_scene_effect_class braun_scene_effect_motor;
  * revolute3d or cylindrical joint; k, c, rest on its angle θ (0 in the
  * initial configuration, taken within π of rest). motor3d: a the joint;
  * τ = tau0 (1 - θ'/omega0) about its axis on the body of its point b,
- * -τ on that of a. */
+ * -τ on that of a. θ is b's body's turn relative to a's for revolute3d;
+ * for cylindrical it is the point P's body's relative to the line's (its a
+ * relative to its b): the motor's τ acts on P's body, -τ on the line's. */
 extern const braun_scene_effect_class braun_scene_effect_body_force;
 extern const braun_scene_effect_class braun_scene_effect_torque3d;
 extern const braun_scene_effect_class braun_scene_effect_body_torque;

@@ -413,19 +413,27 @@ static void say_unsolvable(const braun_cli_target *tg, int count, const double *
     const char *run = vel ? "braun run stops with BRAUN_ERR_INCONSISTENT at its first step when the "
                             "velocity correction is on"
                           : "braun run stops with BRAUN_ERR_INCONSISTENT";
+    /* Judged to first order, where the rows lose rank: at a singular
+     * configuration a solution can lie off it, out of the local search's
+     * reach (three links closed straight to a point 1e-4 short of their
+     * reach: the chain sags 0.01 m and runs). */
+    const char *hint = vel ? ""
+                           : "; judged to first order where the rows lose rank: at a singular "
+                             "configuration (a chain closed straight to a point within its reach) a "
+                             "solution can lie off it, beyond the assembly search: start there";
     if (name_disagreeing(tg, count, e, who, sizeof who) == 1)
         braun_cli_error("%s: %s have no solution at the initial state: %s cannot be met (its gradient "
                         "depends on the other rows' here, its %serror does not; least-squares "
-                        "residual %.3g, above the library's inconsistency tolerance %.3g: %s)",
+                        "residual %.3g, above the library's inconsistency tolerance %.3g: %s)%s",
                         tg->name, what, who, vel ? "velocity " : "", resid, sqrt((double)BRAUN_EPS),
-                        run);
+                        run, hint);
     else
         braun_cli_error("%s: %s have no solution at the initial state: %s disagree (%s %.3g%s is "
-                        "above the library's inconsistency tolerance %.3g: %s)",
+                        "above the library's inconsistency tolerance %.3g: %s)%s",
                         tg->name, what, who,
                         vel ? "the least-squares residual of their velocity error," :
                               "their least-squares residual",
-                        resid, vel ? "," : "", sqrt((double)BRAUN_EPS), run);
+                        resid, vel ? "," : "", sqrt((double)BRAUN_EPS), run, hint);
 }
 
 /* A text of the scene on one "key: value" line (braun_cli_put_text), so a
