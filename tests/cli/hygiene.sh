@@ -162,6 +162,12 @@ expect "gen-c --symbol with a non-ASCII letter refused" 2 "must be a C identifie
     gen-c data/pendulum.json --symbol "$(printf 'caf\303\251')"
 expect "gen-c -o /dev/full: exit 1, names the I/O error (not 'a C identifier?')" 1 \
     "^braun: error writing '/dev/full': No space left on device$" gen-c data/pendulum.json -o /dev/full
+# One of the two files cannot be written: the other, which this run
+# created, goes too (a complete-looking source was left without its header).
+expect "gen-c --header /dev/full: exit 1, names it" 1 \
+    "^braun: error writing '/dev/full': No space left on device$" \
+    gen-c data/pendulum.json -o "$TMP/gh.c" --header /dev/full
+check "gen-c --header /dev/full: the source it created is removed" [ ! -e "$TMP/gh.c" ]
 cp data/pendulum.json "$TMP/in.json"
 expect "gen-c -o onto its input scene: refused" 2 "is the input" gen-c "$TMP/in.json" -o "$TMP/./in.json"
 check "gen-c -o onto its input scene: the scene is unchanged" cmp -s data/pendulum.json "$TMP/in.json"
