@@ -6,6 +6,7 @@
 
 #include "braun_models.h"
 #include "test_systems.h"
+#include "braun_reference.h"
 
 static braun_real g_traj_last_t;
 static long g_outputs;
@@ -213,6 +214,95 @@ static void test_adaptive_inconsistent_start_e0(void **state)
         assert_near(sim.data.E0, 0.125, 1e-4);
         test_sim_close(&sim);
     }
+}
+
+/* An inconsistent start, position and velocity corrections only (no energy
+ * force): the adaptive driver integrated it uncorrected over its first
+ * trial step, so its error was set by that step (1e-3 of the span), not by
+ * the tolerance — the pendulum at (1, 0) with 2 m/s along its rod and 1 m/s
+ * across ended 0.068 m off at rtol 1e-9 over 20 s, status OK. Now the start
+ * is projected onto its constraints first (reported so at t0) and the run
+ * converges with rtol to the projected start's motion. */
+static int first_state_out(const braun_data *d, void *user)
+{
+    double *r = user;
+    if (r[1] == 0) {
+        r[0] = fabs(sqrt((double)(d->q[0] * d->q[0] + d->q[1] * d->q[1])) - 1) +
+               fabs((double)(d->q[0] * d->v[0] + d->q[1] * d->v[1]));
+        r[1] = 1;
+    }
+    return 0;
+}
+
+static void test_adaptive_inconsistent_start_projected(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    const braun_real q0[2] = {1, 0}, v0[2] = {2, 1};
+    double phi = 0, dphi = 0;
+    assert_int_equal(braun_pendulum_exact(9.81, 2 * atan(1.0), 1.0, 20.0, &phi, &dphi), 0);
+    const unsigned corr[2] = {BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY, BRAUN_CORRECT_ALL};
+    for (int c = 0; c < 2; c++) {
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &b->sys, corr[c]), BRAUN_OK);
+        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+        braun_adaptive ctl = {1e-10, 1e-10, 0, 0, 0, 0};
+        double first[2] = {0, 0};
+        assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 20.0, 0, first_state_out, first),
+                         BRAUN_OK);
+        assert_le(first[0], 1e-12);
+        const double got = atan2((double)sim.data.q[0], -(double)sim.data.q[1]);
+        assert_near(got, phi, 1e-7);
+        if (corr[c] == BRAUN_CORRECT_ALL) assert_near(sim.data.E0, 0.5, 1e-12);
+        test_sim_close(&sim);
+    }
+}
+
+/* The same start, tried again after a rejected first attempt, was judged
+ * by its own residual as a bound and "exceeded" it by an ulp (the four-bar
+ * 1e-2 off on every coordinate, first trial step 0.5: BRAUN_ERR_ACCURACY at
+ * t = 0, "0.035 exceeds the accuracy guard 0.035"). */
+static void test_adaptive_rejected_first_attempt_off_start(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("four-bar");
+    braun_real q0[6];
+    for (int i = 0; i < 6; i++) q0[i] = b->q0[i] + BRAUN_R(1e-2);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, b->v0), BRAUN_OK);
+    braun_adaptive ctl = {1e-8, 1e-8, 0.5, 0, 0, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, 10.0, 0, NULL, NULL), BRAUN_OK);
+    assert_near(sim.data.t, 10.0, 0);
+    test_sim_close(&sim);
+}
+
+/* The energy force switched on by an output callback in mid-run, after an
+ * inconsistent start ran without it: E0 was still the start's, and the
+ * force put the energy of its velocity along the rod into the swing
+ * (E0 0.50005 kept, status OK). Now the start is judged at the start
+ * whatever the corrections, and E0 re-taken where the state has settled. */
+static int switch_energy_on(const braun_data *d, void *user)
+{
+    long *k = user;
+    if (++*k == 50) ((braun_model *)(uintptr_t)d->model)->opt.corrections = BRAUN_CORRECT_ALL;
+    return 0;
+}
+
+static void test_energy_switched_on_after_inconsistent_start(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    const braun_real q0[2] = {1, 0}, v0[2] = {BRAUN_R(0.01), 1};
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
+                     BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+    long k = 0;
+    assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-3, 2.0, 1, switch_energy_on, &k),
+                     BRAUN_OK);
+    assert_near(sim.data.E0, 0.5, 1e-6);
+    test_sim_close(&sim);
 }
 
 /* The guard's scales after a refusal are the kept state's: the slow path
@@ -642,6 +732,9 @@ int main(void)
         cmocka_unit_test(test_guard_allows_inconsistent_start),
         cmocka_unit_test(test_adaptive_exact_start_keeps_e0),
         cmocka_unit_test(test_adaptive_inconsistent_start_e0),
+        cmocka_unit_test(test_adaptive_inconsistent_start_projected),
+        cmocka_unit_test(test_adaptive_rejected_first_attempt_off_start),
+        cmocka_unit_test(test_energy_switched_on_after_inconsistent_start),
         cmocka_unit_test(test_guard_rollback_restores_scales),
         cmocka_unit_test(test_time_resolution),
         cmocka_unit_test(test_adaptive_no_free_motion),

@@ -210,6 +210,19 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
     unsigned corr = d->model->opt.corrections;
     const int last_stage = tb->stages - 1;
 
+    /* A new run's start off its constraints is projected onto them first
+     * (braun__project_start): its first state, reported at t0, is on them. */
+    if (!pv->state_integrated) {
+        int moved = 0;
+        braun__load_state(d);
+        st = braun__project_start(d, pv->y0, &moved);
+        if (st) return st;
+        if (moved)
+            for (int i = 0; i < pv->n; i++) {
+                d->q[i] = pv->y0[i];
+                d->v[i] = pv->y0[pv->n + i];
+            }
+    }
     if (out && (st = braun__output(d, out, out_user)) != BRAUN_OK) return st;
     /* An accepted state is reported once the next attempt's start has
      * passed the accuracy guard (or the final check has): a run the guard

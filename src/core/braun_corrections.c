@@ -28,7 +28,10 @@ BRAUN_FORCE_INLINE int guard_exceeds(const braun_data *d, braun_real r2, braun_r
 {
     const braun_real g = d->model->opt.guard > 0 ? d->model->opt.guard : BRAUN_R(1e-3);
     braun_real bound = g * scale;
-    if (r0 > bound) bound = r0;
+    /* The start's own residual, r0 = sqrt(r2) there: squared again it can
+     * fall an ulp below r2, and the same start, tried again (an adaptive
+     * attempt rejected), "exceeded" a bound equal to itself. */
+    if (r0 > bound) bound = r0 * (1 + 4 * BRAUN_EPS);
     return !(r2 <= bound * bound);
 }
 
@@ -396,15 +399,22 @@ static braun_real relative_residual(braun_data *d)
  * and is within 1e-3. A start on the constraints keeps its E0. In a step
  * or driver only (busy): braun_eval is the literal Eq. 20 at any point,
  * with the E0 the data holds. 1: no energy force at this point. */
+/* The start judged on (0) or off (2) its constraints, at the point. */
+static void judge_start(braun_data *d, braun_real r)
+{
+    braun_priv *pv = braun__priv(d);
+    pv->e0_pending = r > braun_sqrt(BRAUN_EPS) ? 2 : 0;
+    pv->e0_last = r;
+    pv->e0_t = pv->at.t;
+}
+
 static int energy_deferred(braun_data *d, braun_real E)
 {
     braun_priv *pv = braun__priv(d);
     if (!pv->e0_pending || !pv->busy) return 0;
     const braun_real r = pv->rows > 0 ? relative_residual(d) : 0, tol = braun_sqrt(BRAUN_EPS);
     if (pv->e0_pending == 1) { /* the start */
-        pv->e0_pending = r > tol ? 2 : 0;
-        pv->e0_last = r;
-        pv->e0_t = pv->at.t;
+        judge_start(d, r);
         return pv->e0_pending != 0;
     }
     /* The point judged last, again (an adaptive attempt rejected and tried
@@ -725,10 +735,69 @@ int braun__corrections(braun_data *d, const braun_real *vdot, int guard_run)
         st = guard_start_rows(d, vdot, corr);
         if (st) return st;
     }
+    /* The start is judged at the start also while the energy force is off:
+     * switched on later (an output callback may), it found E0 still the
+     * inconsistent start's and put that energy into the motion (0.5 mJ of
+     * a pendulum's velocity along its rod, status OK); now E0 is re-taken
+     * where the state has settled. Once per run. */
+    if (!energy && pv->e0_pending == 1 && pv->busy && d->model->sys.energy && d->has_E0)
+        judge_start(d, pv->rows > 0 ? relative_residual(d) : 0);
     st = position_velocity(d, corr, 0);
     if (!st && energy) st = stage_energy(d, vdot);
     if (guard) pv->guard_first = 0;
     return st;
+}
+
+/* The adaptive driver's start off its constraints (docs/method.md, "Where
+ * the corrections are evaluated"): projected onto them before the first
+ * step — the position and velocity corrections at h = 0 (Δ_q = Φ_q, a
+ * Gauss–Newton step in the mass metric; Δ_v = [Φ̇_q; Φ_v] measured again
+ * where q went), repeated while the residuals of the rows they remove,
+ * relative to the guard's scales, exceed √ε and still halve (at most 8
+ * times) — and E0 re-taken there, E0 = E − ∫Ė. Corrected at the end of its
+ * first step instead, the start was integrated uncorrected over the first
+ * trial step (1e-3 of the span): a pendulum started with 2 m/s along its
+ * rod ended 0.085 m off at rtol 1e-6 and 0.019 m at 1e-12, status OK, its
+ * error set by that step and not by the tolerance; E0 depended on t_end.
+ * y = [q; v; ∫Ė], changed in place; *moved: a correction was applied. */
+int braun__project_start(braun_data *d, braun_real *y, int *moved)
+{
+    braun_priv *pv = braun__priv(d);
+    const unsigned corr = d->model->opt.corrections;
+    const int n = BRAUN_N(pv->n);
+    *moved = 0;
+    if (!(corr & (BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY)) || pv->rows == 0) return BRAUN_OK;
+    const braun_real tol = braun_sqrt(BRAUN_EPS);
+    braun_real r = 0, last = 0;
+    for (int it = 0;; it++) {
+        braun__at(pv, d->t, y, y + n, y[2 * n], 0);
+        braun__rank_rule_plain(pv);
+        pv->soft_on = 0;
+        pv->energy_end = 0;
+        pv->stage = 0;
+        int st = braun__forward(d, BRAUN_WITH_RESIDUALS, pv->k[0] + n);
+        if (st) return st;
+        r = relative_residual(d);
+        if (!(r > tol) || (it > 0 && !(r < BRAUN_R(0.5) * last)) || it == 8) break;
+        last = r;
+        st = position_velocity(d, corr, 1);
+        if (st) return st;
+        for (int i = 0; i < n; i++) {
+            y[i] += pv->dq[i];
+            y[n + i] += pv->dv[i];
+        }
+        *moved = 1;
+    }
+    /* The energy the start's error held goes with it (as the fixed steps'
+     * re-take does), once the state is on its constraints. */
+    if (*moved && !(r > BRAUN_R(1e-3)) && d->model->sys.energy && d->has_E0) {
+        braun_real E = 0;
+        const int st = braun__energy(d, d->t, y, y + n, &E);
+        if (st) return st;
+        d->E0 = E - y[2 * n];
+        pv->e0_pending = 0;
+    }
+    return BRAUN_OK;
 }
 
 /* The accuracy guard alone, at the start of a step whose corrections come

@@ -347,6 +347,9 @@ int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real 
  * (braun_set_state's start not judged, or off its constraints and E0 not
  * yet re-taken): an adaptive step then corrects at its start. */
 int braun__energy_start_pending(const braun_data *d);
+/* The adaptive driver's start off its constraints, projected onto them
+ * (braun_corrections.c); y = [q; v; ∫Ė] in place. */
+int braun__project_start(braun_data *d, braun_real *y, int *moved);
 
 /* A stage's inputs are done at this point, else BRAUN_ERR_ARGUMENT. */
 static inline int braun__need(braun_data *d, unsigned bits, const char *stage)

@@ -238,6 +238,13 @@ check "sleigh: p 1 in the summary, all corrections" sh -c '
     grep -q "^  \"p\": 1,$" "$1" && grep -q "^  \"corrections\": \"position,velocity,energy\",$" "$1"' \
     sh "$TMP/sl2.json"
 
+# A guard stop while the adaptive driver crawls (steps of 6e-10): the time
+# of the failing state and of the one kept printed alike at 10 digits.
+"$BRAUN" run four-bar --backend lapack --integrator dopri5 --rtol 1e-4 --atol 1e-6 --t-end 50 --dt 1e-3 \
+    > /dev/null 2> "$TMP/crawl.err"
+check "guard stop: the failing and the kept state's times print differently" sh -c '
+    n=$(grep -o "at t = [0-9.e+-]*" "$1" | sort -u | wc -l); [ "$n" -ge 2 ]' sh "$TMP/crawl.err"
+
 # ------------------------------------------------- references of paper scenes
 # RK4 h = 1e-3 over 2 s, measured: slider-crank trajectory error 8.10e-11,
 # four-bar point error 5.24e-11.

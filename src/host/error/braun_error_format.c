@@ -191,8 +191,16 @@ static void describe(msg *w, const braun_data *d)
         else /* an inconsistent start: its own residual is the bound */
             put(w, "%s = %.3g exceeds the accuracy guard %.3g (the residual at the start; guard %.3g x "
                    "scale %.3g is smaller)", what, e->value, r0, g, scale);
-        put_time(w, e->t);
-        put(w, "; the state kept is the last one that passed, at t = %.10g", (double)d->t);
+        /* Two different times that print alike at 10 digits (a driver
+         * crawling in steps of 6e-10) are given in full. */
+        char a10[40], b10[40];
+        snprintf(a10, sizeof a10, "%.10g", e->t);
+        snprintf(b10, sizeof b10, "%.10g", (double)d->t);
+        const int full = strcmp(a10, b10) == 0 && e->t != (double)d->t;
+        put(w, full ? " at t = %.17g" : " at t = %.10g", e->t);
+        put(w, full ? "; the state kept is the last one that passed, at t = %.17g"
+                    : "; the state kept is the last one that passed, at t = %.10g",
+            (double)d->t);
         return;
     }
     case BRAUN_ERR_INCONSISTENT:
