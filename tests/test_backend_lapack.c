@@ -201,6 +201,28 @@ static void test_table(void **state)
     assert_string_equal(braun_linsolver_name(ls), "lapack");
 }
 
+/* A table with neither create nor bind (a copy of this one with create and
+ * destroy cleared): refused at braun_data_init, naming it (its operations
+ * were handed a NULL state: "invalid argument 'mass'", and with
+ * SuiteSparse's table a crash). */
+static void test_table_without_state(void **state)
+{
+    (void)state;
+    braun_linsolver t = *braun_linsolver_lapack();
+    t.create = NULL;
+    t.destroy = NULL;
+    const braun_builtin *b = braun_builtin_find("four-bar");
+    braun_model model;
+    assert_int_equal(braun_model_init(&model, &b->sys), BRAUN_OK);
+    model.opt.linsolver = &t;
+    const size_t bytes = braun_data_size(&model);
+    void *buf = malloc(bytes ? bytes : 1);
+    braun_data d = {0};
+    assert_int_equal(braun_data_init(&d, &model, buf, bytes), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(d.error.where, "neither create"));
+    free(buf);
+}
+
 static const int SIZES[] = {5, 7, 12, 23, 40, 60};
 #define NSIZES ((int)(sizeof SIZES / sizeof SIZES[0]))
 
@@ -1053,6 +1075,7 @@ int main(void)
     }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_table),
+        cmocka_unit_test(test_table_without_state),
         cmocka_unit_test(test_mass),
         cmocka_unit_test(test_full_rank),
         cmocka_unit_test(test_rank_deficient),

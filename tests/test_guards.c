@@ -720,9 +720,27 @@ static void test_eval_energy_needs_state(void **state)
     test_sim_close(&sim);
 }
 
+/* A struct copy is not a second data: its calls are refused, and so is its
+ * release (which freed a's backend state, and a's next step read NULL). */
+static void test_copy_refused(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &b->sys, BRAUN_CORRECT_ALL), BRAUN_OK);
+    assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+    braun_data copy = sim.data;
+    assert_int_equal(braun_step(&copy, BRAUN_RK4, 1e-3), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(copy.error.where, "copy"));
+    assert_int_equal(braun_data_release(&copy), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_step(&sim.data, BRAUN_RK4, 1e-3), BRAUN_OK);
+    test_sim_close(&sim);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_copy_refused),
         cmocka_unit_test(test_residuals_outputs_alias_inputs),
         cmocka_unit_test(test_data_init_structs_in_buffer),
         cmocka_unit_test(test_eval_energy_needs_state),

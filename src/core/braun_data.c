@@ -29,6 +29,10 @@ static const char *linsolver_problem(const braun_linsolver *ls)
         return "options.linsolver lacks a required operation (factor_mass, solve_rt, solve_r, mul_r, "
                "factor_c, pinv, lsq, null_project)";
     if (ls->create && !ls->destroy) return "options.linsolver has create but no destroy";
+    /* Every backend has a state: created, or bound in the data block (a
+     * table with neither handed its operations NULL: a crash). */
+    if (!ls->create && !ls->bind)
+        return "options.linsolver has neither create (and destroy) nor state_bytes and bind";
     if (!ls->create && (!ls->state_bytes != !ls->bind))
         return "options.linsolver needs both state_bytes and bind (or create and destroy)";
     if (!ls->soft_find != !ls->soft_project)
@@ -122,6 +126,7 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->step_rank[1] = s->m;
     pv->Edot = 0;
     braun__layout(model, base, pv, &d->q, &d->v);
+    pv->owner = d;
     pv->q_home = d->q;
     pv->v_home = d->v;
     for (int i = 0; i < s->n; i++) d->q[i] = d->v[i] = 0;
@@ -155,8 +160,9 @@ int braun_data_release(braun_data *d)
     if (!d->priv) return BRAUN_OK;
     braun_priv *pv = braun__priv(d);
     /* From a callback of a running driver or step: the run would go on
-     * without its scratch. */
-    if (pv->busy) return braun__check_usable(d, 0);
+     * without its scratch. A struct copy (b = a) is not the data: releasing
+     * it freed a's backend state, and a's next step read through NULL. */
+    if (pv->busy || pv->owner != d) return braun__check_usable(d, 0);
 #ifndef BRAUN_NO_LINSOLVER
     if (pv->ls_owned && pv->ls_state && pv->ls->destroy) pv->ls->destroy(pv->ls_state);
 #endif

@@ -38,6 +38,13 @@ int braun__check_usable(braun_data *d, int busy_allowed)
         return braun__fail(d, BRAUN_ERR_ARGUMENT,
                            "data not initialised (braun_data_init not called, failed, or released)", -1, -1,
                            0, 0);
+    /* A struct copy (b = a) shares a's buffer but is no second data
+     * (docs/api.md, "Copies"): refused rather than run on a's scratch. */
+    if (braun__priv(d)->owner != d)
+        return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                           "data is a copy (b = a) or was moved: use the braun_data that "
+                           "braun_data_init made (a second run needs its own buffer and init)",
+                           -1, -1, 0, 0);
     const int busy = braun__priv(d)->busy;
     if (busy > busy_allowed)
         return braun__fail(d, BRAUN_ERR_ARGUMENT,

@@ -101,6 +101,7 @@ typedef struct braun_priv {
     int mass_claim_false; /* a check found M(t, q) != M(0, 0): every later call is refused */
     double mass_claim_diff; /* the relative difference it found */
     braun_real *q_home, *v_home; /* where braun_data_init put d->q and d->v */
+    const braun_data *owner;    /* the braun_data braun_data_init made (a struct copy is not it) */
     int state_set;        /* braun_set_state was called */
     unsigned flags;       /* sys.flags at braun_data_init (braun__check_system) */
     /* A driver runs on this data (1: braun_step, braun_integrate or

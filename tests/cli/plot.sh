@@ -455,6 +455,22 @@ check "plot: a run that stopped: exit 1, the caption names the asked end and the
 check "plot: the spatial arm's two ground points (hinge pivot, cord anchor) both have marks" sh -c '
     [ "$(grep -c "fill=\"#ffffff\" stroke=\"#222222\"" "$1")" -eq 2 ]' sh sa.svg
 
+# Frames at the kept states nearest their even times: 0.6 and 1.2 were
+# drawn one step late (0.61, 1.21), and 289 frames over 289 states drew
+# 282 distinct ones.
+"$BRAUN" plot double-pendulum --dt 1e-2 --t-end 2.2 -o f22.svg 2> /dev/null
+check "plot: frames at their even times (0.6, not 0.61)" sh -c '
+    grep -q "data-t=\"0.6\"" f22.svg && ! grep -q "data-t=\"0.61\"" f22.svg'
+"$BRAUN" plot double-pendulum --dt 1e-2 --t-end 2.88 --frames 289 -o d289.svg 2> /dev/null
+check "plot: 289 frames over 289 kept states are 289 distinct states" \
+    [ "$(grep -o 'data-t="[^"]*"' d289.svg | sort -u | wc -l)" -eq 289 ]
+# A run that stops early is drawn from states as dense as it ran, not from
+# the few of the grid over the window asked for (11 path points over 4.7 s).
+"$BRAUN" plot double-pendulum --dt 1e-3 --t-end 1000 --integrator dopri5 --max-steps 300 \
+    --points bob2 -o stop.svg 2> /dev/null
+check "plot: a stopped run's path has a point per kept state (>= 200 of its 300 steps)" \
+    [ "$(grep -o '<polyline[^>]*points="[^"]*"' stop.svg | head -1 | tr ' ' '\n' | wc -l)" -ge 200 ]
+
 cd .. || exit 1
 
 echo "$passed passed, $failed failed, $skipped skipped"

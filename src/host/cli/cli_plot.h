@@ -89,6 +89,13 @@ typedef struct plot_samples {
     double next, step;        /* next time to keep, spacing */
     int have_last;            /* last: the latest state, kept at the end */
     double *last;
+    /* Beside the grid over the window asked for, every state at least
+     * fine_step apart, the spacing doubled (every other row dropped) when
+     * cap are kept: a run that stops early is drawn from these (17 grid
+     * rows of 80 274 states, a zig-zag across the picture, otherwise). */
+    double *fine;
+    long fine_count;
+    double fine_step, fine_next;
 } plot_samples;
 
 int plot_samples_init(plot_samples *s, int n, long cap, double from, double to);

@@ -43,7 +43,9 @@ long plot_frame_row(const plot_job *job, long k)
     if (frames <= 1) return s->count - 1;
     const double t0 = s->rows[0], t1 = s->rows[(size_t)(s->count - 1) * (size_t)s->cols];
     const double want = t0 + (t1 - t0) * (double)k / (double)(frames - 1);
-    /* The first row at or after want (the last frame: the last row). */
+    /* The row nearest want (the last frame: the last row). The first at or
+     * after it took a frame one step late whenever want rounded an ulp
+     * above a kept time (0.6000000000000001: 0.61 drawn, 0.6 kept). */
     long lo = 0, hi = s->count - 1;
     if (k == frames - 1) return hi;
     while (lo < hi) {
@@ -51,6 +53,9 @@ long plot_frame_row(const plot_job *job, long k)
         if (s->rows[(size_t)mid * (size_t)s->cols] < want) lo = mid + 1;
         else hi = mid;
     }
+    if (lo > 0 && want - s->rows[(size_t)(lo - 1) * (size_t)s->cols] <=
+                      s->rows[(size_t)lo * (size_t)s->cols] - want)
+        lo--;
     return lo;
 }
 
