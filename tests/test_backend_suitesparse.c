@@ -691,6 +691,19 @@ static void test_table(void **state)
                      BRAUN_ERR_ARGUMENT);
     assert_null(out);
     assert_non_null(why);
+    /* Sizes a backend cannot take are refused here, not "OK" and then
+     * "invalid sizes" at braun_data_init: n < 1, and the dense kernels'
+     * (built-in, LAPACK) 4096 for a larger sparse system. */
+    braun_system bad = t.model.sys;
+    bad.n = -3;
+    assert_int_equal(braun_linsolver_select("auto", &bad, &out, &why), BRAUN_ERR_SIZE);
+    braun_system big = t.model.sys;
+    big.n = BRAUN_MAX_DENSE + 2;
+    assert_int_equal(braun_linsolver_select("lapack", &big, &out, &why), BRAUN_ERR_ARGUMENT);
+    assert_non_null(strstr(why, "4096"));
+    assert_int_equal(braun_linsolver_select("dense", &big, &out, &why), BRAUN_ERR_ARGUMENT);
+    assert_int_equal(braun_linsolver_select("auto", &big, &out, &why), BRAUN_OK);
+    assert_ptr_equal(out, ls);
     ls->destroy(NULL);
     ts_close(&t);
 }
