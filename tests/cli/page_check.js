@@ -28,7 +28,12 @@ const sandbox = {
 new Function('document', 'window', code)(sandbox.document, sandbox.window);
 const shown = () => frames.map((f, i) => f.style.display === '' ? i : -1).filter(i => i >= 0);
 check('the first frame shows at the start', shown().length === 1 && shown()[0] === 0);
-check('the time reads t = ' + times[0].toFixed(3) + ' s', ids.now.textContent === 't = ' + times[0].toFixed(3) + ' s');
+// The readout's digits tell the frames apart (docs/cli.md): at least 3,
+// one more than the smallest spacing needs, at most 12.
+let dig = 3;
+for (let i = 1; i < times.length; i++) { const g = times[i] - times[i - 1];
+  if (g > 0) dig = Math.max(dig, Math.min(12, Math.ceil(-Math.log10(g)) + 1)); }
+check('the time reads t = ' + times[0].toFixed(dig) + ' s', ids.now.textContent === 't = ' + times[0].toFixed(dig) + ' s');
 // Play for half the run at speed 1: the frame shown is the last one at or before that time.
 const span = times[times.length - 1] - times[0];
 let ts = 1000;

@@ -470,6 +470,16 @@ check "plot: 289 frames over 289 kept states are 289 distinct states" \
     --points bob2 -o stop.svg 2> /dev/null
 check "plot: a stopped run's path has a point per kept state (>= 200 of its 300 steps)" \
     [ "$(grep -o '<polyline[^>]*points="[^"]*"' stop.svg | head -1 | tr ' ' '\n' | wc -l)" -ge 200 ]
+# The animation's time readout tells its frames apart: a 0.03 s run read
+# "t = 0.000 s" for its first 13 frames (31 labels for 400 frames). Its
+# script run under a minimal DOM (tests/cli/html_labels.js, node).
+"$BRAUN" plot a03-andrews --dt 1e-5 --t-end 0.03 -o andrews.html 2> /dev/null
+if have node; then
+    check "plot .html: 400 frames, 400 distinct time labels" \
+        [ "$(node "$TOP/tests/cli/html_labels.js" andrews.html | sort -u | wc -l)" -eq 400 ]
+else
+    skip "plot .html: 400 frames, 400 distinct time labels" "node not installed"
+fi
 
 cd .. || exit 1
 
