@@ -470,6 +470,14 @@ check "plot: 289 frames over 289 kept states are 289 distinct states" \
     --points bob2 -o stop.svg 2> /dev/null
 check "plot: a stopped run's path has a point per kept state (>= 200 of its 300 steps)" \
     [ "$(grep -o '<polyline[^>]*points="[^"]*"' stop.svg | head -1 | tr ' ' '\n' | wc -l)" -ge 200 ]
+# A slider's rail covers its block's travel: it reached as far as the
+# scene's initial size, and the slider-crank's block ran past both ends.
+"$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null
+check "plot: the slider's rail spans the block's path" sh -c '
+    path=$(grep -o "<polyline[^>]*points=\"[^\"]*\"" rail.svg | head -1 | sed "s/.*points=\"//; s/\"//" | tr " " "\n" |
+           awk -F, "NR == 1 { lo = \$1; hi = \$1 } { if (\$1 < lo) lo = \$1; if (\$1 > hi) hi = \$1 } END { print lo, hi }")
+    rail=$(grep -o "<line[^>]*stroke-dasharray[^>]*>" rail.svg | head -1 | sed "s/.*x1=\"\([^\"]*\)\".*x2=\"\([^\"]*\)\".*/\1 \2/")
+    echo "$path $rail" | awk "{ exit !(NF == 4 && \$3 < \$1 && \$4 > \$2) }"'
 # The animation's time readout tells its frames apart: a 0.03 s run read
 # "t = 0.000 s" for its first 13 frames (31 labels for 400 frames). Its
 # script run under a minimal DOM (tests/cli/html_labels.js, node).

@@ -222,6 +222,10 @@ int braun_cli_plot(int argc, char **argv)
         /* With --plot the job has series and the writers draw the chart;
          * the drawing (if any) gives the points' coordinates. */
         job.drawing = want_drawing ? &dr : NULL;
+        if (want_drawing && plot_drawing_fit_guides(&dr, &samples)) {
+            rc = braun_cli_error("out of memory");
+            goto finish;
+        }
         /* A picture that would place NaN is not written: bad input for
          * --traj, a failed run otherwise. */
         if (plot_job_fits(&job)) {

@@ -78,6 +78,9 @@ int plot_drawing_trace(plot_drawing *dr, const braun_cli_target *t, const char *
 int plot_drawing_point(plot_drawing *dr, const braun_cli_target *t, const char *ref);
 /* World positions (3 each) of every anchor at q (n doubles). */
 void plot_drawing_eval(const plot_drawing *dr, const double *q, braun_real *qr, double *pos);
+/* Each slider's guide long enough for the travel of the kept states. */
+struct plot_samples;
+int plot_drawing_fit_guides(plot_drawing *dr, const struct plot_samples *s);
 
 /* The states a plot draws: rows of the trajectory CSV's columns (t, q, v,
  * pos_err, vel_err, energy_err, traj_err), kept evenly in time. */

@@ -351,6 +351,58 @@ void plot_drawing_free(plot_drawing *dr)
     dr->nanchors = dr->nitems = 0;
 }
 
+/* Each slider's guide made long enough for the travel the kept states show
+ * (it reached as far as the scene's initial size: the slider-crank's block
+ * ran 0.4 m past both ends of its rail), with a 5 % margin. The guide's
+ * anchors are in the line body's frame; the block's place along them is
+ * affine in that frame, so they are stretched there. */
+int plot_drawing_fit_guides(plot_drawing *dr, const plot_samples *s)
+{
+    int nblocks = 0;
+    for (int i = 0; i < dr->nitems; i++) nblocks += dr->items[i].kind == PLOT_BLOCK;
+    if (!nblocks || s->count < 1) return 0;
+    braun_real *qr = malloc((size_t)dr->scene->n * sizeof *qr);
+    double *pos = malloc((size_t)dr->nanchors * 3 * sizeof *pos);
+    double *lo = calloc((size_t)dr->nitems, sizeof *lo), *hi = malloc((size_t)dr->nitems * sizeof *hi);
+    if (!qr || !pos || !lo || !hi) {
+        free(qr), free(pos), free(lo), free(hi);
+        return -1;
+    }
+    for (int i = 0; i < dr->nitems; i++) hi[i] = 1;
+    for (long r = 0; r < s->count; r++) {
+        plot_drawing_eval(dr, s->rows + (size_t)r * (size_t)s->cols + 1, qr, pos);
+        for (int i = 0; i < dr->nitems; i++) {
+            const plot_item *it = &dr->items[i];
+            if (it->kind != PLOT_BLOCK) continue;
+            const double *P = pos + 3 * it->a, *G0 = pos + 3 * it->b, *G1 = pos + 3 * it->c;
+            double dd = 0, dp = 0;
+            for (int k = 0; k < 3; k++) {
+                dd += (G1[k] - G0[k]) * (G1[k] - G0[k]);
+                dp += (P[k] - G0[k]) * (G1[k] - G0[k]);
+            }
+            if (!(dd > 0)) continue;
+            const double u = dp / dd;
+            if (u < lo[i]) lo[i] = u;
+            if (u > hi[i]) hi[i] = u;
+        }
+    }
+    for (int i = 0; i < dr->nitems; i++) {
+        const plot_item *it = &dr->items[i];
+        if (it->kind != PLOT_BLOCK || (lo[i] >= 0 && hi[i] <= 1) || !isfinite(lo[i]) || !isfinite(hi[i]))
+            continue;
+        plot_anchor *a0 = &dr->anchors[it->b], *a1 = &dr->anchors[it->c];
+        if (a0->scene_point >= 0 || a1->scene_point >= 0 || a0->own.body != a1->own.body) continue;
+        const double pad = 0.05 * (hi[i] - lo[i]);
+        const double u0 = lo[i] < 0 ? lo[i] - pad : 0, u1 = hi[i] > 1 ? hi[i] + pad : 1;
+        const double x0 = (double)a0->own.x, y0 = (double)a0->own.y;
+        const double dx = (double)a1->own.x - x0, dy = (double)a1->own.y - y0;
+        a0->own.x = (braun_real)(x0 + u0 * dx), a0->own.y = (braun_real)(y0 + u0 * dy);
+        a1->own.x = (braun_real)(x0 + u1 * dx), a1->own.y = (braun_real)(y0 + u1 * dy);
+    }
+    free(qr), free(pos), free(lo), free(hi);
+    return 0;
+}
+
 void plot_drawing_eval(const plot_drawing *dr, const double *q, braun_real *qr, double *pos)
 {
     const braun_scene *s = dr->scene;
