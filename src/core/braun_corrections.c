@@ -788,9 +788,15 @@ int braun__project_start(braun_data *d, braun_real *y, int *moved)
         }
         *moved = 1;
     }
+    /* A start on its constraints is judged so here: its first step is
+     * corrected at its end, as every later one (braun_adaptive.c). */
+    if (!*moved) {
+        if (pv->e0_pending == 1) judge_start(d, r);
+        return BRAUN_OK;
+    }
     /* The energy the start's error held goes with it (as the fixed steps'
      * re-take does), once the state is on its constraints. */
-    if (*moved && !(r > BRAUN_R(1e-3)) && d->model->sys.energy && d->has_E0) {
+    if (!(r > BRAUN_R(1e-3)) && d->model->sys.energy && d->has_E0) {
         braun_real E = 0;
         const int st = braun__energy(d, d->t, y, y + n, &E);
         if (st) return st;
