@@ -115,6 +115,10 @@ expect "gen-c -o twice refused" 2 "option -o given twice" gen-c data/pendulum.js
 expect "gen-c --symbol twice refused" 2 "option --symbol given twice" \
     gen-c data/pendulum.json --symbol a --symbol b
 expect "gen chain --angle twice refused" 2 "option --angle given twice" gen chain 2 --angle 30 --angle 40
+expect "run --quiet twice refused, as every option" 2 "option --quiet given twice" \
+    run pendulum --dt 1e-2 --t-end 1 --quiet --quiet
+expect "run --sparse twice refused" 2 "option --sparse given twice" \
+    run data/chain-5.json --dt 1e-2 --t-end 1 --sparse --sparse
 expect "gen chain -o and --out refused (one option)" 2 "option --out given twice" \
     gen chain 2 -o "$TMP/a.json" --out "$TMP/b.json"
 expect "gen chain --angle=30 as --angle 30" 0 "" gen chain 2 --angle=30 -o "$TMP/eq.json"

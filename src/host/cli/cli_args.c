@@ -306,6 +306,11 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
         if (strcmp(name, "--sparse") == 0 || strcmp(name, "--progress") == 0 ||
             strcmp(name, "--quiet") == 0) { /* the flags */
             if (arg[len] == '=') return braun_cli_error("option %s takes no value", name);
+            /* Once, as every option (`--rods --rods` is refused too). */
+            for (int k = 0; k < nseen; k++)
+                if (strcmp(seen[k], name) == 0)
+                    return braun_cli_error("option %s given twice: give it once", name);
+            if (nseen < (int)(sizeof seen / sizeof seen[0])) memcpy(seen[nseen++], name, len + 1);
             if (name[2] == 's') a->sparse = 1, a->run_given = 1;
             else if (name[2] == 'p') loud = 1;
             else quiet = 1;

@@ -217,7 +217,9 @@ int braun_cli_plot(int argc, char **argv)
         const long frames = job.frames < samples.count ? job.frames : samples.count;
         size_t len = strlen(caption);
         if (!a.plot_columns && fmt != FMT_HTML && len < sizeof caption)
-            snprintf(caption + len, sizeof caption - len, ", %ld configurations (earlier fainter)", frames);
+            snprintf(caption + len, sizeof caption - len, frames == 1 ? ", %ld configuration"
+                                                                        : ", %ld configurations (earlier fainter)",
+                     frames);
         job.caption = caption;
         /* With --plot the job has series and the writers draw the chart;
          * the drawing (if any) gives the points' coordinates. */
