@@ -413,9 +413,9 @@ static int energy_deferred(braun_data *d, braun_real E)
     braun_priv *pv = braun__priv(d);
     if (!pv->e0_pending || !pv->busy) return 0;
     const braun_real r = pv->rows > 0 ? relative_residual(d) : 0, tol = braun_sqrt(BRAUN_EPS);
-    if (pv->e0_pending == 1) { /* the start */
+    if (pv->e0_pending == 1) { /* the start: off its constraints, no force yet */
         judge_start(d, r);
-        return pv->e0_pending != 0;
+        return r > tol;
     }
     /* The point judged last, again (an adaptive attempt rejected and tried
      * anew from its start): the same residual has not "stopped halving". */

@@ -247,7 +247,10 @@ int braun_cli_run_target(const braun_cli_run_args *a, const braun_cli_target *tg
         const int big = sys.n > BRAUN_MAX_DENSE || sys.m > BRAUN_MAX_DENSE ||
                         sys.p > BRAUN_MAX_DENSE;
         int st = braun_model_init(&model, &sys);
-        if (!st) rc = choose_backend(a, tg, &model, none);
+        /* The dense kernels named for a system beyond them: the one line
+         * below (which names the backend that runs it), not the selection's. */
+        const int dense_named = strcmp(a->backend, "dense") == 0 || strcmp(a->backend, "lapack") == 0;
+        if (!st && !(big && dense_named)) rc = choose_backend(a, tg, &model, none);
         if ((st || (!rc && (!model.opt.linsolver ||
                                model.opt.linsolver != braun_linsolver_suitesparse()))) &&
             big) {
