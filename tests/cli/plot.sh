@@ -441,6 +441,18 @@ check "plot: a torque's arrow turns with its sign, about the body's origin" sh -
     echo "$b" | awk "{ exit !(\$8 == 1 && (\$9 - \$1) > 14.99 && (\$9 - \$1) < 15.01 && (\$10 - \$2) > 14.99 && (\$10 - \$2) < 15.01) }"' \
     sh "$(arc tq1.svg)" "$(arc tq-1.svg)"
 
+# A torque of 0 has no arrow (it was drawn counter-clockwise).
+printf '{"name": "tq", "bodies": [{"name": "wheel", "type": "rigid", "mass": 1, "inertia": 0.1,
+  "position": [0, 0], "points": {"O": [0, 0], "A": [0.5, 0]}}],
+ "joints": [{"type": "revolute", "a": "wheel.O", "b": [0, 0]}],
+ "effects": [{"type": "torque", "body": "wheel", "torque": 0}]}\n' > tq0.json
+"$BRAUN" plot tq0.json --dt 1e-2 --t-end 1 --frames 2 -o tq0.svg 2> /dev/null
+check "plot: a torque of 0 draws no arrow" sh -c '[ -s tq0.svg ] && [ -z "$1" ] && [ -n "$2" ]' \
+    sh "$(grep -o '<path d="M [^"]* A 15.0 15.0 ' tq0.svg | head -n 1)" "$(arc tq1.svg)"
+# A planar scene has no z: --view xz drew everything on one line.
+"$BRAUN" plot pendulum.json --dt 1e-2 --t-end 1 --view xz -o vxz.svg 2> vxz.err; rc=$?
+check "plot --view xz of a planar scene: refused, exit 2, says why" sh -c '
+    [ "$1" -eq 2 ] && grep -q "is planar" vxz.err && [ ! -e vxz.svg ]' sh "$rc"
 # A picture of a run that stopped says so in itself (only stderr did; its
 # caption read like a finished run's).
 "$BRAUN" plot four-bar.json --dt 1e-2 --t-end 3 --integrator dopri5 --max-steps 40 -o stop.svg \

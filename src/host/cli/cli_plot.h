@@ -46,7 +46,7 @@ typedef struct plot_item {
     int fn_rate;
     double sense;
 } plot_item;
-/* +1 counter-clockwise, -1 clockwise: a rotor's arrow at time t. */
+/* +1 counter-clockwise, -1 clockwise, 0 none: a rotor's arrow at time t. */
 int plot_item_sense(const plot_item *it, double t);
 
 /* A traced point (--points): an anchor and its name. */

@@ -244,7 +244,8 @@ int plot_item_sense(const plot_item *it, double t)
         if (braun_scene_fn_eval(it->fn, (braun_real)t, &v, &r, NULL) == BRAUN_OK)
             s = (double)(it->fn_rate ? r : v);
     }
-    return s < 0 ? -1 : 1;
+    /* No torque at t: no arrow (a zero was drawn counter-clockwise). */
+    return s < 0 ? -1 : s > 0 ? 1 : 0;
 }
 
 #define MARK(i) mark(grounded, s, (i))
@@ -331,6 +332,9 @@ int plot_drawing_build(plot_drawing *dr, const braun_cli_target *t, const char *
     if (i == sizeof views / sizeof views[0])
         return braun_cli_error("--view '%s': give the plane as two axes, across then up "
                                "(xy, xz, yz, yx, zx, zy)", v);
+    /* A planar scene has no z: a plane with it drew everything on a line. */
+    if (t->drawing->scene.dim != 3 && strchr(v, 'z'))
+        return braun_cli_error("--view '%s': '%s' is planar (its plane is xy or yx)", v, t->name);
     dr->axis_u = v[0] - 'x';
     dr->axis_v = v[1] - 'x';
     memcpy(dr->view, v, 3);

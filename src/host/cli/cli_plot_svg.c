@@ -260,9 +260,11 @@ void plot_svg_items(FILE *f, const plot_job *job, const plot_canvas *cv, const d
         case PLOT_SPRING:
             spring(f, in, xa, ya, xb, yb);
             break;
-        case PLOT_ROTOR:
-            rotor(f, in, xa, ya, plot_item_sense(it, t));
+        case PLOT_ROTOR: {
+            const int sense = plot_item_sense(it, t);
+            if (sense) rotor(f, in, xa, ya, sense);
             break;
+        }
         case PLOT_GROUND:
             ground(f, in, xa, ya);
             break;
