@@ -196,7 +196,7 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
      * SuiteSparse) at the start, as fixed steps: corrected at the end there
      * too, the redundant parallelogram at rtol 1e-8 stopped with
      * BRAUN_ERR_STEP_TOO_SMALL at t = 8.7 s (it completes 1000 s). */
-    const braun__corr_at where_run = braun__has_soft(pv) ? BRAUN__CORR_AT_END : BRAUN__CORR_AT_START;
+    const braun__corr_at where = braun__has_soft(pv) ? BRAUN__CORR_AT_END : BRAUN__CORR_AT_START;
     /* The step limit counts this call's attempts, accepted and rejected. */
     long accepted = 0, rejected = 0;
     /* The next attempt's first stage is known: after a rejection it is the
@@ -211,7 +211,12 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
     const int last_stage = tb->stages - 1;
 
     /* A new run's start off its constraints is projected onto them first
-     * (braun__project_start): its first state, reported at t0, is on them. */
+     * (braun__project_start): its first state, reported at t0, is on them,
+     * and the start is judged there — at the end of a first step, an exact
+     * start was taken for an inconsistent one (the end's residual is the
+     * step's own) and E0 re-taken seconds later from the drifted energy
+     * (the pendulum at rtol 2.7e-3: E0 0 -> 0.74 J at t = 3.5 s, status
+     * OK). */
     if (!pv->state_integrated) {
         int moved = 0;
         braun__load_state(d);
@@ -254,16 +259,6 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
         if (st) break;
         fresh = 0;
         braun__load_state(d);
-        /* Until the start's energy law is settled, at the start as fixed
-         * steps: judged at the end of a first step, an exact start was
-         * taken for an inconsistent one (the end's residual is the step's
-         * own) and E0 re-taken seconds later from the drifted energy (the
-         * pendulum at rtol 2.7e-3: E0 0 -> 0.74 J at t = 3.5 s, status OK);
-         * an inconsistent start integrated uncorrected over a first step
-         * put E0 2 % off at every rtol (docs/method.md). */
-        const braun__corr_at where =
-            where_run == BRAUN__CORR_AT_END && braun__energy_start_pending(d) ? BRAUN__CORR_AT_START
-                                                                              : where_run;
         /* Always per step: with a varying h the literal Δ = Φ/h changes
          * meaning from one trial step to the next and the error test, which
          * would see the 1/h terms, rejects without end. */

@@ -430,11 +430,6 @@ static int energy_deferred(braun_data *d, braun_real E)
     return 0;
 }
 
-int braun__energy_start_pending(const braun_data *d)
-{
-    return energy_corrected(d) && braun__priv(d)->e0_pending != 0;
-}
-
 static int stage_energy(braun_data *d, const braun_real *vdot)
 {
     braun_priv *pv = braun__priv(d);
@@ -795,13 +790,17 @@ int braun__project_start(braun_data *d, braun_real *y, int *moved)
         return BRAUN_OK;
     }
     /* The energy the start's error held goes with it (as the fixed steps'
-     * re-take does), once the state is on its constraints. */
+     * re-take does), once the state is on its constraints; a projection
+     * that did not get there leaves the start judged off them, E0 re-taken
+     * where the steps' corrections bring it (energy_deferred). */
     if (!(r > BRAUN_R(1e-3)) && d->model->sys.energy && d->has_E0) {
         braun_real E = 0;
         const int st = braun__energy(d, d->t, y, y + n, &E);
         if (st) return st;
         d->E0 = E - y[2 * n];
         pv->e0_pending = 0;
+    } else {
+        judge_start(d, r);
     }
     return BRAUN_OK;
 }

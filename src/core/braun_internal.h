@@ -344,10 +344,6 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1);
  * point (src/core/braun_corrections.c). */
 int braun__guard_start(braun_data *d, const braun_real *vdot);
 int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real *y1, braun_real h);
-/* The energy force is on and the start's energy law not yet settled
- * (braun_set_state's start not judged, or off its constraints and E0 not
- * yet re-taken): an adaptive step then corrects at its start. */
-int braun__energy_start_pending(const braun_data *d);
 /* The adaptive driver's start off its constraints, projected onto them
  * (braun_corrections.c); y = [q; v; ∫Ė] in place. */
 int braun__project_start(braun_data *d, braun_real *y, int *moved);
