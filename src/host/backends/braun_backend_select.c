@@ -41,14 +41,16 @@ int braun_linsolver_select(const char *name, const braun_system *sys,
         if (why) *why = "invalid sizes n, m, p (n >= 1, m, p >= 0)";
         return BRAUN_ERR_SIZE;
     }
-    /* The dense kernels (built-in or LAPACK's) stop at BRAUN_MAX_DENSE: a
-     * larger sparse system was "OK" here and then failed braun_data_init
-     * with "invalid sizes". */
+    /* The dense kernels (built-in or LAPACK's) stop where braun_data_size
+     * does (braun_data.c, dense_size_ok: n <= BRAUN_MAX_DENSE, m + p <= twice
+     * it): a larger sparse system was "OK" here and then failed
+     * braun_data_init with "invalid sizes". */
+    const int beyond_dense = sys->n > BRAUN_MAX_DENSE || sys->m + sys->p > 2 * BRAUN_MAX_DENSE;
     const int dense_only = strcmp(name, "dense") == 0 || strcmp(name, "lapack") == 0;
-    if (dense_only && (sys->n > BRAUN_MAX_DENSE || sys->m + sys->p > BRAUN_MAX_DENSE))
-        return fail(why, sys->sparsity ? "beyond the dense kernels' 4096 coordinates or rows: use "
+    if (dense_only && beyond_dense)
+        return fail(why, sys->sparsity ? "beyond the dense kernels' 4096 coordinates (8192 rows): use "
                                          "'suitesparse' (or 'auto')"
-                                       : "beyond the dense kernels' 4096 coordinates or rows (a "
+                                       : "beyond the dense kernels' 4096 coordinates (8192 rows; a "
                                          "system with a sparsity pattern can use 'suitesparse')");
     if (strcmp(name, "dense") == 0) return BRAUN_OK;
     if (strcmp(name, "lapack") == 0) {
@@ -67,10 +69,9 @@ int braun_linsolver_select(const char *name, const braun_system *sys,
     }
     if (strcmp(name, "auto") != 0)
         return fail(why, "unknown backend (dense, lapack, suitesparse, auto)");
-    if ((sys->n > BRAUN_MAX_DENSE || sys->m + sys->p > BRAUN_MAX_DENSE) &&
-        !(sys->sparsity && braun_linsolver_suitesparse()))
-        return fail(why, "beyond the dense kernels' 4096 coordinates or rows, and no sparse backend "
-                         "for it (a sparsity pattern and 'suitesparse')");
+    if (beyond_dense && !(sys->sparsity && braun_linsolver_suitesparse()))
+        return fail(why, "beyond the dense kernels' 4096 coordinates (8192 rows), and no sparse "
+                         "backend for it (a sparsity pattern and 'suitesparse')");
     if (sys->sparsity && sys->n >= AUTO_SPARSE_MIN_N && braun_linsolver_suitesparse()) {
         *out = braun_linsolver_suitesparse();
         return BRAUN_OK;

@@ -106,6 +106,9 @@ int braun_cli_output_begin(braun_cli_output *o);
 void braun_cli_output_failed(braun_cli_output *o);
 /* Flush and close; 1 after "error writing 'FILE': reason", else 0. */
 int braun_cli_output_close(braun_cli_output *o);
+/* Flush, and report a write error as close does (1); the file stays open,
+ * so a caller can still abandon it. */
+int braun_cli_output_flush(braun_cli_output *o);
 /* Close without writing; remove the file if this command made it. */
 void braun_cli_output_abandon(braun_cli_output *o);
 

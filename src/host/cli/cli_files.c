@@ -122,6 +122,21 @@ void braun_cli_output_failed(braun_cli_output *o)
     if (!o->err) o->err = errno;
 }
 
+static void say_write_error(const braun_cli_output *o, int e)
+{
+    braun_cli_error("error writing '%s'%s%s", strcmp(o->path, "-") == 0 ? "stdout" : o->path,
+                    e ? ": " : "", e ? strerror(e) : "");
+}
+
+int braun_cli_output_flush(braun_cli_output *o)
+{
+    if (!o->f) return 0;
+    errno = 0;
+    const int bad = ferror(o->f) != 0 || fflush(o->f) != 0;
+    if (bad) say_write_error(o, o->err ? o->err : errno);
+    return bad;
+}
+
 int braun_cli_output_close(braun_cli_output *o)
 {
     if (!o->f) return 0;
@@ -136,9 +151,7 @@ int braun_cli_output_close(braun_cli_output *o)
     /* Reported here: main's last check of stdout must not say it again. */
     if (o->f == stdout) clearerr(stdout);
     o->f = NULL;
-    if (bad)
-        braun_cli_error("error writing '%s'%s%s", strcmp(o->path, "-") == 0 ? "stdout" : o->path,
-                        e ? ": " : "", e ? strerror(e) : "");
+    if (bad) say_write_error(o, e);
     return bad;
 }
 

@@ -127,20 +127,10 @@ int braun_cli_gen_c(int argc, char **argv)
      * (a full disk) takes the other with it, as a run's outputs do — the
      * source left without its header (or the reverse) exited 1 beside a
      * file that looked complete. */
-    braun_cli_output *outs[2] = {&o, header ? &ho : NULL};
-    for (int k = 0; k < 2; k++) {
-        braun_cli_output *w = outs[k];
-        if (!w || !w->f) continue;
-        errno = 0;
-        if (fflush(w->f) != 0 || ferror(w->f)) {
-            const int e = errno;
-            braun_cli_error("error writing '%s'%s%s",
-                            k ? header : (out && strcmp(out, "-") != 0 ? out : "stdout"), e ? ": " : "",
-                            e ? strerror(e) : "");
-            braun_cli_output_abandon(&o);
-            if (header) braun_cli_output_abandon(&ho);
-            return BRAUN_CLI_FAILED;
-        }
+    if (braun_cli_output_flush(&o) || (header && braun_cli_output_flush(&ho))) {
+        braun_cli_output_abandon(&o);
+        if (header) braun_cli_output_abandon(&ho);
+        return BRAUN_CLI_FAILED;
     }
     const int bad = braun_cli_output_close(&o);
     const int hbad = header ? braun_cli_output_close(&ho) : 0;

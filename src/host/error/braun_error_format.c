@@ -196,11 +196,9 @@ static void describe(msg *w, const braun_data *d)
         char a10[40], b10[40];
         snprintf(a10, sizeof a10, "%.10g", e->t);
         snprintf(b10, sizeof b10, "%.10g", (double)d->t);
-        const int full = strcmp(a10, b10) == 0 && e->t != (double)d->t;
-        put(w, full ? " at t = %.17g" : " at t = %.10g", e->t);
-        put(w, full ? "; the state kept is the last one that passed, at t = %.17g"
-                    : "; the state kept is the last one that passed, at t = %.10g",
-            (double)d->t);
+        const int digits = strcmp(a10, b10) == 0 && e->t != (double)d->t ? 17 : 10;
+        put(w, " at t = %.*g; the state kept is the last one that passed, at t = %.*g", digits, e->t,
+            digits, (double)d->t);
         return;
     }
     case BRAUN_ERR_INCONSISTENT:
