@@ -73,10 +73,11 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
          * scratch: carved over, the model's callbacks became wild jumps. */
         const uintptr_t lo = (uintptr_t)buffer, hi = lo + bytes;
         const uintptr_t dl = (uintptr_t)d, ml = (uintptr_t)model;
-        if ((dl < hi && lo < dl + sizeof *d) || (ml < hi && lo < ml + sizeof *model))
+        const int holds_data = dl < hi && lo < dl + sizeof *d;
+        if (holds_data || (ml < hi && lo < ml + sizeof *model))
             return braun__fail(d, BRAUN_ERR_ARGUMENT,
-                               (dl < hi && lo < dl + sizeof *d) ? "buffer (holds the braun_data itself)"
-                                                               : "buffer (holds the braun_model)",
+                               holds_data ? "buffer (holds the braun_data itself)"
+                                          : "buffer (holds the braun_model)",
                                -1, -1, 0, 0);
     }
     d->t = 0;
