@@ -2357,7 +2357,7 @@ static void test_rank_rule(void **state)
             for (size_t k = 0; k < (size_t)rows * (size_t)n; k++) f.a[k] = (braun_real)d.C[k];
             const double tn = cases[c].tol_new > tol ? cases[c].tol_new : tol;
             const int kq = braun_qrcp_factor_rule(&f, (braun_real)tol, (braun_real)tn,
-                                                  cases[c].keep, cases[c].cap);
+                                                  cases[c].keep, cases[c].cap, 0);
             assert_int_equal(kq, cases[c].rank);
             LS()->rank_rule(st, 0, cases[c].keep, cases[c].cap, (braun_real)cases[c].tol_new);
             assert_int_equal(be_factor_c(st, &t, 0, rows, tol), kq);

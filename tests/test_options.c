@@ -133,11 +133,11 @@ static void test_failed_init_releases(void **state)
     (void)state;
     static braun_linsolver fake = {"fake", BRAUN_LS_DENSE, fake_create, fake_destroy,
                                    fake_factor_mass, fake_vec, fake_vec, fake_vec, fake_factor_c,
-                                   fake_pinv, fake_lsq, fake_null, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+                                   fake_pinv, fake_lsq, fake_null, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     /* A table without an operation the core calls is refused, naming it. */
     static braun_linsolver partial = {"partial", BRAUN_LS_DENSE, fake_create, fake_destroy,
                                       fake_factor_mass, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
-                                      NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+                                      NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     fixture f;
     open_fixture(&f);
     f.model.opt.linsolver = &partial;

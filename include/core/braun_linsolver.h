@@ -116,6 +116,18 @@ struct braun_linsolver {
      * NULL: the backend's solves are exact anyway (the built-in kernels,
      * LAPACK: a complete orthogonal decomposition). */
     void (*rhs_floor)(void *state, int slot, braun_real floor);
+    /* Optional: the next factor_c calls are a step's later stages (later =
+     * 1) or a first stage (0). At a later stage a rank-deficient
+     * factorization should set aside the rows the slot's first-stage one set
+     * aside, while the others stay clearly independent (their pivots above
+     * the rank rule's tol_new): the stages, off the manifold by the step's
+     * own error, find those rows dependent only to that error, and another
+     * choice of rows takes another rank-k approximation of C, one that
+     * differs by that error, so the integrator loses its order
+     * (docs/method.md, "Rank decisions near singular configurations").
+     * NULL: the backend keeps no order (SuiteSparse's fixed row order keeps
+     * the rows anyway). */
+    void (*stage_order)(void *state, int later);
 };
 
 #ifdef __cplusplus

@@ -74,4 +74,5 @@ const braun_linsolver braun__dense_linsolver = {
     braun__dense_soft_find,
     braun__dense_soft_project,
     NULL, /* rhs_floor: the QRCP's C^+ r is exact */
+    braun__dense_stage_order,
 };

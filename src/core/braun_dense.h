@@ -198,7 +198,7 @@ static inline int braun__dense_factor_c(void *state, int slot, int rows, const b
             braun__dense_form_c(s, f, rows, A, NULL, NULL);
         }
     }
-    return braun_qrcp_factor_rule(f, tol, tol_new, s->keep[slot], s->cap[slot]);
+    return braun_qrcp_factor_rule(f, tol, tol_new, s->keep[slot], s->cap[slot], s->stage_order);
 }
 
 /* The next factorizations are a step's later stages (1) or its first (0). */
@@ -247,7 +247,7 @@ static inline int braun__dense_soft_find(void *state, int slot, braun_real rel)
     if (f->gram) {
         const braun_dense *s = braun__dense(state);
         (void)braun_qrcp_factor_rule(f, s->tol[slot], braun__dense_tol_new(s, slot, s->tol[slot]),
-                                     s->keep[slot], s->cap[slot]);
+                                     s->keep[slot], s->cap[slot], 0);
     }
     return braun_qrcp_soft_find(f, rel);
 }

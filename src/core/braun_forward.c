@@ -221,12 +221,13 @@ static int stage_factor(braun_data *d, int with_residuals)
         if (pv->need_fq)
             BRAUN_LS_CALL(pv, rank_rule, pv->ls_state, 1, pv->rule_keep[1], pv->rule_cap[1], tol_new);
     }
-    /* The built-in kernels may factor a step's later stages in the first
-     * stage's column order (braun_dense.h). */
+    /* A step's later stages keep the first stage's column order and rows
+     * set aside (braun_linsolver.h, stage_order; the built-in kernels':
+     * braun_dense.h). */
 #ifdef BRAUN_NO_LINSOLVER
     braun__dense_stage_order(pv->ls_state, pv->rule_stage);
 #else
-    if (pv->ls == &braun__dense_linsolver) braun__dense_stage_order(pv->ls_state, pv->rule_stage);
+    if (pv->ls->stage_order) BRAUN_LS_CALL(pv, stage_order, pv->ls_state, pv->rule_stage);
 #endif
     if (pv->need_fq && with_residuals) {
         const int rq = BRAUN_LS_CALL(pv, factor_c, pv->ls_state, 1, m, A, braun__rank_tol(d, m), NULL,

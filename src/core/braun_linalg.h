@@ -270,8 +270,10 @@ void braun_qrcp_bind(braun_qrcp *f, int n, int rows, braun_real *reals,
 int braun_qrcp_factor(braun_qrcp *f, braun_real tol);
 /* The same under a rank rule (braun_linsolver.h, rank_rule): a pivot beyond
  * the first `keep` counts only above tol_new·|r_00| too, and at most `cap`
- * pivots count. */
-int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, int keep, int cap);
+ * pivots count. same_rows (a step's later stages): when the last
+ * factorization had rank keep < rows, the rows it set aside are set aside
+ * again while the others' pivots clear tol_new·|r_00|. */
+int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, int keep, int cap, int same_rows);
 /* The same matrix shape factored again in the last factorization's column
  * order, without pivoting, when that one had full rank rows <= n: accepted
  * only if every pivot exceeds gate·r00 (r00 the largest column norm), else

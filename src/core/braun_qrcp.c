@@ -111,10 +111,27 @@ BRAUN_FORCE_INLINE void reflect_cols(int len, const braun_real *restrict vtail, 
 
 int braun_qrcp_factor(braun_qrcp *f, braun_real tol)
 {
-    return braun_qrcp_factor_rule(f, tol, tol, f->rows, f->rows);
+    return braun_qrcp_factor_rule(f, tol, tol, f->rows, f->rows, 0);
 }
 
-int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, int keep, int cap)
+/* Bring the column at position `best` to position k (pivoting permutes
+ * the column order only: column j of the factor stays where row perm[j]
+ * of C was written). */
+static void swap_pivot(braun_qrcp *f, braun_real *norm2, braun_real *ref, int k, int best)
+{
+    if (best == k) return;
+    int t = f->perm[k];
+    f->perm[k] = f->perm[best];
+    f->perm[best] = t;
+    braun_real u = norm2[k];
+    norm2[k] = norm2[best];
+    norm2[best] = u;
+    u = ref[k];
+    ref[k] = ref[best];
+    ref[best] = u;
+}
+
+int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, int keep, int cap, int same_rows)
 {
     const int n = BRAUN_N(f->n), rows = BRAUN_ROWS(f->rows);
     int kmax = n < rows ? n : rows;
@@ -126,6 +143,23 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
      * free until the second stage. */
     braun_real *norm2 = f->work, *ref = f->stau;
     braun_real r00 = 0;
+    /* At a step's later stages the rows a rank-deficient factorization of
+     * the first stage set aside are set aside again (`aside`, in f->s,
+     * free until the dependent rows' QR): the stages, off the manifold by
+     * the step's own error, find those rows dependent only to that error,
+     * and a stage that dropped another row would take another rank-`keep`
+     * approximation of C, one that differs from the first stage's by that
+     * error: RK4 lost its order on Bricard's linkage (docs/method.md,
+     * "Rank decisions near singular configurations"). The kept rows are
+     * still pivoted among themselves; one whose pivot falls to tol_new of
+     * the largest column ends the rule (pivoting over every row). */
+    braun_real *aside = f->s;
+    int fixed = 0;
+    if (same_rows && f->rank > 0 && f->rank < rows && f->rank == keep && !f->gram) {
+        fixed = f->rank;
+        for (int j = 0; j < rows; j++) aside[j] = 0;
+        for (int j = fixed; j < rows; j++) aside[f->perm[j]] = 1;
+    }
 
     if (BRAUN_FUSED_NORMS && f->norms_given) {
         /* The same sums, formed with C (braun_dense.h). */
@@ -150,28 +184,41 @@ int braun_qrcp_factor_rule(braun_qrcp *f, braun_real tol, braun_real tol_new, in
     for (int k = 0; k < KCAP(f, kmax); k++) {
         if (!BELOW(k, kmax)) break;
         int best = k;
-        BRAUN_UNROLL
-        for (int j = k + 1; j < rows; j++)
-            if (norm2[j] > norm2[best]) best = j;
-        if (best != k) {
-            /* Pivoting permutes the column order only: column j of the
-             * factor stays where row perm[j] of C was written. */
-            int t = f->perm[k];
-            f->perm[k] = f->perm[best];
-            f->perm[best] = t;
-            braun_real u = norm2[k];
-            norm2[k] = norm2[best];
-            norm2[best] = u;
-            u = ref[k];
-            ref[k] = ref[best];
-            ref[best] = u;
+        if (k < fixed) {
+            /* The largest of the rows not set aside (there are `fixed`). */
+            best = -1;
+            for (int j = k; j < rows; j++)
+                if (aside[f->perm[j]] == 0 && (best < 0 || norm2[j] > norm2[best])) best = j;
+            if (k == 0) {
+                /* r00 the largest column norm, as the pivoted order's. */
+                braun_real big = 0;
+                for (int j = 0; j < rows; j++)
+                    if (norm2[j] > big) big = norm2[j];
+                r00 = braun_sqrt(big);
+            }
+        } else {
+            BRAUN_UNROLL
+            for (int j = k + 1; j < rows; j++)
+                if (norm2[j] > norm2[best]) best = j;
         }
+        swap_pivot(f, norm2, ref, k, best);
         braun_real *col = COL(a, f, k, n) + k;
         /* The pivot's norm is recomputed exactly: the rank decision must not
          * rest on a downdated value (at k = 0 the initial norms are exact:
          * the same sum in the same order). */
-        const braun_real pivot = braun_sqrt(k == 0 ? norm2[0] : sumsq(n - k, col));
-        if (k == 0) r00 = pivot;
+        braun_real pivot = braun_sqrt(k == 0 ? norm2[0] : sumsq(n - k, col));
+        if (k < fixed && !(pivot > tol_new * r00)) {
+            /* The kept rows are no longer clearly independent: pivot over
+             * every row from here on. */
+            fixed = 0;
+            best = k;
+            for (int j = k + 1; j < rows; j++)
+                if (norm2[j] > norm2[best]) best = j;
+            swap_pivot(f, norm2, ref, k, best);
+            col = COL(a, f, k, n) + k;
+            pivot = braun_sqrt(sumsq(n - k, col));
+        }
+        if (k == 0 && !fixed) r00 = pivot;
         /* Rank decision relative to the largest pivot (≈ ||C||_2); a pivot
          * beyond the first `keep` must also clear tol_new. */
         if (pivot == 0 || pivot <= tol * r00 || (k >= keep && pivot <= tol_new * r00)) break;

@@ -86,6 +86,7 @@ typedef struct lapack_slot {
     braun_real *tau;  /* min(n, cap): reflectors of Q */
     braun_real *ztau; /* cap: reflectors of Z */
     int *jpvt;        /* cap: column j of the factor is row jpvt[j] - 1 of C */
+    int *kept;        /* cap: 1 for a row the last factorization kept */
     /* The rank rule of the next factorization (braun_linsolver.h). */
     int rule_keep, rule_cap;
     braun_real rule_tol_new;
@@ -99,6 +100,7 @@ typedef struct lapack_state {
     braun_real *w;    /* max(n, rows) + 1: permuted right-hand side */
     braun_real *work; /* lwork */
     int lwork;
+    int later;        /* a step's later stages (ls_stage_order) */
 } lapack_state;
 
 static void ls_destroy(void *state)
@@ -111,6 +113,7 @@ static void ls_destroy(void *state)
         free(s->slot[k].tau);
         free(s->slot[k].ztau);
         free(s->slot[k].jpvt);
+        free(s->slot[k].kept);
     }
     free(s->w);
     free(s->work);
@@ -174,7 +177,8 @@ static int ls_create(void **state, const braun_model *model)
         ok = (f->ct = malloc((size_t)n * (size_t)f->cap * sizeof *f->ct)) != NULL &&
              (f->tau = malloc((size_t)imin(n, f->cap) * sizeof *f->tau)) != NULL &&
              (f->ztau = malloc((size_t)f->cap * sizeof *f->ztau)) != NULL &&
-             (f->jpvt = malloc((size_t)f->cap * sizeof *f->jpvt)) != NULL;
+             (f->jpvt = malloc((size_t)f->cap * sizeof *f->jpvt)) != NULL &&
+             (f->kept = malloc((size_t)f->cap * sizeof *f->kept)) != NULL;
     }
     ok = ok && (s->w = malloc(((size_t)imax(n, rows) + 1) * sizeof *s->w)) != NULL &&
          (s->work = malloc((size_t)s->lwork * sizeof *s->work)) != NULL;
@@ -268,32 +272,66 @@ static int ls_factor_c(void *state, int slot, int rows, const braun_real *A,
     if (!s || slot < 0 || slot > 1) return BRAUN_ERR_ARGUMENT;
     lapack_slot *f = &s->slot[slot];
     const int n = s->n;
+    /* At a step's later stages, the rows a rank-deficient first stage kept
+     * are kept again (braun_linsolver.h, stage_order): xGEQP3 factors the
+     * columns marked in jpvt first, then pivots over the others. */
+    const int prev_rank = f->rank;
+    const int same_rows = s->later && f->rows == rows && prev_rank > 0 && prev_rank < rows &&
+                          prev_rank == f->rule_keep;
+    if (same_rows) {
+        for (int j = 0; j < rows; j++) f->kept[j] = 0;
+        for (int j = 0; j < prev_rank; j++) f->kept[f->jpvt[j] - 1] = 1;
+    }
     f->rows = 0;
     f->rank = 0;
     if (rows < 0 || rows > f->cap) return BRAUN_ERR_SIZE;
     if (!s->have_r || (rows > 0 && !A)) return BRAUN_ERR_ARGUMENT;
     if (rows == 0) return 0;
 
-    /* C^T = L^-1 A^T (n x rows, column-major). */
+    const braun_real tol_new = f->rule_tol_new > tol ? f->rule_tol_new : tol;
     const braun_real one = 1, minus_one = -1;
-    memcpy(f->ct, A, (size_t)rows * (size_t)n * sizeof *f->ct);
-    LA(trsm)("L", "L", "N", "N", &n, &rows, &one, s->R, &n, f->ct, &n, 1, 1, 1, 1);
-    /* resid -= C atil = (C^T)^T atil. */
-    if (atil && resid)
-        LA(gemv)("T", &n, &rows, &minus_one, f->ct, &n, atil, &ONE, &one, resid, &ONE, 1);
-
-    /* C^T P = Q R, every column free to move. */
+    braun_real r00 = 0;
     int info = 0;
-    for (int j = 0; j < rows; j++) f->jpvt[j] = 0;
-    LA(geqp3)(&n, &rows, f->ct, &n, f->jpvt, f->tau, s->work, &s->lwork, &info);
-    if (info != 0) return BRAUN_ERR_ARGUMENT;
+    for (int pass = same_rows ? 0 : 1; pass < 2; pass++) {
+        /* C^T = L^-1 A^T (n x rows, column-major). */
+        memcpy(f->ct, A, (size_t)rows * (size_t)n * sizeof *f->ct);
+        LA(trsm)("L", "L", "N", "N", &n, &rows, &one, s->R, &n, f->ct, &n, 1, 1, 1, 1);
+        /* resid -= C atil = (C^T)^T atil (once). */
+        if (atil && resid && pass == (same_rows ? 0 : 1))
+            LA(gemv)("T", &n, &rows, &minus_one, f->ct, &n, atil, &ONE, &one, resid, &ONE, 1);
+        if (pass == 0) {
+            /* r00 the largest column norm, as the pivoted order's first
+             * pivot; the kept rows' pivots must clear tol_new of it. */
+            for (int j = 0; j < rows; j++) {
+                const braun_real c = LA(nrm2)(&n, f->ct + (size_t)j * (size_t)n, &ONE);
+                if (c > r00) r00 = c;
+                f->jpvt[j] = f->kept[j];
+            }
+        } else {
+            /* C^T P = Q R, every column free to move. */
+            for (int j = 0; j < rows; j++) f->jpvt[j] = 0;
+        }
+        LA(geqp3)(&n, &rows, f->ct, &n, f->jpvt, f->tau, s->work, &s->lwork, &info);
+        if (info != 0) return BRAUN_ERR_ARGUMENT;
+        if (pass == 1) {
+            r00 = f->ct[0] < 0 ? -f->ct[0] : f->ct[0];
+            break;
+        }
+        int clear = 1;
+        for (int k = 0; k < prev_rank; k++) {
+            braun_real piv = f->ct[(size_t)k * (size_t)n + (size_t)k];
+            if (piv < 0) piv = -piv;
+            if (!(piv > tol_new * r00)) clear = 0;
+        }
+        if (clear) break;
+        /* The kept rows are no longer clearly independent: pivot freely. */
+        r00 = 0;
+    }
     f->rows = rows;
 
     /* Rank relative to the largest pivot, as braun_qrcp_factor (the same
      * comparisons: NaN pivots count, so NaN reaches the results). */
     const int kmax = imin(imin(n, rows), f->rule_cap);
-    braun_real r00 = f->ct[0] < 0 ? -f->ct[0] : f->ct[0];
-    const braun_real tol_new = f->rule_tol_new > tol ? f->rule_tol_new : tol;
     int k = 0;
     for (; k < kmax; k++) {
         braun_real piv = f->ct[(size_t)k * (size_t)n + (size_t)k];
@@ -360,6 +398,13 @@ static void ls_null_project(void *state, int slot, braun_real *z)
     LA(orm2r)("L", "N", &n, &ONE, &k, f->ct, &n, f->tau, z, &n, s->work, &info, 1, 1);
 }
 
+/* The next factorizations are a step's later stages (1) or its first. */
+static void ls_stage_order(void *state, int later)
+{
+    lapack_state *s = state;
+    if (s) s->later = later;
+}
+
 /* The rank rule of the slot's next factorization, as the built-in kernels'
  * (the same comparisons on the same pivots). */
 static void ls_rank_rule(void *state, int slot, int keep, int cap, braun_real tol_new)
@@ -391,6 +436,7 @@ static const braun_linsolver lapack_table = {
     NULL, /* soft_find: no soft-direction filter (docs/method.md) */
     NULL, /* soft_project */
     NULL, /* rhs_floor: the complete orthogonal decomposition's C^+ r is exact */
+    ls_stage_order,
 };
 
 const braun_linsolver *braun_linsolver_lapack(void) { return &lapack_table; }

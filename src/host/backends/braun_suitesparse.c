@@ -2567,6 +2567,7 @@ static const braun_linsolver ss_table = {
     NULL, /* soft_find: no soft-direction filter (docs/method.md) */
     NULL, /* soft_project */
     ss_rhs_floor,
+    NULL, /* stage_order: the rows set aside follow its fixed row order anyway */
 };
 
 const braun_linsolver *braun_linsolver_suitesparse(void) { return &ss_table; }
