@@ -369,10 +369,9 @@ static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_
 /* The point's residuals relative to their scales (the guard's, measured
  * here): max(‖Φ_q‖∞ / pos, ‖[Φ̇_q; Φ_v]‖∞ / vel), of those the corrections
  * remove. */
-static braun_real relative_residual(braun_data *d)
+static braun_real relative_residual_of(braun_data *d, unsigned corr)
 {
     braun_priv *pv = braun__priv(d);
-    const unsigned corr = d->model->opt.corrections;
     braun_real pos, vel, energy, rp = 0, rv = 0;
     measure_scales(d, 1, 0, &pos, &vel, &energy);
     /* Only what the corrections remove: with the velocity correction off
@@ -383,6 +382,11 @@ static braun_real relative_residual(braun_data *d)
         if (braun_fabs(pv->ev[i]) > rv) rv = braun_fabs(pv->ev[i]);
     const braun_real a = pos > 0 ? rp / pos : 0, b = vel > 0 ? rv / vel : 0;
     return a > b ? a : b;
+}
+
+static braun_real relative_residual(braun_data *d)
+{
+    return relative_residual_of(d, d->model->opt.corrections);
 }
 
 /* A start off the constraints: its first corrections remove the error, and
@@ -743,6 +747,56 @@ int braun__corrections(braun_data *d, const braun_real *vdot, int guard_run)
     return st;
 }
 
+/* A new run's start: its positions projected onto the constraints before
+ * anything else — the position correction at h = 0 (a Gauss–Newton step in
+ * the mass metric), repeated while the position residual, relative to its
+ * scale, exceeds 8ε and still halves (at most 8 times), with the rank rule
+ * of a rising rank (every pivot past sqrt(ε) of the largest). Rows
+ * dependent on the manifold are dependent at a start off it only to the
+ * start's residual: a parallelogram with its redundant crank started
+ * 1e-13 off (angles to 13 digits) counted 12 rows of rank 12 there, no
+ * motion left, and the first step's corrections took all its kinetic
+ * energy, status OK (the adaptive driver's projection too). Projected, the
+ * start's rank is the manifold's by the plain tolerance, which the run
+ * then takes; rows only ill-conditioned keep their pivot there and are
+ * counted. y = [q; v; ∫Ė], its q changed in place; *moved: a correction
+ * was applied; *r_start: the start's relative position residual. judge:
+ * a start moved by more than sqrt(ε) is judged off its constraints (E0
+ * re-taken where they settle, energy_deferred). */
+int braun__project_positions(braun_data *d, braun_real *y, int *moved, braun_real *r_start, int judge)
+{
+    braun_priv *pv = braun__priv(d);
+    const unsigned corr = d->model->opt.corrections & BRAUN_CORRECT_POSITION;
+    const int n = BRAUN_N(pv->n);
+    *moved = 0;
+    *r_start = 0;
+    if (!corr || pv->m == 0) return BRAUN_OK;
+    braun_real r = 0, last = 0;
+    int st = BRAUN_OK;
+    for (int it = 0;; it++) {
+        braun__at(pv, d->t, y, y + n, y[2 * n], 0);
+        braun__rank_rule_plain(pv);
+        pv->rule_keep[0] = pv->rule_keep[1] = 0;
+        pv->soft_on = 0;
+        pv->energy_end = 0;
+        pv->stage = 0;
+        st = braun__forward(d, BRAUN_WITH_RESIDUALS, pv->k[0] + n);
+        if (st) break;
+        r = relative_residual_of(d, corr);
+        if (it == 0) *r_start = r;
+        if (!(r > 8 * BRAUN_EPS) || (it > 0 && !(r < BRAUN_R(0.5) * last)) || it == 8) break;
+        last = r;
+        st = position_velocity(d, corr, 1);
+        if (st) break;
+        for (int i = 0; i < n; i++) y[i] += pv->dq[i];
+        *moved = 1;
+    }
+    braun__rank_rule_plain(pv);
+    if (!st && judge && *moved && pv->e0_pending == 1 && *r_start > braun_sqrt(BRAUN_EPS))
+        judge_start(d, *r_start);
+    return st;
+}
+
 /* The adaptive driver's start off its constraints (docs/method.md, "Where
  * the corrections are evaluated"): projected onto them before the first
  * step — the position and velocity corrections at h = 0 (Δ_q = Φ_q, a
@@ -763,14 +817,17 @@ int braun__project_start(braun_data *d, braun_real *y, int *moved)
     *moved = 0;
     if (!(corr & (BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY)) || pv->rows == 0) return BRAUN_OK;
     const braun_real tol = braun_sqrt(BRAUN_EPS);
-    braun_real r = 0, last = 0;
+    braun_real r = 0, last = 0, r0 = 0;
+    /* The positions first (braun__project_positions), then both. */
+    int st = braun__project_positions(d, y, moved, &r0, 0);
+    if (st) return st;
     for (int it = 0;; it++) {
         braun__at(pv, d->t, y, y + n, y[2 * n], 0);
         braun__rank_rule_plain(pv);
         pv->soft_on = 0;
         pv->energy_end = 0;
         pv->stage = 0;
-        int st = braun__forward(d, BRAUN_WITH_RESIDUALS, pv->k[0] + n);
+        st = braun__forward(d, BRAUN_WITH_RESIDUALS, pv->k[0] + n);
         if (st) return st;
         r = relative_residual(d);
         if (!(r > tol) || (it > 0 && !(r < BRAUN_R(0.5) * last)) || it == 8) break;
@@ -795,7 +852,7 @@ int braun__project_start(braun_data *d, braun_real *y, int *moved)
      * where the steps' corrections bring it (energy_deferred). */
     if (!(r > BRAUN_R(1e-3)) && d->model->sys.energy && d->has_E0) {
         braun_real E = 0;
-        const int st = braun__energy(d, d->t, y, y + n, &E);
+        st = braun__energy(d, d->t, y, y + n, &E);
         if (st) return st;
         d->E0 = E - y[2 * n];
         pv->e0_pending = 0;

@@ -347,6 +347,7 @@ int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real 
 /* The adaptive driver's start off its constraints, projected onto them
  * (braun_corrections.c); y = [q; v; ∫Ė] in place. */
 int braun__project_start(braun_data *d, braun_real *y, int *moved);
+int braun__project_positions(braun_data *d, braun_real *y, int *moved, braun_real *r_start, int judge);
 
 /* A stage's inputs are done at this point, else BRAUN_ERR_ARGUMENT. */
 static inline int braun__need(braun_data *d, unsigned bits, const char *stage)
