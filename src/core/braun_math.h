@@ -12,6 +12,7 @@
 #define BRAUN_MAXREAL FLT_MAX
 #define braun_sqrt sqrtf
 #define braun_fabs fabsf
+#define braun_floor floorf
 #define braun_sin sinf
 #define braun_cos cosf
 #else
@@ -19,6 +20,7 @@
 #define BRAUN_MAXREAL DBL_MAX
 #define braun_sqrt sqrt
 #define braun_fabs fabs
+#define braun_floor floor
 #define braun_sin sin
 #define braun_cos cos
 #endif

@@ -4,12 +4,16 @@
  *   Q += -(k δ + c θ') ∂θ/∂q,  potential V = ½ k δ²,  input power -c θ'². */
 #include "scene_internal.h"
 
-/* δ in (-π, π]. */
+/* δ in (-π, π]: the turns taken off in one operation (a loop of 2π
+ * subtractions took minutes, and piled up rounding, for a rest_angle of
+ * 1e12, which the scene format allows). The rest angle is wrapped
+ * first: th - 1e12 kept th to 1e-4 rad only. */
 static braun_real wrap(braun_real x)
 {
-    const braun_real two_pi = 2 * BRAUN_SCENE__PI;
-    while (x > BRAUN_SCENE__PI) x -= two_pi;
-    while (x <= -BRAUN_SCENE__PI) x += two_pi;
+    const braun_real pi = BRAUN_SCENE__PI, two_pi = 2 * BRAUN_SCENE__PI;
+    if (x > pi || x <= -pi) x -= two_pi * braun_floor((x + pi) / two_pi);
+    if (x > pi) x -= two_pi; /* rounding at the ends */
+    if (x <= -pi) x += two_pi;
     return x;
 }
 
@@ -24,7 +28,7 @@ static int torsion3d_forces(const braun_scene *s, const braun_scene_effect *e, b
     braun_real th, rate;
     (void)t;
     braun_scene__joint_angle(s, joint_of(s, e), q, v, &th, &rate, 0, NULL);
-    const braun_real tau = -(e->k * wrap(th - e->rest) + e->c * rate);
+    const braun_real tau = -(e->k * wrap(th - wrap(e->rest)) + e->c * rate);
     braun_scene__joint_angle(s, joint_of(s, e), q, NULL, &th, NULL, tau, Q);
     return 0;
 }
@@ -34,7 +38,7 @@ static int torsion3d_potential(const braun_scene *s, const braun_scene_effect *e
 {
     braun_real th;
     braun_scene__joint_angle(s, joint_of(s, e), q, NULL, &th, NULL, 0, NULL);
-    const braun_real d = wrap(th - e->rest);
+    const braun_real d = wrap(th - wrap(e->rest));
     *V = BRAUN_R(0.5) * e->k * d * d;
     if (dVdq) braun_scene__joint_angle(s, joint_of(s, e), q, NULL, &th, NULL, e->k * d, dVdq);
     return 0;
