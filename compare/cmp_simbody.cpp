@@ -48,7 +48,11 @@
  *   "ball"        loop-closing revolute joints as Constraint::Ball
  * Accuracy: spec.rtol (0: Simbody's 1e-3); constraint tolerance:
  * spec.peer.ctol (0: Simbody's default, accuracy/10). The fixed step
- * CMP_SB_RKM_FIXED is Runge–Kutta–Merson with setFixedStepSize(spec.h).
+ * CMP_SB_RKM_FIXED is Runge–Kutta–Merson with setFixedStepSize(spec.h);
+ * it reports at its steps (every cmp_every(dt_out, h)-th, as MuJoCo's and
+ * braun's fixed steps): stepTo a grid time that is not a multiple of h
+ * shortens the step that lands on it (h = 0.02 on the 0.05 s grid took
+ * steps of 0.02, 0.02, 0.01: 1200 steps over 20 s, not 1000).
  *
  * A run fails (a recorded row, the trajectory kept up to the last good
  * sample) on any Simbody exception (an integrator step failure arrives as
@@ -702,7 +706,15 @@ void run(cmp_mech *m, int n, const cmp_spec *sp, cmp_traj *tr, cmp_outcome *out)
         return;
     }
     std::vector<double> pose(pose_size(m)), q((size_t)n + 1), v((size_t)n + 1);
-    const long nout = std::max(1L, (long)std::floor(sp->T / sp->dt_out + 0.5));
+    /* The report interval: the output grid's, or for the fixed step a
+     * whole number of steps (every step if dt_out is not a multiple of h). */
+    double dt = sp->dt_out;
+    if (sp->integrator == CMP_SB_RKM_FIXED && sp->h > 0) {
+        const double r = sp->dt_out / sp->h;
+        const long k = (long)std::floor(r + 0.5);
+        dt = sp->h * (double)(k >= 1 && std::fabs(r - (double)k) <= 1e-9 * r ? k : 1);
+    }
+    const long nout = std::max(1L, (long)std::floor(sp->T / dt + 0.5));
     double cpu = 0, t_good = 0;
     const char *status = nullptr;
     std::string msg;
@@ -718,7 +730,7 @@ void run(cmp_mech *m, int n, const cmp_spec *sp, cmp_traj *tr, cmp_outcome *out)
         sample(*M, in->getState(), pose.data(), q.data(), v.data());
         if (H->traj_push(tr, 0, q.data(), v.data())) throw std::bad_alloc();
         for (long j = 1; j <= nout; j++) {
-            const double tj = j == nout ? sp->T : (double)j * sp->dt_out;
+            const double tj = j == nout ? sp->T : (double)j * dt;
             c0 = H->cpu_seconds();
             /* The first call after initialize() returns at once (start of
              * a continuous interval): step until the report time. */

@@ -313,6 +313,37 @@ static void test_failure_is_a_row(void **state)
     cmp_target_free(&tg);
 }
 
+/* The fixed step is h: on an output grid that is not a multiple of h (h =
+ * 0.02, dt_out = 0.05) the run reports at its steps, as MuJoCo and braun
+ * do. It stepped to each grid time, and the step that landed on one was
+ * shortened: 0.02, 0.02, 0.01, 120 steps over 2 s instead of 100. */
+static void test_fixed_step_is_h(void **state)
+{
+    (void)state;
+    cmp_target tg;
+    target("pendulum", &tg);
+    cmp_spec sp = spec_of(CMP_SB_RKM_FIXED, 0, 0.02, 2.0, 0.05);
+    cmp_traj tr;
+    assert_int_equal(cmp_traj_init(&tr, tg.sys.n, 256), 0);
+    cmp_outcome out;
+    cmp_run(&tg, &sp, &tr, &out);
+    assert_string_equal(out.status_name, "OK");
+    print_message("fixed h = 0.02 over 2 s on the 0.05 s grid: %ld steps, %ld samples\n",
+                  out.counts.steps, tr.count);
+    assert_int_equal(out.counts.steps, 100);
+    assert_int_equal(tr.count, 101);
+    for (long j = 0; j < tr.count; j++) assert_near(tr.t[j], 0.02 * (double)j, 1e-12);
+    /* A grid that is a multiple of h keeps the grid: h = 0.01, every 5th. */
+    sp = spec_of(CMP_SB_RKM_FIXED, 0, 0.01, 2.0, 0.05);
+    cmp_traj_clear(&tr);
+    cmp_run(&tg, &sp, &tr, &out);
+    assert_string_equal(out.status_name, "OK");
+    assert_int_equal(out.counts.steps, 200);
+    assert_int_equal(tr.count, 41);
+    cmp_traj_free(&tr);
+    cmp_target_free(&tg);
+}
+
 /* ------------------------------------------------------------ refusals */
 static void test_refusals(void **state)
 {
@@ -573,6 +604,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_spatial),
         cmocka_unit_test(test_initial_state),
         cmocka_unit_test(test_failure_is_a_row),
+        cmocka_unit_test(test_fixed_step_is_h),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_elements),
         cmocka_unit_test(test_step_cost),
