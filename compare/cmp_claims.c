@@ -100,31 +100,71 @@ static void push(cmp_fig *f, int q, double x)
     if (f->n[q] < CMP_FIG_MAX) f->v[q][f->n[q]++] = x;
 }
 
-/* Append to a list of cases ("a; b; c"). */
-static void list_add(char *list, size_t size, const char *fmt, ...)
+/* x with two decimals, "–" for NaN; into buf (24 bytes). */
+static const char *fmt_f2(double x, char *buf)
+{
+    if (isnan(x)) return "–";
+    snprintf(buf, 24, "%.2f", x);
+    return buf;
+}
+
+/* A case found on paper scene i (PAPER[]) and horizon t (HORIZON[]; -1:
+ * a case without a horizon): what a rule over "both scenes" or "every
+ * scene and horizon" needs all of (cmp_claim.need). */
+static void hit(cmp_fig *f, int i, int t)
+{
+    f->cases++;
+    f->scenes |= 1u << i;
+    if (t >= 0) f->cells |= 1u << (i * CMP_NHORIZON + t);
+}
+
+/* Append to a list (sep between items: "a; b; c", "a, b"). */
+static void list_vadd(char *list, size_t size, const char *sep, const char *fmt, va_list ap)
 {
     size_t l = strlen(list);
     if (l + 1 >= size) return;
     if (l) {
-        snprintf(list + l, size - l, "; ");
+        snprintf(list + l, size - l, "%s", sep);
         l = strlen(list);
     }
+    vsnprintf(list + l, size - l, fmt, ap);
+}
+
+/* Append to a list of cases ("a; b; c"). */
+static void list_add(char *list, size_t size, const char *fmt, ...)
+{
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(list + l, size - l, fmt, ap);
+    list_vadd(list, size, "; ", fmt, ap);
     va_end(ap);
+}
+
+/* Append to a list within a list's item ("a, b"). */
+static void list_add_comma(char *list, size_t size, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    list_vadd(list, size, ", ", fmt, ap);
+    va_end(ap);
+}
+
+/* A statistic as the evidence prints it: NaN ("–") for no values (the
+ * max of none is 0 and the min +inf for the tests, not for the reader). */
+static double stat_shown(const double *x, int n, cmp_stat s)
+{
+    return n ? cmp_stat_of(x, n, s) : NAN;
 }
 
 /* The judged statistic of quantity 0 (the row's first test). */
 static double judged(const cmp_claim *c, const cmp_fig *f)
 {
-    return cmp_stat_of(f->v[c->test[0].q], f->n[c->test[0].q], c->test[0].stat);
+    return stat_shown(f->v[c->test[0].q], f->n[c->test[0].q], c->test[0].stat);
 }
 
-static const char *const PAPER[] = {"slider-crank", "four-bar"};
-#define NPAPER 2
-static const double HORIZON[] = {100, 1000};
-#define NHORIZON 2
+static const char *const PAPER[CMP_NPAPER] = {"slider-crank", "four-bar"};
+#define NPAPER CMP_NPAPER
+static const double HORIZON[CMP_NHORIZON] = {100, 1000};
+#define NHORIZON CMP_NHORIZON
 /* A run within another's CPU time: the same time up to rounding. */
 #define SAME_CPU 1.0001
 
@@ -137,7 +177,7 @@ static void fig_constraint_error(const cmp_rows *d, const cmp_claim *c, cmp_fig 
         for (int t = 0; t < NHORIZON; t++) {
             const cmp_row *r = cmp_rows_fixed(d, PAPER[i], HORIZON[t], "braun", "rk4", "-", 1e-2);
             if (!r) continue;
-            f->cases++;
+            hit(f, i, t);
             push(f, 0, r->pos);
         }
     const cmp_row *bg = cmp_rows_fixed(d, "four-bar", 1000, "baumgarte", "rk4", "-", 1e-2);
@@ -157,7 +197,7 @@ static void fig_energy_ratio(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
         const cmp_row *r = cmp_rows_fixed(d, PAPER[i], 1000, "braun", "rk4", "-", 1e-2);
         const cmp_row *s = cmp_rows_fixed(d, PAPER[i], 1000, "braun-noenergy", "rk4", "-", 1e-2);
         if (!r || !s) continue;
-        f->cases++;
+        hit(f, i, 1);
         /* A NaN ratio is left out (as before issue 11): none left, +inf. */
         if (!isnan(s->en / r->en)) push(f, 0, s->en / r->en);
         list_add(list, sizeof list, "%s: %s vs %s", PAPER[i], cmp_fmt_e(r->en, a),
@@ -173,14 +213,14 @@ static void fig_energy_ratio(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
  * ratio of the maxima (one spike decides it: reported, not judged). */
 static void fig_constraint_ratio(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
 {
-    char list[512] = "";
+    char a[24], b[24], list[512] = "";
     for (int i = 0; i < NPAPER; i++)
         for (int t = 0; t < NHORIZON; t++) {
             const cmp_row *r = cmp_rows_fixed(d, PAPER[i], HORIZON[t], "braun", "rk4", "-", 1e-2);
             const cmp_row *s =
                 cmp_rows_fixed(d, PAPER[i], HORIZON[t], "braun-noenergy", "rk4", "-", 1e-2);
             if (!r || !s || !(s->pos_median > 0) || !(s->pos > 0)) continue;
-            f->cases++;
+            hit(f, i, t);
             push(f, 0, r->pos_median / s->pos_median);
             push(f, 1, r->pos / s->pos);
             list_add(list, sizeof list, "%s %g s: %.2g (maxima %.2g)", PAPER[i], HORIZON[t],
@@ -189,10 +229,10 @@ static void fig_constraint_ratio(const cmp_rows *d, const cmp_claim *c, cmp_fig 
     const int n1 = f->n[1];
     snprintf(f->text, sizeof f->text,
              "ratio of the median ‖Φ_q‖ over the run with / without energy correction, %s over "
-             "both scenes and horizons: %.3g (%s); the ratio of the maxima, decided by the "
-             "largest spike, reaches %.3g",
-             stat_adjective(c->test[0].stat), judged(c, f), list,
-             n1 ? cmp_stat_of(f->v[1], n1, CMP_MAX) : NAN);
+             "both scenes and horizons: %s (%s); the ratio of the maxima, decided by the "
+             "largest spike, reaches %s",
+             stat_adjective(c->test[0].stat), cmp_fmt_e(judged(c, f), a), list[0] ? list : "–",
+             cmp_fmt_e(stat_shown(f->v[1], n1, CMP_MAX), b));
 }
 
 /* max ‖q − q_ref‖ of braun / of the minimal ODE, both RK4 at h = 1e-2,
@@ -205,7 +245,7 @@ static void fig_traj_vs_ode_long(const cmp_rows *d, const cmp_claim *c, cmp_fig 
         const cmp_row *r = cmp_rows_fixed(d, PAPER[i], 1000, "braun", "rk4", "-", 1e-2);
         const cmp_row *o = cmp_rows_fixed(d, PAPER[i], 1000, "ode-rk4", "rk4", "-", 1e-2);
         if (!r || !o) continue;
-        f->cases++;
+        hit(f, i, 1);
         push(f, 0, r->traj / o->traj);
         list_add(list, sizeof list, "%s: %s vs %s", PAPER[i], cmp_fmt_e(r->traj, a),
                  cmp_fmt_e(o->traj, b));
@@ -228,7 +268,7 @@ static void fig_traj_vs_ode_steps(const cmp_rows *d, const cmp_claim *c, cmp_fig
         const cmp_row *r5 = cmp_rows_fixed(d, PAPER[i], 100, "braun", "rk4", "-", 5e-2);
         const cmp_row *o5 = cmp_rows_fixed(d, PAPER[i], 100, "ode-rk4", "rk4", "-", 5e-2);
         if (!r1 || !o1 || !r5 || !o5) continue;
-        f->cases++;
+        hit(f, i, 0);
         push(f, 0, r1->traj / o1->traj);
         push(f, 1, o5->traj / r5->traj);
         list_add(list, sizeof list, "%s: h = 1e-3 %s vs %s, h = 5e-2 %s vs %s", PAPER[i],
@@ -243,7 +283,7 @@ static void fig_traj_vs_ode_steps(const cmp_rows *d, const cmp_claim *c, cmp_fig
  * with the run without at the same h. */
 static void fig_energy_cost(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
 {
-    char a[24];
+    char a[24], m[24], lo[24], hi[24];
     for (int i = 0; i < NPAPER; i++)
         for (int t = 0; t < NHORIZON; t++)
             for (long k = 0; k < d->n; k++) {
@@ -254,16 +294,16 @@ static void fig_energy_cost(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
                 const cmp_row *s =
                     cmp_rows_fixed(d, PAPER[i], r->T, "braun-noenergy", "rk4", "-", r->h);
                 if (!s || !s->ok) continue;
-                f->cases++;
+                hit(f, i, t);
                 push(f, 0, r->cpu / s->cpu);
             }
     const int n = f->n[0];
     snprintf(f->text, sizeof f->text,
              "CPU time with / without the energy correction, RK4, both paper scenes and "
-             "horizons, runs of ≥ %s s: median %.2f, range %.2f … %.2f over %d pairs",
-             cmp_fmt_g(c->arg[0], a), cmp_stat_of(f->v[0], n, CMP_MEDIAN),
-             n ? cmp_stat_of(f->v[0], n, CMP_MIN) : NAN,
-             n ? cmp_stat_of(f->v[0], n, CMP_MAX) : NAN, n);
+             "horizons, runs of ≥ %s s: median %s, range %s … %s over %d pairs",
+             cmp_fmt_g(c->arg[0], a), fmt_f2(stat_shown(f->v[0], n, CMP_MEDIAN), m),
+             fmt_f2(stat_shown(f->v[0], n, CMP_MIN), lo), fmt_f2(stat_shown(f->v[0], n, CMP_MAX), hi),
+             n);
 }
 
 /* The error of a run, +inf if it stopped or has none. */
@@ -288,7 +328,7 @@ static void fig_only_braun(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
         f->hide_rule = 1;
         return;
     }
-    f->cases = 1;
+    hit(f, 1, 1);
     push(f, 0, r->traj);
     push(f, 1, error_or_inf(s, 1));
     push(f, 1, error_or_inf(bg, 1));
@@ -339,7 +379,7 @@ static void fig_baumgarte_gains(const cmp_rows *d, const cmp_claim *c, cmp_fig *
                 }
                 if (runs < 2) continue;
                 const int x = bad || hi >= c->arg[1] * lo;
-                f->cases++;
+                hit(f, i, t);
                 push(f, 0, x);
                 delicate += x;
             }
@@ -367,7 +407,7 @@ static void fig_singular_passage(const cmp_rows *d, const cmp_claim *c, cmp_fig 
         ida_ok += x->ok && x->traj <= accurate;
     }
     if (r) {
-        f->cases = 1;
+        hit(f, 1, 1);
         push(f, 0, r->ok ? r->traj : INFINITY);
     }
     snprintf(f->text, sizeof f->text,
@@ -389,7 +429,7 @@ static void fig_explicit_vs_implicit(const cmp_rows *d, const cmp_claim *c, cmp_
         for (int t = 0; t < NHORIZON; t++) {
             const double T = HORIZON[t];
             if (!cmp_rows_has(d, PAPER[i], T, "ida-ggl")) continue;
-            f->cases++;
+            hit(f, i, t);
             const cmp_row *wi, *wb;
             const double ei = cmp_rows_best_method(d, PAPER[i], T, "ida-ggl", 0, &wi);
             if (!wi) {
@@ -425,7 +465,7 @@ static void peer_vs_braun(const cmp_rows *d, const char *method, const char *nam
                 ran |= cmp_row_at(&d->r[k], PAPER[i], T) && !strcmp(d->r[k].method, method) &&
                        !d->r[k].notrun;
             if (!r || !ran) continue;
-            f->cases++;
+            hit(f, i, t);
             const cmp_row *w;
             const double ep = cmp_rows_best_method(d, PAPER[i], T, method, r->cpu * SAME_CPU, &w);
             const double eb = r->ok ? r->traj : INFINITY;
@@ -452,9 +492,6 @@ static void fig_vs_simbody(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
 {
     (void)c;
     peer_vs_braun(d, "simbody", "Simbody's best", f);
-    if (!f->cases)
-        snprintf(f->text, sizeof f->text, "no Simbody run ran (not built, or no scene it can "
-                                          "express): see the peers section");
 }
 
 static void fig_vs_projection(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
@@ -474,7 +511,7 @@ static void fig_step_cost(const cmp_rows *d, const cmp_claim *c, cmp_fig *f)
         const double b = cmp_rows_cost(d, PAPER[i], "braun", "rk4"),
                      m = cmp_rows_cost(d, PAPER[i], "mujoco", "mj-rk4");
         if (isnan(b) && isnan(m)) continue;
-        f->cases++;
+        hit(f, i, -1);
         push(f, 0, b / m);
         list_add(list, sizeof list, "%s: braun %.3g µs, MuJoCo %.3g µs per step (ratio %.2g)",
                  PAPER[i], 1e6 * b, 1e6 * m, b / m);
@@ -499,6 +536,9 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_constraint_error),
         .test = {{0, CMP_MAX, CMP_LT, 1e-6}},
         .rule = "< %1",
+        .need = CMP_NEED_CELLS,
+        .needs = "braun RK4 at h = 1e-2 over 100 s and 1000 s",
+        .methods = "braun",
     },
     {
         .claim = "The energy correction prevents energy drift",
@@ -506,6 +546,9 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_energy_ratio),
         .test = {{0, CMP_MIN, CMP_GE, 100}},
         .rule = "at least %1 times smaller with it",
+        .need = CMP_NEED_SCENES,
+        .needs = "braun with and without the energy correction, RK4 at h = 1e-2 over 1000 s",
+        .methods = "braun braun-noenergy",
     },
     {
         .claim = "The energy correction does not interfere with the constraint correction",
@@ -513,6 +556,9 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_constraint_ratio),
         .test = {{0, CMP_MAX, CMP_LE, 2}},
         .rule = "the medians within a factor %1 on every scene and horizon",
+        .need = CMP_NEED_CELLS,
+        .needs = "braun with and without the energy correction, RK4 at h = 1e-2 over 100 s and 1000 s",
+        .methods = "braun braun-noenergy",
     },
     {
         .claim = "In long runs the energy-corrected DAE integration is more accurate than the "
@@ -521,6 +567,9 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_traj_vs_ode_long),
         .test = {{0, CMP_MAX, CMP_LT, 1}},
         .rule = "braun smaller on both",
+        .need = CMP_NEED_SCENES,
+        .needs = "braun and the minimal ODE, RK4 at h = 1e-2 over 1000 s",
+        .methods = "braun ode-rk4",
     },
     {
         .claim = "With small steps the error equals or beats the ODE's; with large steps the "
@@ -529,6 +578,9 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_traj_vs_ode_steps),
         .test = {{0, CMP_MAX, CMP_LE, 2}, {1, CMP_MIN, CMP_GE, 10}},
         .rule = "within %1× at the smallest h, %2× better at the largest",
+        .need = CMP_NEED_SCENES,
+        .needs = "braun and the minimal ODE, RK4 at h = 1e-3 and 5e-2 over 100 s",
+        .methods = "braun ode-rk4",
     },
     {
         .claim = "The energy correction makes the integration only slightly more expensive",
@@ -537,6 +589,10 @@ const cmp_claim cmp_claims[] = {
         .arg = {0.05},
         .test = {{0, CMP_MEDIAN, CMP_LE, 1.3}},
         .rule = "median ≤ %1",
+        .need = CMP_NEED_SCENES,
+        .needs = "braun with and without the energy correction, RK4 at the same h over 100 s "
+                 "or 1000 s, runs of at least 0.05 s CPU",
+        .methods = "braun braun-noenergy",
     },
     {
         .claim = "Over 1000 s with h = 1e-2 only the energy-corrected DAE integration is "
@@ -545,6 +601,10 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_only_braun),
         .test = {{0, CMP_MAX, CMP_LE, ACCURATE}, {1, CMP_MIN, CMP_GT, ACCURATE}},
         .rule = "only braun below %1",
+        .need = CMP_NEED_CASE,
+        .needs = "braun, braun without energy correction, Baumgarte and the minimal ODE, RK4 at "
+                 "h = 1e-2 on the four-bar over 1000 s",
+        .methods = "braun braun-noenergy baumgarte ode-rk4",
     },
     {
         .claim = "Baumgarte's gains need delicate adjustment (trade-off between stability and "
@@ -554,6 +614,9 @@ const cmp_claim cmp_claims[] = {
         .arg = {1.0, 100},
         .test = {{0, CMP_MEAN, CMP_GT, 0.5}},
         .rule = "in most",
+        .need = CMP_NEED_SCENES,
+        .needs = "Baumgarte's gain sweep (two gains or more at a step size) over 100 s or 1000 s",
+        .methods = "baumgarte",
     },
     {
         .claim = "The integration stays accurate through kinematic singularities",
@@ -561,6 +624,9 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_singular_passage),
         .test = {{0, CMP_MAX, CMP_LE, ACCURATE}},
         .rule = NULL, /* the evidence states it */
+        .need = CMP_NEED_CASE,
+        .needs = "braun RK4 at h = 1e-2 on the four-bar over 1000 s",
+        .methods = "braun ida-ggl",
     },
     {
         .claim = "Explicit integration of the corrected equation avoids the cost of implicit "
@@ -570,6 +636,9 @@ const cmp_claim cmp_claims[] = {
         .test = {{0, CMP_MAX, CMP_LE, 1}},
         .rule = "braun at least as accurate as IDA GGL's best run within that run's CPU time, "
                 "on every paper scene and horizon",
+        .need = CMP_NEED_CELLS,
+        .needs = "IDA GGL and braun over 100 s and 1000 s",
+        .methods = "ida-ggl braun",
     },
     {
         .claim = "Within the CPU time of braun (RK4, h = 1e-2) MuJoCo's best setting is less "
@@ -578,6 +647,9 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_vs_mujoco),
         .test = {{0, CMP_MIN, CMP_GE, 1}},
         .rule = "MuJoCo's best error at least braun's on every paper scene and horizon",
+        .need = CMP_NEED_CELLS,
+        .needs = "braun RK4 at h = 1e-2 and MuJoCo over 100 s and 1000 s",
+        .methods = "braun mujoco",
     },
     {
         .claim = "Within the CPU time of braun (RK4, h = 1e-2) Simbody's best setting is less "
@@ -586,6 +658,9 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_vs_simbody),
         .test = {{0, CMP_MIN, CMP_GE, 1}},
         .rule = "Simbody's best error at least braun's on every paper scene and horizon",
+        .need = CMP_NEED_CELLS,
+        .needs = "braun RK4 at h = 1e-2 and Simbody over 100 s and 1000 s",
+        .methods = "braun simbody",
     },
     {
         .claim = "Within the CPU time of braun (RK4, h = 1e-2) RK4 with coordinate projection is "
@@ -594,6 +669,9 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_vs_projection),
         .test = {{0, CMP_MIN, CMP_GE, 1}},
         .rule = "the projection's best error at least braun's on every paper scene and horizon",
+        .need = CMP_NEED_CELLS,
+        .needs = "braun RK4 at h = 1e-2 and RK4 + projection over 100 s and 1000 s",
+        .methods = "braun projection",
     },
     {
         .claim = "A corrected RK4 step costs no more than MuJoCo's RK4 step on the same mechanism",
@@ -601,6 +679,9 @@ const cmp_claim cmp_claims[] = {
         FIG(fig_step_cost),
         .test = {{0, CMP_MAX, CMP_LE, 1}},
         .rule = "braun / MuJoCo ≤ %1 on both paper scenes",
+        .need = CMP_NEED_SCENES,
+        .needs = "the cost of braun's and MuJoCo's RK4 step (step_cost.csv)",
+        .methods = "braun mujoco",
     },
 };
 const int cmp_nclaims = (int)(sizeof cmp_claims / sizeof cmp_claims[0]);
@@ -625,15 +706,111 @@ static void rule_text(const cmp_claim *c, char *out, size_t size)
     if (l >= size) out[size - 1] = '\0';
 }
 
+/* A method of runs.csv in the evidence's words. */
+static const char *method_name(const char *m)
+{
+    static const char *const w[][2] = {
+        {"braun", "braun"},           {"braun-noenergy", "braun without energy correction"},
+        {"baumgarte", "Baumgarte"},   {"ida-ggl", "IDA GGL"},
+        {"ode-rk4", "the minimal ODE"}, {"mujoco", "MuJoCo"},
+        {"simbody", "Simbody"},       {"projection", "RK4 + projection"},
+    };
+    for (size_t i = 0; i < sizeof w / sizeof w[0]; i++)
+        if (!strcmp(w[i][0], m)) return w[i][1];
+    return m;
+}
+
+/* The runs of the claim's methods that the study has, per scene and
+ * horizon: "Simbody: four-bar 20 s (13 runs, 9 reached T)", "Simbody not
+ * built", "no Simbody run". */
+static void runs_of(const cmp_rows *d, const char *methods, char *out, size_t size)
+{
+    char m[32];
+    out[0] = '\0';
+    for (const char *p = methods ? methods : ""; *p;) {
+        const size_t l = strcspn(p, " ");
+        snprintf(m, sizeof m, "%.*s", (int)(l < sizeof m ? l : sizeof m - 1), p);
+        p += l + (p[l] == ' ');
+        if (!m[0]) continue;
+        char list[512] = "";
+        int rows = 0, notbuilt = 0;
+        for (long k = 0; k < d->n; k++) {
+            const cmp_row *r = &d->r[k];
+            if (strcmp(r->method, m)) continue;
+            rows++;
+            notbuilt += !strcmp(r->status, "NOT_BUILT");
+            int first = 1; /* the first row of its scene and horizon */
+            for (long j = 0; j < k && first; j++)
+                first = strcmp(d->r[j].method, m) || !cmp_row_at(&d->r[j], r->scene, r->T);
+            if (!first) continue;
+            int n = 0, ran = 0, ok = 0;
+            for (long j = k; j < d->n; j++) {
+                const cmp_row *x = &d->r[j];
+                if (strcmp(x->method, m) || !cmp_row_at(x, r->scene, r->T)) continue;
+                n++;
+                ran += !x->notrun;
+                ok += x->ok;
+            }
+            if (ran)
+                list_add_comma(list, sizeof list, "%s %g s (%d run%s, %d reached T)", r->scene, r->T,
+                         ran, ran == 1 ? "" : "s", ok);
+            else
+                list_add_comma(list, sizeof list, "%s %g s (none ran: %s)", r->scene, r->T, r->status);
+        }
+        if (!rows)
+            list_add(out, size, "no %s run", method_name(m));
+        else if (notbuilt == rows)
+            list_add(out, size, "%s not built", method_name(m));
+        else
+            list_add(out, size, "%s: %s", method_name(m), list);
+    }
+}
+
+/* The cases a rule needs that the figure did not find, into out: "" if
+ * none is missing. */
+static void missing_cases(const cmp_claim *c, const cmp_fig *f, char *out, size_t size)
+{
+    out[0] = '\0';
+    for (int i = 0; i < NPAPER; i++) {
+        if (c->need == CMP_NEED_SCENES && !(f->scenes & 1u << i))
+            list_add_comma(out, size, "%s", PAPER[i]);
+        if (c->need == CMP_NEED_CELLS)
+            for (int t = 0; t < NHORIZON; t++)
+                if (!(f->cells & 1u << (i * NHORIZON + t)))
+                    list_add_comma(out, size, "%s %g s", PAPER[i], HORIZON[t]);
+    }
+}
+
 int cmp_claim_eval(const cmp_claim *c, const cmp_rows *d, cmp_fig *f, char *evidence, size_t size)
 {
     memset(f, 0, sizeof *f);
     c->figure(d, c, f);
-    char rule[512] = "";
-    if (c->rule && !f->hide_rule) rule_text(c, rule, sizeof rule);
+    char rule[512] = "", missing[256], ran[768];
+    if (c->rule) rule_text(c, rule, sizeof rule);
+    missing_cases(c, f, missing, sizeof missing);
+    const char *scope = c->need == CMP_NEED_CELLS    ? " on each paper scene at each horizon"
+                        : c->need == CMP_NEED_SCENES ? " on both paper scenes"
+                                                     : "";
+    if (f->cases == 0 || missing[0]) runs_of(d, c->methods, ran, sizeof ran);
+    if (f->cases == 0) {
+        /* Nothing measured: what the claim needs and what the study ran,
+         * not a figure's text with no values in it. */
+        snprintf(evidence, size, "not measured: it needs %s%s; the study has %s%s%s%s",
+                 c->needs ? c->needs : "its runs", scope, ran[0] ? ran : "none of them",
+                 rule[0] ? " (rule: " : "", rule, rule[0] ? ")" : "");
+        return 0;
+    }
+    if (f->hide_rule) rule[0] = '\0';
     snprintf(evidence, size, "%s%s%s%s%s", f->text, rule[0] ? " (rule: " : "", rule,
              rule[0] ? ")" : "", f->note);
-    if (f->cases == 0) return 0;
+    if (missing[0]) {
+        /* Some of the cases its rule needs: the values found are shown,
+         * the rule is not judged on them. */
+        const size_t l = strlen(evidence);
+        snprintf(evidence + l, size - l, "; not judged: no case on %s (the rule needs them "
+                 "all); the study has %s", missing, ran[0] ? ran : "none of its runs");
+        return 0;
+    }
     for (int k = 0; k < CMP_CLAIM_TESTS && c->test[k].op != CMP_NONE; k++) {
         const cmp_test *t = &c->test[k];
         if (!holds(cmp_stat_of(f->v[t->q], f->n[t->q], t->stat), t->op, t->threshold)) return -1;

@@ -715,8 +715,13 @@ static void headline(FILE *md, const cmp_rows *d, const char *sc, double T)
         char p1[48], p2[48], l1[200], l2[200];
         if (w) snprintf(l1, sizeof l1, "%s, %s", label_of(w), cmp_fmt_param(w, p1));
         if (wa) snprintf(l2, sizeof l2, "%s, %s", label_of(wa), cmp_fmt_param(wa, p2));
+        /* No run within the budget: say why — none reached T, or those
+         * that did took longer than braun. */
         fprintf(md, "| %s | %s | %s | %s | %s | %s | %s |\n", method_words(ms[m]),
-                w ? fmt_err(d, sc, T, eb, a) : "no run reached T", w ? l1 : "",
+                w    ? fmt_err(d, sc, T, eb, a)
+                : wa ? "no run that reached T within this CPU time"
+                     : "no run reached T",
+                w ? l1 : "",
                 w ? cmp_fmt_e(w->cpu, b) : "", wa ? fmt_err(d, sc, T, ea, e) : "no run reached T",
                 wa ? l2 : "", wa ? cmp_fmt_e(wa->cpu, g) : "");
     }
@@ -1103,7 +1108,11 @@ static void peers_section(FILE *md, const cmp_rows *d, const pair *pr, int np, c
     fprintf(md, "### Simbody: integrators against accuracy\n\n");
     int any = 0;
     for (long k = 0; k < d->n; k++) any |= !strcmp(d->r[k].method, "simbody") && !d->r[k].notrun;
+    int rows = 0;
+    for (long k = 0; k < d->n; k++) rows += !strcmp(d->r[k].method, "simbody");
     if (any) simbody_table(md, d, pr, np);
+    else if (!rows) /* not asked for (--methods) */
+        fprintf(md, "This study ran no Simbody run (not among its methods).\n\n");
     else
         fprintf(md, "No Simbody run ran: every row says `%s`. The study plans Simbody's sweep "
                     "(RK-Merson, RK-Feldberg, RK3, CPodes at each accuracy of the grid; "

@@ -122,6 +122,26 @@ legend() {
     if [ -n "$s" ]; then printf '%s — %s runs stopped' "$2" "$s"; else printf '%s' "$2"; fi
 }
 
+# drawn_title KEY SCENE T STATUS: the legend entry of a plot that draws one
+# run of the series (histories, Fig. 2), whose status is STATUS ("ok 20",
+# "BRAUN_ERR_DIVERGED 13.75"): the label, "— stopped: STATUS at t = …" if
+# that run stopped, and how many of the series' other runs stopped, worded
+# so that it is not read as the drawn run's. (The count of every run of the
+# series, "— 1 of 4 runs stopped", said nothing of the one drawn.)
+drawn_title() {
+    label=$(printf '%s\n' "$series_all" | awk -F'|' -v k="$1" '$1 == k { print $2 }')
+    others=$(awk -F, -v sc="$2" -v T="$3" -v key="$1" -v st="${4% *}" '
+        BEGIN { split(key, k, ":") }
+        NR > 1 && $1 == sc && $2 == T && $3 == k[1] && $4 == k[2] && $5 == k[3] &&
+        $11 != "NOT_BUILT" && $11 != "UNSUPPORTED" { n++; if ($11 != "ok") f++ }
+        END { n--; if (st != "ok") f--; if (f > 0) printf "%d of its %d other run%s", f, n, n == 1 ? "" : "s" }' "$runs")
+    case $4 in
+    "ok "*) printf '%s' "$label"; [ -z "$others" ] || printf ' — reached T' ;;
+    *) printf '%s — stopped: %s' "$label" "$(stop_text "${4% *}" "${4#* }")" ;;
+    esac
+    [ -z "$others" ] || printf ' (%s stopped)' "$others"
+}
+
 # plot_cmd FILE_PREFIX USING SCENE T [KEYS]: a gnuplot "plot" list over the
 # series whose data file has at least one positive finite value in the
 # plotted column (log axes drop the rest; gnuplot stops on an
@@ -379,11 +399,8 @@ EOF
                 st=$(status_of "$sc" "$T" "$key" nan "$x")
             fi
             select_hist "$sc" "$T" "$key" "$x" > "$f"
-            case $st in
-            "ok "*) okfiles="$okfiles $f" ;;
-            ?*) label=$(printf '%s\n' "$series_all" | awk -F'|' -v k="$key" '$1 == k { print $2 }')
-                printf '%s — stopped: %s' "$label" "$(stop_text "${st% *}" "${st#* }")" > "$f.title" ;;
-            esac
+            case $st in "ok "*) okfiles="$okfiles $f" ;; esac
+            [ -z "$st" ] || drawn_title "$key" "$sc" "$T" "$st" > "$f.title"
         done
         p1=$(plot_cmd "$base.h" "1:2" "$sc" "$T" "$hk")
         p3=$(plot_cmd "$base.h" "1:4" "$sc" "$T" "$hk")
@@ -471,7 +488,11 @@ EOF
     if [ "$sc" = slider-crank ] && [ "$T" = "$tmin" ] && [ -s "$hist" ]; then
         sk=$(tagged slider)
         for key in $sk; do
-            select_hist "$sc" "$T" "$key" "$(hist_h "$sc" "$T" "$key" max)" > "$base.s.$(printf '%s' "$key" | tr ':' '_').dat"
+            x=$(hist_h "$sc" "$T" "$key" max)
+            f="$base.s.$(printf '%s' "$key" | tr ':' '_').dat"
+            select_hist "$sc" "$T" "$key" "$x" > "$f"
+            st=$(status_of "$sc" "$T" "$key" "$x" nan)
+            [ -z "$st" ] || drawn_title "$key" "$sc" "$T" "$st" > "$f.title"
         done
         p=$(plot_cmd "$base.s" "1:7" "$sc" "$T" "$sk")
         hs=$(exp10 "$(hist_h "$sc" "$T" braun:rk4:- max)")
@@ -532,7 +553,7 @@ if [ -s "$trace" ]; then
             [ -n "$refdat" ] || refdat="$base.$n.dat"
             entries="$entries, \"$base.$n.dat\" using 1:2 with lines lc rgb \"$7\" dt $8 lw 1.5 title \"$6\""
         }
-        refdat=""
+        refdat="" drawn=""
         # the paper's methods at h = 1e-2, by their series' labels and styles
         for key in braun:rk4:- braun-noenergy:rk4:- baumgarte:rk4:- ode-rk4:rk4:- projection:rk4:-; do
             line=$(printf '%s\n' "$series_all" | awk -F'|' -v k="$key" '$1 == k')
@@ -544,7 +565,14 @@ EOF
             st=$(status_of "$sc" "$T" "$key" 0.01 nan)
             case $st in ""|"ok "*) ;; *) title="$title — stopped: $(stop_text "${st% *}" "${st#* }")" ;; esac
             add_trace "$m" "$i" "$v" 0.01 nan "$title" "$colour" "$dash"
+            # the title names the methods drawn, not those of the paper
+            [ -s "$base.$n.dat" ] || continue
+            case $m in braun-noenergy) w=braun ;; baumgarte) w=Baumgarte ;; ode-rk4) w="the ODE" ;;
+                       projection) w="RK4 + projection" ;; *) w=$m ;; esac
+            case "|$drawn|" in *"|$w|"*) ;; *) drawn="${drawn:+$drawn|}$w" ;; esac
         done
+        # "braun, the ODE and RK4 + projection"
+        drawn=$(printf '%s' "$drawn" | awk -F'|' '{ s = $1; for (i = 2; i <= NF; i++) s = s (i < NF ? ", " : " and ") $i; print s }')
         # each peer's most accurate run that reached T (else the furthest)
         for peer in mujoco simbody; do
             best=$(awk -F, -v sc="$sc" -v T="$T" -v p="$peer" '
@@ -584,7 +612,7 @@ EOF
         cat > "$base.gp" <<EOF
 set grid lw 0.5 lc rgb "#dddddd"
 set datafile missing "nan"
-set multiplot layout 2,1 title "$sc: x_3 (joint 3) against time, T = $T s, h = 10^{-2} s for braun, Baumgarte, the ODE and RK4 + projection (paper's Fig. 6)" margins 0.08,0.98,$bm,0.93 spacing 0.08,0.12
+set multiplot layout 2,1 title "$sc: x_3 (joint 3) against time, T = $T s${drawn:+, h = 10^{-2} s for $drawn} (paper's Fig. 6)" margins 0.08,0.98,$bm,0.93 spacing 0.08,0.12
 set key at screen 0.5,0.005 center bottom vertical maxrows $rows box opaque font ",9" samplen 3
 set xlabel "t [s]"
 set ylabel "x_3 [m]"

@@ -121,6 +121,9 @@ TEST_SUITES += "sh tests/compare/parallel.sh $(COMPARE_BIN)"
 TEST_SUITES += "sh tests/compare/jobs.sh $(COMPARE_BIN)"
 # The series table's three readers: the report, plot.sh and braun-bench.
 TEST_SUITES += "sh tests/compare/series.sh $(COMPARE_BIN) $(BENCH_BIN)"
+# The report's claims and summary, and the plots' legends and titles, say
+# what the study ran (made-up CSV files).
+TEST_SUITES += "sh tests/compare/evidence.sh $(COMPARE_BIN)"
 TEST_PREREQS += $(COMPARE_TEST) $(COMPARE_BIN) $(BENCH_BIN)
 
 # The Simbody adapter's tests (tests/compare/test_simbody.c): the pendulum

@@ -1000,10 +1000,22 @@ static void test_claim_thresholds(void **state)
     d = paper_runs(lost);
     assert_int_equal(cmp_claim_eval(row, &d, &fig, ev, sizeof ev), -1);
 
-    /* No runs: not tested. */
+    /* One paper scene of two: the values found are shown, the rule (over
+     * both scenes and horizons) is not judged. */
+    d = paper_runs(calm);
+    d.r += 2; /* the four-bar's two runs */
+    d.n = 2;
+    assert_int_equal(cmp_claim_eval(row, &d, &fig, ev, sizeof ev), 0);
+    assert_int_equal(fig.cases, 2);
+    assert_non_null(strstr(ev, "not judged: no case on slider-crank 100 s, slider-crank 1000 s"));
+
+    /* No runs: not tested, and the evidence says what it needs, not a
+     * statistic of no values. */
     d.n = 0;
     assert_int_equal(cmp_claim_eval(row, &d, &fig, ev, sizeof ev), 0);
     assert_int_equal(fig.cases, 0);
+    assert_non_null(strstr(ev, "not measured: it needs braun RK4 at h = 1e-2"));
+    assert_null(strstr(ev, ": 0"));
 }
 
 /* The statistics, and every row of the table well formed: a claim, a
@@ -1028,6 +1040,8 @@ static void test_claims_table(void **state)
         assert_non_null(c->figure);
         assert_true(c->claim[0] && c->paper[0] && c->figure_name[0]);
         assert_int_not_equal(c->test[0].op, CMP_NONE);
+        /* what a claim not tested says it needs, and whose runs it lists */
+        assert_true(c->needs && c->needs[0] && c->methods && c->methods[0]);
         int ntests = 0;
         while (ntests < CMP_CLAIM_TESTS && c->test[ntests].op != CMP_NONE) {
             assert_true(isfinite(c->test[ntests].threshold));
