@@ -175,6 +175,39 @@ check "gen-c --header /dev/full: the source it created is removed" [ ! -e "$TMP/
 cp data/pendulum.json "$TMP/in.json"
 expect "gen-c -o onto its input scene: refused" 2 "is the input" gen-c "$TMP/in.json" -o "$TMP/./in.json"
 check "gen-c -o onto its input scene: the scene is unchanged" cmp -s data/pendulum.json "$TMP/in.json"
+# Outputs written whole (gen-c, gen, plot -o): a write that fails leaves a
+# file that existed as it was. They were written in place: under a file
+# size limit (or beside a --header that could not be written) an existing
+# source was cut off mid-token or replaced, though the command exited 1.
+mkdir -p "$TMP/whole"
+printf 'OLD %.0s' $(seq 900) > "$TMP/whole/old.ref"
+for f in old.c old.h old.json old.svg; do cp "$TMP/whole/old.ref" "$TMP/whole/$f"; done
+limited() { (trap '' XFSZ; ulimit -f 1; exec "$BRAUN" "$@") > /dev/null 2> "$TMP/whole/err"; }
+limited gen-c data/pendulum.json -o "$TMP/whole/old.c"; rc=$?
+check "gen-c -o an existing file, write fails (ulimit -f): exit 1, the file as it was" sh -c '
+    [ "$1" -eq 1 ] && grep -q "error writing .*old.c.: File too large" "$2/err" && cmp -s "$2/old.ref" "$2/old.c"' \
+    sh "$rc" "$TMP/whole"
+"$BRAUN" gen-c data/pendulum.json -o "$TMP/whole/old.c" --header /dev/full 2> /dev/null; rc=$?
+"$BRAUN" gen-c data/pendulum.json -o /dev/full --header "$TMP/whole/old.h" 2> /dev/null; rc2=$?
+check "gen-c: the source or the header cannot be written: exit 1, the other file as it was" sh -c '
+    [ "$1" -eq 1 ] && [ "$2" -eq 1 ] && cmp -s "$3/old.ref" "$3/old.c" && cmp -s "$3/old.ref" "$3/old.h"' \
+    sh "$rc" "$rc2" "$TMP/whole"
+limited gen chain 50 -o "$TMP/whole/old.json"; rc=$?
+check "gen -o an existing file, write fails: exit 1, the file as it was" sh -c '
+    [ "$1" -eq 1 ] && cmp -s "$2/old.ref" "$2/old.json"' sh "$rc" "$TMP/whole"
+limited plot data/pendulum.json --dt 1e-2 --t-end 1 --quiet -o "$TMP/whole/old.svg"; rc=$?
+check "plot -o an existing file, write fails: exit 1, the file as it was" sh -c '
+    [ "$1" -eq 1 ] && cmp -s "$2/old.ref" "$2/old.svg"' sh "$rc" "$TMP/whole"
+check "outputs written whole: no temporary file left behind" sh -c '
+    [ "$(ls -A "$1" | sort | tr "\n" " ")" = "err old.c old.h old.json old.ref old.svg " ]' sh "$TMP/whole"
+# Written whole and put in place: the file's permissions kept, a symbolic
+# link still a link to the file it named.
+chmod 640 "$TMP/whole/old.c"
+ln -s old.h "$TMP/whole/link.h"
+"$BRAUN" gen-c data/pendulum.json --symbol p -o "$TMP/whole/old.c" --header "$TMP/whole/link.h"; rc=$?
+check "gen-c over existing files: written, mode 640 kept, the link still a link to the header" sh -c '
+    [ "$1" -eq 0 ] && grep -q "int p_build" "$2/old.c" && [ "$(stat -c %a "$2/old.c")" = 640 ] &&
+    [ -L "$2/link.h" ] && grep -q "BRAUN_GEN_p_H" "$2/old.h"' sh "$rc" "$TMP/whole"
 mkfifo "$TMP/fifo"
 expect "gen-c -o FIFO: refused at once (no reader needed)" 2 "is a FIFO" gen-c data/pendulum.json -o "$TMP/fifo"
 expect "gen -o FIFO: refused at once" 2 "is a FIFO" gen chain 3 -o "$TMP/fifo"

@@ -81,6 +81,9 @@ struct braun_cli_output {
     int created;                  /* made by this command: removed if abandoned */
     int err;                      /* errno of the first failed write, 0 if none seen */
     braun_cli_id id;
+    int whole;                    /* written to tmp, renamed onto final when complete */
+    int committed;                /* closed or put in place: abandon leaves it */
+    char *tmp, *final;            /* while written whole: the temporary file, its target */
 };
 
 /* Option argv[*i] of the commands with their own parsers (gen, gen-c), as
@@ -96,20 +99,34 @@ int braun_cli_option_once(const char *canon, const char *name, const char **seen
 
 /* 0, or BRAUN_CLI_USAGE after one message. */
 int braun_cli_output_open(braun_cli_output *o, const char *path, const char *what);
+/* The same for an output written whole (gen, gen-c, plot -o): a regular
+ * file is written to a temporary file in its directory (begin) and renamed
+ * onto it when complete (close, or complete then commit), so a failed
+ * write leaves the file as it was (removed if this command made it). A
+ * directory that takes no new file: written in place. */
+int braun_cli_output_open_whole(braun_cli_output *o, const char *path, const char *what);
 /* Refuse (BRAUN_CLI_USAGE, one message) two outputs that are one file, or
  * an output that is the input (either output may be NULL or unopened). */
 int braun_cli_output_distinct(braun_cli_output *a, braun_cli_output *b,
                               const braun_cli_id *input, const char *input_path);
-/* After the checks: truncate a regular file. 0 or BRAUN_CLI_USAGE. */
+/* After the checks: truncate a regular file, or make the temporary file
+ * of one written whole. 0, BRAUN_CLI_USAGE, or BRAUN_CLI_FAILED when no
+ * temporary file can be made (after one message). */
 int braun_cli_output_begin(braun_cli_output *o);
 /* After a write that returned an error: keep errno for the message. */
 void braun_cli_output_failed(braun_cli_output *o);
-/* Flush and close; 1 after "error writing 'FILE': reason", else 0. */
+/* Flush and close; 1 after "error writing 'FILE': reason", else 0. An
+ * output written whole is then renamed into place, or on an error left as
+ * it was. */
 int braun_cli_output_close(braun_cli_output *o);
-/* Flush, and report a write error as close does (1); the file stays open,
- * so a caller can still abandon it. */
-int braun_cli_output_flush(braun_cli_output *o);
-/* Close without writing; remove the file if this command made it. */
+/* close in two halves, for outputs that are kept together (gen-c's source
+ * and header): complete flushes and closes the file (1 after the message,
+ * and the caller abandons), commit puts one written whole in place (1
+ * after a message if it cannot). */
+int braun_cli_output_complete(braun_cli_output *o);
+int braun_cli_output_commit(braun_cli_output *o);
+/* Close without writing; remove the temporary file, and the file if this
+ * command made it. */
 void braun_cli_output_abandon(braun_cli_output *o);
 
 /* A regular file's text (NUL-terminated, *len bytes) of at most max

@@ -1,5 +1,5 @@
-/* The files the tool writes (--out, --summary, gen -o, gen-c -o). An
- * output is "-" (stdout), a regular file or a character device such as
+/* The files the tool writes (--out, --summary, gen -o, gen-c -o, plot -o).
+ * An output is "-" (stdout), a regular file or a character device such as
  * /dev/null; a FIFO, socket, directory or block device is refused without
  * blocking: the file is opened with O_NONBLOCK (a FIFO without a reader
  * fails at once instead of waiting for one) and checked with fstat on the
@@ -7,13 +7,20 @@
  * writing. A regular file is truncated only after every check, and two
  * outputs of one command, or an output and the command's input, must not
  * be one file (the input would be destroyed before it was read, or two
- * streams would interleave). The POSIX feature macro is confined to this
- * file and cli_clock.c. */
+ * streams would interleave). An output written whole (gen, gen-c, plot:
+ * braun_cli_output_open_whole) goes to a temporary file beside it, renamed
+ * onto it only once complete: a failed write leaves the file as it was.
+ * The POSIX feature macros are confined to this file and cli_clock.c. */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
 #endif
+#ifndef _XOPEN_SOURCE
+#define _XOPEN_SOURCE 700 /* realpath */
+#endif
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -95,6 +102,13 @@ int braun_cli_output_open(braun_cli_output *o, const char *path, const char *wha
     return 0;
 }
 
+int braun_cli_output_open_whole(braun_cli_output *o, const char *path, const char *what)
+{
+    const int rc = braun_cli_output_open(o, path, what);
+    o->whole = !rc && o->f != stdout && o->id.valid;
+    return rc;
+}
+
 int braun_cli_output_distinct(braun_cli_output *a, braun_cli_output *b, const braun_cli_id *input,
                               const char *input_path)
 {
@@ -109,9 +123,67 @@ int braun_cli_output_distinct(braun_cli_output *a, braun_cli_output *b, const br
     return 0;
 }
 
+/* A temporary file beside the output (its symbolic link followed: the link
+ * stays a link), with the output's permissions: o->f writes it and
+ * o->tmp, o->final name it. 0; -1 with errno when none can be made. */
+static int make_temporary(braun_cli_output *o)
+{
+    struct stat st, lst;
+    char *final = NULL;
+    if (lstat(o->path, &lst) == 0 && S_ISLNK(lst.st_mode)) final = realpath(o->path, NULL);
+    else final = strdup(o->path);
+    if (!final || fstat(fileno(o->f), &st) != 0) {
+        free(final);
+        return -1;
+    }
+    const char *slash = strrchr(final, '/');
+    const size_t dir = slash ? (size_t)(slash - final) + 1 : 0;
+    const char *base = final + dir;
+    /* ".NAME.XXXXXX", hidden and named after its output; a long name as
+     * ".braun.XXXXXX" (within NAME_MAX). */
+    const int short_base = strlen(base) <= 200;
+    const size_t size = dir + (short_base ? strlen(base) : 5) + 10;
+    char *tmp = malloc(size);
+    if (!tmp) {
+        free(final);
+        return -1;
+    }
+    snprintf(tmp, size, "%.*s.%s.XXXXXX", (int)dir, final, short_base ? base : "braun");
+    const int fd = mkstemp(tmp);
+    FILE *f = NULL;
+    if (fd < 0 || fchmod(fd, st.st_mode & 0777) != 0 || !(f = fdopen(fd, "w"))) {
+        const int e = errno;
+        if (fd >= 0) {
+            close(fd);
+            unlink(tmp);
+        }
+        free(tmp);
+        free(final);
+        errno = e;
+        return -1;
+    }
+    fclose(o->f); /* the output itself, untouched */
+    o->f = f;
+    o->tmp = tmp;
+    o->final = final;
+    return 0;
+}
+
 int braun_cli_output_begin(braun_cli_output *o)
 {
     if (!o->f || o->f == stdout || !o->id.valid) return 0;
+    if (o->whole) {
+        if (make_temporary(o) == 0) return 0;
+        /* A directory that takes no new file (a writable file in a
+         * directory that is not): written in place, as run's outputs. */
+        if (errno != EACCES && errno != EPERM) {
+            const int e = errno;
+            braun_cli_error("%s: cannot make a temporary file beside '%s': %s", o->what, o->path,
+                            strerror(e));
+            return BRAUN_CLI_FAILED;
+        }
+        o->whole = 0;
+    }
     if (ftruncate(fileno(o->f), 0) != 0)
         return braun_cli_error("%s: cannot truncate '%s': %s", o->what, o->path, strerror(errno));
     return 0;
@@ -128,16 +200,7 @@ static void say_write_error(const braun_cli_output *o, int e)
                     e ? ": " : "", e ? strerror(e) : "");
 }
 
-int braun_cli_output_flush(braun_cli_output *o)
-{
-    if (!o->f) return 0;
-    errno = 0;
-    const int bad = ferror(o->f) != 0 || fflush(o->f) != 0;
-    if (bad) say_write_error(o, o->err ? o->err : errno);
-    return bad;
-}
-
-int braun_cli_output_close(braun_cli_output *o)
+int braun_cli_output_complete(braun_cli_output *o)
 {
     if (!o->f) return 0;
     errno = 0;
@@ -155,14 +218,47 @@ int braun_cli_output_close(braun_cli_output *o)
     return bad;
 }
 
+int braun_cli_output_commit(braun_cli_output *o)
+{
+    int bad = 0;
+    if (o->tmp && rename(o->tmp, o->final) != 0) {
+        const int e = errno;
+        unlink(o->tmp);
+        if (o->created) unlink(o->path);
+        braun_cli_error("%s: cannot put the written file in place of '%s': %s", o->what, o->path,
+                        strerror(e));
+        bad = 1;
+    }
+    free(o->tmp);
+    free(o->final);
+    o->tmp = o->final = NULL;
+    o->committed = 1;
+    return bad;
+}
+
+int braun_cli_output_close(braun_cli_output *o)
+{
+    if (!o->f && !o->tmp) return 0;
+    if (braun_cli_output_complete(o)) {
+        /* Written whole: the file stays as it was. In place (run's
+         * outputs): kept up to the failed write. */
+        if (o->tmp) braun_cli_output_abandon(o);
+        else o->committed = 1;
+        return 1;
+    }
+    return braun_cli_output_commit(o);
+}
+
 void braun_cli_output_abandon(braun_cli_output *o)
 {
-    if (!o->f) return;
-    if (o->f != stdout) {
-        fclose(o->f);
-        if (o->created) unlink(o->path);
-    }
+    if (o->f && o->f != stdout) fclose(o->f);
     o->f = NULL;
+    if (o->tmp) unlink(o->tmp);
+    free(o->tmp);
+    free(o->final);
+    o->tmp = o->final = NULL;
+    if (o->created && !o->committed && strcmp(o->path, "-") != 0) unlink(o->path);
+    o->created = 0;
 }
 
 /* An input of the tool beside the scene loader's own (a scene's text again

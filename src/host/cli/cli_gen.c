@@ -290,9 +290,10 @@ int braun_cli_gen(int argc, char **argv)
     if (end == count || *end != '\0' || errno == ERANGE || N < 1 || N > GEN_MAX_LINKS)
         return braun_cli_error("N must be an integer in [1, %d] (got '%s')", GEN_MAX_LINKS, count);
 
-    /* Opened without blocking (a FIFO is refused), truncated after the check. */
+    /* Opened without blocking (a FIFO is refused); a file is written whole
+     * (a failed write leaves it as it was). */
     braun_cli_output o;
-    if ((rc = braun_cli_output_open(&o, out ? out : "-", "gen -o")) != 0 ||
+    if ((rc = braun_cli_output_open_whole(&o, out ? out : "-", "gen -o")) != 0 ||
         (rc = braun_cli_output_begin(&o)) != 0) {
         braun_cli_output_abandon(&o);
         return rc;

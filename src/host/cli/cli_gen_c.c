@@ -94,8 +94,8 @@ int braun_cli_gen_c(int argc, char **argv)
         return braun_cli_error("gen-c --header: give a file (stdout is the source's)");
     }
     braun_cli_output o, ho = {0};
-    int rc = braun_cli_output_open(&o, out ? out : "-", "gen-c -o");
-    if (!rc && header) rc = braun_cli_output_open(&ho, header, "gen-c --header");
+    int rc = braun_cli_output_open_whole(&o, out ? out : "-", "gen-c -o");
+    if (!rc && header) rc = braun_cli_output_open_whole(&ho, header, "gen-c --header");
     if (!rc && (rc = braun_cli_output_distinct(&o, header ? &ho : NULL, &input, scene)) == 0)
         rc = braun_cli_output_begin(&o);
     if (!rc && header) rc = braun_cli_output_begin(&ho);
@@ -123,16 +123,16 @@ int braun_cli_gen_c(int argc, char **argv)
         braun_cli_error("error writing '%s'%s%s", failed, e ? ": " : "", e ? strerror(e) : "");
         return BRAUN_CLI_FAILED;
     }
-    /* Both flushed before either is kept: one that cannot be written
-     * (a full disk) takes the other with it, as a run's outputs do — the
-     * source left without its header (or the reverse) exited 1 beside a
-     * file that looked complete. */
-    if (braun_cli_output_flush(&o) || (header && braun_cli_output_flush(&ho))) {
+    /* Both complete before either is put in place: one that cannot be
+     * written (a full disk) leaves both files as they were — the source
+     * left without its header (or the reverse) exited 1 beside a file
+     * that looked complete, and a file that existed was left cut short. */
+    if (braun_cli_output_complete(&o) || (header && braun_cli_output_complete(&ho))) {
         braun_cli_output_abandon(&o);
         if (header) braun_cli_output_abandon(&ho);
         return BRAUN_CLI_FAILED;
     }
-    const int bad = braun_cli_output_close(&o);
-    const int hbad = header ? braun_cli_output_close(&ho) : 0;
+    const int bad = braun_cli_output_commit(&o);
+    const int hbad = header ? braun_cli_output_commit(&ho) : 0;
     return bad || hbad ? BRAUN_CLI_FAILED : 0;
 }

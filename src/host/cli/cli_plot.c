@@ -158,7 +158,9 @@ int braun_cli_plot(int argc, char **argv)
     job.frames = a.frames > 0 ? a.frames : fmt == FMT_HTML ? 400 : 12;
     const long cap = a.samples > 0 ? a.samples : (job.frames > 2000 ? job.frames : 2000);
 
-    if (!rc) rc = braun_cli_output_open(&out, a.plot_path, "-o");
+    /* Written whole: a picture that fails to be written leaves the file as
+     * it was. */
+    if (!rc) rc = braun_cli_output_open_whole(&out, a.plot_path, "-o");
     if (!rc) rc = braun_cli_output_distinct(&out, NULL, &tg.id, tg.source);
     if (!rc && a.traj_path) {
         braun_cli_id traj_id;
@@ -262,7 +264,7 @@ int braun_cli_plot(int argc, char **argv)
         }
     }
 finish:
-    if (out.f) braun_cli_output_abandon(&out);
+    braun_cli_output_abandon(&out);
     free(row);
     plot_samples_free(&samples);
     plot_drawing_free(&dr);
