@@ -212,6 +212,38 @@ mkfifo "$TMP/fifo"
 expect "gen-c -o FIFO: refused at once (no reader needed)" 2 "is a FIFO" gen-c data/pendulum.json -o "$TMP/fifo"
 expect "gen -o FIFO: refused at once" 2 "is a FIFO" gen chain 3 -o "$TMP/fifo"
 
+# Every kind named as what it is: a socket was "a FIFO" (as an output) or
+# "cannot open: No such device or address" (as a scene), since open fails
+# on both with ENXIO; a directory output was "cannot open ... Is a directory".
+if command -v python3 > /dev/null 2>&1 &&
+    python3 -c 'import socket, sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' "$TMP/sock"; then
+    expect "gen-c -o socket: refused as a socket" 2 "^braun: gen-c -o '.*sock' is a socket \(not a regular file\): refused$" \
+        gen-c data/pendulum.json -o "$TMP/sock"
+    expect "gen-c --header socket: refused as a socket" 2 "^braun: gen-c --header '.*sock' is a socket" \
+        gen-c data/pendulum.json -o "$TMP/sock.c" --header "$TMP/sock"
+    expect "gen -o socket: refused as a socket" 2 "^braun: gen -o '.*sock' is a socket" gen chain 3 -o "$TMP/sock"
+    expect "run --out socket: refused as a socket" 2 "^braun: --out '.*sock' is a socket" \
+        run four-bar --dt 1e-2 --t-end 1 --out "$TMP/sock"
+    expect "check a socket: refused as a socket" 2 "sock: is a socket, not a scene file" check "$TMP/sock"
+    expect "plot --traj a socket: refused as a socket" 2 "sock: is a socket, not a regular file" \
+        plot pendulum --traj "$TMP/sock" -o "$TMP/sock.svg"
+else
+    echo "ok - output socket # SKIP no python3 to make a socket"
+fi
+mkdir -p "$TMP/adir"
+expect "gen-c -o a directory: refused as a directory" 2 "^braun: gen-c -o '.*adir' is a directory \(not a regular file\): refused$" \
+    gen-c data/pendulum.json -o "$TMP/adir"
+expect "run --summary a directory: refused as a directory" 2 "^braun: --summary '.*adir' is a directory" \
+    run four-bar --dt 1e-2 --t-end 1 --summary "$TMP/adir"
+# A block device without a driver (open: ENXIO): where mknod is allowed.
+if mknod "$TMP/blk" b 250 250 2> /dev/null; then
+    expect "gen-c -o a block device: refused as a block device" 2 "^braun: gen-c -o '.*blk' is a block device" \
+        gen-c data/pendulum.json -o "$TMP/blk"
+    expect "check a block device: refused as a block device" 2 "blk: is a block device, not a scene file" check "$TMP/blk"
+else
+    echo "ok - block device # SKIP mknod not allowed"
+fi
+
 # --------------------------------------------------------- special files in
 expect "run FIFO: refused at once (never waits for a writer)" 2 "is a FIFO" \
     run "$TMP/fifo" --dt 1e-3 --t-end 1

@@ -76,8 +76,11 @@ int braun_cli_output_open(braun_cli_output *o, const char *path, const char *wha
     else if (errno == EEXIST) fd = open(path, flags);
     if (fd < 0) {
         const int e = errno;
-        if (e == ENXIO) /* O_NONBLOCK on a FIFO that nobody reads */
-            return braun_cli_error("%s '%s' is a FIFO (not a regular file): refused", what, path);
+        /* What is there, named by its kind: open fails with ENXIO on a FIFO
+         * that nobody reads and on a socket alike, EISDIR on a directory. */
+        if (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISCHR(st.st_mode))
+            return braun_cli_error("%s '%s' is %s (not a regular file): refused", what, path,
+                                   braun_cli_file_kind((unsigned long)st.st_mode));
         return braun_cli_error("%s: cannot open '%s' for writing: %s", what, path, strerror(e));
     }
     if (fstat(fd, &st) != 0) {
@@ -269,7 +272,13 @@ char *braun_cli_read_file(const char *path, size_t max, size_t *len, char *err, 
     struct stat st;
     const int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY);
     if (fd < 0) {
-        snprintf(err, size, "%s: cannot open: %s", path, strerror(errno));
+        const int e = errno;
+        /* A socket fails the open itself (ENXIO): named, as below. */
+        if (stat(path, &st) == 0 && !S_ISREG(st.st_mode))
+            snprintf(err, size, "%s: is %s, not a regular file", path,
+                     braun_cli_file_kind((unsigned long)st.st_mode));
+        else
+            snprintf(err, size, "%s: cannot open: %s", path, strerror(e));
         return NULL;
     }
     if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {

@@ -209,6 +209,12 @@ braun_scene_file *braun_scene_load_text(const char *path, const char *text, size
     return braun_scene_load_text_ex(path, text, len, NULL, err, err_size);
 }
 
+static const char *file_kind(mode_t m)
+{
+    return S_ISDIR(m) ? "a directory" : S_ISFIFO(m) ? "a FIFO" : S_ISCHR(m) ? "a character device"
+           : S_ISBLK(m) ? "a block device" : S_ISSOCK(m) ? "a socket" : "not a regular file";
+}
+
 /* The whole of a regular file, NUL-terminated, into *text (malloc'd).
  * Opened with O_NONBLOCK so that a FIFO, a terminal or a device never
  * blocks the open; the descriptor itself is then checked with fstat (no
@@ -219,24 +225,27 @@ static int read_regular(const char *path, char **text, size_t *len, char *err, s
     *text = NULL;
     *len = 0;
     const int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY);
+    struct stat st;
     if (fd < 0) {
-        if (err && size) snprintf(err, size, "%s: cannot open: %s", path, strerror(errno));
+        const int e = errno;
+        /* A socket (or a device without a driver) fails the open itself
+         * (ENXIO): named by its kind, as the descriptor's check names it. */
+        if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+            if (err && size) snprintf(err, size, "%s: is %s, not a scene file (a regular file)", path,
+                                      file_kind(st.st_mode));
+        } else if (err && size) {
+            snprintf(err, size, "%s: cannot open: %s", path, strerror(e));
+        }
         return -1;
     }
-    struct stat st;
     if (fstat(fd, &st) != 0) {
         if (err && size) snprintf(err, size, "%s: cannot open: %s", path, strerror(errno));
         close(fd);
         return -1;
     }
     if (!S_ISREG(st.st_mode)) {
-        const char *kind = S_ISDIR(st.st_mode)    ? "a directory"
-                           : S_ISFIFO(st.st_mode) ? "a FIFO"
-                           : S_ISCHR(st.st_mode)  ? "a character device"
-                           : S_ISBLK(st.st_mode)  ? "a block device"
-                           : S_ISSOCK(st.st_mode) ? "a socket"
-                                                  : "not a regular file";
-        if (err && size) snprintf(err, size, "%s: is %s, not a scene file (a regular file)", path, kind);
+        if (err && size) snprintf(err, size, "%s: is %s, not a scene file (a regular file)", path,
+                                  file_kind(st.st_mode));
         close(fd);
         return -1;
     }
