@@ -156,6 +156,35 @@ check "gen-c: headers whose symbols differ only in case stop the compile, naming
     grep -q "error: #error ARM_N, ARM_M or ARM_P defined already" "$2/both.err" &&
     $1 -std=c99 -Wall -Wextra -Wpedantic -Werror -I"$2" -Iinclude/core -c "$2/same.c" -o "$2/same.o"' \
     sh "$CC" "$TMP"
+# The default symbol: the file name without .json when it is a C
+# identifier; '-' and '.' become '_', said on stderr; anything else
+# refused, asking for --symbol. my scene.json, é.json and --.json gave
+# my_scene, s___, s___ in silence, and names cut at 48 characters gave one
+# symbol (one include guard: the second header was skipped in silence).
+mkdir -p "$TMP/sym"
+long=mechanism_assembly_left_front_suspension_linkage
+for f in plain my-scene "my scene" "$(printf '\303\251')" -- 2link ${long}_v1; do
+    cp data/pendulum.json "$TMP/sym/$f.json"
+done
+expect "gen-c default symbol: the file name as it is, nothing said" 0 "" \
+    gen-c "$TMP/sym/plain.json" -o "$TMP/sym/plain.c"
+expect "gen-c default symbol from my-scene.json: my_scene, noted with a hint to --symbol" 0 \
+    "^braun: note: gen-c: symbol 'my_scene' from the file name .*--symbol NAME to choose" \
+    gen-c "$TMP/sym/my-scene.json" -o "$TMP/sym/my-scene.c"
+check "gen-c default symbol my_scene defines my_scene_build" grep -q "^int my_scene_build" "$TMP/sym/my-scene.c"
+expect "gen-c default symbol: a space in the file name refused, asks for --symbol" 2 \
+    "^braun: gen-c: no symbol from the file name '.*my scene.json' \(it has characters other than .*\): give --symbol NAME$" \
+    gen-c "$TMP/sym/my scene.json" -o "$TMP/sym/space.c"
+expect "gen-c default symbol: a non-ASCII first letter refused" 2 "does not start with an ASCII letter\): give --symbol" \
+    gen-c "$TMP/sym/$(printf '\303\251').json" -o /dev/null
+expect "gen-c default symbol: --.json refused" 2 "does not start with an ASCII letter\): give --symbol" \
+    gen-c -o /dev/null -- "$TMP/sym/--.json"
+expect "gen-c default symbol: 2link.json refused (not s2link)" 2 "does not start with an ASCII letter" \
+    gen-c "$TMP/sym/2link.json" -o /dev/null
+expect "gen-c default symbol: a file name over 48 characters refused (not cut)" 2 \
+    "more than the symbol's 48 characters: cut, it could be another file's symbol\): give --symbol NAME$" \
+    gen-c "$TMP/sym/${long}_v1.json" -o /dev/null
+check "gen-c default symbol refused: no file written" [ ! -e "$TMP/sym/space.c" ]
 expect "gen-c --symbol braun_scene refused (braun_scene_build is libbraun's)" 2 \
     "symbol must not start with 'braun_'" gen-c data/pendulum.json --symbol braun_scene
 expect "gen-c --symbol of 49 characters refused" 2 "longer than 48" \

@@ -2,9 +2,10 @@
  * a C99 source that defines it statically (braun_gen_c_write, braun_scene.h)
  * — for firmware: no parser, no file, no allocation on the target — and,
  * with --header, the header that declares it for the program's other files.
- * The symbol defaults to the file's base name with '-' and '.' turned into
- * '_'. */
+ * The symbol defaults to the file's base name without ".json" (rule below
+ * and in docs/cli.md). */
 #include <errno.h>
+#include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -12,19 +13,54 @@
 #include "braun_scene_file.h"
 
 static int ascii_alpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+static int ascii_alnum(char c) { return ascii_alpha(c) || (c >= '0' && c <= '9'); }
 
-/* At most size - 1 characters: a long file name gives a truncated symbol. */
-static void symbol_from_path(const char *path, char *buf, size_t size)
+/* The default symbol: the base name without a final ".json", as it is when
+ * it is a C identifier; '-' and '.' become '_' (1: said on stderr, since
+ * my-scene.json and my_scene.json then give one symbol). Refused (-1, the
+ * reason in why) when anything else would have to change: another
+ * character, a first character that is not a letter, more than
+ * BRAUN_GEN_C_SYMBOL_MAX characters. Such a symbol was made up ("é.json"
+ * and "--.json" both gave "s___") or cut (..._v1.json and ..._v2.json gave
+ * one symbol), and two generated headers with one symbol share their
+ * include guard: the second is skipped in silence. A user who builds more
+ * than one scene needs distinct symbols, and a refusal asking for --symbol
+ * costs one option; a warning in a build log is easily missed. */
+static int symbol_from_path(const char *path, char *buf, size_t size, char *why, size_t why_size)
 {
     const char *base = strrchr(path, '/');
     base = base ? base + 1 : path;
-    size_t k = 0;
-    if (!ascii_alpha(base[0]) && size > 1) buf[k++] = 's';
-    for (const char *c = base; *c && k + 1 < size; c++) {
-        if (strcmp(c, ".json") == 0) break;
-        buf[k++] = ascii_alpha(*c) || (*c >= '0' && *c <= '9') ? *c : '_';
+    size_t len = strlen(base);
+    if (len > 5 && strcmp(base + len - 5, ".json") == 0) len -= 5;
+    if (len == 0) {
+        snprintf(why, why_size, "it is empty");
+        return -1;
     }
-    buf[k] = '\0';
+    if (!ascii_alpha(base[0])) {
+        snprintf(why, why_size, "it does not start with an ASCII letter");
+        return -1;
+    }
+    if (len > BRAUN_GEN_C_SYMBOL_MAX || len >= size) {
+        snprintf(why, why_size, "it has more than the symbol's " BRAUN_GEN_C_SYMBOL_MAX_STR
+                                " characters: cut, it could be another file's symbol");
+        return -1;
+    }
+    int mapped = 0;
+    for (size_t k = 0; k < len; k++) {
+        const char c = base[k];
+        if (ascii_alnum(c) || c == '_') {
+            buf[k] = c;
+        } else if (c == '-' || c == '.') {
+            buf[k] = '_';
+            mapped = 1;
+        } else {
+            snprintf(why, why_size, "it has characters other than ASCII letters, digits, '_', "
+                                    "'-' and '.'");
+            return -1;
+        }
+    }
+    buf[len] = '\0';
+    return mapped;
 }
 
 int braun_cli_gen_c(int argc, char **argv)
@@ -63,11 +99,15 @@ int braun_cli_gen_c(int argc, char **argv)
     if (!scene) return braun_cli_error("gen-c needs a scene file");
     char sym[BRAUN_GEN_C_SYMBOL_MAX + 1], why[256];
     if (!symbol) {
-        symbol_from_path(scene, sym, sizeof sym);
-        symbol = sym;
-        if (braun_gen_c_check_symbol(symbol, why, sizeof why))
+        const int mapped = symbol_from_path(scene, sym, sizeof sym, why, sizeof why);
+        if (mapped < 0 || braun_gen_c_check_symbol(sym, why, sizeof why))
             return braun_cli_error("gen-c: no symbol from the file name '%s' (%s): give --symbol "
                                    "NAME", scene, why);
+        symbol = sym;
+        if (mapped)
+            fprintf(stderr, "braun: note: gen-c: symbol '%s' from the file name ('-' and '.' "
+                            "made '_': another name can give it too; --symbol NAME to choose)\n",
+                    sym);
     } else if (braun_gen_c_check_symbol(symbol, why, sizeof why)) {
         return braun_cli_error("gen-c --symbol: %s", why);
     }
