@@ -265,6 +265,87 @@ static void test_scene_file(void **state)
     free(text);
     braun_scene_free(f);
 
+    /* A c_name that is a name the generated file defines or uses: refused
+     * before anything is written, naming the clash (the file was written
+     * and did not compile: uc_build redeclared, "extern ... NULL", or the
+     * build function's local st hid the class). */
+    {
+        static const char *const clashes[][2] = {
+            {"&circle_build", "circle_build, the build function the generated file defines"},
+            {"&circle_scene", "circle_scene, the static scene the generated file defines"},
+            {"&circle_corrections", "circle_corrections, the corrections constant"},
+            {"&circle_joints", "circle_joints, an array the generated file defines"},
+            {"&CIRCLE_N", "CIRCLE_N, a size macro the generated file defines"},
+            {"&BRAUN_GEN_circle_H", "the generated header's include guard"},
+            {"&RD", "RD, a macro the generated file defines"},
+            {"&NULL", "NULL, a name of <stddef.h>"},
+            {"&size_t", "size_t, a name of <stddef.h>"},
+            {"&st", "st, a local of circle_build (it would hide the class there)"},
+            {"&unused", "unused, a local of circle_build"},
+            {"&q0", "q0, a parameter of circle_build"},
+            {"&sys", "sys, a parameter of circle_build"},
+            {"&braun_scene_joint_distance", "libbraun's names (braun_..., BRAUN_...)"},
+            {"&_circle", "reserved for the implementation"},
+            {"st", "st, a local of circle_build"}};
+        for (size_t k = 0; k < sizeof clashes / sizeof clashes[0]; k++) {
+            braun_scene_joint_class cls = toy_circle;
+            cls.c_name = clashes[k][0];
+            const braun_scene_joint_class *const js[] = {&cls, NULL};
+            const braun_scene_classes ex = {NULL, js, NULL};
+            f = braun_scene_load_text_ex("circle.json", circle_text, strlen(circle_text), &ex, err,
+                                         sizeof err);
+            if (!f) fail_msg("%s", err);
+            FILE *o = tmpfile();
+            assert_non_null(o);
+            assert_int_equal(braun_gen_c_write_ex(o, f, "circle", "circle.json", err, sizeof err),
+                             BRAUN_GEN_C_INVALID);
+            assert_int_equal(ftell(o), 0);
+            fclose(o);
+            if (!strstr(err, clashes[k][1]) || !strstr(err, "joint 'track': the c_name '") ||
+                !strstr(err, "give the class another c_name"))
+                fail_msg("%s: %s", clashes[k][0], err);
+            braun_scene_free(f);
+        }
+        /* Names near them are the program's own. */
+        static const char *const fine[] = {"&circle_builder", "&circle", "&CIRCLE_NX", "&Rx",
+                                           "&stx", "&Braun_x"};
+        for (size_t k = 0; k < sizeof fine / sizeof fine[0]; k++) {
+            braun_scene_joint_class cls = toy_circle;
+            cls.c_name = fine[k];
+            const braun_scene_joint_class *const js[] = {&cls, NULL};
+            const braun_scene_classes ex = {NULL, js, NULL};
+            f = braun_scene_load_text_ex("circle.json", circle_text, strlen(circle_text), &ex, err,
+                                         sizeof err);
+            if (!f) fail_msg("%s", err);
+            FILE *o = tmpfile();
+            assert_non_null(o);
+            if (braun_gen_c_write_ex(o, f, "circle", "circle.json", err, sizeof err))
+                fail_msg("%s: %s", fine[k], err);
+            fclose(o);
+            braun_scene_free(f);
+        }
+        /* Two classes of one name: one extern object for both. */
+        static const char two[] =
+            "{\"name\": \"c\", \"bodies\": [{\"name\": \"bob\", \"type\": \"particle\", \"mass\": 1,\n"
+            " \"position\": [1, 0]}], \"joints\": [{\"name\": \"a\", \"type\": \"circle\", \"point\": \"bob\",\n"
+            " \"centre\": [0, 0]}, {\"name\": \"b\", \"type\": \"circle2\", \"point\": \"bob\", \"centre\": [0, 0]}]}";
+        braun_scene_joint_class second = toy_circle;
+        second.name = "circle2";
+        const braun_scene_joint_class *const js[] = {&toy_circle, &second, NULL};
+        const braun_scene_classes ex = {NULL, js, NULL};
+        f = braun_scene_load_text_ex("two.json", two, strlen(two), &ex, err, sizeof err);
+        if (!f) fail_msg("%s", err);
+        FILE *o = tmpfile();
+        assert_non_null(o);
+        assert_int_equal(braun_gen_c_write_ex(o, f, "two", "two.json", err, sizeof err),
+                         BRAUN_GEN_C_INVALID);
+        assert_int_equal(ftell(o), 0);
+        fclose(o);
+        assert_string_equal(err, "joint 'b': the c_name '&toy_circle' of its class 'circle2' is "
+                                 "also that of class 'circle': one name declares one class");
+        braun_scene_free(f);
+    }
+
     /* Its fields are read and checked as a built-in's. */
     static const char bad[] =
         "{\"name\": \"c\", \"bodies\": [{\"name\": \"bob\", \"type\": \"particle\", \"mass\": 1,\n"

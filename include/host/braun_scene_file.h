@@ -123,9 +123,16 @@ int braun_scene_file_diagnose(const braun_scene_file *sf, braun_real t, const br
  * or nest a comment, form a trigraph or splice a line (other bytes as
  * \xNN, UTF-8 as \uXXXX; "*\/", "/\*", "?\?"; at most 160 bytes of each
  * text, then "..."). The only identifiers it writes are the symbol's
- * (checked here) and the classes' c_names (a C identifier, not a keyword,
- * or "&identifier", checked before anything is written). It writes no
- * string literals. */
+ * (checked here) and the classes' c_names, checked before anything is
+ * written: a C identifier, not a keyword, or "&identifier"; none of the
+ * names the file itself defines or uses — SYMBOL_build, SYMBOL_scene,
+ * SYMBOL_corrections, SYMBOL_bodies/_points/_rods/_joints/_effects,
+ * SYMBOL_N/_M/_P, BRAUN_GEN_SYMBOL_H, R, RD, SYMBOL_build's sys, q0, v0,
+ * st and unused, <stddef.h>'s NULL, offsetof, size_t, ptrdiff_t, wchar_t
+ * and max_align_t; for "&identifier" (the program's class, declared by the
+ * file) also not libbraun's (braun_..., BRAUN_...) nor starting with '_',
+ * and one class per name. The error names the element, the class and
+ * the clash. It writes no string literals. */
 #define BRAUN_GEN_C_SYMBOL_MAX 48 /* + "_corrections": within C99's 63 */
 #define BRAUN_GEN_C_SYMBOL_MAX_STR "48"
 
@@ -148,7 +155,8 @@ int braun_gen_c_write(FILE *out, const braun_scene_file *sf, const char *symbol,
                       const char *source);
 
 /* The same with the reason of a failure in err (one line): 0,
- * BRAUN_GEN_C_INVALID (nothing was written) or BRAUN_GEN_C_WRITE. */
+ * BRAUN_GEN_C_INVALID (nothing was written) or BRAUN_GEN_C_WRITE (also
+ * out of memory, before anything is written). */
 int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *symbol,
                          const char *source, char *err, size_t err_size);
 

@@ -247,39 +247,154 @@ static int c_name_ok(const char *c_name)
     return ascii_identifier(id) && strlen(id) <= 63 && !keyword(id);
 }
 
-/* The class of every element has a c_name gen-c can write. */
-static int check_classes(const braun_scene_file *sf, char *err, size_t size)
+/* The symbol in upper case, for its macros (SYMBOL_N). */
+static void upper_symbol(const char *sym, char upper[BRAUN_GEN_C_SYMBOL_MAX + 1])
+{
+    for (size_t i = 0; i <= strlen(sym); i++) upper[i] = (char)toupper((unsigned char)sym[i]);
+}
+
+/* The names the generated file defines or uses besides the classes': a
+ * c_name equal to one of them gave a file that does not compile (uc_build
+ * redeclared, NULL as a declarator) or whose build function's locals hid
+ * the class (st). In what, "name, what it is" for the message; 0 if none. */
+static int c_name_clash(const char *c_name, const char *sym, const char *upper, char *what,
+                        size_t size)
+{
+    static const char *const defined[][2] = {
+        {"build", "the build function"},       {"scene", "the static scene"},
+        {"corrections", "the corrections constant"}, {"bodies", "an array"},
+        {"points", "an array"},                {"rods", "an array"},
+        {"joints", "an array"},                {"effects", "an array"}};
+    static const char *const macros[] = {"R", "RD",
+                                         "value_outside_the_range_of_float_in_a_BRAUN_SINGLE_build"};
+    static const char *const locals[] = {"sys", "q0", "v0", "st", "unused"};
+    static const char *const stddef_names[] = {"NULL", "offsetof", "size_t", "ptrdiff_t",
+                                               "wchar_t", "max_align_t"};
+    const int declared = c_name[0] == '&';
+    const char *id = declared ? c_name + 1 : c_name;
+    const size_t n = strlen(sym);
+    if (strncmp(id, sym, n) == 0 && id[n] == '_')
+        for (size_t k = 0; k < sizeof defined / sizeof defined[0]; k++)
+            if (strcmp(id + n + 1, defined[k][0]) == 0) {
+                snprintf(what, size, "%s, %s the generated file defines", id, defined[k][1]);
+                return 1;
+            }
+    if (strncmp(id, upper, n) == 0 && id[n] == '_' && id[n + 1] && strchr("NMP", id[n + 1]) &&
+        id[n + 2] == '\0') {
+        snprintf(what, size, "%s, a size macro the generated file defines", id);
+        return 1;
+    }
+    if (strncmp(id, "BRAUN_GEN_", 10) == 0 && strncmp(id + 10, sym, n) == 0 &&
+        strcmp(id + 10 + n, "_H") == 0) {
+        snprintf(what, size, "%s, the generated header's include guard", id);
+        return 1;
+    }
+    for (size_t k = 0; k < sizeof macros / sizeof macros[0]; k++)
+        if (strcmp(id, macros[k]) == 0) {
+            snprintf(what, size, "%s, a macro the generated file defines", id);
+            return 1;
+        }
+    for (size_t k = 0; k < sizeof locals / sizeof locals[0]; k++)
+        if (strcmp(id, locals[k]) == 0) {
+            snprintf(what, size, "%s, a %s of %s_build (it would hide the class there)", id,
+                     k < 3 ? "parameter" : "local", sym);
+            return 1;
+        }
+    for (size_t k = 0; k < sizeof stddef_names / sizeof stddef_names[0]; k++)
+        if (strcmp(id, stddef_names[k]) == 0) {
+            snprintf(what, size, "%s, a name of <stddef.h>, which the generated file includes", id);
+            return 1;
+        }
+    /* A class the file declares is the program's: libbraun's names (and
+     * braun.h's macros) and the implementation's are not. */
+    if (declared && (strncmp(id, "braun_", 6) == 0 || strncmp(id, "BRAUN_", 6) == 0)) {
+        snprintf(what, size, "libbraun's names (braun_..., BRAUN_...)");
+        return 1;
+    }
+    if (declared && id[0] == '_') {
+        snprintf(what, size, "the names reserved for the implementation (a leading '_')");
+        return 1;
+    }
+    return 0;
+}
+
+/* The class of every element has a c_name gen-c can write, and a class the
+ * file declares ("&name") is the only one of that name. Each class is
+ * checked once (seen: the classes so far, at most one per element). 0;
+ * -1 with the reason in err; -2 out of memory. */
+static int check_classes(const braun_scene_file *sf, const char *sym, char *err, size_t size)
 {
     const braun_scene *s = &sf->scene;
     static const char *const kinds[] = {"body", "joint", "effect"};
     const int counts[] = {s->nbodies, s->njoints, s->neffects};
     const char *const *names[] = {sf->body_names, sf->joint_names, sf->effect_names};
+    char upper[BRAUN_GEN_C_SYMBOL_MAX + 1];
+    upper_symbol(sym, upper);
+    struct seen_class {
+        const void *cls;
+        const char *c_name, *type;
+    } *seen = malloc(((size_t)s->nbodies + s->njoints + s->neffects + 1) * sizeof *seen);
+    int nseen = 0;
+    if (!seen) {
+        if (err && size) snprintf(err, size, "out of memory");
+        return -2;
+    }
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < counts[k]; i++) {
+            const void *cls = NULL;
             const char *type = NULL, *c_name = NULL;
-            int have = 0;
             if (k == 0 && s->bodies[i].kind)
-                have = 1, type = s->bodies[i].kind->name, c_name = s->bodies[i].kind->c_name;
+                cls = s->bodies[i].kind, type = s->bodies[i].kind->name, c_name = s->bodies[i].kind->c_name;
             if (k == 1 && s->joints[i].type)
-                have = 1, type = s->joints[i].type->name, c_name = s->joints[i].type->c_name;
+                cls = s->joints[i].type, type = s->joints[i].type->name, c_name = s->joints[i].type->c_name;
             if (k == 2 && s->effects[i].type)
-                have = 1, type = s->effects[i].type->name, c_name = s->effects[i].type->c_name;
-            if (have && c_name_ok(c_name)) continue;
+                cls = s->effects[i].type, type = s->effects[i].type->name, c_name = s->effects[i].type->c_name;
+            int known = 0;
+            for (int j = 0; cls && j < nseen && !known; j++) known = seen[j].cls == cls;
+            if (known) continue;
+            char clash[160] = "";
+            int bad = !cls || !c_name_ok(c_name) ||
+                      c_name_clash(c_name, sym, upper, clash, sizeof clash);
+            /* Another class declared by the same name: two declarations of
+             * one object (of two types, or one object for two classes). */
+            const char *other = NULL;
+            for (int j = 0; !bad && c_name[0] == '&' && j < nseen; j++)
+                if (strcmp(seen[j].c_name, c_name) == 0) {
+                    other = seen[j].type;
+                    bad = 1;
+                }
+            if (!bad) {
+                seen[nseen].cls = cls;
+                seen[nseen].c_name = c_name;
+                seen[nseen++].type = type;
+                continue;
+            }
             if (err && size) {
                 char who[96];
                 const char *name = names[k] ? names[k][i] : NULL;
                 if (name) snprintf(who, sizeof who, "%s '%.60s'", kinds[k], name);
                 else snprintf(who, sizeof who, "%s #%d", kinds[k], i + 1);
-                if (!have) snprintf(err, size, "%s has no class", who);
+                if (!cls) snprintf(err, size, "%s has no class", who);
                 else if (!c_name) snprintf(err, size, "%s: its class '%.60s' has no c_name", who,
                                            type ? type : "?");
-                else snprintf(err, size, "%s: the c_name of its class '%.60s' is not a C "
-                                         "identifier or '&identifier'", who, type ? type : "?");
+                else if (!c_name_ok(c_name))
+                    snprintf(err, size, "%s: the c_name of its class '%.60s' is not a C "
+                                        "identifier or '&identifier'", who, type ? type : "?");
+                else if (clash[0])
+                    snprintf(err, size, "%s: the c_name '%s' of its class '%.60s' clashes with %s: "
+                                        "give the class another c_name", who, c_name,
+                             type ? type : "?", clash);
+                else
+                    snprintf(err, size, "%s: the c_name '%s' of its class '%.60s' is also that of "
+                                        "class '%.60s': one name declares one class", who, c_name,
+                             type ? type : "?", other ? other : "?");
                 for (char *c = err; *c; c++)
                     if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
             }
+            free(seen);
             return -1;
         }
+    free(seen);
     return 0;
 }
 
@@ -299,12 +414,6 @@ static void sizes(FILE *out, const braun_scene *s, const char *upper)
             upper, upper, s->n, upper, upper, s->m, upper, upper, s->p, upper, upper, upper);
     fprintf(out, "#define %s_N %d\n#define %s_M %d\n#define %s_P %d\n", upper, s->n, upper, s->m,
             upper, s->p);
-}
-
-/* The symbol in upper case, for its macros (SYMBOL_N). */
-static void upper_symbol(const char *sym, char upper[BRAUN_GEN_C_SYMBOL_MAX + 1])
-{
-    for (size_t i = 0; i <= strlen(sym); i++) upper[i] = (char)toupper((unsigned char)sym[i]);
 }
 
 /* The first line of both files: where they come from, not to be edited. */
@@ -371,8 +480,9 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
     const braun_scene *s = &sf->scene;
     char upper[BRAUN_GEN_C_SYMBOL_MAX + 1];
     /* Everything is checked before the first byte is written. */
-    if (braun_gen_c_check_symbol(sym, err, err_size) || check_classes(sf, err, err_size))
-        return BRAUN_GEN_C_INVALID;
+    if (braun_gen_c_check_symbol(sym, err, err_size)) return BRAUN_GEN_C_INVALID;
+    const int classes = check_classes(sf, sym, err, err_size);
+    if (classes) return classes == -2 ? BRAUN_GEN_C_WRITE : BRAUN_GEN_C_INVALID;
     upper_symbol(sym, upper);
     const void **seen = malloc(((size_t)s->nbodies + s->njoints + s->neffects + 1) * sizeof *seen);
     if (!seen) {
