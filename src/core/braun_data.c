@@ -213,6 +213,11 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     pv->has_prev = 0;
     pv->t_lo = 0;
     pv->have_ref = 0;
+#ifdef BRAUN_NO_LINSOLVER
+    braun__dense_new_run(pv->ls_state);
+#else
+    if (pv->ls == &braun__dense_linsolver) braun__dense_new_run(pv->ls_state);
+#endif
     /* A new run decides its first rank by the plain tolerance. */
     pv->step_rank[0] = pv->rows;
     pv->step_rank[1] = pv->m;

@@ -30,6 +30,28 @@ static inline braun_qrcp *braun__dense_slot(void *state, int slot)
     return slot ? &braun__dense(state)->fq : &braun__dense(state)->fv;
 }
 
+/* A new run (braun_set_state): no last factorization to follow, as after
+ * braun_data_init. A run's first step took the Gram path, or the last
+ * run's column order, from the factorization the run before left, and a
+ * fresh data the pivoted QR: the same run differed in its rounding from
+ * its first step (the four-bar, RK4 h = 1e-2; docs/robustness.md promises
+ * the same trajectory for the same input). */
+static inline void braun__dense_new_run(void *state)
+{
+    braun_dense *s = braun__dense(state);
+    braun_qrcp *slots[2] = {&s->fv, &s->fq};
+    for (int k = 0; k < 2; k++) {
+        slots[k]->rank = 0;
+        slots[k]->nsoft = 0;
+        slots[k]->dmin = 0;
+        slots[k]->soft_lam = 0;
+        slots[k]->r00 = 0;
+        slots[k]->gram = 0;
+        slots[k]->norms_given = 0;
+    }
+    s->stage_order = 0;
+}
+
 static inline braun_real *braun__dense_mass_buffer(void *state) { return braun__dense(state)->chol.R; }
 
 static inline int braun__dense_factor_mass(void *state, const braun_real *M, braun_real sym_tol, int *bad_i,
