@@ -771,7 +771,7 @@ int braun__project_positions(braun_data *d, braun_real *y, int *moved, braun_rea
     *moved = 0;
     *r_start = 0;
     if (!corr || pv->m == 0) return BRAUN_OK;
-    braun_real r = 0, last = 0;
+    braun_real last = 0;
     int st = BRAUN_OK;
     for (int it = 0;; it++) {
         braun__at(pv, d->t, y, y + n, y[2 * n], 0);
@@ -782,7 +782,7 @@ int braun__project_positions(braun_data *d, braun_real *y, int *moved, braun_rea
         pv->stage = 0;
         st = braun__forward(d, BRAUN_WITH_RESIDUALS, pv->k[0] + n);
         if (st) break;
-        r = relative_residual_of(d, corr);
+        const braun_real r = relative_residual_of(d, corr);
         if (it == 0) *r_start = r;
         if (!(r > 8 * BRAUN_EPS) || (it > 0 && !(r < BRAUN_R(0.5) * last)) || it == 8) break;
         last = r;
