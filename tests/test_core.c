@@ -360,6 +360,76 @@ static void test_knife_edge_exact(void **state)
     test_sim_close(&sim);
 }
 
+/* A particle on a belt: the velocity-level row v_x = u (u constant, no
+ * time in it) with a force F pushing along it. The row's ideal force does
+ * work, −λu with λ = −F: Φ_v − A_vv v = −u is not 0, so the system is not
+ * scleronomic in the sense BRAUN_SCLERONOMIC promises (its constraint
+ * forces do no work). Declared so, it ran with that work left out of the
+ * energy law, status OK (a ball on a turntable ran 1 m off; found by an
+ * outside client); now refused at the first step. Without the flag the
+ * energy law holds; with u = 0 the flag is right and runs. */
+static int belt_mass(braun_real t, const braun_real *q, braun_real *M, void *user)
+{
+    (void)t, (void)q, (void)user;
+    M[0] = 1, M[1] = 0, M[2] = 0, M[3] = 1;
+    return 0;
+}
+static int belt_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q, void *user)
+{
+    (void)t, (void)q, (void)v, (void)user;
+    Q[0] = 2, Q[1] = -1;
+    return 0;
+}
+static int belt_rows(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi, braun_real *A,
+                     braun_real *bv, void *user)
+{
+    (void)t, (void)q;
+    const double u = *(const double *)user;
+    if (phi) phi[0] = v[0] - u;
+    A[0] = 1, A[1] = 0;
+    bv[0] = 0;
+    return 0;
+}
+static int belt_energy(braun_real t, const braun_real *q, const braun_real *v, braun_real *E, braun_real *dE_dq,
+                       braun_real *dE_dv, braun_real *dE_dt, void *user)
+{
+    (void)t, (void)user;
+    /* E = T + V with V = −F·q: every applied force is in E. */
+    *E = 0.5 * (v[0] * v[0] + v[1] * v[1]) - 2 * q[0] + q[1];
+    if (dE_dq) dE_dq[0] = -2, dE_dq[1] = 1;
+    if (dE_dv) dE_dv[0] = v[0], dE_dv[1] = v[1];
+    if (dE_dt) *dE_dt = 0;
+    return 0;
+}
+
+static void test_scleronomic_velocity_rows(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 3; k++) {
+        double u = k == 2 ? 0 : 0.4;
+        braun_system s = {2, 0, 1, BRAUN_MASS_CONSTANT, belt_mass, belt_forces, NULL, belt_rows,
+                          belt_energy, NULL, &u, NULL};
+        if (k != 1) s.flags |= BRAUN_SCLERONOMIC;
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+        const double q0[2] = {0, 0}, v0[2] = {u, 0.5};
+        assert_int_equal(braun_set_state(&sim.data, 0, q0, v0), BRAUN_OK);
+        const int st = braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 2.0, 0, NULL, NULL);
+        if (k == 0) {
+            assert_int_equal(st, BRAUN_ERR_ARGUMENT);
+            assert_non_null(strstr(sim.data.error.where, "velocity-level row is not A_vv v"));
+            assert_int_equal(sim.data.error.index, 0);
+            assert_true(sim.data.t == 0);
+        } else {
+            /* x = u t, y = 0.5 t − t²/2: the exact motion. */
+            assert_int_equal(st, BRAUN_OK);
+            assert_near(sim.data.q[0], 2 * u, 1e-12);
+            assert_near(sim.data.q[1], 0.5 * 2 - 0.5 * 4, 1e-12);
+        }
+        test_sim_close(&sim);
+    }
+}
+
 /* Bead on a spinning rod (rheonomic: b_q, b_qv with ∂/∂t terms, and the
  * energy input of the rod integrated as ∫Ė) against r = r0 cosh ωt. */
 static void test_rheonomic_bead_exact(void **state)
@@ -563,6 +633,7 @@ int main(void)
         cmocka_unit_test(test_rheonomic_bead_exact),
         cmocka_unit_test(test_no_work_without_flag),
         cmocka_unit_test(test_constraint_work_automatic),
+        cmocka_unit_test(test_scleronomic_velocity_rows),
         cmocka_unit_test(test_deterministic),
         cmocka_unit_test(test_adaptive_knife),
     };

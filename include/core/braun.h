@@ -169,7 +169,9 @@ enum braun_system_flags {
     /* Kept for old code: the constraint work below is always accounted for
      * now, with or without this flag (it may not be set with SCLERONOMIC). */
     BRAUN_CONSTRAINT_WORK = 1u << 2,
-    /* No constraint depends on time: the ideal constraint forces do no work.
+    /* No constraint depends on time and every velocity-level row is
+     * homogeneous in v (Φ_v = A_vv v, no c(q) term): the ideal constraint
+     * forces do no work.
      * Without it, a system with an energy law has the work rate of its
      * ideal constraint forces Q_c = Aᵀλ, λᵀb_q (holonomic rows) and
      * λᵀ(A_vv v − Φ_v) (nonholonomic rows), added to Ė at every stage, so a
@@ -177,8 +179,10 @@ enum braun_system_flags {
      * power term for its drives; for a scleronomic one that rate is 0 up to
      * round-off, so the result is right either way. With it the library
      * skips that work (a solve per stage), and checks the claim: a
-     * holonomic row with b_q ≠ 0 (∂Φ_q/∂t ≠ 0) at the start of a step stops
-     * the run with BRAUN_ERR_ARGUMENT ("system declared scleronomic"). */
+     * holonomic row with b_q ≠ 0 (∂Φ_q/∂t ≠ 0), or a velocity-level row
+     * with Φ_v ≠ A_vv v beyond the rounding of its products, at the start
+     * of a step stops the run with BRAUN_ERR_ARGUMENT ("system declared
+     * scleronomic"). */
     BRAUN_SCLERONOMIC = 1u << 3
 };
 

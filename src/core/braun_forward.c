@@ -164,12 +164,34 @@ static int stage_constraints(braun_data *d, int with_residuals)
         for (int i = m; i < rows; i++) pv->ev[i] = pv->phi[i];
         /* A system declared scleronomic has b_q = -∂Φ_q/∂t = 0: checked
          * here, where b_q is computed anyway (the power stage relies on it). */
-        if (s->flags & BRAUN_SCLERONOMIC)
+        if (s->flags & BRAUN_SCLERONOMIC) {
             for (int i = 0; i < m; i++)
                 if (pv->b[i] != 0)
                     return braun__fail(d, BRAUN_ERR_ARGUMENT,
                                        "system declared scleronomic (BRAUN_SCLERONOMIC) but b_q != 0",
                                        i, -1, (double)pv->b[i], (double)t);
+            /* Its velocity-level rows must be homogeneous in v, Φ_v = A_vv v:
+             * a term c(q, t) does work through the row's ideal force,
+             * −λᵀc, which the flag skips (a ball rolling on a turntable
+             * declared so ran 1 m off, status OK). Equal to the rounding
+             * of the row's products. */
+            for (int i = m; i < rows; i++) {
+                const braun_real w = braun__row_dot(pv, i, v) - pv->phi[i];
+                braun_real scale = 0;
+                if (pv->sp) {
+                    for (int k = pv->sp->row_ptr[i]; k < pv->sp->row_ptr[i + 1]; k++)
+                        scale += braun_fabs(pv->Avals[k] * v[pv->sp->col[k]]);
+                } else {
+                    const braun_real *a = pv->A + (size_t)i * (size_t)pv->n;
+                    for (int j = 0; j < pv->n; j++) scale += braun_fabs(a[j] * v[j]);
+                }
+                if (!(braun_fabs(w) <= 64 * BRAUN_EPS * scale))
+                    return braun__fail(d, BRAUN_ERR_ARGUMENT,
+                                       "system declared scleronomic (BRAUN_SCLERONOMIC) but a velocity-level "
+                                       "row is not A_vv v (Phi_v - A_vv v != 0: it does work)",
+                                       i, -1, (double)(-w), (double)t);
+            }
+        }
     }
     return BRAUN_OK;
 }
