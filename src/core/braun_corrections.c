@@ -840,6 +840,14 @@ int braun__project_start(braun_data *d, braun_real *y, int *moved)
         }
         *moved = 1;
     }
+    /* The rows' consistency is judged at the start too: one on its
+     * constraints (or projected onto them, the velocity correction having
+     * judged it) has rows that agree. Left to the first step's end, the
+     * step's own error near a singular start was taken for dependent rows
+     * that disagree: the four-bar started flat and exact stopped with
+     * BRAUN_ERR_INCONSISTENT at t = 0.001 ("disagree by 2.8e-6"), where
+     * RK4 judges at t = 0 and runs (found by an outside client). */
+    if ((corr & BRAUN_CORRECT_VELOCITY) && !(r > tol)) pv->vel_judged = 1;
     /* A start on its constraints is judged so here: its first step is
      * corrected at its end, as every later one (braun_adaptive.c). */
     if (!*moved) {
