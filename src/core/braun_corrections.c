@@ -679,6 +679,37 @@ static int guard_start_rows(braun_data *d, const braun_real *vdot, unsigned corr
  * (the four-bar, rtol 1e-10: ‖[Φ̇_q; Φ_v]‖ 2.4e-9 after the correction
  * without this). One call of the constraint callbacks; C stays the
  * point's. */
+/* The first velocity correction of a run at full rank: a start a little
+ * off a redundant set's manifold. Rows dependent on the manifold are
+ * dependent off it only to the point's residual, and the plain rank
+ * tolerance (10·max(rows, n)·ε) counts them independent at a start placed
+ * to 13 digits: the parallelogram with its redundant crank, each angle
+ * 1e-13 off, had 12 rows of rank 12 (no motion left), and RK4's first
+ * step took all its kinetic energy, status OK (found by an outside
+ * client). Its sign: a velocity residual at round-off whose correction
+ * removes half the weighted speed or more, ‖R dv‖ > ½‖R v‖ — a tiny
+ * residual over a tiny pivot. Then the start's positions are projected
+ * with a rank that needs sqrt(ε) (braun__project_positions) and its first
+ * step is taken again (rk_stages), once; elsewhere (or twice) the run
+ * stops with BRAUN_ERR_INCONSISTENT rather than lose the motion. */
+static BRAUN_NOINLINE int start_rank_check(braun_data *d)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = BRAUN_N(pv->n);
+    braun__mul_r(pv, pv->dv, pv->tmp);
+    const braun_real cdv = braun_nrm2(n, pv->tmp);
+    braun__mul_r(pv, pv->at.v, pv->tmp);
+    const braun_real cv = braun_nrm2(n, pv->tmp);
+    if (!(cdv > BRAUN_R(0.5) * cv) || !(cv > 0)) return BRAUN_OK;
+    if (!(relative_residual_of(d, BRAUN_CORRECT_VELOCITY) <= BRAUN_R(1e-6))) return BRAUN_OK;
+    if (pv->start_retry) return BRAUN__START_AMBIGUOUS;
+    return braun__fail(d, BRAUN_ERR_INCONSISTENT,
+                       "constraint rows dependent only to the start's residual: the velocity correction "
+                       "would take this share of the motion (a redundant set off its manifold: give the "
+                       "start to full precision)",
+                       -1, -1, (double)(cdv / cv), (double)pv->at.t);
+}
+
 static int position_velocity(braun_data *d, unsigned corr, int remeasure)
 {
     braun_priv *pv = braun__priv(d);
@@ -701,7 +732,7 @@ static int position_velocity(braun_data *d, unsigned corr, int remeasure)
         braun__pinv2(pv, 0, pv->ep, pv->ev, pv->dq, pv->dv);
         braun__solve_r(pv, pv->dq, pv->dq);
         velocity_finish(pv);
-        return BRAUN_OK;
+        return judge ? start_rank_check(d) : BRAUN_OK;
     }
     if (position) st = stage_position(d);
     else for (int i = 0; i < n; i++) pv->dq[i] = 0;
@@ -714,6 +745,7 @@ static int position_velocity(braun_data *d, unsigned corr, int remeasure)
     }
     if (!st && velocity) st = stage_velocity(d, judge);
     else for (int i = 0; i < n; i++) pv->dv[i] = 0;
+    if (!st && judge && pv->rank[0] >= pv->rows) st = start_rank_check(d);
     return st;
 }
 

@@ -91,6 +91,7 @@ typedef struct braun_priv {
     int R_is_constant;    /* R computed once in braun_data_init */
     int state_integrated; /* the state came from a step, not braun_set_state */
     int vel_judged;       /* the first velocity correction since braun_set_state ran (rows' consistency) */
+    int start_retry;      /* a new run's first step may project its start and start again (start_rank_check) */
     int e0_pending;       /* 1: the start not yet judged on or off the constraints; 2: off, E0
                            * re-taken once the corrections have brought the state onto them
                            * (stage_energy) */
@@ -346,6 +347,10 @@ int braun__guard_start(braun_data *d, const braun_real *vdot);
 int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real *y1, braun_real h);
 /* The adaptive driver's start off its constraints, projected onto them
  * (braun_corrections.c); y = [q; v; ∫Ė] in place. */
+/* Internal: a new run's first step found its start's rank ambiguous
+ * (braun_corrections.c, start_rank_check); rk_stages projects it and
+ * starts the step again. Never returned to a caller. */
+#define BRAUN__START_AMBIGUOUS 0x4000
 int braun__project_start(braun_data *d, braun_real *y, int *moved);
 int braun__project_positions(braun_data *d, braun_real *y, int *moved, braun_real *r_start, int judge);
 

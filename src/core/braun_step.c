@@ -123,7 +123,7 @@ static int rk_stages(braun_data *d, const braun_tableau *tb, braun_real h, braun
     int stages = tb->stages;
     if (!yerr)
         while (stages > 1 && tb->b[stages - 1] == 0) stages--;
-    int s0 = 0;
+    int s0 = 0, retried = 0;
     if (first_known) {
         /* k[0], phi0, ev0 and step_rank are this start's already. */
         pv->rule_keep[0] = pv->step_rank[0];
@@ -172,7 +172,27 @@ static int rk_stages(braun_data *d, const braun_tableau *tb, braun_real h, braun
         for (int i = 0; i < n; i++) k[i] = ys[n + i];
         k[2 * n] = pv->Edot;
         if (wants_corr) {
-            st = diverged_if_integrated(d, s, braun__corrections(d, k + n, s == 0));
+            pv->start_retry = s == 0 && !pv->state_integrated && !retried;
+            st = braun__corrections(d, k + n, s == 0);
+            pv->start_retry = 0;
+            if (st == BRAUN__START_AMBIGUOUS) {
+                /* A start off a redundant set's manifold, its rank taken
+                 * from the start's residual (start_rank_check): its
+                 * positions projected, the step taken again from there,
+                 * its rank by the plain tolerance. */
+                int moved = 0;
+                braun_real r0 = 0;
+                pv->vel_judged = 0;
+                st = braun__project_positions(d, pv->y0, &moved, &r0, 1);
+                if (st) return st;
+                retried = 1;
+                pv->step_rank[0] = pv->rule_keep[0] = pv->rows;
+                pv->step_rank[1] = pv->rule_keep[1] = pv->m;
+                pv->rule_stage = 0;
+                s = -1;
+                continue;
+            }
+            st = diverged_if_integrated(d, s, st);
             if (st) return st;
             if (per_stage) /* the literal Eqs. 16-17 with Δ = Φ/h */
                 for (int i = 0; i < n; i++) {
