@@ -658,6 +658,73 @@ static void test_set_state_run_is_fresh(void **state)
     }
 }
 
+/* A system callback that changes the model while a driver runs: a
+ * callback made NULL is refused where it would be called (a crash before:
+ * the call went through NULL), and an attempt made under other options is
+ * not kept (a NaN rank_tol set from a force callback returned BRAUN_OK).
+ * Found by an outside client. */
+typedef struct meddler {
+    braun_model *model;
+    const braun_system *inner;
+    int what;
+} meddler;
+
+static int meddling_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q, void *user)
+{
+    meddler *m = user;
+    int rc = m->inner->forces(t, q, v, Q, m->inner->user);
+    if (t >= 0.5) {
+        if (m->what == 0) m->model->sys.holonomic = NULL;
+        else if (m->what == 1) m->model->sys.energy = NULL;
+        else m->model->opt.rank_tol = (braun_real)NAN;
+    }
+    return rc;
+}
+
+static int meddling_mass(braun_real t, const braun_real *q, braun_real *M, void *user)
+{
+    const meddler *m = user;
+    return m->inner->mass(t, q, M, m->inner->user);
+}
+
+static int meddling_holonomic(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                              braun_real *A, braun_real *b, braun_real *bv, void *user)
+{
+    const meddler *m = user;
+    return m->inner->holonomic(t, q, v, phi, A, b, bv, m->inner->user);
+}
+
+static int meddling_energy(braun_real t, const braun_real *q, const braun_real *v, braun_real *E,
+                           braun_real *dE_dq, braun_real *dE_dv, braun_real *dE_dt, void *user)
+{
+    const meddler *m = user;
+    return m->inner->energy(t, q, v, E, dE_dq, dE_dv, dE_dt, m->inner->user);
+}
+
+static void test_model_changed_mid_step(void **state)
+{
+    (void)state;
+    const braun_builtin *b = braun_builtin_find("pendulum");
+    const int expect[3] = {BRAUN_ERR_MISSING_CALLBACK, BRAUN_ERR_MISSING_CALLBACK, BRAUN_ERR_ARGUMENT};
+    for (int what = 0; what < 3; what++) {
+        test_sim sim;
+        meddler m = {&sim.model, &b->sys, what};
+        braun_system s = b->sys;
+        s.mass = meddling_mass;
+        s.forces = meddling_forces;
+        s.holonomic = meddling_holonomic;
+        s.energy = meddling_energy;
+        s.user = &m;
+        assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);
+        assert_int_equal(braun_set_state(&sim.data, 0, b->q0, b->v0), BRAUN_OK);
+        const int st = braun_integrate(&sim.data, BRAUN_RK4, 1e-2, 1.0, 0, NULL, NULL);
+        assert_int_equal(st, expect[what]);
+        /* Not the attempt that saw the change: the last state before it. */
+        assert_true(sim.data.t < 0.5 + 1e-9);
+        test_sim_close(&sim);
+    }
+}
+
 /* braun_eval's outputs may not share memory with its inputs. */
 static void test_eval_aliasing_refused(void **state)
 {
@@ -793,6 +860,7 @@ int main(void)
         cmocka_unit_test(test_adaptive_step_limits),
         cmocka_unit_test(test_set_state_resets_statistics),
         cmocka_unit_test(test_set_state_run_is_fresh),
+        cmocka_unit_test(test_model_changed_mid_step),
         cmocka_unit_test(test_eval_aliasing_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

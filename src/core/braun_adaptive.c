@@ -263,6 +263,7 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
          * meaning from one trial step to the next and the error test, which
          * would see the 1/h terms, rejects without end. */
         st = braun__rk_attempt(d, tb, hr, where, pv->y1, pv->yerr, first_known);
+        if (!st) st = braun__check_unchanged(d);
         /* k[0] is this start's first stage if it was kept or if a later
          * stage was reached (pv->stage is set before a stage's evaluation). */
         /* The first stage holds no correction unless they are computed

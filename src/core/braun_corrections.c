@@ -441,8 +441,7 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
     const int n = BRAUN_N(pv->n);
     const braun_real t = pv->at.t, *q = pv->at.q, *v = pv->at.v, h = pv->at.h;
     braun_real E = 0, dEdt = 0;
-    int st = braun__callback(d, s->energy(t, q, v, &E, pv->dEdq, pv->dEdv, &dEdt, s->user), "energy",
-                         t);
+    int st = BRAUN__CALL(d, s->energy, "energy", t, t, q, v, &E, pv->dEdq, pv->dEdv, &dEdt, s->user);
     if (st) return st;
     /* The outputs' finiteness in one pass (braun_all_finite's test); only
      * a failure scans them one by one, to name the culprit. */
@@ -528,8 +527,7 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
     if (!pv->de_ok) return BRAUN_OK;
     const braun_real *q = y1, *v = y1 + n;
     braun_real E = 0, dEdt = 0;
-    int st = braun__callback(d, s->energy(t1, q, v, &E, pv->dEdq, pv->dEdv, &dEdt, s->user),
-                             "energy", t1);
+    int st = BRAUN__CALL(d, s->energy, "energy", t1, t1, q, v, &E, pv->dEdq, pv->dEdv, &dEdt, s->user);
     if (st) return st;
     const braun_real phi_e = E - d->E0 - y1[2 * n];
     /* Kinetic energy is quadratic in v: the velocity correction dv changes
@@ -921,7 +919,7 @@ int braun__guard_start(braun_data *d, const braun_real *vdot)
     if (st || pv->guard_first || !energy_judged(d)) return st;
     const braun_real t = pv->at.t;
     braun_real E = 0;
-    st = braun__callback(d, s->energy(t, pv->at.q, pv->at.v, &E, NULL, NULL, NULL, s->user), "energy", t);
+    st = BRAUN__CALL(d, s->energy, "energy", t, t, pv->at.q, pv->at.v, &E, NULL, NULL, NULL, s->user);
     if (!st) st = braun__check_finite(d, 1, &E, "energy E", 0, t);
     if (st) return st;
     return guard_energy(d, E - d->E0 - pv->at.W, 1);

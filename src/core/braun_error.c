@@ -20,6 +20,14 @@ int braun__callback_failed(braun_data *d, int rc, const char *where, braun_real 
                        where, rc, -1, (double)rc, (double)t);
 }
 
+BRAUN_NOINLINE int braun__callback_missing(braun_data *d, const char *where, braun_real t)
+{
+    (void)where;
+    return braun__fail(d, BRAUN_ERR_MISSING_CALLBACK,
+                       "a system callback is NULL: the model changed while a step ran (from a callback)", -1,
+                       -1, 0, (double)t);
+}
+
 int braun__check_finite(braun_data *d, int n, const braun_real *x,
                         const char *where, int cols, braun_real t)
 {

@@ -44,7 +44,7 @@ static int stage_mass(braun_data *d)
     /* The callback's output: in the solver's own buffer when it factors in
      * place (the built-in Cholesky), else Mvals. */
     braun_real *out = pv->Mvals ? pv->Mvals : BRAUN_LS_CALL(pv, mass_buffer, pv->ls_state);
-    st = braun__callback(d, s->mass(t, pv->at.q, out, s->user), "mass", t);
+    st = BRAUN__CALL(d, s->mass, "mass", t, t, pv->at.q, out, s->user);
     if (st) return st;
     st = braun__check_finite(d, (int)pv->mass_count, out, "mass", pv->sp ? 0 : n, t);
     if (st) return st;
@@ -87,7 +87,7 @@ int braun__check_mass_claim(braun_data *d, braun_real t, const braun_real *q)
                            -1, -1, pv->mass_claim_diff, (double)t);
     const braun_system *s = &d->model->sys;
     const int n = pv->n;
-    const int st = braun__callback(d, s->mass(t, q, pv->Mcheck, s->user), "mass", t);
+    const int st = BRAUN__CALL(d, s->mass, "mass", t, t, q, pv->Mcheck, s->user);
     if (st) return st;
     braun_real *x = pv->ce, *rx = pv->tmp;
     for (int i = 0; i < n; i++) x[i] = 1 + (braun_real)((i * 7) % 11) / 16; /* no symmetry of a model */
@@ -126,8 +126,7 @@ static int stage_forces(braun_data *d)
 {
     braun_priv *pv = braun__priv(d);
     const braun_system *s = &d->model->sys;
-    int st = braun__callback(d, s->forces(pv->at.t, pv->at.q, pv->at.v, pv->Q, s->user), "forces",
-                         pv->at.t);
+    int st = BRAUN__CALL(d, s->forces, "forces", pv->at.t, pv->at.t, pv->at.q, pv->at.v, pv->Q, s->user);
     if (st) return st;
     braun__solve_rt(pv, pv->Q, pv->atil);
     return BRAUN_OK;
@@ -147,16 +146,13 @@ static int stage_constraints(braun_data *d, int with_residuals)
     const braun_real t = pv->at.t, *q = pv->at.q, *v = pv->at.v;
     int st;
     if (m > 0) {
-        st = braun__callback(d, s->holonomic(t, q, v, with_residuals ? pv->phi : NULL,
-                                             braun__A_out(pv, 0),
-                                             with_residuals ? pv->b : NULL, pv->bv, s->user),
-                             "holonomic", t);
+        st = BRAUN__CALL(d, s->holonomic, "holonomic", t, t, q, v, with_residuals ? pv->phi : NULL,
+                         braun__A_out(pv, 0), with_residuals ? pv->b : NULL, pv->bv, s->user);
         if (st) return st;
     }
     if (p > 0) {
-        st = braun__callback(d, s->nonholonomic(t, q, v, with_residuals ? pv->phi + m : NULL,
-                                                braun__A_out(pv, m), pv->bv + m, s->user),
-                             "nonholonomic", t);
+        st = BRAUN__CALL(d, s->nonholonomic, "nonholonomic", t, t, q, v,
+                         with_residuals ? pv->phi + m : NULL, braun__A_out(pv, m), pv->bv + m, s->user);
         if (st) return st;
     }
     if (with_residuals) {
@@ -429,7 +425,7 @@ static int stage_power(braun_data *d)
     const braun_real t = pv->at.t;
     braun_real Edot = 0;
     if (s->flags & BRAUN_ENERGY_INPUT) {
-        int st = braun__callback(d, s->power(t, pv->at.q, pv->at.v, &Edot, s->user), "power", t);
+        int st = BRAUN__CALL(d, s->power, "power", t, t, pv->at.q, pv->at.v, &Edot, s->user);
         if (!st) st = braun__check_finite(d, 1, &Edot, "power", 0, t);
         if (st) return st;
     }
@@ -622,7 +618,7 @@ int braun__energy(braun_data *d, braun_real t, const braun_real *q, const braun_
     const braun_system *s = &d->model->sys;
     *E = 0;
     if (!s->energy) return BRAUN_OK;
-    int st = braun__callback(d, s->energy(t, q, v, E, NULL, NULL, NULL, s->user), "energy", t);
+    int st = BRAUN__CALL(d, s->energy, "energy", t, t, q, v, E, NULL, NULL, NULL, s->user);
     if (!st) st = braun__check_finite(d, 1, E, "energy E", 0, t);
     return st;
 }

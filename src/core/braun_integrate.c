@@ -59,6 +59,7 @@ static int integrate(braun_data *d, braun_method method, braun_real h, braun_rea
         const int per_stage = d->model->opt.discretization == BRAUN_PER_STAGE;
         st = braun__rk_attempt(d, tb, hi, per_stage ? BRAUN__CORR_AT_STAGES : BRAUN__CORR_AT_START,
                                pv->y1, NULL, 0);
+        if (!st) st = braun__check_unchanged(d);
         if (st == BRAUN_ERR_ACCURACY) {
             braun__guard_rollback(d);
             return st;

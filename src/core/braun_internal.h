@@ -198,6 +198,14 @@ static inline int braun__callback(braun_data *d, int rc, const char *where, brau
 {
     return rc == 0 ? BRAUN_OK : braun__callback_failed(d, rc, where, t);
 }
+/* A system callback made NULL while a step ran (a callback that changed
+ * the model): refused with BRAUN_ERR_MISSING_CALLBACK, never called (a
+ * crash before). The model is checked whole at every driver call and
+ * output callback (braun__check_system); this is the call itself. */
+int braun__callback_missing(braun_data *d, const char *where, braun_real t);
+#define BRAUN__CALL(d, fn, where, t, ...)                                               \
+    ((fn) ? braun__callback((d), (fn)(__VA_ARGS__), (where), (t))                      \
+          : braun__callback_missing((d), (where), (t)))
 /* Check n outputs of a callback for NaN/Inf. */
 int braun__check_finite(braun_data *d, int n, const braun_real *x,
                         const char *where, int cols, braun_real t);
@@ -254,6 +262,8 @@ static inline long braun__fixed_step_count(double ratio)
 /* The system the data was made for is still model->sys: sizes, flags,
  * sparsity and the callbacks they require (a few compares per call). */
 int braun__check_system(braun_data *d);
+/* braun__check_system and braun__check_options after a driver's step (braun_step.c). */
+int braun__check_unchanged(braun_data *d);
 
 /* ------------------------------------------------------------ stages */
 /* Store the evaluation point; no stage is done there yet. */

@@ -321,6 +321,17 @@ int braun__rk_attempt(braun_data *d, const braun_tableau *tb, braun_real h,
     return st;
 }
 
+/* A system callback may have changed the model while a driver's stages
+ * ran: a step made under another system or invalid options is not kept
+ * (a NaN rank_tol set from a force callback returned BRAUN_OK; n changed
+ * ran on to t_end). The drivers check at every step they take; a single
+ * braun_step is checked at its next call, as every call is. */
+int braun__check_unchanged(braun_data *d)
+{
+    const int st = braun__check_system(d);
+    return st ? st : braun__check_options(d);
+}
+
 int braun_step(braun_data *d, braun_method method, braun_real h)
 {
     if (!d) return BRAUN_ERR_ARGUMENT;
