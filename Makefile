@@ -27,7 +27,7 @@ CFLAGS  ?=
 # Core sources see the core's headers only: a core file that includes a
 # host header does not compile.
 CORE_CPPFLAGS := -Iinclude/core -Isrc/core
-HOST_CPPFLAGS := -Iinclude/core -Iinclude/host -Isrc/core
+HOST_CPPFLAGS := -Iinclude/core -Iinclude/host -Isrc/core -Isrc/host/common
 CPPFLAGS_ALL := $(HOST_CPPFLAGS) $(CPPFLAGS)
 ifeq ($(BRAUN_SINGLE),1)
 CPPFLAGS_ALL += -DBRAUN_SINGLE
@@ -42,8 +42,8 @@ DEPFLAGS = -MMD -MP
 # The core tier: libbraun.a.
 CORE_SRC := $(sort $(shell find src/core -name '*.c'))
 # The host tier's library (error formatting, reference oracles, scene files,
-# scene-to-C): libbraun_host.a, with jansson.
-HOST_SRC := $(sort $(wildcard src/host/error/*.c src/host/reference/*.c \
+# scene-to-C; src/host/common: what they share): libbraun_host.a, with jansson.
+HOST_SRC := $(sort $(wildcard src/host/common/*.c src/host/error/*.c src/host/reference/*.c \
                               src/host/scene_file/*.c src/host/gen_c/*.c \
                               src/host/check/*.c))
 CLI_SRC  := $(sort $(wildcard src/host/cli/*.c))

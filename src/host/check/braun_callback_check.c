@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "braun_host.h"
+#include "braun_c_locale.h"
 
 typedef struct work {
     const braun_system *s;
@@ -91,7 +92,7 @@ static double max_abs(int k, const double *x)
 /* A callback refused a point of the differences (or the state): named. */
 static int failed(work *w, const char *which, int rc, double t)
 {
-    snprintf(w->rep->worst, sizeof w->rep->worst, "%s callback returned %d at t = %.6g", which, rc, t);
+    braun__c_snprintf(w->rep->worst, sizeof w->rep->worst, "%s callback returned %d at t = %.6g", which, rc, t);
     return -1;
 }
 
@@ -251,7 +252,7 @@ static int kink(work *w, double x, double sign, double f0, double fp1, double fp
         char entry[40];
         if (lab->col >= 0) snprintf(entry, sizeof entry, "%s[%d][%d]", lab->name, i, lab->col);
         else snprintf(entry, sizeof entry, "%s[%d]", lab->name, i + lab->offset);
-        snprintf(w->rep->note, sizeof w->rep->note,
+        braun__c_snprintf(w->rep->note, sizeof w->rep->note,
                  "%s is not differentiable at this state (one-sided differences: from below "
                  "%.6g, from above %.6g; the callback gives %.6g)", entry, down, up, x);
     }

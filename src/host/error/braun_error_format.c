@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "braun_host.h"
+#include "braun_c_locale.h"
 
 /* snprintf that appends: keeps writing into what is left of buf and counts
  * the full length, so the caller can report truncation as snprintf does. */
@@ -26,7 +27,7 @@ static void put(msg *w, const char *fmt, ...)
     }
     /* clang-analyzer 14 reports ap as uninitialized here (it is started
      * above): a known false positive of valist.Uninitialized. */
-    int k = vsnprintf(at, room, fmt, ap); /* NOLINT(clang-analyzer-valist.Uninitialized) */
+    int k = braun__c_vsnprintf(at, room, fmt, ap); /* NOLINT(clang-analyzer-valist.Uninitialized) */
     va_end(ap);
     if (k > 0) w->len += (size_t)k;
 }
@@ -194,8 +195,8 @@ static void describe(msg *w, const braun_data *d)
         /* Two different times that print alike at 10 digits (a driver
          * crawling in steps of 6e-10) are given in full. */
         char a10[40], b10[40];
-        snprintf(a10, sizeof a10, "%.10g", e->t);
-        snprintf(b10, sizeof b10, "%.10g", (double)d->t);
+        braun__c_snprintf(a10, sizeof a10, "%.10g", e->t);
+        braun__c_snprintf(b10, sizeof b10, "%.10g", (double)d->t);
         const int digits = strcmp(a10, b10) == 0 && e->t != (double)d->t ? 17 : 10;
         put(w, " at t = %.*g; the state kept is the last one that passed, at t = %.*g", digits, e->t,
             digits, (double)d->t);

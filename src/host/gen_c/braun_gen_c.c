@@ -3,6 +3,7 @@
  * c_name, and a and b as body references or point indices as the class's
  * field descriptors say. */
 #include "braun_scene_file.h"
+#include "braun_c_locale.h"
 
 #include <ctype.h>
 #include <float.h>
@@ -21,8 +22,15 @@ static void real(FILE *f, braun_real x)
     const int outside = a > FLT_MAX || (a != 0 && a < FLT_MIN);
     /* "%.17g" writes −0 as "-0", an int, whose cast is +0: the sign kept
      * as a double constant. */
+    char text[40];
     if (x == 0 && signbit((double)x)) fputs("R(-0.0)", f);
-    else fprintf(f, outside ? "RD(%.17g)" : "R(%.17g)", (double)x);
+    else {
+        /* In the "C" locale: a program's setlocale(LC_ALL, "") under
+         * de_DE wrote R(0,083333333333333329), a macro call of two
+         * arguments. */
+        braun__c_snprintf(text, sizeof text, outside ? "RD(%.17g)" : "R(%.17g)", (double)x);
+        fputs(text, f);
+    }
 }
 
 static void reals(FILE *f, const braun_real *x, int n)

@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "braun_reference.h"
+#include "braun_c_locale.h"
 #include "scene_json_internal.h"
 
 #ifdef BRAUN_SINGLE
@@ -195,8 +196,8 @@ static int first_failure(const braun_scene *s, braun_real t, const braun_real *q
         coincide(s, c->fields, j, q, where, sizeof where);
         *element = BRAUN_SCENE_ELEM_JOINT;
         *index = k;
-        if (rc) snprintf(what, size, "its rows (eval hook) return %d at t = %g%s", rc, (double)t, where);
-        else snprintf(what, size, "its rows are not finite at t = %g%s", (double)t, where);
+        if (rc) braun__c_snprintf(what, size, "its rows (eval hook) return %d at t = %g%s", rc, (double)t, where);
+        else braun__c_snprintf(what, size, "its rows are not finite at t = %g%s", (double)t, where);
         return 1;
     }
     for (int k = 0; k < s->neffects; k++) {
@@ -215,8 +216,8 @@ static int first_failure(const braun_scene *s, braun_real t, const braun_real *q
         coincide(s, c->fields, e, q, where, sizeof where);
         *element = BRAUN_SCENE_ELEM_EFFECT;
         *index = k;
-        if (rc) snprintf(what, size, "its %s hook returns %d at t = %g%s", hook, rc, (double)t, where);
-        else snprintf(what, size, "its %s hook is not finite at t = %g%s", hook, (double)t, where);
+        if (rc) braun__c_snprintf(what, size, "its %s hook returns %d at t = %g%s", hook, rc, (double)t, where);
+        else braun__c_snprintf(what, size, "its %s hook is not finite at t = %g%s", hook, (double)t, where);
         return 1;
     }
     return 0;
@@ -370,7 +371,7 @@ int sj_check_reference(sj_reader *r, const braun_builtin *b)
     for (int k = 0; !rc && k < count; k++) {
         if (has_ref) {
             if (braun_reference_eval(&ref, times[k], qd, vd)) {
-                snprintf(why, sizeof why, "its reference cannot be evaluated at t = %g", times[k]);
+                braun__c_snprintf(why, sizeof why, "its reference cannot be evaluated at t = %g", times[k]);
                 rc = -1;
                 break;
             }
@@ -385,7 +386,7 @@ int sj_check_reference(sj_reader *r, const braun_builtin *b)
             const int pos = !(rel_gap(n, q, sf->q0, 1, &at) <= tol);
             if (pos || !(rel_gap(n, v, sf->v0, 1, &at_v) <= tol)) {
                 if (!pos) at = at_v;
-                snprintf(why, sizeof why, "its initial %s[%d] is %.9g, the scene's %.9g (the reference "
+                braun__c_snprintf(why, sizeof why, "its initial %s[%d] is %.9g, the scene's %.9g (the reference "
                          "starts where the model does)", pos ? "q" : "v", at,
                          (double)(pos ? q : v)[at], (double)(pos ? sf->q0 : sf->v0)[at]);
                 rc = -1;
@@ -395,13 +396,13 @@ int sj_check_reference(sj_reader *r, const braun_builtin *b)
         const int ea = braun_eval(&model.d, (braun_real)times[k], q, v, 1, model.qdot, a_ref);
         const int eb = ea ? 0 : braun_eval(&scene.d, (braun_real)times[k], q, v, 1, scene.qdot, a_scene);
         if (ea || eb) {
-            snprintf(why, sizeof why, "the %s cannot be evaluated at the reference's state at t = %g (%s)",
+            braun__c_snprintf(why, sizeof why, "the %s cannot be evaluated at the reference's state at t = %g (%s)",
                      ea ? "model" : "scene", times[k], braun_status_str(ea ? ea : eb));
             rc = -1;
             break;
         }
         if (!(rel_gap(n, a_ref, a_scene, 1e-300, &at) <= tol)) {
-            snprintf(why, sizeof why, "at its state at t = %g its acceleration q''[%d] is %.9g, the "
+            braun__c_snprintf(why, sizeof why, "at its state at t = %g its acceleration q''[%d] is %.9g, the "
                      "scene's %.9g (the masses, forces or constraints differ)", times[k], at,
                      (double)a_ref[at], (double)a_scene[at]);
             rc = -1;

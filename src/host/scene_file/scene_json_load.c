@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "scene_json_internal.h"
+#include "braun_c_locale.h"
 
 #define MAX_FILE_BYTES (64L << 20)
 
@@ -60,7 +61,7 @@ int sj_fail(sj_reader *r, int at, const char *fmt, ...)
         va_list ap;
         va_start(ap, fmt);
         /* NOLINTNEXTLINE(clang-analyzer-valist.Uninitialized): misfires over several files */
-        vsnprintf(r->err + len, r->err_size - (size_t)len, fmt, ap);
+        braun__c_vsnprintf(r->err + len, r->err_size - (size_t)len, fmt, ap);
         va_end(ap);
     }
     one_line(r->err);

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "braun_models.h"
+#include "braun_c_locale.h"
 #include "scene_json_internal.h"
 
 /* Points an element makes for itself (a knife edge's contact point) are
@@ -62,8 +63,8 @@ static int missing(sj_reader *r, const char *key)
 static const char *shortest(double x, char *buf, size_t size)
 {
     for (int digits = 6; digits <= 17; digits++) {
-        snprintf(buf, size, "%.*g", digits, x);
-        if (strtod(buf, NULL) == x) break;
+        braun__c_snprintf(buf, size, "%.*g", digits, x);
+        if (braun__c_strtod(buf, NULL) == x) break;
     }
     return buf;
 }
@@ -81,9 +82,9 @@ static int number_in(sj_reader *r, json_t *v, const char *field, double least, d
     if (u || (*x != 0 && fabs(*x) < BRAUN_SCENE_MIN_NORMAL)) {
         char written[48], read[64];
         if (u) snprintf(written, sizeof written, "%.*s", u->len > 40 ? 40 : (int)u->len, u->text);
-        else snprintf(written, sizeof written, "%.3g", *x);
+        else braun__c_snprintf(written, sizeof written, "%.3g", *x);
         if (*x == 0) snprintf(read, sizeof read, "0");
-        else snprintf(read, sizeof read, "the subnormal %.6g (a few bits at most)", *x);
+        else braun__c_snprintf(read, sizeof read, "the subnormal %.6g (a few bits at most)", *x);
         return sj_fail(r, SJ_AT_VALUE, "%s: field '%s' underflows: %s%s is below the smallest "
                                        "normal number %g and would read as %s; the least nonzero "
                                        "magnitude it accepts is %g (%s)",
