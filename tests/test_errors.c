@@ -767,6 +767,43 @@ static void test_nonfinite_callback_outputs_are_named(void **state)
     test_sim_close(&sim);
 }
 
+/* braun_error_format names what braun_system_check found for a
+ * missing callback or bad sizes: it said "a callback the sizes n, m, p
+ * require is NULL" for a NULL power (required by a flag) and "invalid
+ * sizes n, m, p" for n above the dense limit. */
+static void test_format_names_missing_callback_and_sizes(void **state)
+{
+    (void)state;
+    pendulum_params prm = pend(0);
+    static unsigned char buf[1 << 14];
+    struct {
+        int what, status;
+        const char *says;
+    } cases[] = {
+        {0, BRAUN_ERR_MISSING_CALLBACK, "power is NULL but flags has BRAUN_ENERGY_INPUT"},
+        {1, BRAUN_ERR_MISSING_CALLBACK, "holonomic is NULL but m > 0"},
+        {2, BRAUN_ERR_SIZE, "n, m or p above BRAUN_MAX_DENSE"},
+        {3, BRAUN_ERR_SIZE, "m or p < 0"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        braun_model m;
+        memset(&m, 0, sizeof m); /* filled in by hand: braun_data_init checks it */
+        m.sys = pendulum_system(&prm);
+        if (cases[k].what == 0) m.sys.flags |= BRAUN_ENERGY_INPUT;
+        if (cases[k].what == 1) m.sys.holonomic = NULL;
+        if (cases[k].what == 2) m.sys.n = 5000;
+        if (cases[k].what == 3) m.sys.p = -1;
+        braun_data d;
+        assert_int_equal(braun_data_init(&d, &m, buf, sizeof buf), cases[k].status);
+        char what[300];
+        braun_error_format(&d, what, sizeof what);
+        if (!strstr(what, cases[k].says)) {
+            print_error("case %d: '%s' does not name '%s'\n", cases[k].what, what, cases[k].says);
+            fail();
+        }
+    }
+}
+
 static void test_status_names(void **state)
 {
     (void)state;
@@ -797,6 +834,7 @@ int main(void)
         cmocka_unit_test(test_mass_lost_at_a_stage_is_divergence),
         cmocka_unit_test(test_infinite_jacobian_is_named),
         cmocka_unit_test(test_nonfinite_callback_outputs_are_named),
+        cmocka_unit_test(test_format_names_missing_callback_and_sizes),
         cmocka_unit_test(test_status_names),
     };
     return cmocka_run_group_tests_name("errors", tests, NULL, NULL);

@@ -92,7 +92,15 @@ static void describe(msg *w, const braun_data *d)
         if (where) break;
         return; /* nothing recorded: no time to report */
     case BRAUN_ERR_SIZE:
-        put(w, "invalid sizes n, m, p");
+        /* The rule broken (braun_system_check's words): "invalid sizes n,
+         * m, p" alone did not say which. */
+        if (where && strcmp(where, "sizes (dense limit)") == 0)
+            put(w, "invalid sizes: n = %.0f for the dense kernels, which take n <= BRAUN_MAX_DENSE "
+                   "(4096) and m + p <= 8192 (a larger sparse system needs a sparse backend)", e->value);
+        else if (where)
+            put(w, "invalid sizes: %s", where);
+        else
+            put(w, "invalid sizes n, m, p");
         return;
     case BRAUN_ERR_BUFFER:
         if (where && strncmp(where, "buffer", 6) == 0 && d->model)
@@ -163,7 +171,12 @@ static void describe(msg *w, const braun_data *d)
             put(w, "too many steps requested (%.3g)", e->value);
         break;
     case BRAUN_ERR_MISSING_CALLBACK:
-        put(w, "a callback the sizes n, m, p require is NULL");
+        /* Which callback, and what requires it (the sizes or a flag:
+         * "power is NULL but flags has BRAUN_ENERGY_INPUT"). */
+        if (where)
+            put(w, "a required callback is missing: %s", where);
+        else
+            put(w, "a callback the system requires is NULL");
         return;
     case BRAUN_ERR_NO_ENERGY_LAW:
         put(w, "energy correction requested but the system has no energy law");
