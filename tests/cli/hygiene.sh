@@ -352,6 +352,27 @@ scene "$TMP/len.json" '{"name": "b", "type": "particle", "mass": 1, "position": 
 expect "distance of 1e-200 taken from the initial state: refused at load" 2 \
     "joint #1: field 'length' \(left out: taken from the initial state\) is too small" \
     check "$TMP/len.json"
+# Beyond the range: the builder's "joint parameters are not finite numbers
+# in range" or "rod length must be a finite number > 0" named neither the
+# length nor the limit.
+far='{"name": "b", "type": "particle", "mass": 1, "position": [6e11, 0]}'
+scene "$TMP/far.json" "$far" '{"name": "cord", "type": "distance", "a": [-6e11, 0], "b": "b"}'
+expect "distance of 1.2e12 taken from the initial state: refused naming the length and the limit" 2 \
+    "far.json:1:[0-9]+: joint 'cord': field 'length' \(left out: taken from the initial state\) is 1.2e\+12, beyond the limit \|x\| <= 1e\+12" \
+    check "$TMP/far.json"
+printf '{"name": "s", "bodies": [%s], "rods": [{"name": "r", "a": [-6e11, 0], "b": "b", "mass": 1}]}\n' "$far" > "$TMP/farrod.json"
+expect "rod of 1.2e12 taken from the initial state: refused naming the length and the limit" 2 \
+    "farrod.json:1:[0-9]+: rod 'r': field 'length' \(left out: taken from the initial state\) is 1.2e\+12, beyond the limit" \
+    check "$TMP/farrod.json"
+printf '{"name": "s", "bodies": [%s], "effects": [{"name": "k", "type": "spring", "a": [-6e11, 0], "b": "b", "stiffness": 1}]}\n' "$far" > "$TMP/farspring.json"
+expect "spring rest length of 1.2e12 taken from the initial state: refused naming it and the limit" 2 \
+    "farspring.json:1:[0-9]+: effect 'k': field 'rest_length' \(left out: taken from the initial state\) is 1.2e\+12, beyond the limit" \
+    check "$TMP/farspring.json"
+scene "$TMP/fardrive.json" '{"name": "b", "type": "particle", "mass": 1, "position": [0, 1e12]}' \
+    '{"name": "cord", "type": "distance", "a": [0, -9], "b": "b", "drive": {"type": "sine", "offset": 1, "amplitude": 0.5, "omega": 1, "phase": 0}}'
+expect "driven distance 1e12 + 9 apart: the unused length is named with its value and the limit" 2 \
+    "fardrive.json:1:[0-9]+: joint 'cord': field 'length' \(left out: taken from the initial state, though 'drive' is used\) is 1000000000009, beyond the limit" \
+    check "$TMP/fardrive.json"
 scene "$TMP/step.json" '{"name": "b", "type": "particle", "mass": 1, "position": [1, 0]}' \
     '{"type": "distance", "a": [0, 0], "b": "b", "drive": {"type": "sine", "amplitude": 1, "omega": 1e-310}}'
 expect "a drive's omega of 1e-310 (subnormal): refused at load" 2 "field 'omega' underflows: 1e-310" \

@@ -117,6 +117,27 @@ static int scale_value(sj_reader *r, const char *field, const double *x, int cou
                    count > 1 ? "length " : "", len, BRAUN_SCENE_MIN_SCALE);
 }
 
+/* A value derived from the initial state for a field left out (a
+ * distance's length, a spring's rest length) is in the range of a given
+ * one: two points 1.2e12 apart made a length the scene builder refused as
+ * "rod length must be a finite number > 0" or "joint parameters are not
+ * finite numbers in range", naming neither the length nor the limit. */
+static int derived_in_range(sj_reader *r, const char *field, const double *x, int count,
+                            const char *instead)
+{
+    for (int i = 0; i < count; i++) {
+        if (isfinite(x[i]) && fabs(x[i]) <= BRAUN_SCENE_MAX_ABS) continue;
+        char value[32], entry[16] = "", used[80] = "";
+        if (count > 1) snprintf(entry, sizeof entry, "[%d]", i);
+        if (instead) snprintf(used, sizeof used, ", though '%.40s' is used", instead);
+        return sj_fail(r, SJ_AT_VALUE, "%s: field '%s'%s (left out: taken from the initial state%s) "
+                                       "is %s, beyond the limit |x| <= %g of a scene's numbers",
+                       r->who, field, entry, used, shortest(x[i], value, sizeof value),
+                       BRAUN_SCENE_MAX_ABS);
+    }
+    return 0;
+}
+
 /* Member key as a number (least: as number_in): 0 read, 1 absent and
  * optional, -1 error. */
 static int num_field_in(sj_reader *r, json_t *obj, const char *key, int required, double least,
@@ -627,7 +648,8 @@ static int read_fields(sj_reader *r, json_t *obj, const braun_scene_field *field
 /* Values a class's defaults hook derived from the initial state for fields
  * left out (a distance's length, a spring's rest length) meet the limits
  * of given ones. A field whose alternative is given (a length beside a
- * drive) is unused and not checked. */
+ * drive) is unused and only held to the range of a scene's numbers, which
+ * the scene builder checks too (with no word of the field). */
 static int derived_values(sj_reader *r, json_t *obj, const braun_scene_field *fields,
                           const void *elem, unsigned given)
 {
@@ -636,12 +658,13 @@ static int derived_values(sj_reader *r, json_t *obj, const braun_scene_field *fi
         if (f->kind != BRAUN_FIELD_REAL || i >= 32 || BRAUN_FIELD_GIVEN(given, i)) continue;
         if (!(f->flags & (BRAUN_FIELD_POSITIVE | BRAUN_FIELD_NONNEG | BRAUN_FIELD_NONZERO)))
             continue;
-        if (f->excludes && json_object_get(obj, f->excludes)) continue;
+        const int unused = f->excludes && json_object_get(obj, f->excludes);
         const braun_real *v = (const braun_real *)(const void *)((const char *)elem + f->offset);
         const int count = f->count > 0 && f->count <= 8 ? f->count : 1;
         double x[8];
         for (int k = 0; k < count; k++) x[k] = (double)v[k];
-        if (scale_value(r, f->key, x, count, 1)) return -1;
+        if (derived_in_range(r, f->key, x, count, unused ? f->excludes : NULL)) return -1;
+        if (!unused && scale_value(r, f->key, x, count, 1)) return -1;
     }
     return 0;
 }
@@ -704,7 +727,7 @@ static int read_rod(sj_reader *r, json_t *obj, int k)
                           : (braun_real)x;
     if (st == 1) {
         x = (double)rod->length;
-        return scale_value(r, "length", &x, 1, 1);
+        return derived_in_range(r, "length", &x, 1, NULL) || scale_value(r, "length", &x, 1, 1) ? -1 : 0;
     }
     return 0;
 }
