@@ -774,6 +774,41 @@ check "a revolute3d drive with f(0) = 1 runs onto theta = 1 (the tip at (cos 1, 
       BEGIN { n = split(h, c, \",\"); for (i = 1; i <= n; i++) { if (c[i] ~ /^tip.x/) x = i; if (c[i] ~ /^tip.y/) y = i } }
       { dx = \$x - cos(1); dy = \$y + sin(1); exit !(x && y && dx * dx + dy * dy < 1e-12) }"' \
     sh "$rc" "$TMP/drv1.csv"
+# The rule is cos f(0) > 0, the angle taken modulo a full turn (the docs
+# said |f(0)| >= pi/2 is refused): f(0) = 1 + 2 pi runs onto the same
+# tip, f(0) = 3 + 2 pi is refused.
+sed 's/"value": 3.0/"value": 7.283185307179586/' "$TMP/drv3.json" > "$TMP/drv7.json"
+"$BRAUN" run "$TMP/drv7.json" --dt 1e-3 --t-end 1 --out "$TMP/drv7.csv" --summary /dev/null 2> /dev/null; rc=$?
+check "a revolute3d drive with f(0) = 1 + 2 pi runs onto theta = 1 (a turn on, the same tip)" sh -c '
+    [ "$1" -eq 0 ] && tail -n 1 "$2" | awk -F, -v h="$(head -n 1 "$2")" "
+      BEGIN { n = split(h, c, \",\"); for (i = 1; i <= n; i++) { if (c[i] ~ /^tip.x/) x = i; if (c[i] ~ /^tip.y/) y = i } }
+      { dx = \$x - cos(1); dy = \$y + sin(1); exit !(x && y && dx * dx + dy * dy < 1e-12) }"' \
+    sh "$rc" "$TMP/drv7.csv"
+sed 's/"value": 3.0/"value": 9.283185307179586/' "$TMP/drv3.json" > "$TMP/drv9.json"
+"$BRAUN" check "$TMP/drv9.json" > /dev/null 2> "$TMP/drv9.err"; rc=$?
+check "a revolute3d drive with f(0) = 3 + 2 pi is refused at load (cos f(0) <= 0)" sh -c '
+    [ "$1" -eq 2 ] && grep -q "joint .hinge.: drive: f(0) is pi/2 or more" "$2"' sh "$rc" "$TMP/drv9.err"
+# A function of time's value, offset and phase are 0 when left out, in
+# every type ({"type": "constant"} was refused, a linear without its value
+# and a sine without offset or phase accepted); the shape is required.
+full='"drive": {"type": "linear", "value": 0, "rate": 6.283185307179586}'
+fn_same() { # fn_same NAME GIVEN LEFT-OUT: the two drives run alike
+    sed "s/$full/\"drive\": $2/" data/driven-crank.json > "$TMP/fn-a.json"
+    sed "s/$full/\"drive\": $3/" data/driven-crank.json > "$TMP/fn-b.json"
+    "$BRAUN" run "$TMP/fn-a.json" --dt 1e-3 --t-end 0.2 --out "$TMP/fn-a.csv" --summary /dev/null 2> /dev/null; ra=$?
+    "$BRAUN" run "$TMP/fn-b.json" --dt 1e-3 --t-end 0.2 --out "$TMP/fn-b.csv" --summary /dev/null 2> "$TMP/fn-b.err"; rb=$?
+    check "$1" sh -c '[ "$1" -eq 0 ] && [ "$2" -eq 0 ] && ! grep -q "$3" "$4" && cmp -s "$5" "$6"' \
+        sh "$ra" "$rb" "$full" "$TMP/fn-b.json" "$TMP/fn-a.csv" "$TMP/fn-b.csv"
+}
+fn_same "a constant drive without its value is 0" '{"type": "constant", "value": 0}' '{"type": "constant"}'
+fn_same "a linear drive without its value starts at 0" \
+    '{"type": "linear", "value": 0, "rate": 6.283185307179586}' '{"type": "linear", "rate": 6.283185307179586}'
+fn_same "a sine drive without offset and phase has them 0" \
+    '{"type": "sine", "offset": 0, "amplitude": 0.5, "omega": 2, "phase": 0}' '{"type": "sine", "amplitude": 0.5, "omega": 2}'
+sed "s/$full/\"drive\": {\"type\": \"sine\", \"offset\": 0, \"amplitude\": 0.5}/" data/driven-crank.json > "$TMP/fn-c.json"
+"$BRAUN" check "$TMP/fn-c.json" > /dev/null 2> "$TMP/fn-c.err"; rc=$?
+check "a sine drive without its omega (the shape) is refused" sh -c '
+    [ "$1" -eq 2 ] && grep -q "field .drive.: missing field .omega." "$2"' sh "$rc" "$TMP/fn-c.err"
 # A straight two-bar chain closed to a point within reach: a singular
 # start whose rows disagree to first order (consistent: no, the run stops
 # at once) though a configuration 0.21 away meets them: check says so.

@@ -274,7 +274,10 @@ static int fn_object(sj_reader *r, json_t *v, braun_scene_fn *f)
     int st;
     if (strcmp(type, "constant") == 0) {
         f->kind = BRAUN_FN_CONSTANT;
-        st = check_fields(r, v, k_const) || num_field(r, v, "value", 1, &a) < 0;
+        /* value, offset and phase are 0 when left out, in every type (the
+         * constant's value was required, the linear's not); the other
+         * fields are the function's shape and required. */
+        st = check_fields(r, v, k_const) || num_field(r, v, "value", 0, &a) < 0;
     } else if (strcmp(type, "linear") == 0) {
         f->kind = BRAUN_FN_LINEAR;
         st = check_fields(r, v, k_lin) || num_field(r, v, "value", 0, &a) < 0 ||
