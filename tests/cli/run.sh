@@ -157,6 +157,16 @@ bad_msg "--dt 0x1p-10: not a decimal number" "^braun: --dt: '0x1p-10' is not a d
     run pendulum --dt 0x1p-10 --t-end 1
 bad_msg "--dt ' 1e-3': not a decimal number" "^braun: --dt: ' 1e-3' is not a decimal number" \
     run pendulum --dt " 1e-3" --t-end 1
+# ... and integers as strictly (strtol took leading blanks: gen chain ' 3'
+# made a chain of 3).
+bad_msg "gen chain ' 3': not an integer" "^braun: N must be an integer in \[1, 2000\] \(got ' 3'\)" \
+    gen chain " 3"
+bad_msg "--every ' 2': not an integer" "^braun: --every must be an integer >= 1 \(got ' 2'\)" \
+    run pendulum --dt 1e-3 --t-end 1 --out "$TMP/e.csv" --every " 2"
+bad_msg "--max-steps ' 5': not a decimal number" "^braun: --max-steps: ' 5' is not a decimal number" \
+    run pendulum --integrator dopri5 --dt 1e-3 --t-end 1 --max-steps " 5"
+bad_msg "plot --frames ' 3': not an integer" "^braun: --frames must be an integer from 1 to 1000 \(got ' 3'\)" \
+    plot pendulum --dt 1e-3 --t-end 1 -o "$TMP/f.svg" --frames " 3"
 bad_msg "--every beyond a long: too large, not 'an integer >= 1'" "^braun: --every 99999999999999999999 is too large" \
     run pendulum --dt 1e-3 --t-end 1 --out "$TMP/e.csv" --every 99999999999999999999
 bad_msg "gen-c of a built-in model without a scene file: says so" \

@@ -17,6 +17,10 @@ int braun_cli_decimal(const char *s);
 /* s starts with a blank or is a hexadecimal number ("0x", "-0X"): what
  * strtod takes and a decimal number is not. */
 int braun_cli_hex_or_blank(const char *s);
+/* s is a decimal integer and nothing else: an optional sign, then digits
+ * (cli_real.c). strtol alone also takes leading blanks (gen chain ' 3'),
+ * which a real option refuses. */
+int braun_cli_integer_text(const char *s);
 
 /* A built-in model's name (the library's or the tool's own: andrews). */
 int braun_cli_is_model_name(const char *arg);

@@ -58,7 +58,7 @@ static int parse_every(const char *s, long *out)
 {
     char *end;
     errno = 0;
-    long k = strtol(s, &end, 10);
+    long k = braun_cli_integer_text(s) ? strtol(s, &end, 10) : (end = (char *)s, 0);
     if (end != s && *end == '\0' && errno == ERANGE && k > 0)
         return braun_cli_error("--every %s is too large: at most %ld (every row but the first and "
                                "the last is left out beyond the run's steps anyway)", s, LONG_MAX);
@@ -76,7 +76,7 @@ static int parse_max_steps(const char *s, long *out)
     static const char *const opt = "--max-steps";
     char *end;
     errno = 0;
-    const long k = strtol(s, &end, 10);
+    const long k = braun_cli_integer_text(s) ? strtol(s, &end, 10) : (end = (char *)s, 0);
     if (end != s && *end == '\0' && errno != ERANGE) {
         if (k < 1) return braun_cli_error("%s must be >= 1 (got %s)", opt, s);
         *out = k;
@@ -148,7 +148,7 @@ static int parse_count(const char *opt, const char *s, long lo, long hi, long *o
 {
     char *end;
     errno = 0;
-    long k = strtol(s, &end, 10);
+    long k = braun_cli_integer_text(s) ? strtol(s, &end, 10) : (end = (char *)s, 0);
     if (end == s || *end != '\0' || errno == ERANGE || k < lo || k > hi)
         return braun_cli_error("%s must be an integer from %ld to %ld (got '%s')", opt, lo, hi, s);
     *out = k;

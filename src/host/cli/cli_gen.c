@@ -286,7 +286,7 @@ int braun_cli_gen(int argc, char **argv)
                                ladder ? "cells" : fourbar ? "four-bar windows" : spatial ? "bars" : "links");
     char *end;
     errno = 0;
-    long N = strtol(count, &end, 10);
+    long N = braun_cli_integer_text(count) ? strtol(count, &end, 10) : (end = (char *)count, 0);
     if (end == count || *end != '\0' || errno == ERANGE || N < 1 || N > GEN_MAX_LINKS)
         return braun_cli_error("N must be an integer in [1, %d] (got '%s')", GEN_MAX_LINKS, count);
 

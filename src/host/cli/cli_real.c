@@ -29,6 +29,14 @@ int braun_cli_hex_or_blank(const char *s)
     return *s == ' ' || *s == '\t' || hexadecimal(s);
 }
 
+int braun_cli_integer_text(const char *s)
+{
+    const char *p = (*s == '+' || *s == '-') ? s + 1 : s;
+    if (!(*p >= '0' && *p <= '9')) return 0;
+    while (*p >= '0' && *p <= '9') p++;
+    return *p == '\0';
+}
+
 /* A real number filling the whole argument. NaN and Inf are never
  * meaningful here; nor are numbers a double cannot hold: beyond its range,
  * or nonzero below its smallest normal value (strtod's ERANGE: "1e-400"
