@@ -167,6 +167,11 @@ bad_msg "--max-steps ' 5': not a decimal number" "^braun: --max-steps: ' 5' is n
     run pendulum --integrator dopri5 --dt 1e-3 --t-end 1 --max-steps " 5"
 bad_msg "plot --frames ' 3': not an integer" "^braun: --frames must be an integer from 1 to 1000 \(got ' 3'\)" \
     plot pendulum --dt 1e-3 --t-end 1 -o "$TMP/f.svg" --frames " 3"
+# dopri5's first step below its default minimum (1e-12 of the span): the
+# run stopped with exit 1, BRAUN_ERR_STEP_TOO_SMALL (h = 100) at t = 0.
+bad_msg "dopri5 --dt 1 --t-end 1e15: below the minimum step, said with the numbers" \
+    "^braun: --dt 1 is below the adaptive step's minimum 1000 at --t-end 1e\+15 .*--t-end <= 1e\+12 or --dt >= 1000$" \
+    run pendulum --integrator dopri5 --dt 1 --t-end 1e15
 bad_msg "--every beyond a long: too large, not 'an integer >= 1'" "^braun: --every 99999999999999999999 is too large" \
     run pendulum --dt 1e-3 --t-end 1 --out "$TMP/e.csv" --every 99999999999999999999
 bad_msg "gen-c of a built-in model without a scene file: says so" \

@@ -367,6 +367,19 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
     if (a->ref_h > 0 && a->method != BRAUN_DOPRI5 && a->dt == a->dt && !(a->ref_h < a->dt))
         return braun_cli_error("--ref-h %g: the reference's substep must be finer than --dt %g (the "
                                "trajectory error would measure the reference)", a->ref_h, a->dt);
+    /* The adaptive driver's default minimum step, 1e-12 of the span (at
+     * least 16 eps t_end; the run starts at 0): a first step --dt below it
+     * is raised to it, and a step there that fails is the end of the run
+     * (--dt 1 --t-end 1e15 stopped with BRAUN_ERR_STEP_TOO_SMALL, h = 100,
+     * at t = 0, exit 1). */
+    if (a->method == BRAUN_DOPRI5 && a->dt > 0 && a->t_end > 0) {
+        const double h_min = fmax(1e-12 * a->t_end, 16 * DBL_EPSILON * a->t_end);
+        if (a->dt < h_min)
+            return braun_cli_error("--dt %g is below the adaptive step's minimum %g at --t-end %g "
+                                   "(1e-12 of the span): dopri5 would take no step below %g; "
+                                   "give --t-end <= %g or --dt >= %g", a->dt, h_min, a->t_end,
+                                   h_min, a->dt * 1e12, h_min);
+    }
     if (a->method == BRAUN_DOPRI5 && a->rtol == 0 && a->atol == 0)
         return braun_cli_error("--rtol and --atol cannot both be 0");
     /* rtol >= 1 asks for no correct digit (the library refuses it too). */
