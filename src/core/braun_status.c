@@ -19,7 +19,7 @@ const char *braun_status_str(int status)
     case BRAUN_ERR_DIVERGED: return "BRAUN_ERR_DIVERGED: the solution left the finite range (step too large?)";
     case BRAUN_ERR_STEP_TOO_SMALL: return "BRAUN_ERR_STEP_TOO_SMALL: adaptive step fell below its minimum";
     case BRAUN_ERR_TOO_MANY_STEPS: return "BRAUN_ERR_TOO_MANY_STEPS: step limit reached before t_end";
-    case BRAUN_ERR_MISSING_CALLBACK: return "BRAUN_ERR_MISSING_CALLBACK: a callback the sizes require is NULL";
+    case BRAUN_ERR_MISSING_CALLBACK: return "BRAUN_ERR_MISSING_CALLBACK: a callback the sizes or flags require is NULL";
     case BRAUN_ERR_INCONSISTENT: return "BRAUN_ERR_INCONSISTENT: dependent constraint rows disagree: the constraints have no solution here";
     case BRAUN_ERR_TIME_RESOLUTION: return "BRAUN_ERR_TIME_RESOLUTION: the step cannot advance time in this precision (t + h rounds to t or far from it)";
     case BRAUN_ERR_ACCURACY: return "BRAUN_ERR_ACCURACY: the residuals exceed the accuracy guard";
