@@ -22,9 +22,9 @@ static void real(FILE *f, braun_real x)
     const int outside = a > FLT_MAX || (a != 0 && a < FLT_MIN);
     /* "%.17g" writes −0 as "-0", an int, whose cast is +0: the sign kept
      * as a double constant. */
-    char text[40];
     if (x == 0 && signbit((double)x)) fputs("R(-0.0)", f);
     else {
+        char text[40];
         /* In the "C" locale: a program's setlocale(LC_ALL, "") under
          * de_DE wrote R(0,083333333333333329), a macro call of two
          * arguments. */
