@@ -3,6 +3,7 @@
  * quantity is found and named. The misprints are the kind the corrections
  * hide: the library runs them with status 0. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "test_util.h"
@@ -244,6 +245,284 @@ static void test_kink_noted(void **state)
     assert_true(rep.note[0] == '\0');
 }
 
+
+/* Callback outputs that are not finite at the state: each named as such,
+ * output and entry, with BRAUN_ERR_NONFINITE, with or without an energy law
+ * (without one an Inf column of A_vv passed as "within the round-off", a
+ * NaN Φ_v was reported as A_vv[2] with BRAUN_ERR_ARGUMENT). A knife edge
+ * (n = 3, p = 1) and a rod (n = 2, m = 1). */
+static int bad_out; /* which output is spoilt (0: none) */
+static double bad_value;
+static int nf_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t; (void)q; (void)u;
+    memset(M, 0, 9 * sizeof *M);
+    M[0] = M[4] = 1;
+    M[8] = 0.1;
+    if (bad_out == 7) M[4] = bad_value;
+    return 0;
+}
+static int nf_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q, void *u)
+{
+    (void)t; (void)q; (void)v; (void)u;
+    Q[0] = Q[1] = Q[2] = 0;
+    if (bad_out == 8) Q[2] = bad_value;
+    return 0;
+}
+static int nf_knife(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                    braun_real *A, braun_real *bv, void *u)
+{
+    (void)t; (void)u;
+    const double c = cos(q[2]), s = sin(q[2]);
+    if (phi) phi[0] = -s * v[0] + c * v[1] - 0.5 * v[2];
+    if (A) { A[0] = -s; A[1] = c; A[2] = -0.5; }
+    if (bv) bv[0] = (c * v[0] + s * v[1]) * v[2];
+    if (bad_out == 1 && phi) phi[0] = bad_value;
+    if (bad_out == 2 && A) A[1] = bad_value;
+    if (bad_out == 3 && bv) bv[0] = bad_value;
+    return 0;
+}
+static int nf_rod(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                  braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    (void)t; (void)u;
+    if (phi) phi[0] = q[0] * q[0] + q[1] * q[1] - 1;
+    if (A) { A[0] = 2 * q[0]; A[1] = 2 * q[1]; A[2] = 0; }
+    if (b) b[0] = 0;
+    if (bv) bv[0] = -2 * (v[0] * v[0] + v[1] * v[1]);
+    if (bad_out == 4 && A) A[1] = bad_value;
+    if (bad_out == 5 && b) b[0] = bad_value;
+    if (bad_out == 6 && phi) phi[0] = bad_value;
+    return 0;
+}
+static int nf_energy(braun_real t, const braun_real *q, const braun_real *v, braun_real *E,
+                     braun_real *dq, braun_real *dv, braun_real *dt, void *u)
+{
+    (void)t; (void)q; (void)u;
+    const double Md[3] = {1, 1, 0.1};
+    double e = 0;
+    for (int i = 0; i < 3; i++) {
+        e += 0.5 * Md[i] * v[i] * v[i];
+        if (dv) dv[i] = Md[i] * v[i];
+        if (dq) dq[i] = 0;
+    }
+    if (E) *E = e;
+    if (dt) *dt = 0;
+    if (bad_out == 9 && dq) dq[1] = bad_value;
+    return 0;
+}
+
+static void test_nonfinite_named(void **state)
+{
+    (void)state;
+    static const char *const expect[10] = {
+        NULL, "Phi_v[0] is %s (nonholonomic callback at t = 0)",
+        "A_vv[0][1] is %s (nonholonomic callback at t = 0)", "b_vv[0] is %s (nonholonomic callback at t = 0)",
+        "A_q[0][1] is %s (holonomic callback at t = 0)", "b_q[0] is %s (holonomic callback at t = 0)",
+        "Phi_q[0] is %s (holonomic callback at t = 0)", "M[1][1] is %s (mass callback at t = 0)",
+        "Q[2] is %s (forces callback at t = 0)", "dE_dq[1] is %s (energy callback at t = 0)"};
+    static const double values[3] = {INFINITY, -INFINITY, NAN};
+    static const char *const said[3] = {"+Inf", "-Inf", "NaN"};
+    const braun_real q0[3] = {0.6, -0.8, 0.3}, v0[3] = {1, 0.5, 1};
+    for (int law = 0; law < 2; law++)
+        for (bad_out = 1; bad_out <= 9; bad_out++)
+            for (int k = 0; k < 3; k++) {
+                if (bad_out == 9 && !law) continue;
+                bad_value = values[k];
+                /* Rows of both kinds: the knife on the plane, the rod's row
+                 * on q[0], q[1]. */
+                braun_system s = {0};
+                s.n = 3;
+                s.m = 1;
+                s.p = 1;
+                s.flags = BRAUN_MASS_CONSTANT;
+                s.mass = nf_mass;
+                s.forces = nf_forces;
+                s.holonomic = nf_rod;
+                s.nonholonomic = nf_knife;
+                s.energy = law ? nf_energy : NULL;
+                braun_callback_report rep;
+                const int st = braun_check_callbacks(&s, 0, q0, v0, 0, &rep);
+                char want[160];
+                snprintf(want, sizeof want, expect[bad_out], said[k]);
+                print_message("law %d, output %d = %s: %d %s\n", law, bad_out, said[k], st, rep.worst);
+                assert_int_equal(st, BRAUN_ERR_NONFINITE);
+                assert_string_equal(rep.worst, want);
+            }
+    bad_out = 0;
+}
+
+
+/* A ball (radius 0.2 m) rolling on a turntable turning at W: the contact
+ * rows v − Rω + W×r have a term without v, whose ideal force does work.
+ * Declared BRAUN_SCLERONOMIC that work is dropped and the energy law is
+ * wrong (the run went 1 m astray): the check names the row and the value
+ * of Φ_v − A_vv v. Without the flag, or with W = 0, it passes. */
+static double table_w;
+static int ball_mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t; (void)q; (void)u;
+    const double I = 0.4 * 1.5 * 0.04;
+    memset(M, 0, 25 * sizeof *M);
+    M[0] = M[6] = 1.5;
+    M[12] = M[18] = M[24] = I;
+    return 0;
+}
+static int ball_forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q, void *u)
+{
+    (void)t; (void)q; (void)v; (void)u;
+    for (int i = 0; i < 5; i++) Q[i] = 0;
+    return 0;
+}
+static int ball_rows(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                     braun_real *A, braun_real *bv, void *u)
+{
+    (void)t; (void)u;
+    const double R = 0.2, W = table_w;
+    if (phi) {
+        phi[0] = v[0] - R * v[3] + W * q[1];
+        phi[1] = v[1] + R * v[2] - W * q[0];
+    }
+    if (A) {
+        const double a[10] = {1, 0, 0, -R, 0, 0, 1, R, 0, 0};
+        for (int i = 0; i < 10; i++) A[i] = a[i];
+    }
+    if (bv) {
+        bv[0] = -W * v[1];
+        bv[1] = W * v[0];
+    }
+    return 0;
+}
+
+static void test_scleronomic_homogeneous(void **state)
+{
+    (void)state;
+    braun_system s = {0};
+    s.n = 5;
+    s.p = 2;
+    s.mass = ball_mass;
+    s.forces = ball_forces;
+    s.nonholonomic = ball_rows;
+    const braun_real q0[5] = {0.5, 0.1, 0, 0, 0};
+    braun_callback_report rep;
+    for (int k = 0; k < 2; k++) {
+        table_w = k ? 0 : 3;
+        /* On the constraints: ω from the contact rows. */
+        const braun_real v0[5] = {0.3, -0.4, (table_w * 0.5 + 0.4) / 0.2, (0.3 + table_w * 0.1) / 0.2, 2};
+        s.flags = BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC;
+        const int st = braun_check_callbacks(&s, 0, q0, v0, 0, &rep);
+        print_message("turntable W = %g, scleronomic: %d %s (%.3g)\n", table_w, st, rep.worst,
+                      rep.homogeneous_v);
+        if (table_w > 0) {
+            assert_int_equal(st, BRAUN_ERR_ARGUMENT);
+            assert_string_equal(rep.worst, "Phi_v[1] - A_vv[1] v = -1.5 at this state: BRAUN_SCLERONOMIC "
+                                           "needs each nonholonomic row homogeneous in v");
+            assert_true(rep.homogeneous_v > 0.5 && rep.worst_value == rep.homogeneous_v);
+        } else {
+            assert_int_equal(st, BRAUN_OK);
+            assert_true(rep.homogeneous_v == 0);
+        }
+        /* Without the flag the term is the core's to account for. */
+        s.flags = BRAUN_MASS_CONSTANT;
+        assert_int_equal(braun_check_callbacks(&s, 0, q0, v0, 0, &rep), BRAUN_OK);
+        assert_true(rep.homogeneous_v == 0);
+    }
+}
+
+
+/* Correct scenes where something is large — an unrelated body far away, a
+ * bob far from its cord's anchor, a drive's phase or angle of 1e12, the
+ * time — pass; the same scenes with b_q or b_qv off by slip are still
+ * caught. The step along the motion was the largest coordinate's for all
+ * coordinates and time (a particle at 1e6 m moved the bob and the sine
+ * drive's time by 6: "b_qv[0] off by 0.81"), and the differences in t were
+ * never larger than time's own step (an angle 1e12 + t is the same at
+ * t ± 6e-6: "b_q[5] off by 1"). */
+static braun_system far_base;
+static int far_which, far_row; /* 1: b_q, 2: b_qv of far_row, off by far_slip */
+static double far_slip;
+static int far_holonomic(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                         braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    const int r = far_base.holonomic(t, q, v, phi, A, b, bv, u);
+    if (far_which == 1 && b) b[far_row] *= 1 - far_slip;
+    if (far_which == 2 && bv) bv[far_row] *= 1 - far_slip;
+    return r;
+}
+
+static void test_large_scales(void **state)
+{
+    (void)state;
+    static const char *const rev3d =
+        "{\"name\": \"arm\", \"ground\": {\"points\": {\"pivot\": [0, 0, 0], \"anchor\": [1.5, -1, 0.5]}},"
+        " \"bodies\": [{\"name\": \"arm\", \"type\": \"rigid3d\", \"mass\": 1, \"inertia\": [0.0017, 0.084,"
+        " 0.084], \"position\": [0.5, 0, 0], \"points\": {\"root\": [-0.5, 0, 0], \"tip\": [0.5, 0, 0]}},"
+        " {\"name\": \"bob\", \"type\": \"rigid3d\", \"mass\": 0.5, \"inertia\": [0.0008, 0.042, 0.042],"
+        " \"position\": [1, -0.5, 0], \"orientation\": [0.7071067811865476, 0, 0, -0.7071067811865476],"
+        " \"velocity\": [0, 0, 1], \"omega\": [-2, 0, 0], \"points\": {\"top\": [-0.5, 0, 0], \"end\":"
+        " [0.5, 0, 0]}}], \"joints\": [{\"name\": \"hinge\", \"type\": \"revolute3d\", \"a\": \"arm.root\","
+        " \"b\": \"ground.pivot\", \"axis\": [0, 0, 1], \"drive\": {\"type\": \"linear\", \"value\": %s,"
+        " \"rate\": 1}}, {\"name\": \"ball\", \"type\": \"spherical\", \"a\": \"arm.tip\", \"b\": \"bob.top\"}],"
+        " \"effects\": [{\"type\": \"gravity\", \"g\": [0, -9.81, 0]}, {\"type\": \"spring\", \"a\":"
+        " \"bob.end\", \"b\": \"ground.anchor\", \"stiffness\": 20, \"damping\": 0.1}]}";
+    static const char *const cord =
+        "{\"name\": \"far\", \"bodies\": [{\"name\": \"bob\", \"type\": \"particle\", \"mass\": 1,"
+        " \"position\": [0, %s], \"velocity\": [%s, -0.5]}, {\"name\": \"free\", \"type\": \"particle\","
+        " \"mass\": 1, \"position\": [%s, 0]}], \"joints\": [{\"name\": \"cord\", \"type\": \"distance\","
+        " \"a\": [0, -9], \"b\": \"bob\", \"drive\": {\"type\": \"sine\", \"offset\": 1, \"amplitude\":"
+        " 0.5, \"omega\": 1, \"phase\": %s}}]}";
+    static const struct {
+        const char *bob_y, *free_x, *phase, *angle; /* angle: the rev3d scene */
+        const char *vx;
+        double t;
+        int row;
+        double catch_b, catch_bv; /* the smallest slip of b_q, b_qv caught (0: none can be:
+                                   * the bob 1e6 from its anchor, Φ's rounding beyond
+                                   * the drive's change; t = 1e12, resolved to 1e-4 s) */
+    } cases[] = {
+        {"-10", "1e3", "0", NULL, "0.3", 0, 0, 1e-4, 1e-4},   {"-10", "1e6", "0", NULL, "0.3", 0, 0, 1e-4, 1e-4},
+        {"-10", "1e9", "0", NULL, "0.3", 0, 0, 1e-4, 1e-4},   {"-10", "1e12", "0", NULL, "0.3", 0, 0, 1e-4, 1e-4},
+        {"1e6", "0", "0", NULL, "0.3", 0, 0, 0, 0},           {"-10", "0", "1e12", NULL, "0.3", 0, 0, 1e-2, 0},
+        {"-10", "1e6", "0", NULL, "0.3", 1e6, 0, 1e-4, 1e-4}, {"-10", "0", "0", NULL, "0.3", 1e9, 0, 1e-2, 1e-4},
+        {"-10", "1e6", "0.3", NULL, "0.3", 1e12, 0, 0, 0},    {NULL, NULL, NULL, "1e12", "0.3", 0, 5, 1e-2, 1e-2},
+        {NULL, NULL, NULL, "1e6", "0.3", 0, 5, 1e-4, 1e-4},   {NULL, NULL, NULL, "0", "0.3", 1e9, 5, 1e-2, 1e-2},
+        /* as found: the bob moving along its cord, b_qv 0 there */
+        {"-10", "1e6", "0", NULL, "0", 0, 0, 1e-4, 0}, {"1e6", "0", "0", NULL, "0", 0, 0, 0, 0},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char text[2048], err[512];
+        if (cases[c].angle) snprintf(text, sizeof text, rev3d, cases[c].angle);
+        else snprintf(text, sizeof text, cord, cases[c].bob_y, cases[c].vx, cases[c].free_x, cases[c].phase);
+        braun_scene_file *f = braun_scene_load_text(NULL, text, strlen(text), err, sizeof err);
+        if (!f) fail_msg("case %zu: %s", c, err);
+        far_base = f->sys;
+        braun_system s = f->sys;
+        s.holonomic = far_holonomic;
+        far_row = cases[c].row;
+        for (far_which = 0; far_which <= 2; far_which++) {
+            const double slips[2] = {1e-2, 1e-4};
+            for (int k = 0; k < (far_which ? 2 : 1); k++) {
+                far_slip = slips[k];
+                braun_callback_report rep;
+                const int st = braun_check_callbacks(&s, (braun_real)cases[c].t, f->q0, f->v0, 0, &rep);
+                print_message("case %zu (t = %g), %s off by %g: %d %s %.2e\n", c, cases[c].t,
+                              far_which == 0 ? "nothing" : far_which == 1 ? "b_q" : "b_qv",
+                              far_which ? far_slip : 0, st, rep.worst, rep.worst_value);
+                const double catch_at = far_which == 1 ? cases[c].catch_b : cases[c].catch_bv;
+                if (far_which == 0) assert_int_equal(st, BRAUN_OK);
+                else if (catch_at > 0 && far_slip >= catch_at) {
+                    char want[16];
+                    snprintf(want, sizeof want, "%s[%d]", far_which == 1 ? "b_q" : "b_qv", far_row);
+                    assert_int_equal(st, BRAUN_ERR_ARGUMENT);
+                    assert_string_equal(rep.worst, want);
+                }
+            }
+        }
+        braun_scene_free(f);
+    }
+    far_which = 0;
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -252,6 +531,9 @@ int main(void)
         cmocka_unit_test(test_scenes_pass),
         cmocka_unit_test(test_misprints_found),
         cmocka_unit_test(test_kink_noted),
+        cmocka_unit_test(test_nonfinite_named),
+        cmocka_unit_test(test_scleronomic_homogeneous),
+        cmocka_unit_test(test_large_scales),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -47,6 +47,22 @@ int braun_error_format(const braun_data *d, char *buf, size_t size);
  *               work rate: judged only at a state on the constraints
  *               (state_residual, ‖Φ_q‖ + ‖[Φ̇_q; Φ_v]‖, below 1e-8 of the
  *               state's size), NaN elsewhere.
+ *   homogeneous_v  with BRAUN_SCLERONOMIC: |Φ_v − A_vv v| over its terms,
+ *               the largest row — the flag needs Φ_v = A_vv v (no term
+ *               without v, whose ideal force does work the flag drops);
+ *               rep->worst "Phi_v[1] - A_vv[1] v = -1.5 at this state:
+ *               BRAUN_SCLERONOMIC needs ..." above tol.
+ * Every output of every callback is first checked finite at the state:
+ * BRAUN_ERR_NONFINITE, rep->worst "A_vv[0][1] is +Inf (nonholonomic
+ * callback at t = 0)" (names Phi_q, A_q, b_q, b_qv, Phi_v, A_vv, b_vv, M,
+ * Q, E, dE_dq, dE_dv, dE_dt, P), whatever the system's flags.
+ * Steps: each coordinate's own (cbrt(ε)·max(1, |x|)), and time's own
+ * (cbrt(ε·max(1, |t|)): a drive varies on its period, not on |t|); along
+ * the motion time and groups of coordinates of like step separately, so a
+ * body far away or a large t does not set the others' step. An entry
+ * that disagrees is also differenced at steps up to 16⁴ the first (an
+ * angle 1e12 + t moves in quanta of 1.2e-4). What the differences cannot
+ * resolve is not judged (t = 1e12: b_q to about 1e-2 only).
  * Central differences in double (about 1e-10 of a smooth callback's
  * scale), each with an allowance for its own round-off and truncation; an
  * entry that disagrees is differenced again at steps down to 16⁻⁸ of the
@@ -67,6 +83,9 @@ int braun_error_format(const braun_data *d, char *buf, size_t size);
  * moving ones included: at rest the velocity terms are not exercised. */
 typedef struct braun_callback_report {
     double jacobian_q, b_q, b_qv, jacobian_v, b_vv, energy_gradient, energy_rate;
+    double homogeneous_v; /* BRAUN_SCLERONOMIC: the largest |Φ_v − A_vv v|
+                           * over its terms' magnitudes (0 without p or
+                           * the flag) */
     double state_residual;
     double worst_value;
     char worst[160]; /* the entry, or what failed ("state q[2]", "holonomic

@@ -21,6 +21,7 @@ typedef struct work {
     braun_real *q, *v, *phi, *A, *b, *bv, *M, *Q, *dq, *dv; /* callback buffers */
     braun_real *Avals; /* a sparse system's compressed rows (else A itself) */
     double *f0, *fp;                                       /* scratch values */
+    double *dir; /* ALONG_MOTION's direction in (t, q): n + 1 entries */
     braun_callback_report *rep;
     double tol;
     int named_fail; /* rep->worst names a figure above tol: the first one in
@@ -40,6 +41,13 @@ typedef struct work {
 #endif
 
 static double fd_step(double x) { return cbrt(REAL_EPS) * (fabs(x) > 1 ? fabs(x) : 1); }
+
+/* Time's own step: what a callback does in t varies on its own scale (a
+ * drive's period), not on |t|'s — t = 1e6 gave steps of 6 s, across which
+ * a sine drive of 1 rad/s is not resolved, and an error of 1e-2 in b_q hid
+ * in the differences' spread. t's rounding (ε|t| in the callback's
+ * arguments) sets the step instead: the rounding is (ε|t|)^(2/3) of it. */
+static double time_step(double t) { return cbrt(REAL_EPS * (fabs(t) > 1 ? fabs(t) : 1)); }
 
 /* One figure: analytic x[k] against finite differences d[k] (count k), the
  * differences computed from values of magnitude up to `mag` with step tau,
@@ -94,6 +102,113 @@ static int failed(work *w, const char *which, int rc, double t)
 {
     braun__c_snprintf(w->rep->worst, sizeof w->rep->worst, "%s callback returned %d at t = %.6g", which, rc, t);
     return -1;
+}
+
+/* The first entry of an output that is not finite (count entries; cols > 1:
+ * a matrix of that many columns, named [row][col]): named in rep->worst as
+ * "A_vv[0][1] is +Inf (nonholonomic callback at t = 0)". 0: all finite. */
+static int nonfinite(work *w, const char *which, const char *name, const braun_real *x, int count,
+                     int cols, double t)
+{
+    for (int k = 0; k < count; k++) {
+        const double y = (double)x[k];
+        if (isfinite(y)) continue;
+        char entry[48];
+        if (cols > 1) snprintf(entry, sizeof entry, "%s[%d][%d]", name, k / cols, k % cols);
+        else snprintf(entry, sizeof entry, "%s[%d]", name, k);
+        snprintf(w->rep->worst, sizeof w->rep->worst, "%s is %s (%s callback at t = %.6g)", entry,
+                 y != y ? "NaN" : y > 0 ? "+Inf" : "-Inf", which, t);
+        return 1;
+    }
+    return 0;
+}
+
+/* A sparse system's compressed rows (first..first+count−1 of the
+ * structure): the first entry that is not finite, named by its row and
+ * column in the dense matrix. */
+static int nonfinite_sparse(work *w, const char *which, const char *name, int first, int count, double t)
+{
+    const braun_sparsity *sp = w->s->sparsity;
+    const int base = sp->row_ptr[first];
+    for (int i = 0; i < count; i++)
+        for (int k = sp->row_ptr[first + i]; k < sp->row_ptr[first + i + 1]; k++) {
+            const double y = (double)w->Avals[k - base];
+            if (isfinite(y)) continue;
+            snprintf(w->rep->worst, sizeof w->rep->worst, "%s[%d][%d] is %s (%s callback at t = %.6g)",
+                     name, i, sp->col[k], y != y ? "NaN" : y > 0 ? "+Inf" : "-Inf", which, t);
+            return 1;
+        }
+    return 0;
+}
+
+/* Every output of every callback at the state, before any difference: a
+ * NaN or Inf is named as such (the differences of one gave a NaN figure
+ * under some other entry's name, or none: an Inf column of A_vv read as
+ * "within the round-off"), whatever the system's flags. */
+static int check_finite(work *w, double t, const braun_real *q, const braun_real *v)
+{
+    const braun_system *s = w->s;
+    const int n = w->n, m = w->m, p = w->p;
+    const braun_real tt = (braun_real)t;
+    const size_t nnz_q = s->sparsity ? (size_t)s->sparsity->row_ptr[m] : (size_t)m * n;
+    const size_t nnz_v = s->sparsity ? (size_t)(s->sparsity->row_ptr[m + p] - s->sparsity->row_ptr[m])
+                                     : (size_t)p * n;
+    int rc;
+    if (m > 0) {
+        for (int i = 0; i < m; i++) w->phi[i] = w->b[i] = w->bv[i] = 0;
+        for (size_t k = 0; k < nnz_q; k++) w->Avals[k] = 0;
+        if ((rc = s->holonomic(tt, q, v, w->phi, w->Avals, w->b, w->bv, s->user)) != 0)
+            return failed(w, "holonomic", rc, t), BRAUN_ERR_CALLBACK;
+        if (nonfinite(w, "holonomic", "Phi_q", w->phi, m, 1, t) ||
+            (s->sparsity ? nonfinite_sparse(w, "holonomic", "A_q", 0, m, t)
+                         : nonfinite(w, "holonomic", "A_q", w->Avals, m * n, n, t)) ||
+            nonfinite(w, "holonomic", "b_q", w->b, m, 1, t) ||
+            nonfinite(w, "holonomic", "b_qv", w->bv, m, 1, t))
+            return BRAUN_ERR_NONFINITE;
+    }
+    if (p > 0) {
+        for (int i = 0; i < p; i++) w->phi[i] = w->bv[i] = 0;
+        for (size_t k = 0; k < nnz_v; k++) w->Avals[k] = 0;
+        if ((rc = s->nonholonomic(tt, q, v, w->phi, w->Avals, w->bv, s->user)) != 0)
+            return failed(w, "nonholonomic", rc, t), BRAUN_ERR_CALLBACK;
+        if (nonfinite(w, "nonholonomic", "Phi_v", w->phi, p, 1, t) ||
+            (s->sparsity ? nonfinite_sparse(w, "nonholonomic", "A_vv", m, p, t)
+                         : nonfinite(w, "nonholonomic", "A_vv", w->Avals, p * n, n, t)) ||
+            nonfinite(w, "nonholonomic", "b_vv", w->bv, p, 1, t))
+            return BRAUN_ERR_NONFINITE;
+    }
+    /* M: one block of n (dense), or the diagonal blocks one after another,
+     * each named by its entry in the whole M. */
+    if ((rc = s->mass(tt, q, w->M, s->user)) != 0) return failed(w, "mass", rc, t), BRAUN_ERR_CALLBACK;
+    const int nblocks = s->sparsity ? s->sparsity->nblocks : 1;
+    const braun_real *Mb = w->M;
+    for (int k = 0, off = 0; k < nblocks; k++) {
+        const int bsz = s->sparsity ? s->sparsity->block[k] : n;
+        for (int i = 0; i < bsz * bsz; i++, Mb++) {
+            const double y = (double)*Mb;
+            if (isfinite(y)) continue;
+            snprintf(w->rep->worst, sizeof w->rep->worst, "M[%d][%d] is %s (mass callback at t = %.6g)",
+                     off + i / bsz, off + i % bsz, y != y ? "NaN" : y > 0 ? "+Inf" : "-Inf", t);
+            return BRAUN_ERR_NONFINITE;
+        }
+        off += bsz;
+    }
+    if ((rc = s->forces(tt, q, v, w->Q, s->user)) != 0) return failed(w, "forces", rc, t), BRAUN_ERR_CALLBACK;
+    if (nonfinite(w, "forces", "Q", w->Q, n, 1, t)) return BRAUN_ERR_NONFINITE;
+    if (s->energy) {
+        braun_real e = 0, dt = 0;
+        if ((rc = s->energy(tt, q, v, &e, w->dq, w->dv, &dt, s->user)) != 0)
+            return failed(w, "energy", rc, t), BRAUN_ERR_CALLBACK;
+        if (nonfinite(w, "energy", "E", &e, 1, 1, t) || nonfinite(w, "energy", "dE_dq", w->dq, n, 1, t) ||
+            nonfinite(w, "energy", "dE_dv", w->dv, n, 1, t) || nonfinite(w, "energy", "dE_dt", &dt, 1, 1, t))
+            return BRAUN_ERR_NONFINITE;
+    }
+    if ((s->flags & BRAUN_ENERGY_INPUT) && s->power) {
+        braun_real P = 0;
+        if ((rc = s->power(tt, q, v, &P, s->user)) != 0) return failed(w, "power", rc, t), BRAUN_ERR_CALLBACK;
+        if (nonfinite(w, "power", "P", &P, 1, 1, t)) return BRAUN_ERR_NONFINITE;
+    }
+    return BRAUN_OK;
 }
 
 /* A sparse system's compressed values of rows first..first+count−1 into
@@ -160,7 +275,7 @@ static int energy(work *w, double t, const braun_real *q, const braun_real *v, d
 
 /* What is differenced, and along which line through (t0, q0, v0). */
 enum quantity { PHI_Q, RATE_Q, PHI_V, ENERGY };
-enum direction { ALONG_T, ALONG_Q, ALONG_V, ALONG_MOTION }; /* MOTION: (1, v0, 0) */
+enum direction { ALONG_T, ALONG_Q, ALONG_V, ALONG_MOTION }; /* MOTION: w->dir, v fixed */
 
 /* The quantity (count values into out) at parameter s on the line. */
 static int value_at(work *w, enum quantity f, enum direction dir, int j, double s, double t0,
@@ -175,8 +290,9 @@ static int value_at(work *w, enum quantity f, enum direction dir, int j, double 
     case ALONG_Q: w->q[j] = (braun_real)((double)q0[j] + s); break;
     case ALONG_V: w->v[j] = (braun_real)((double)v0[j] + s); break;
     case ALONG_MOTION:
-        t += s;
-        for (int k = 0; k < n; k++) w->q[k] = (braun_real)((double)q0[k] + s * (double)v0[k]);
+        t += s * w->dir[0];
+        for (int k = 0; k < n; k++)
+            if (w->dir[1 + k] != 0) w->q[k] = (braun_real)((double)q0[k] + s * w->dir[1 + k]);
         break;
     }
     /* q and v are work copies: the callbacks get them, not the caller's. */
@@ -223,6 +339,30 @@ static int deriv(work *w, enum quantity f, enum direction dir, int j, double tau
         if (spread) spread[i] = fabs(out[i] - spread[i] / (3 * tau));
     }
     return BRAUN_OK;
+}
+
+/* The differences' points are rounded: t0 + s carries up to ε|t0|/2, and so
+ * does every argument the callback forms from t (ωt + φ), so a difference
+ * in t is no better than 3ε|t0|/τ of the derivative (the stencil's weights
+ * 18/6) — at t = 1e9, τ = 6e-3, 1e-4 of it, which read as a wrong b_q of
+ * 3e-2 once a finer step's noise was taken for a resolved estimate. The
+ * same for a coordinate (ε|x|/τ of its move). The part of |out| allowed. */
+static double rounding(const work *w, enum direction dir, int j, double t0, const braun_real *q0,
+                       const braun_real *v0, double tau)
+{
+    double r = 0;
+    switch (dir) {
+    case ALONG_T: r = fabs(t0); break;
+    case ALONG_Q: r = fabs((double)q0[j]); break;
+    case ALONG_V: r = fabs((double)v0[j]); break;
+    case ALONG_MOTION:
+        r = w->dir[0] != 0 ? fabs(t0) : 0;
+        for (int k = 0; k < w->n; k++)
+            if (w->dir[1 + k] != 0 && fabs((double)q0[k] / w->dir[1 + k]) > r)
+                r = fabs((double)q0[k] / w->dir[1 + k]);
+        break;
+    }
+    return 4 * REAL_EPS * r / tau;
 }
 
 /* How an entry of deriv_best's estimates is named in the report: name[i]
@@ -277,7 +417,9 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
     double *alt = calloc(2 * (size_t)count + 1, sizeof(double)), *alt_spread = alt ? alt + count : NULL;
     if (!alt) return BRAUN_ERR_BUFFER;
     int st = deriv(w, f, dir, j, tau, t0, q0, v0, count, out, allow, mag);
-    for (int i = 0; i < count && !st; i++) allow[i] = 2 * allow[i] + 1e2 * REAL_EPS * *mag / tau;
+    const double rnd = rounding(w, dir, j, t0, q0, v0, tau);
+    for (int i = 0; i < count && !st; i++)
+        allow[i] = 2 * allow[i] + 1e2 * REAL_EPS * *mag / tau + rnd * fabs(out[i]);
     double step = tau;
     for (int level = 0; level < 8 && !st; level++) {
         int open = 0;
@@ -290,8 +432,41 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
         step /= 16;
         double m = *mag;
         st = deriv(w, f, dir, j, step, t0, q0, v0, count, alt, alt_spread, &m);
+        const double rnd_alt = rounding(w, dir, j, t0, q0, v0, step);
         for (int i = 0; i < count && !st; i++) {
-            const double allow_alt = 2 * alt_spread[i] + 1e2 * REAL_EPS * m / step;
+            const double allow_alt = 2 * alt_spread[i] + 1e2 * REAL_EPS * m / step + rnd_alt * fabs(alt[i]);
+            if (allow_alt / (fabs(alt[i]) + DBL_MIN) < allow[i] / (fabs(out[i]) + DBL_MIN)) {
+                out[i] = alt[i];
+                allow[i] = allow_alt;
+            }
+        }
+    }
+    /* ... and at steps up to 16⁴ the first: a callback whose output moves
+     * in quanta larger than the step (a drive's angle 1e12 + t: its ulp is
+     * 1.2e-4, and at t ± 6e-6 every value is the same, a difference of 0
+     * against a b_q of 1) is resolved only by a larger one. Taken as
+     * above, by its allowance; a point the callback refuses (or its value
+     * not finite) ends the search, not the check. */
+    step = tau;
+    for (int level = 0; level < 4 && !st; level++) {
+        int open = 0;
+        for (int i = 0; i < count; i++) {
+            const double xi = x[(size_t)i * stride], di = sign * out[i];
+            const double scale = fabs(xi) > fabs(di) ? fabs(xi) : fabs(di);
+            if (fabs(xi - di) - allow[i] > w->tol * scale) open = 1;
+        }
+        if (!open) break;
+        step *= 16;
+        double m = *mag;
+        char said[sizeof w->rep->worst];
+        memcpy(said, w->rep->worst, sizeof said);
+        if (deriv(w, f, dir, j, step, t0, q0, v0, count, alt, alt_spread, &m)) {
+            memcpy(w->rep->worst, said, sizeof said);
+            break;
+        }
+        const double rnd_alt = rounding(w, dir, j, t0, q0, v0, step);
+        for (int i = 0; i < count; i++) {
+            const double allow_alt = 2 * alt_spread[i] + 1e2 * REAL_EPS * m / step + rnd_alt * fabs(alt[i]);
             if (allow_alt / (fabs(alt[i]) + DBL_MIN) < allow[i] / (fabs(out[i]) + DBL_MIN)) {
                 out[i] = alt[i];
                 allow[i] = allow_alt;
@@ -335,15 +510,93 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
     return st;
 }
 
-/* The step along the motion: τ·|v| of the coordinates' scale. */
-static double motion_step(int n, const braun_real *q0, const braun_real *v0)
+/* The derivative along the motion (t, q) → (t + s, q + s v0), with each
+ * coordinate moved by its own step: coordinate k wants s·|v_k| =
+ * fd_step(q_k), time s = fd_step(t). One s for all (the largest
+ * coordinate's) moved a bob at 10 m by 6 m when an unrelated body sat at
+ * 1e6 m, and a sine drive's time by 6 s; the smallest for all rounds a
+ * large coordinate's move (1e6 + 3e-6). So the direction is split into
+ * groups whose steps lie within a factor 64 of each other, time one of
+ * them, each differenced at its smallest step (its rounding at most 64
+ * times the usual ε^(2/3)), and the derivative is their sum — one group
+ * plus time for most states. A group's estimate is refined (deriv_best) against
+ * the analytic value less the other groups' estimates. allow, out: as
+ * deriv_best's; *tau_min: the smallest step. */
+static int deriv_motion(work *w, enum quantity f, double t0, const braun_real *q0, const braun_real *v0,
+                        int count, const double *x, double sign, double *out, double *allow, double *mag,
+                        const entry_label *lab, double *tau_min)
 {
-    double vmax = 0, qmax = 0;
-    for (int j = 0; j < n; j++) {
-        if (fabs((double)v0[j]) > vmax) vmax = fabs((double)v0[j]);
-        if (fabs((double)q0[j]) > qmax) qmax = fabs((double)q0[j]);
+    const int n = w->n;
+    double *nat = calloc((size_t)(n + 1) * 3 + 1 + 3 * (size_t)count + 1, sizeof(double));
+    if (!nat) return BRAUN_ERR_BUFFER;
+    double *sorted = nat + n + 1, *lows = sorted + n + 1, *est = lows + n + 2, *spr = est + count,
+           *xg = spr + count;
+    /* Each one's natural step (0: it does not move). Time is a group of its
+     * own: a drive whose output moves in quanta larger than the step (an
+     * angle 1e12 + t) gives 0 in t, which the coordinates' share of the
+     * same differences made look resolved; alone, deriv_best takes it to a
+     * larger step. */
+    int k = 0;
+    nat[0] = time_step(t0);
+    for (int i = 0; i < n; i++) {
+        const double vi = fabs((double)v0[i]), si = vi > 0 ? fd_step((double)q0[i]) / vi : 0;
+        nat[1 + i] = si > 0 && si < 1e300 ? si : 0; /* a motion below what differences see */
+        if (nat[1 + i] > 0) sorted[k++] = nat[1 + i];
     }
-    return cbrt(REAL_EPS) * (1 + qmax) / (vmax > 1 ? vmax : 1);
+    for (int a = 1; a < k; a++) /* insertion sort: n is small next to the differences' cost */
+        for (int b = a; b > 0 && sorted[b] < sorted[b - 1]; b--) {
+            const double tmp = sorted[b];
+            sorted[b] = sorted[b - 1];
+            sorted[b - 1] = tmp;
+        }
+    /* The groups' lower ends into lows[0..groups); group 0 is time's. */
+    int groups = 0;
+    lows[groups++] = nat[0];
+    for (int a = 0; a < k;) {
+        const double lo = sorted[a];
+        lows[groups++] = lo;
+        while (a < k && sorted[a] <= 64 * lo) a++;
+    }
+    *tau_min = groups > 1 && lows[1] < nat[0] ? lows[1] : nat[0];
+    for (int i = 0; i < count; i++) out[i] = allow[i] = 0;
+    int st = BRAUN_OK;
+    for (int pass = 0; pass < 2 && !st; pass++) {
+        if (pass == 1 && groups == 1) break;
+        for (int g = 0; g < groups && !st; g++) {
+            const double lo = lows[g], hi = g + 1 < groups ? lows[g + 1] : HUGE_VAL;
+            w->dir[0] = g == 0;
+            for (int i = 1; i <= n; i++)
+                w->dir[i] = g > 0 && nat[i] >= lo && nat[i] < hi ? (double)v0[i - 1] : 0;
+            /* Pass 0: every group's plain estimate (one group: refined at
+             * once); pass 1: each refined against the rest. */
+            if (pass == 0 && groups > 1) {
+                st = deriv(w, f, ALONG_MOTION, 0, lo, t0, q0, v0, count, est, spr, mag);
+                for (int i = 0; i < count && !st; i++) {
+                    out[i] += est[i];
+                    allow[i] += 2 * spr[i] + 1e2 * REAL_EPS * *mag / lo;
+                }
+                continue;
+            }
+            /* This group's share of out and allow, taken out and refined. */
+            if (groups > 1) {
+                st = deriv(w, f, ALONG_MOTION, 0, lo, t0, q0, v0, count, est, spr, mag);
+                for (int i = 0; i < count && !st; i++) {
+                    out[i] -= est[i];
+                    allow[i] -= 2 * spr[i] + 1e2 * REAL_EPS * *mag / lo;
+                    if (allow[i] < 0) allow[i] = 0;
+                }
+            }
+            for (int i = 0; i < count && !st; i++) xg[i] = x[i] - sign * out[i];
+            if (!st) st = deriv_best(w, f, ALONG_MOTION, 0, lo, t0, q0, v0, count, xg, 1, sign, est, spr,
+                                     mag, lab);
+            for (int i = 0; i < count && !st; i++) {
+                out[i] += est[i];
+                allow[i] += spr[i];
+            }
+        }
+    }
+    free(nat);
+    return st;
 }
 
 /* The rows of one kind: the Jacobian (holonomic in q, nonholonomic in v),
@@ -385,7 +638,7 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
         judge(w, nonholo ? &w->rep->jacobian_v : &w->rep->jacobian_q, nonholo ? "A_vv" : "A_q", r, n,
               A, fd, spread, mag + max_abs(r * n, A), tau_min);
     if (!st && !nonholo) {
-        const double tt = fd_step(t);
+        const double tt = time_step(t);
         double m2 = mag;
         const entry_label lab = {"b_q", -1, 0};
         st = deriv_best(w, PHI_Q, ALONG_T, 0, tt, t, q0, v0, r, b, 1, -1, col, spcol, &m2, &lab);
@@ -393,22 +646,67 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
         if (!st) judge(w, &w->rep->b_q, "b_q", r, 1, b, col, spcol, m2, tt);
     }
     if (!st) {
-        const double tv = motion_step(n, q0, v0);
-        double gmag = 0;
+        double tv = 0, gmag = 0;
         for (int i = 0; i < r; i++) {
             double terms = fabs(b[i]) + fabs(g0[i]);
             for (int j = 0; j < n; j++) terms += fabs(A[(size_t)i * n + j] * (double)v0[j]);
             if (terms > gmag) gmag = terms;
         }
         const entry_label lab = {nonholo ? "b_vv" : "b_qv", -1, 0};
-        st = deriv_best(w, nonholo ? PHI_V : RATE_Q, ALONG_MOTION, 0, tv, t, q0, v0, r, bv, 1, -1, col,
-                        spcol, &gmag, &lab);
+        st = deriv_motion(w, nonholo ? PHI_V : RATE_Q, t, q0, v0, r, bv, -1, col, spcol, &gmag, &lab, &tv);
         for (int i = 0; i < r && !st; i++) col[i] = -col[i];
         if (!st) judge(w, nonholo ? &w->rep->b_vv : &w->rep->b_qv, nonholo ? "b_vv" : "b_qv", r, 1, bv,
                        col, spcol, gmag, tv);
     }
     free(A);
     return st;
+}
+
+/* BRAUN_SCLERONOMIC promises that the ideal constraint forces do no work;
+ * a nonholonomic row's force λ·A_vv does λ(A_vv v − Φ_v) — zero only for a
+ * row homogeneous in v, Φ_v = A_vv v. A row with a term c(q) (a ball on a
+ * turntable: v − Rω + W×r) passed every difference while the flag dropped
+ * that work and its energy law ran the ball 1 m wrong. At the state:
+ * |Φ_v − A_vv v| over its terms' magnitudes, each row. */
+static int check_homogeneous(work *w, double t, const braun_real *q, const braun_real *v)
+{
+    const int n = w->n, p = w->p;
+    double *g = calloc((size_t)p + 1, sizeof(double));
+    if (!g) return BRAUN_ERR_BUFFER;
+    if (nonholonomic(w, t, q, v, g)) {
+        free(g);
+        return BRAUN_ERR_CALLBACK;
+    }
+    double worst = 0, value = 0;
+    int at = -1;
+    for (int i = 0; i < p; i++) {
+        double r = g[i], scale = fabs(g[i]);
+        for (int j = 0; j < n; j++) {
+            const double a = (double)w->A[(size_t)i * n + j] * (double)v[j];
+            r -= a;
+            scale += fabs(a);
+        }
+        /* Round-off of the sum: a few ε of its terms (as the figures). */
+        const double e = fabs(r) > 1e2 * REAL_EPS * scale ? fabs(r) / (scale + DBL_MIN) : 0;
+        if (e > worst) {
+            worst = e;
+            value = r;
+            at = i;
+        }
+    }
+    free(g);
+    w->rep->homogeneous_v = worst;
+    const int fails = !(worst <= w->tol);
+    if (at >= 0 && !w->named_fail && (fails || worst > w->rep->worst_value)) {
+        w->rep->worst_value = worst;
+        w->named_fail = fails;
+        if (fails)
+            snprintf(w->rep->worst, sizeof w->rep->worst,
+                     "Phi_v[%d] - A_vv[%d] v = %.6g at this state: BRAUN_SCLERONOMIC needs each "
+                     "nonholonomic row homogeneous in v", at, at, value);
+        else snprintf(w->rep->worst, sizeof w->rep->worst, "Phi_v[%d] - A_vv[%d] v", at, at);
+    }
+    return BRAUN_OK;
 }
 
 /* dE_dq, dE_dv, dE_dt against differences of E. */
@@ -442,7 +740,7 @@ static int check_energy_gradient(work *w, double t, const braun_real *q0, const 
         st = deriv_best(w, ENERGY, in_v ? ALONG_V : ALONG_Q, k, tau, t, q0, v0, 1, g + j, 1, 1, fd + j,
                         spread + j, &mag, &lab);
     }
-    const double tt = fd_step(t);
+    const double tt = time_step(t);
     double mt = mag;
     const entry_label lab_t = {"dE_dt", -1, 0};
     if (!st)
@@ -587,7 +885,7 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
     braun_real *r = calloc(4 * (size_t)n + 3 * (size_t)rows + (size_t)rows * n + mass + mblocks +
                                (size_t)n + nnz + 1,
                            sizeof(braun_real));
-    double *f = calloc(2 * (size_t)(rows + n), sizeof(double)); /* f0, fp */
+    double *f = calloc(2 * (size_t)(rows + n) + (size_t)n + 1, sizeof(double)); /* f0, fp, dir */
     if (!r || !f) {
         free(r);
         free(f);
@@ -606,8 +904,11 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
     w.Avals = sys->sparsity ? w.Q + n : w.A;
     w.f0 = f;
     w.fp = f + rows + n;
-    if (sys->m > 0) st = check_rows(&w, 0, (double)t, q, v);
+    w.dir = w.fp + rows + n;
+    st = check_finite(&w, (double)t, q, v);
+    if (!st && sys->m > 0) st = check_rows(&w, 0, (double)t, q, v);
     if (!st && sys->p > 0) st = check_rows(&w, 1, (double)t, q, v);
+    if (!st && sys->p > 0 && (sys->flags & BRAUN_SCLERONOMIC)) st = check_homogeneous(&w, (double)t, q, v);
     if (!st && sys->energy) st = check_energy_gradient(&w, (double)t, q, v);
     if (!st && sys->energy) st = check_energy_rate(&w, (double)t, q, v);
     free(r);
