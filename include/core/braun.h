@@ -179,15 +179,11 @@ enum braun_system_flags {
      * power term for its drives; for a scleronomic one that rate is 0 up to
      * round-off, so the result is right either way. With it the library
      * skips that work (a solve per stage), and checks the claim: a
-     * holonomic row with b_q ≠ 0 (∂Φ_q/∂t ≠ 0) at the start of a step stops
-     * the run with BRAUN_ERR_ARGUMENT ("system declared scleronomic"). A
-     * nonholonomic row must then be homogeneous in v, Φ_v = A_vv v (a
-     * term c(q) or c(t), as a ball on a turntable's W×r, does work
-     * λᵀ(A_vv v − Φ_v)): braun_check_callbacks reports one that is not. */
      * holonomic row with b_q ≠ 0 (∂Φ_q/∂t ≠ 0), or a velocity-level row
-     * with Φ_v ≠ A_vv v beyond the rounding of its products, at the start
-     * of a step stops the run with BRAUN_ERR_ARGUMENT ("system declared
-     * scleronomic"). */
+     * with Φ_v ≠ A_vv v beyond the rounding of its products (a term c(q)
+     * or c(t), as a ball on a turntable's W×r, does work λᵀ(A_vv v − Φ_v)),
+     * at the start of a step stops the run with BRAUN_ERR_ARGUMENT ("system
+     * declared scleronomic"); braun_check_callbacks reports such a row. */
     BRAUN_SCLERONOMIC = 1u << 3
 };
 
