@@ -458,7 +458,12 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
 /* ------------------------------------------------------------------ */
 /* The corrected equation of motion, Eqs. 16, 17, 20, with Δ = Φ/h, at the
  * given state (∫Ė taken from d->work_in: a program's own integrator keeps
- * it there, braun_energy_rate). Corrections as in the model options;
+ * it there, braun_energy_rate). Eq. 20's energy force is the literal one
+ * except where options.energy_max_rel saturates it (a relative change of
+ * the weighted velocity per h above it, default 0.01: near rest its
+ * pseudoinverse divides by ≈ 2·kinetic energy), as in the drivers; a
+ * saturated call counts in d->stats.energy_guard_hits. Corrections as in
+ * the model options;
  * with none (or at an exact state) vdot is the Udwadia–Kalaba acceleration
  * and qdot = v. qdot, vdot: n entries each. Refused (BRAUN_ERR_ARGUMENT,
  * "re-entrant call") while a driver runs on d, from its output callback

@@ -410,8 +410,9 @@ static int body_ref(sj_reader *r, json_t *obj, const char *key, int ground_ok, i
                      ? sj_fail(r, SJ_AT_VALUE,
                                "%s: body '%s' in field '%s' is a rigid3d body, and this element is "
                                "planar (it acts on a planar body's angle): use its spatial "
-                               "counterpart (torque3d, body_torque, torsion3d, motor3d, revolute3d; "
-                               "docs/scene-format.md)", r->who, name, key)
+                               "counterpart where there is one (torque3d, body_torque, torsion3d, motor3d, "
+                               "revolute3d; a knife edge has none: docs/scene-format.md)",
+                               r->who, name, key)
                      : sj_fail(r, SJ_AT_VALUE, "%s: body '%s' in field '%s' must be rigid (a "
                                                "particle has no angle)", r->who, name, key);
     }
