@@ -395,6 +395,10 @@ typedef struct braun_data {
                            * state onto them (docs/api.md) */
     int has_E0;
     braun_stats stats;
+    /* The last failure recorded: read it after a call returned a failure
+     * status. It is not cleared on success, so after BRAUN_OK it may hold
+     * an earlier call's failure, or one the adaptive driver recovered from
+     * (a step retried smaller after a recoverable status). */
     braun_error_info error;
     /* The accuracy guard's scales (options.guard), measured at the first
      * step's state (and again at a state whose residual exceeds its bound,
