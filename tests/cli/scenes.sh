@@ -421,6 +421,19 @@ check "run four-bar started flat, dopri5: BRAUN_OK" sh -c '
     [ "$1" -eq 0 ] && grep -q "\"status\": \"BRAUN_OK\"" "$2"' sh "$rc" "$TMP/fbflat-a.json"
 check "run four-bar started flat, dopri5: final q within 1e-6 of RK4 h = 1e-3 (measured 1e-9)" \
     same_final "$TMP/fbflat-a.json" "$TMP/fbflat-r.json" 1e-6
+# A wheel at rest on a free bearing, coaxial with a turntable driven at
+# 2 pi rad/s: nothing turns it. With the energy correction the wheel's spin,
+# round-off along the one free direction, took the energy law's error at
+# energy_max_rel (1 %) per step and grew from 1e-43 to a turn of 7e-5 rad
+# by t = 20 s, status OK (found by an outside client). Now a free motion at
+# round-off of the motion's own speed gets no energy force.
+cat > "$TMP/turntable.json" <<'EOF'
+{"name":"turntable","description":"driven turntable (revolute3d, 1 rev/s) with a free coaxial wheel on a revolute3d bearing, wheel at rest: it must stay at rest","bodies":[{"name":"table","type":"rigid3d","mass":2,"inertia":[0.05,0.05,0.1],"position":[0,0,0],"omega":[0,0,6.283185307179586],"points":{"c":[0,0,0],"top":[0,0,0.1]}},{"name":"wheel","type":"rigid3d","mass":0.5,"inertia":[0.01,0.01,0.02],"position":[0,0,0.1],"points":{"c":[0,0,0]}}],"joints":[{"name":"motor","type":"revolute3d","a":[0,0,0],"b":"table.c","axis":[0,0,1],"drive":{"type":"linear","rate":6.283185307179586}},{"name":"bearing","type":"revolute3d","a":"table.top","b":"wheel.c","axis":[0,0,1]}],"effects":[{"type":"gravity","g":[0,0,-9.81]}]}
+EOF
+"$BRAUN" run "$TMP/turntable.json" --dt 1e-3 --t-end 20 --every 20000 --out "$TMP/tt.csv" > "$TMP/tt.json" 2>/dev/null; rc=$?
+check "run turntable with a free wheel at rest: the wheel stays at rest (quaternion z <= 1e-12 at t = 20)" sh -c '
+    [ "$1" -eq 0 ] && head -1 "$2" | cut -d, -f15 | grep -q "^wheel.q\[6\]" &&
+    tail -1 "$2" | cut -d, -f15 | awk "{ z = \$1 < 0 ? -\$1 : \$1; exit !(NF == 1 && z <= 1e-12) }"' sh "$rc" "$TMP/tt.csv"
 # Bricard's linkage (IFToMM A04: 35 rows of rank 34) with no corrections:
 # RK4's energy error falls as h^4 on every backend. A step's later stages,
 # O(h^2) off the manifold, must set aside the row the first stage set aside
