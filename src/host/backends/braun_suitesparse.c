@@ -152,8 +152,11 @@
  *
  *  Numeric factorization: the first of each layout of L is CHOLMOD's; a
  *   simplicial LDL^T (columns sorted, diagonal first: checked) is then
- *   refactored here (ldl_numeric: left-looking on that pattern, the same
- *   pivot replacement), about twice as fast as cholmod_l_factorize's
+ *   factored again here, at once and from then on (ldl_numeric:
+ *   left-looking on that pattern, the same pivot replacement; CHOLMOD's
+ *   factor only gives the layout, so the first factorization after create
+ *   rounds as every later one and a run repeated after braun_set_state is
+ *   the first bit for bit), about twice as fast as cholmod_l_factorize's
  *   row-oriented one (ladder, 12 000 rows: 0.73 against 1.42 ms). From
  *   then on it also forms G: the product map is reordered to its walk of
  *   G's lower columns (ldl_build), and each G_ij is summed where it is
@@ -1695,8 +1698,9 @@ static long ldl_numeric(ss_slot *f, double dbound, long *neg, double *acc)
     return hits;
 }
 
-/* G = C C^T from the product map, then its LDL^T (CHOLMOD's for the first
- * factorization of a layout of L, ldl_numeric's after) with the pivots of
+/* G = C C^T from the product map, then its LDL^T (ldl_numeric's; at the
+ * first factorization of a layout of L CHOLMOD's first, which ldl_numeric
+ * then repeats when it can factor that layout) with the pivots of
  * dependent rows replaced (simplicial factors only). 1: accepted (full
  * rank, or rank rows - ndep with the rows set aside), 0: rank deficient or
  * ill-conditioned otherwise, < 0: error. */
@@ -1708,7 +1712,7 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
     const double *Cx = f->Cx;
     const uint32_t *gptr = f->gptr, *gmap = f->gmap;
     const cholmod_factor *L = f->L;
-    const int own = f->own_fact && L->i == f->own_i && L->nzmax == f->own_nzmax;
+    int own = f->own_fact && L->i == f->own_i && L->nzmax == f->own_nzmax;
     if (!f->map_by_col) {
         for (sslong e = 0; e < nnzG; e++) Gx[e] = g_entry(Cx, gmap, gptr[e], gptr[e + 1]);
     } else if (!own) { /* (ldl_numeric forms them itself) */
@@ -1717,13 +1721,8 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
     dep_clear(f);
     /* max_i G_ii = cmax^2 */
     const double dbound = CHOL_DBOUND * f->cmax * f->cmax;
-    long hits;
-    if (own) {
-        long neg;
-        hits = ldl_numeric(f, dbound, &neg, s->wr6);
-        if (hits < 0) return BRAUN_ERR_NONFINITE;
-        if (neg > 0) return 0;
-    } else {
+    long hits = 0;
+    if (!own) {
         f->piv_ok = 0;
         cc->dbound = f->L->is_super ? 0 : dbound;
         cc->ndbounds_hit = 0;
@@ -1757,6 +1756,19 @@ static int chol_try(ss_state *s, ss_slot *f, double tol)
             f->own_i = f->own_solve ? L->i : NULL;
             f->own_nzmax = L->nzmax;
         }
+        /* A layout that ldl_numeric factors from now on is factored by it
+         * already now, from the same G (the reordered map forms each G_ij
+         * with the same sums): CHOLMOD's factorization only gave the
+         * pattern, so the first factorization of a run after
+         * braun_data_init rounds as every later one does, and a run
+         * repeated after braun_set_state reproduces the first bit for bit. */
+        own = f->own_fact && L->i == f->own_i && L->nzmax == f->own_nzmax;
+    }
+    if (own) {
+        long neg;
+        hits = ldl_numeric(f, dbound, &neg, s->wr6);
+        if (hits < 0) return BRAUN_ERR_NONFINITE;
+        if (neg > 0) return 0;
     }
     if (hits > 0) {
         /* Pivots replaced: only an LDL^T solved here can set their rows
