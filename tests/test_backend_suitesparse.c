@@ -704,6 +704,38 @@ static void test_table(void **state)
     assert_int_equal(braun_linsolver_select("dense", &big, &out, &why), BRAUN_ERR_ARGUMENT);
     assert_int_equal(braun_linsolver_select("auto", &big, &out, &why), BRAUN_OK);
     assert_ptr_equal(out, ls);
+    /* What create or braun_model_init refuses, select refuses, with the
+     * limit: LAPACK takes m <= 4096 (a sparse chain with duplicated joints,
+     * m = 4098, was "OK" here, then "invalid sizes: linear solver create");
+     * a dense system with m = 4220 was "dense" for "auto", then refused by
+     * braun_model_init. The built-in kernels take m + p <= 8192. */
+    braun_system rows = t.model.sys;
+    rows.m = BRAUN_MAX_DENSE + 2;
+    if (braun_linsolver_lapack()) {
+        braun_model lm;
+        memset(&lm, 0, sizeof lm);
+        lm.sys = rows;
+        void *lst = NULL;
+        assert_int_equal(braun_linsolver_lapack()->create(&lst, &lm), BRAUN_ERR_SIZE);
+        assert_int_equal(braun_linsolver_select("lapack", &rows, &out, &why), BRAUN_ERR_ARGUMENT);
+        assert_null(out);
+        assert_non_null(strstr(why, "4096"));
+    }
+    assert_int_equal(braun_linsolver_select("dense", &rows, &out, &why), BRAUN_OK);
+    assert_int_equal(braun_linsolver_select("auto", &rows, &out, &why), BRAUN_OK);
+    assert_true(out == NULL || out != braun_linsolver_lapack());
+    braun_system dense_rows = rows;
+    dense_rows.sparsity = NULL;
+    dense_rows.m = 4220;
+    braun_model dm;
+    assert_int_equal(braun_model_init(&dm, &dense_rows), BRAUN_ERR_SIZE);
+    const char *const names[] = {"auto", "dense", "lapack", "suitesparse"};
+    for (int k = 0; k < 4; k++) {
+        why = NULL;
+        assert_int_equal(braun_linsolver_select(names[k], &dense_rows, &out, &why), BRAUN_ERR_SIZE);
+        assert_null(out);
+        assert_non_null(strstr(why, "4096"));
+    }
     ls->destroy(NULL);
     ts_close(&t);
 }

@@ -30,9 +30,15 @@ const braun_linsolver *braun_linsolver_suitesparse(void);
  * "suitesparse", or "auto" (by size and sparsity, docs/performance.md:
  * the built-in kernels for small systems, SuiteSparse for large sparse ones,
  * LAPACK for large dense ones; whatever is compiled in).
- * BRAUN_OK, or BRAUN_ERR_ARGUMENT for an unknown name or a backend not built
- * into this library or unable to take this system (message in *why, a
- * static string, when why is not NULL). */
+ * BRAUN_OK, BRAUN_ERR_SIZE for sizes braun_model_init refuses whatever the
+ * backend (n < 1, m or p < 0, n, m or p above BRAUN_MAX_DENSE without a
+ * sparsity, above BRAUN_MAX_SPARSE with one), or BRAUN_ERR_ARGUMENT for an
+ * unknown name or a backend not built into this library or unable to take
+ * this system (the built-in kernels: n <= BRAUN_MAX_DENSE, m + p <= twice
+ * it; lapack: n, m, p <= BRAUN_MAX_DENSE each; suitesparse: a sparsity)
+ * (message, with the limit, in *why, a static string, when why is not
+ * NULL). A system select accepts is one braun_data_init accepts for that
+ * backend, as far as its sizes go. */
 int braun_linsolver_select(const char *name, const braun_system *sys,
                            const braun_linsolver **out, const char **why);
 

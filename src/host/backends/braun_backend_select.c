@@ -41,6 +41,24 @@ int braun_linsolver_select(const char *name, const braun_system *sys,
         if (why) *why = "invalid sizes n, m, p (n >= 1, m, p >= 0)";
         return BRAUN_ERR_SIZE;
     }
+    /* What braun_model_init refuses whatever the backend (braun_model.c,
+     * braun_system_check): a dense m = 4220 system was "dense" here. */
+    if (!sys->sparsity &&
+        (sys->n > BRAUN_MAX_DENSE || sys->m > BRAUN_MAX_DENSE || sys->p > BRAUN_MAX_DENSE)) {
+        if (why) *why = "n, m or p above BRAUN_MAX_DENSE (4096; larger systems need a sparsity)";
+        return BRAUN_ERR_SIZE;
+    }
+    if (sys->sparsity &&
+        (sys->n > BRAUN_MAX_SPARSE || sys->m > BRAUN_MAX_SPARSE || sys->p > BRAUN_MAX_SPARSE)) {
+        if (why) *why = "n, m or p above BRAUN_MAX_SPARSE (2^20)";
+        return BRAUN_ERR_SIZE;
+    }
+    /* LAPACK's create (braun_lapack.c) takes n, m and p up to
+     * BRAUN_MAX_DENSE each, fewer rows than the built-in kernels: a sparse
+     * m = 4098 system was "OK" here and then failed braun_data_init with
+     * "invalid sizes: linear solver create". */
+    const int beyond_lapack =
+        sys->n > BRAUN_MAX_DENSE || sys->m > BRAUN_MAX_DENSE || sys->p > BRAUN_MAX_DENSE;
     /* The dense kernels (built-in or LAPACK's) stop where braun_data_size
      * does (braun_data.c, dense_size_ok: n <= BRAUN_MAX_DENSE, m + p <= twice
      * it): a larger sparse system was "OK" here and then failed
@@ -56,6 +74,14 @@ int braun_linsolver_select(const char *name, const braun_system *sys,
     if (strcmp(name, "lapack") == 0) {
         if (!(*out = braun_linsolver_lapack()))
             return fail(why, "backend 'lapack' not built (make BRAUN_LAPACK=1)");
+        if (beyond_lapack) {
+            *out = NULL;
+            return fail(why, sys->sparsity
+                                 ? "beyond backend 'lapack''s 4096 coordinates and 4096 rows of "
+                                   "each kind (m, p): use 'suitesparse', 'dense' or 'auto'"
+                                 : "beyond backend 'lapack''s 4096 coordinates and 4096 rows of "
+                                   "each kind (m, p)");
+        }
         return BRAUN_OK;
     }
     if (strcmp(name, "suitesparse") == 0) {
@@ -76,6 +102,7 @@ int braun_linsolver_select(const char *name, const braun_system *sys,
         *out = braun_linsolver_suitesparse();
         return BRAUN_OK;
     }
-    if (sys->n >= AUTO_LAPACK_MIN_N && braun_linsolver_lapack()) *out = braun_linsolver_lapack();
+    if (sys->n >= AUTO_LAPACK_MIN_N && !beyond_lapack && braun_linsolver_lapack())
+        *out = braun_linsolver_lapack();
     return BRAUN_OK;
 }
