@@ -182,9 +182,17 @@ static int rk_stages(braun_data *d, const braun_tableau *tb, braun_real h, braun
                  * its rank by the plain tolerance. */
                 int moved = 0;
                 braun_real r0 = 0;
+                const int energy_end = pv->energy_end, soft_on = pv->soft_on;
                 pv->vel_judged = 0;
                 st = braun__project_positions(d, pv->y0, &moved, &r0, 1);
                 if (st) return st;
+                /* The projection's evaluations are points, not a step's
+                 * stages: the step's own settings back (the energy force
+                 * sized at its end: without, Heun's first step kept its
+                 * energy error, 1e-7 J). */
+                pv->energy_end = energy_end;
+                pv->soft_on = soft_on;
+                pv->de_ok = 0;
                 retried = 1;
                 pv->step_rank[0] = pv->rule_keep[0] = pv->rows;
                 pv->step_rank[1] = pv->rule_keep[1] = pv->m;

@@ -391,12 +391,17 @@ done
 cat > "$TMP/pg-off.json" <<'EOF'
 {"name":"pg-ang1e-10","description":"parallelogram linkage with a third, redundant crank: 12 revolute rows of rank 11 everywhere (1 dof), released at 60 degrees","ground":{"points":{"A":[0,0],"E":[1,0],"B":[2,0]}},"bodies":[{"name":"crank1","type":"rigid","mass":1,"inertia":0.08333333333333333,"position":[0.2701511529340699,0.42073549240394825],"angle":1.0000000000909297,"points":{"base":[-0.5,0],"tip":[0.5,0]},"velocity":[-0.8414709848078965,0.5403023058681398],"omega":2.0},{"name":"crank2","type":"rigid","mass":1,"inertia":0.08333333333333333,"position":[1.2701511529340699,0.42073549240394825],"angle":0.9999999999041076,"points":{"base":[-0.5,0],"tip":[0.5,0]},"velocity":[-0.8414709848078965,0.5403023058681398],"omega":2.0},{"name":"crank3","type":"rigid","mass":1,"inertia":0.08333333333333333,"position":[2.27015115293407,0.42073549240394825],"angle":1.0000000000989357,"points":{"base":[-0.5,0],"tip":[0.5,0]},"velocity":[-0.8414709848078965,0.5403023058681398],"omega":2.0},{"name":"coupler","type":"rigid","mass":2,"inertia":0.6666666666666666,"position":[1.5403023058681398,0.8414709848078965],"angle":-9.999902065507035e-11,"points":{"left":[-1,0],"mid":[0,0],"right":[1,0]},"velocity":[-1.682941969615793,1.0806046117362795]}],"joints":[{"name":"pivot1","type":"revolute","a":"crank1.base","b":"ground.A"},{"name":"pivot2","type":"revolute","a":"crank2.base","b":"ground.E"},{"name":"pivot3","type":"revolute","a":"crank3.base","b":"ground.B"},{"name":"pin1","type":"revolute","a":"crank1.tip","b":"coupler.left"},{"name":"pin2","type":"revolute","a":"crank2.tip","b":"coupler.mid"},{"name":"pin3","type":"revolute","a":"crank3.tip","b":"coupler.right"}],"effects":[{"type":"gravity","g":[0,-9.81]}]}
 EOF
-for integ in dopri5 rk4; do
+# Heun's own error at h = 1e-3 is 8.6e-6 rad there; its first step, taken
+# again from the projected start, had lost the energy force sized at its
+# end (1.1e-7 J).
+for integ in dopri5 rk4 heun; do
     "$BRAUN" run "$TMP/pg-off.json" --integrator $integ --dt 1e-3 --t-end 2 > "$TMP/pgoff.json" 2>/dev/null; rc=$?
-    check "run parallelogram started 1e-10 off, $integ: BRAUN_OK, crank angle 6.580149 at t = 2 (within 1e-5)" sh -c '
+    tol=1e-5; [ $integ = heun ] && tol=2e-5
+    check "run parallelogram started 1e-10 off, $integ: BRAUN_OK, crank angle 6.580149 at t = 2 (within $tol), |Phi_e| <= 1e-12" sh -c '
         [ "$1" -eq 0 ] && grep -q "\"status\": \"BRAUN_OK\"" "$2" &&
+        sed -n "s/^  \"max_energy_error\": \(.*\),$/\1/p" "$2" | awk "{ exit !(NF == 1 && \$1 <= 1e-12) }" &&
         sed -n "s/^  \"final_q\": \[[^,]*, [^,]*, \([^,]*\),.*/\1/p" "$2" |
-        awk "{ d = \$1 - 6.580149007; exit !(NF == 1 && d < 1e-5 && d > -1e-5) }"' sh "$rc" "$TMP/pgoff.json"
+        awk -v tol="$3" "{ d = \$1 - 6.580149007; exit !(NF == 1 && d < tol && d > -tol) }"' sh "$rc" "$TMP/pgoff.json" "$tol"
 done
 # A torsion3d rest_angle of 1e12 (within the format's 1e12): its angle was
 # wrapped into (-pi, pi] by a loop of 2 pi subtractions, and check did not
