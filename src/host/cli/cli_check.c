@@ -520,7 +520,7 @@ static int report(const braun_cli_target *tg)
     for (int i = 0; i < p; i++) ev[m + i] = (double)scratch[i];
     for (size_t i = 0; i < nn; i++) Md[i] = (double)M[i];
     for (size_t i = 0; i < rn; i++) Ad[i] = (double)A[i];
-    int rank = 0, consistent = 1, vconsistent = 1, vrank = 0;
+    int rank = 0, consistent = 1, vconsistent = 1, vrank = 0, loose_rank = -1;
     double resid = 0, vresid = 0;
     assembly asm_ = {.reached = 1};
     /* The search costs O(m n²) per Gauss–Newton step: up to the size
@@ -550,6 +550,17 @@ static int report(const braun_cli_target *tg)
             braun_cli_error("out of memory");
             goto done;
         }
+        /* A start off its rows: rows dependent on the manifold are
+         * dependent there only to its residual, and may count as
+         * independent (the parallelogram's redundant crank 1e-13 off:
+         * rank 12, no dof). The rank a run takes after projecting such a
+         * start (pivots past sqrt(ε), docs/robustness.md). */
+        if (pos > 0) {
+            const int nr = p > 0 ? rows : m;
+            double *W = T ? T : Md;
+            memcpy(W, Ad, sizeof(double) * (size_t)nr * (size_t)n);
+            loose_rank = rank_of_rows(nr, n, W, sqrt((double)BRAUN_EPS));
+        }
         /* Rows that agree to first order at a start off them: can they be
          * met at all near it? */
         /* Rows that disagree to first order may still be met near the start
@@ -564,6 +575,11 @@ static int report(const braun_cli_target *tg)
     text_value("description", tg->description ? tg->description : "");
     printf("n: %d\nm: %d\np: %d\n", n, m, p);
     printf("rank: %d\nredundant: %d\ndof: %d\n", rank, rows - rank, n - rank);
+    if (loose_rank >= 0 && loose_rank < rank)
+        printf("rank_note: %d of these pivots are below sqrt(eps) of the largest: rows dependent only to "
+               "the start's residual; on them (a run's projected start) the rank is %d, dof %d "
+               "(docs/robustness.md)\n",
+               rank - loose_rank, loose_rank, n - loose_rank);
     printf("position_residual: %.3g\n", (double)pos);
     /* A start off its constraints: which row, and whose. An infeasible
      * joint (a distance longer than the mechanism reaches) is consistent
