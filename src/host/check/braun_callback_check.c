@@ -399,6 +399,34 @@ static int kink(work *w, double x, double sign, double f0, double fp1, double fp
     return 1;
 }
 
+/* Some entry of sign·out disagrees with the callback's x beyond its
+ * allowance and the tolerance. */
+static int any_open(const work *w, int count, const double *x, int stride, double sign, const double *out,
+                    const double *allow)
+{
+    for (int i = 0; i < count; i++) {
+        const double xi = x[(size_t)i * stride], di = sign * out[i];
+        const double scale = fabs(xi) > fabs(di) ? fabs(xi) : fabs(di);
+        if (fabs(xi - di) - allow[i] > w->tol * scale) return 1;
+    }
+    return 0;
+}
+
+/* Each entry takes the estimate alt at `step` (its spread alt_spread,
+ * magnitude m, rounding rnd) where that one's allowance is the smaller
+ * part of itself. */
+static void take_better(int count, const double *alt, const double *alt_spread, double m, double step,
+                        double rnd, double *out, double *allow)
+{
+    for (int i = 0; i < count; i++) {
+        const double allow_alt = 2 * alt_spread[i] + 1e2 * REAL_EPS * m / step + rnd * fabs(alt[i]);
+        if (allow_alt / (fabs(alt[i]) + DBL_MIN) < allow[i] / (fabs(out[i]) + DBL_MIN)) {
+            out[i] = alt[i];
+            allow[i] = allow_alt;
+        }
+    }
+}
+
 /* deriv at τ, its count entries compared with the analytic x[i·stride]
  * (as sign·out). Each estimate carries an allowance: twice its spread (the
  * stencil's truncation error at τ is 16/15 of it) plus the round-off at τ.
@@ -422,24 +450,11 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
         allow[i] = 2 * allow[i] + 1e2 * REAL_EPS * *mag / tau + rnd * fabs(out[i]);
     double step = tau;
     for (int level = 0; level < 8 && !st; level++) {
-        int open = 0;
-        for (int i = 0; i < count; i++) {
-            const double xi = x[(size_t)i * stride], di = sign * out[i];
-            const double scale = fabs(xi) > fabs(di) ? fabs(xi) : fabs(di);
-            if (fabs(xi - di) - allow[i] > w->tol * scale) open = 1;
-        }
-        if (!open) break;
+        if (!any_open(w, count, x, stride, sign, out, allow)) break;
         step /= 16;
         double m = *mag;
         st = deriv(w, f, dir, j, step, t0, q0, v0, count, alt, alt_spread, &m);
-        const double rnd_alt = rounding(w, dir, j, t0, q0, v0, step);
-        for (int i = 0; i < count && !st; i++) {
-            const double allow_alt = 2 * alt_spread[i] + 1e2 * REAL_EPS * m / step + rnd_alt * fabs(alt[i]);
-            if (allow_alt / (fabs(alt[i]) + DBL_MIN) < allow[i] / (fabs(out[i]) + DBL_MIN)) {
-                out[i] = alt[i];
-                allow[i] = allow_alt;
-            }
-        }
+        if (!st) take_better(count, alt, alt_spread, m, step, rounding(w, dir, j, t0, q0, v0, step), out, allow);
     }
     /* ... and at steps up to 16⁴ the first: a callback whose output moves
      * in quanta larger than the step (a drive's angle 1e12 + t: its ulp is
@@ -449,13 +464,7 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
      * not finite) ends the search, not the check. */
     step = tau;
     for (int level = 0; level < 4 && !st; level++) {
-        int open = 0;
-        for (int i = 0; i < count; i++) {
-            const double xi = x[(size_t)i * stride], di = sign * out[i];
-            const double scale = fabs(xi) > fabs(di) ? fabs(xi) : fabs(di);
-            if (fabs(xi - di) - allow[i] > w->tol * scale) open = 1;
-        }
-        if (!open) break;
+        if (!any_open(w, count, x, stride, sign, out, allow)) break;
         step *= 16;
         double m = *mag;
         char said[sizeof w->rep->worst];
@@ -464,23 +473,10 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
             memcpy(w->rep->worst, said, sizeof said);
             break;
         }
-        const double rnd_alt = rounding(w, dir, j, t0, q0, v0, step);
-        for (int i = 0; i < count; i++) {
-            const double allow_alt = 2 * alt_spread[i] + 1e2 * REAL_EPS * m / step + rnd_alt * fabs(alt[i]);
-            if (allow_alt / (fabs(alt[i]) + DBL_MIN) < allow[i] / (fabs(out[i]) + DBL_MIN)) {
-                out[i] = alt[i];
-                allow[i] = allow_alt;
-            }
-        }
+        take_better(count, alt, alt_spread, m, step, rounding(w, dir, j, t0, q0, v0, step), out, allow);
     }
     /* Entries the differences still do not resolve: a kink at the state? */
-    int open = 0;
-    for (int i = 0; i < count && !st; i++) {
-        const double xi = x[(size_t)i * stride], di = sign * out[i];
-        const double scale = fabs(xi) > fabs(di) ? fabs(xi) : fabs(di);
-        if (fabs(xi - di) - allow[i] > w->tol * scale) open = 1;
-    }
-    if (open && !st) {
+    if (!st && any_open(w, count, x, stride, sign, out, allow)) {
         /* f(0), f(τ/2), f(τ), f(−τ/2), f(−τ) into alt-sized scratch. */
         double *v5 = calloc(5 * (size_t)count + 1, sizeof(double));
         if (!v5) {
