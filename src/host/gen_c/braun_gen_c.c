@@ -65,18 +65,6 @@ static int body_field(const braun_scene_field *f, size_t offset)
     return 0;
 }
 
-/* A class outside libbraun is written by its c_name "&symbol": the file
- * declares the symbol (once per class; seen holds those declared). */
-static void declare(FILE *f, const void *cls, const char *type, const char *c_name,
-                    const void **seen, int *nseen)
-{
-    if (!c_name || c_name[0] != '&') return;
-    for (int i = 0; i < *nseen; i++)
-        if (seen[i] == cls) return;
-    seen[(*nseen)++] = cls;
-    fprintf(f, "extern const %s %s;\n", type, c_name + 1);
-}
-
 static void fn(FILE *f, const braun_scene_fn *g)
 {
     fputs("{.kind = ", f);
@@ -326,11 +314,20 @@ static int c_name_clash(const char *c_name, const char *sym, const char *upper, 
     return 0;
 }
 
+/* A scene's classes, each once, in the order of their first element
+ * (bodies, joints, effects): k 0, 1, 2 for a body, joint or effect class. */
+typedef struct seen_class {
+    const void *cls;
+    const char *c_name, *type;
+    int k;
+} seen_class;
+
 /* The class of every element has a c_name gen-c can write, and a class the
  * file declares ("&name") is the only one of that name. Each class is
- * checked once (seen: the classes so far, at most one per element). 0;
- * -1 with the reason in err; -2 out of memory. */
-static int check_classes(const braun_scene_file *sf, const char *sym, char *err, size_t size)
+ * checked once; seen (room for one per element) gets them, *nseen their
+ * number, for the declarations. 0, or -1 with the reason in err. */
+static int check_classes(const braun_scene_file *sf, const char *sym, seen_class *seen, int *nseen_out,
+                         char *err, size_t size)
 {
     const braun_scene *s = &sf->scene;
     static const char *const kinds[] = {"body", "joint", "effect"};
@@ -338,15 +335,8 @@ static int check_classes(const braun_scene_file *sf, const char *sym, char *err,
     const char *const *names[] = {sf->body_names, sf->joint_names, sf->effect_names};
     char upper[BRAUN_GEN_C_SYMBOL_MAX + 1];
     upper_symbol(sym, upper);
-    struct seen_class {
-        const void *cls;
-        const char *c_name, *type;
-    } *seen = malloc(((size_t)s->nbodies + s->njoints + s->neffects + 1) * sizeof *seen);
     int nseen = 0;
-    if (!seen) {
-        if (err && size) snprintf(err, size, "out of memory");
-        return -2;
-    }
+    *nseen_out = 0;
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < counts[k]; i++) {
             const void *cls = NULL;
@@ -374,6 +364,7 @@ static int check_classes(const braun_scene_file *sf, const char *sym, char *err,
             if (!bad) {
                 seen[nseen].cls = cls;
                 seen[nseen].c_name = c_name;
+                seen[nseen].k = k;
                 seen[nseen++].type = type;
                 continue;
             }
@@ -399,10 +390,9 @@ static int check_classes(const braun_scene_file *sf, const char *sym, char *err,
                 for (char *c = err; *c; c++)
                     if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
             }
-            free(seen);
             return -1;
         }
-    free(seen);
+    *nseen_out = nseen;
     return 0;
 }
 
@@ -489,14 +479,17 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
     char upper[BRAUN_GEN_C_SYMBOL_MAX + 1];
     /* Everything is checked before the first byte is written. */
     if (braun_gen_c_check_symbol(sym, err, err_size)) return BRAUN_GEN_C_INVALID;
-    const int classes = check_classes(sf, sym, err, err_size);
-    if (classes) return classes == -2 ? BRAUN_GEN_C_WRITE : BRAUN_GEN_C_INVALID;
-    upper_symbol(sym, upper);
-    const void **seen = malloc(((size_t)s->nbodies + s->njoints + s->neffects + 1) * sizeof *seen);
+    seen_class *seen = malloc(((size_t)s->nbodies + s->njoints + s->neffects + 1) * sizeof *seen);
+    int nseen = 0;
     if (!seen) {
         if (err && err_size) snprintf(err, err_size, "out of memory");
         return BRAUN_GEN_C_WRITE;
     }
+    if (check_classes(sf, sym, seen, &nseen, err, err_size)) {
+        free(seen);
+        return BRAUN_GEN_C_INVALID;
+    }
+    upper_symbol(sym, upper);
 
     banner(out, sf, source);
     if (sf->description && sf->description[0]) comment_text(out, sf->description);
@@ -512,19 +505,14 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
           "#else\n#define RD(x) R(x)\n#endif\n\n", out);
     sizes(out, s, upper);
 
-    /* Classes defined by the program (not libbraun's): declared here, the
-     * program links their definitions. */
+    /* Classes defined by the program (not libbraun's, written "&symbol"):
+     * declared here, once each, the program links their definitions. */
     {
-        int nseen = 0;
-        for (int i = 0; i < s->nbodies; i++)
-            declare(out, s->bodies[i].kind, "braun_scene_body_class", s->bodies[i].kind->c_name,
-                    seen, &nseen);
-        for (int i = 0; i < s->njoints; i++)
-            declare(out, s->joints[i].type, "braun_scene_joint_class", s->joints[i].type->c_name,
-                    seen, &nseen);
-        for (int i = 0; i < s->neffects; i++)
-            declare(out, s->effects[i].type, "braun_scene_effect_class",
-                    s->effects[i].type->c_name, seen, &nseen);
+        static const char *const class_types[] = {"braun_scene_body_class", "braun_scene_joint_class",
+                                                   "braun_scene_effect_class"};
+        for (int i = 0; i < nseen; i++)
+            if (seen[i].c_name[0] == '&')
+                fprintf(out, "extern const %s %s;\n", class_types[seen[i].k], seen[i].c_name + 1);
         free(seen);
     }
 
