@@ -789,6 +789,45 @@ int braun__corrections(braun_data *d, const braun_real *vdot, int guard_run)
     return st;
 }
 
+/* A point's corrections at h = 0 (Δ_q = Φ_q, a Gauss–Newton step in the
+ * mass metric; Δ_v = [Φ̇_q; Φ_v] measured again where q went): those of
+ * corr at y, repeated while the residual of the rows they remove, relative
+ * to the guard's scales, exceeds tol and still halves (at most 8 times).
+ * plain: the rank by the plain tolerance, else every pivot past sqrt(ε)
+ * (the rule of a rising rank). y = [q; v; ∫Ė] changed in place; *moved
+ * set when a correction was applied; *r_first and *r_last the residual at
+ * the first and the last point. The rank rule is plain again after. */
+static int project_at_rest(braun_data *d, braun_real *y, unsigned corr, int plain, braun_real tol, int *moved,
+                           braun_real *r_first, braun_real *r_last)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = BRAUN_N(pv->n);
+    braun_real last = 0;
+    int st = BRAUN_OK;
+    for (int it = 0;; it++) {
+        braun__at(pv, d->t, y, y + n, y[2 * n], 0);
+        braun__rank_rule_plain(pv);
+        if (!plain) pv->rule_keep[0] = pv->rule_keep[1] = 0;
+        pv->soft_on = 0;
+        pv->energy_end = 0;
+        pv->stage = 0;
+        st = braun__forward(d, BRAUN_WITH_RESIDUALS, pv->k[0] + n);
+        if (st) break;
+        const braun_real r = *r_last = relative_residual_of(d, corr);
+        if (it == 0) *r_first = r;
+        if (!(r > tol) || (it > 0 && !(r < BRAUN_R(0.5) * last)) || it == 8) break;
+        last = r;
+        st = position_velocity(d, corr, 1);
+        if (st) break;
+        for (int i = 0; i < n; i++) y[i] += pv->dq[i];
+        if (corr & BRAUN_CORRECT_VELOCITY)
+            for (int i = 0; i < n; i++) y[n + i] += pv->dv[i];
+        *moved = 1;
+    }
+    braun__rank_rule_plain(pv);
+    return st;
+}
+
 /* A new run's start: its positions projected onto the constraints before
  * anything else — the position correction at h = 0 (a Gauss–Newton step in
  * the mass metric), repeated while the position residual, relative to its
@@ -809,31 +848,11 @@ int braun__project_positions(braun_data *d, braun_real *y, int *moved, braun_rea
 {
     braun_priv *pv = braun__priv(d);
     const unsigned corr = d->model->opt.corrections & BRAUN_CORRECT_POSITION;
-    const int n = BRAUN_N(pv->n);
+    braun_real r = 0;
     *moved = 0;
     *r_start = 0;
     if (!corr || pv->m == 0) return BRAUN_OK;
-    braun_real last = 0;
-    int st = BRAUN_OK;
-    for (int it = 0;; it++) {
-        braun__at(pv, d->t, y, y + n, y[2 * n], 0);
-        braun__rank_rule_plain(pv);
-        pv->rule_keep[0] = pv->rule_keep[1] = 0;
-        pv->soft_on = 0;
-        pv->energy_end = 0;
-        pv->stage = 0;
-        st = braun__forward(d, BRAUN_WITH_RESIDUALS, pv->k[0] + n);
-        if (st) break;
-        const braun_real r = relative_residual_of(d, corr);
-        if (it == 0) *r_start = r;
-        if (!(r > 8 * BRAUN_EPS) || (it > 0 && !(r < BRAUN_R(0.5) * last)) || it == 8) break;
-        last = r;
-        st = position_velocity(d, corr, 1);
-        if (st) break;
-        for (int i = 0; i < n; i++) y[i] += pv->dq[i];
-        *moved = 1;
-    }
-    braun__rank_rule_plain(pv);
+    const int st = project_at_rest(d, y, corr, 0, 8 * BRAUN_EPS, moved, r_start, &r);
     if (!st && judge && *moved && pv->e0_pending == 1 && *r_start > braun_sqrt(BRAUN_EPS))
         judge_start(d, *r_start);
     return st;
@@ -859,29 +878,13 @@ int braun__project_start(braun_data *d, braun_real *y, int *moved)
     *moved = 0;
     if (!(corr & (BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY)) || pv->rows == 0) return BRAUN_OK;
     const braun_real tol = braun_sqrt(BRAUN_EPS);
-    braun_real r = 0, last = 0, r0 = 0;
+    braun_real r = 0, r0 = 0;
+    int moved_both = 0;
     /* The positions first (braun__project_positions), then both. */
     int st = braun__project_positions(d, y, moved, &r0, 0);
+    if (!st) st = project_at_rest(d, y, corr, 1, tol, &moved_both, &r0, &r);
     if (st) return st;
-    for (int it = 0;; it++) {
-        braun__at(pv, d->t, y, y + n, y[2 * n], 0);
-        braun__rank_rule_plain(pv);
-        pv->soft_on = 0;
-        pv->energy_end = 0;
-        pv->stage = 0;
-        st = braun__forward(d, BRAUN_WITH_RESIDUALS, pv->k[0] + n);
-        if (st) return st;
-        r = relative_residual(d);
-        if (!(r > tol) || (it > 0 && !(r < BRAUN_R(0.5) * last)) || it == 8) break;
-        last = r;
-        st = position_velocity(d, corr, 1);
-        if (st) return st;
-        for (int i = 0; i < n; i++) {
-            y[i] += pv->dq[i];
-            y[n + i] += pv->dv[i];
-        }
-        *moved = 1;
-    }
+    if (moved_both) *moved = 1;
     /* The rows' consistency is judged at the start too: one on its
      * constraints (or projected onto them, the velocity correction having
      * judged it) has rows that agree. Left to the first step's end, the
