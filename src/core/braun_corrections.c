@@ -369,11 +369,10 @@ static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_
 /* The point's residuals relative to their scales (the guard's, measured
  * here): max(‖Φ_q‖∞ / pos, ‖[Φ̇_q; Φ_v]‖∞ / vel), of those the corrections
  * remove. */
-static braun_real relative_residual_of(braun_data *d, unsigned corr)
+/* The point's residuals against given scales pos and vel. */
+static braun_real residual_against(const braun_priv *pv, unsigned corr, braun_real pos, braun_real vel)
 {
-    braun_priv *pv = braun__priv(d);
-    braun_real pos, vel, energy, rp = 0, rv = 0;
-    measure_scales(d, 1, 0, &pos, &vel, &energy);
+    braun_real rp = 0, rv = 0;
     /* Only what the corrections remove: with the velocity correction off
      * a velocity residual stays, and E0 waited for it for good. */
     for (int i = 0; (corr & BRAUN_CORRECT_POSITION) && i < pv->m; i++)
@@ -382,6 +381,13 @@ static braun_real relative_residual_of(braun_data *d, unsigned corr)
         if (braun_fabs(pv->ev[i]) > rv) rv = braun_fabs(pv->ev[i]);
     const braun_real a = pos > 0 ? rp / pos : 0, b = vel > 0 ? rv / vel : 0;
     return a > b ? a : b;
+}
+
+static braun_real relative_residual_of(braun_data *d, unsigned corr)
+{
+    braun_real pos, vel, energy;
+    measure_scales(d, 1, 0, &pos, &vel, &energy);
+    return residual_against(braun__priv(d), corr, pos, vel);
 }
 
 static braun_real relative_residual(braun_data *d)
@@ -802,9 +808,11 @@ static int project_at_rest(braun_data *d, braun_real *y, unsigned corr, int plai
 {
     braun_priv *pv = braun__priv(d);
     const int n = BRAUN_N(pv->n);
-    braun_real last = 0;
-    int st = BRAUN_OK;
-    for (int it = 0;; it++) {
+    const int nv = (corr & BRAUN_CORRECT_VELOCITY) ? 2 * n : n; /* what a correction moves */
+    braun_real *prev = pv->yerr; /* the last accepted point (free before a step) */
+    braun_real last = 0, merit_last = 0, pos0 = 0, vel0 = 0, e0 = 0;
+    int st = BRAUN_OK, cuts = 0, restored = 0;
+    for (int it = 0;;) {
         braun__at(pv, d->t, y, y + n, y[2 * n], 0);
         braun__rank_rule_plain(pv);
         if (!plain) pv->rule_keep[0] = pv->rule_keep[1] = 0;
@@ -814,15 +822,43 @@ static int project_at_rest(braun_data *d, braun_real *y, unsigned corr, int plai
         st = braun__forward(d, BRAUN_WITH_RESIDUALS, pv->k[0] + n);
         if (st) break;
         const braun_real r = *r_last = relative_residual_of(d, corr);
-        if (it == 0) *r_first = r;
-        if (!(r > tol) || (it > 0 && !(r < BRAUN_R(0.5) * last)) || it == 8) break;
+        if (restored) break;
+        if (it == 0 && cuts == 0) {
+            *r_first = r;
+            measure_scales(d, 1, 0, &pos0, &vel0, &e0);
+        }
+        /* Judged against the first point's scales, fixed: the point's own
+         * grow with q, and a Gauss–Newton step far from the manifold that
+         * overshot (a particle 0.02 from the pivot of a 1 m distance row,
+         * sent to 6.3) looked 1e6 times better by its own scale. It was
+         * kept, status OK, 2 m off at the run's end (found by an outside
+         * client). A step that does not decrease the residual is halved,
+         * back towards the last point, and that point is kept if none does. */
+        const braun_real merit = residual_against(pv, corr, pos0, vel0);
+        if (it > 0 && !(merit < merit_last)) {
+            if (cuts < 40) {
+                cuts++;
+                for (int i = 0; i < nv; i++) y[i] = prev[i] + BRAUN_R(0.5) * (y[i] - prev[i]);
+            } else {
+                for (int i = 0; i < nv; i++) y[i] = prev[i];
+                restored = 1;
+            }
+            continue;
+        }
+        /* A halved step is no sign of the floor: only a full one that did
+         * not halve the residual ends the iteration. */
+        if (!(r > tol) || (it > 0 && cuts == 0 && !(r < BRAUN_R(0.5) * last)) || it == 8) break;
         last = r;
+        merit_last = merit;
+        cuts = 0;
         st = position_velocity(d, corr, 1);
         if (st) break;
+        for (int i = 0; i < nv; i++) prev[i] = y[i];
         for (int i = 0; i < n; i++) y[i] += pv->dq[i];
         if (corr & BRAUN_CORRECT_VELOCITY)
             for (int i = 0; i < n; i++) y[n + i] += pv->dv[i];
         *moved = 1;
+        it++;
     }
     braun__rank_rule_plain(pv);
     return st;
