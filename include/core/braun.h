@@ -287,7 +287,9 @@ typedef struct braun_options {
      * holds for the velocity-level rows [A_q; A_vv] at the first velocity
      * correction after braun_set_state: the part of [Φ̇_q; Φ_v] outside
      * the range of C_v (two drives of one joint at different rates, a
-     * knife across a driven slider). <= 0: sqrt(ε). */
+     * knife across a driven slider). <= 0: sqrt(ε) of the rows' own size
+     * at the point, max_i Σ_j |A_ij|·|x_j| + |r_i| (x = q or v, r the
+     * correction's target): the same answer in any unit of length. */
     braun_real inconsistency_tol;
     /* Accuracy guard (docs/robustness.md, "The accuracy guard"): a step
      * whose start finds a residual above its bound stops the run with

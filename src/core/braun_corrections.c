@@ -197,11 +197,28 @@ static BRAUN_NOINLINE int inconsistent(braun_data *d, braun_real resid, braun_re
     return disagreeing_rows(d, pv->m, pv->dq, pv->ep, 1, resid, tol, "holonomic constraints");
 }
 
-/* The library's inconsistency tolerance (options.inconsistency_tol). */
-static braun_real inconsistency_tol(const braun_data *d)
+/* The library's inconsistency tolerance for the first `rows` rows, their
+ * residuals computed from x (q or v) and their target r: the option, in
+ * the rows' units, when set; by default sqrt(ε) of the rows' own size at
+ * the point, the largest Σ_j |A_ij|·|x_j| + |r_i| (the scale of the
+ * rounding of a row computed from x, and of its target). An absolute
+ * sqrt(ε) was a length in metres (or m² for a distance row): a mechanism
+ * of 10 µm whose two distance rows cannot both hold (L and 2L from one
+ * anchor) ran BRAUN_OK 58 % off one of them, and a consistent redundant
+ * one of 10 km stopped on its round-off, 2e-16·L² (found by an outside
+ * client). Scratch: pv->tmp (free where the corrections judge). A rare
+ * path: only rank-deficient factorizations judge. */
+static braun_real inconsistency_tol(braun_data *d, int rows, const braun_real *x, const braun_real *r)
 {
-    return d->model->opt.inconsistency_tol > 0 ? d->model->opt.inconsistency_tol
-                                               : braun_sqrt(BRAUN_EPS);
+    if (d->model->opt.inconsistency_tol > 0) return d->model->opt.inconsistency_tol;
+    braun_priv *pv = braun__priv(d);
+    braun_real big = 0;
+    for (int j = 0; j < pv->n; j++) pv->tmp[j] = braun_fabs(x[j]);
+    for (int i = 0; i < rows; i++) {
+        const braun_real sum = braun__row_abs_dot(pv, i, pv->tmp) + braun_fabs(r[i]);
+        if (sum > big) big = sum;
+    }
+    return braun_sqrt(BRAUN_EPS) * big;
 }
 
 /* The round-off floor of a correction's right-hand side (braun_linsolver.h
@@ -280,7 +297,7 @@ static int stage_position(braun_data *d)
         rhs_floor(pv, slot, m, pv->at.q, BRAUN_RHS_FLOOR_Q);
         braun__lsq(pv, slot, pv->ep, pv->dq, &resid);
         rhs_floor(pv, slot, m, pv->at.q, 0);
-        const braun_real tol = inconsistency_tol(d);
+        const braun_real tol = inconsistency_tol(d, m, pv->at.q, pv->ep);
         if (resid > tol) return position_failure(d, slot, resid, tol);
     } else {
         braun__pinv(pv, slot, pv->ep, pv->dq);
@@ -324,7 +341,7 @@ static BRAUN_NOINLINE int velocity_consistent(braun_data *d)
         const braun_real e = braun__row_dot(pv, i, pv->dv) + pv->ev[i];
         r2 += e * e;
     }
-    const braun_real resid = braun_sqrt(r2), tol = inconsistency_tol(d);
+    const braun_real resid = braun_sqrt(r2), tol = inconsistency_tol(d, pv->rows, pv->at.v, pv->ev);
     if (!(resid > tol)) return BRAUN_OK;
     return disagreeing_rows(d, pv->rows, pv->dv, pv->ev, -1, resid, tol,
                             "velocity-level constraint rows");

@@ -445,6 +445,45 @@ EOF
 cat > "$TMP/rev3d-off.json" <<'EOF'
 {"name": "rd", "bodies": [{"name": "b", "type": "rigid3d", "mass": 1, "inertia": [0.1, 0.2, 0.3], "position": [0.5, 0, 0], "points": {"c": [-0.5, 0, 0]}}], "joints": [{"name": "h", "type": "revolute3d", "a": [0, 0, 0], "b": "b.c", "axis": [0, 0, 1], "drive": {"type": "linear", "value": 1.4, "rate": 0.1}}], "effects": []}
 EOF
+# The inconsistency tolerance follows the rows' own size: an absolute
+# sqrt(eps) was a length (m² for a distance row). Distance rows L and 2L
+# from one anchor ran BRAUN_OK at L = 10 um (58 % off one of them); a
+# knife across a slider driven at 10 nm/s ran BRAUN_OK at half the drive's
+# rate; a consistent redundant parallelogram of 10 km rods stopped on its
+# round-off (2e-8) at t = 0.1 (found by an outside client).
+cat > "$TMP/twodist-10um.json" <<'EOF'
+{"name":"twodist","bodies":[{"name":"b","type":"particle","mass":1,"position":[1.5e-05,0]}],
+ "joints":[{"name":"short","type":"distance","a":[0,0],"b":"b","length":1e-05},
+           {"name":"long","type":"distance","a":[0,0],"b":"b","length":2e-05}],
+ "effects":[{"type":"gravity","g":[0,-9.81e-05]}]}
+EOF
+cat > "$TMP/knife-slow.json" <<'EOF'
+{"name":"knife-slow","bodies":[{"name":"cart","type":"rigid","mass":1,"inertia":1e-13,"position":[0,0],"velocity":[1e-08,0],"points":{"c":[0,0]}}],
+ "joints":[{"name":"rail","type":"slider","point":"cart.c","line":[0,0],"axis":[1,0],"drive":{"type":"linear","rate":1e-08}},
+           {"name":"lock","type":"angle","a":"ground","b":"cart","angle":0},
+           {"name":"blade","type":"knife","body":"cart","direction":[0,1]}]}
+EOF
+cat > "$TMP/rodpar-10km.json" <<'EOF'
+{"name":"rodpar","bodies":[{"name":"J1","type":"particle","mass":0,"position":[5000,8660.254037844386]},
+  {"name":"J2","type":"particle","mass":0,"position":[15000,8660.254037844386]},
+  {"name":"J3","type":"particle","mass":0,"position":[25000,8660.254037844386]}],
+ "rods":[{"name":"c1","a":[0,0],"b":"J1","mass":1,"length":10000},{"name":"c2","a":[10000,0],"b":"J2","mass":1,"length":10000},
+  {"name":"c3","a":[20000,0],"b":"J3","mass":1,"length":10000},{"name":"k12","a":"J1","b":"J2","mass":1,"length":10000},
+  {"name":"k23","a":"J2","b":"J3","mass":1,"length":10000}],
+ "joints":[{"name":"k13","type":"distance","a":"J1","b":"J3","length":20000}],
+ "effects":[{"type":"gravity","g":[0,-9.81]}]}
+EOF
+"$BRAUN" run "$TMP/twodist-10um.json" --dt 1e-3 --t-end 1 > /dev/null 2> "$TMP/td.err"; rc=$?
+check "run: distance rows 10 um and 20 um from one anchor: BRAUN_ERR_INCONSISTENT at t = 0, both joints named" sh -c '
+    [ "$1" -eq 1 ] && grep -q "disagree" "$2" && grep -q "at t = 0;" "$2" && grep -q "short" "$2" && grep -q "long" "$2"' \
+    sh "$rc" "$TMP/td.err"
+"$BRAUN" run "$TMP/knife-slow.json" --dt 0.1 --t-end 100 > /dev/null 2> "$TMP/ks.err"; rc=$?
+check "run: a knife across a slider driven at 10 nm/s: BRAUN_ERR_INCONSISTENT at t = 0, rail and blade named" sh -c '
+    [ "$1" -eq 1 ] && grep -q "velocity-level constraint rows disagree" "$2" && grep -q "rail" "$2" && grep -q "blade" "$2"' \
+    sh "$rc" "$TMP/ks.err"
+"$BRAUN" run "$TMP/rodpar-10km.json" --dt 0.1 --t-end 30 > "$TMP/rp.out" 2> /dev/null; rc=$?
+check "run: a redundant parallelogram of 10 km rods: BRAUN_OK (its round-off is no inconsistency)" sh -c '
+    [ "$1" -eq 0 ] && grep -q "\"status\": \"BRAUN_OK\"" "$2"' sh "$rc" "$TMP/rp.out"
 for sc in pin-inside rev3d-off; do
     "$BRAUN" run "$TMP/$sc.json" --integrator dopri5 --dt 1e-3 --t-end 0.05 --out "$TMP/$sc.csv" > "$TMP/$sc.out" 2>/dev/null; rc=$?
     check "run $sc (a start far off), dopri5: BRAUN_OK, |Phi_q| <= 1e-12 at t0 and over the run" sh -c '
