@@ -484,6 +484,21 @@ check "run: a knife across a slider driven at 10 nm/s: BRAUN_ERR_INCONSISTENT at
 "$BRAUN" run "$TMP/rodpar-10km.json" --dt 0.1 --t-end 30 > "$TMP/rp.out" 2> /dev/null; rc=$?
 check "run: a redundant parallelogram of 10 km rods: BRAUN_OK (its round-off is no inconsistency)" sh -c '
     [ "$1" -eq 0 ] && grep -q "\"status\": \"BRAUN_OK\"" "$2"' sh "$rc" "$TMP/rp.out"
+# A diverging run raised the guard's scales it was judged by (A, q and v
+# grow with it): a pendulum on a stiff spring at RK4 h = 5e-2 with the
+# guard at 1 ran on to |Phi_q| 7e302 (BRAUN_ERR_DIVERGED at t = 3.5 s); a
+# chain of 500 links at h = 2e-2 went from 1.6e-3 to 8e4 with its position
+# scale raised to 3e84. A scale measured again now grows at most twice.
+cat > "$TMP/stiffpend.json" <<'EOF'
+{"name": "stiffpend", "bodies": [{"name": "b", "type": "particle", "mass": 1, "position": [1, 0]}],
+ "joints": [{"name": "rod", "type": "distance", "a": [0, 0], "b": "b", "length": 1}],
+ "effects": [{"type": "spring", "a": [1, 1], "b": "b", "stiffness": 1e4, "rest_length": 0.5}]}
+EOF
+"$BRAUN" run "$TMP/stiffpend.json" --dt 5e-2 --t-end 5 --guard 1 --corrections position,velocity > "$TMP/sp.out" 2> /dev/null; rc=$?
+check "run: a diverging pendulum, guard 1: BRAUN_ERR_ACCURACY, the states kept within |Phi_q| <= 1" sh -c '
+    [ "$1" -eq 1 ] && grep -q "\"status\": \"BRAUN_ERR_ACCURACY\"" "$2" &&
+    sed -n "s/^  \"max_position_constraint_error\": \(.*\),$/\1/p" "$2" | awk "{ exit !(NF == 1 && \$1 <= 1) }"' \
+    sh "$rc" "$TMP/sp.out"
 for sc in pin-inside rev3d-off; do
     "$BRAUN" run "$TMP/$sc.json" --integrator dopri5 --dt 1e-3 --t-end 0.05 --out "$TMP/$sc.csv" > "$TMP/$sc.out" 2>/dev/null; rc=$?
     check "run $sc (a start far off), dopri5: BRAUN_OK, |Phi_q| <= 1e-12 at t0 and over the run" sh -c '
