@@ -182,6 +182,40 @@ static void test_gen_c_names_and_symbols(void **state)
     braun_scene_free(f);
 }
 
+/* A stream that fails (/dev/full: every write is ENOSPC) is reported by
+ * each writer's return, whatever the text's length: a header and a small
+ * scene's source fit stdio's buffer, were not flushed, and returned 0 (the
+ * failure only at the caller's fclose). */
+static void test_gen_c_stream_failure(void **state)
+{
+    (void)state;
+    char err[256];
+    braun_scene_file *f = load(pendulum, err, sizeof err);
+    assert_non_null(f);
+    FILE *out = fopen("/dev/full", "w");
+    if (!out) {
+        braun_scene_free(f);
+        skip();
+    }
+    strcpy(err, "unchanged");
+    assert_int_equal(braun_gen_c_write_ex(out, f, "p", "t.json", err, sizeof err),
+                     BRAUN_GEN_C_WRITE);
+    assert_string_equal(err, "write error");
+    fclose(out);
+    out = fopen("/dev/full", "w");
+    assert_non_null(out);
+    strcpy(err, "unchanged");
+    assert_int_equal(braun_gen_c_write_header(out, f, "p", "t.json", err, sizeof err),
+                     BRAUN_GEN_C_WRITE);
+    assert_string_equal(err, "write error");
+    fclose(out);
+    out = fopen("/dev/full", "w");
+    assert_non_null(out);
+    assert_int_equal(braun_gen_c_write(out, f, "p", "t.json"), -1);
+    fclose(out);
+    braun_scene_free(f);
+}
+
 /* ------------------------------------------------------------ limits */
 /* A particle pendulum: mass m, length L (position [L, 0]), gravity g·L so
  * that q / L moves the same for every L; RK4 h = 1e-3 to t = 1. */
@@ -459,6 +493,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_gen_c_escapes),        cmocka_unit_test(test_gen_c_names_and_symbols),
+        cmocka_unit_test(test_gen_c_stream_failure),
         cmocka_unit_test(test_smallest_values_work), cmocka_unit_test(test_axis_limits),
         cmocka_unit_test(test_underflow_refused),
         cmocka_unit_test(test_mass_pivots),          cmocka_unit_test(test_zero_length_spring),

@@ -156,7 +156,9 @@ int braun_gen_c_write(FILE *out, const braun_scene_file *sf, const char *symbol,
 
 /* The same with the reason of a failure in err (one line): 0,
  * BRAUN_GEN_C_INVALID (nothing was written) or BRAUN_GEN_C_WRITE (also
- * out of memory, before anything is written). */
+ * out of memory, before anything is written). The writers flush out
+ * before they return: 0 means every byte reached the file, not only
+ * stdio's buffer; closing it is the caller's. */
 int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *symbol,
                          const char *source, char *err, size_t err_size);
 

@@ -368,6 +368,9 @@ int braun_cli_columns_distinct(const braun_cli_target *t);
 int braun_cli_column_find(const braun_cli_target *t, int n, const char *want);
 
 /* --------------------------------------------------------- CSV (cli_csv.c) */
+/* Both return -1 when the stream has failed so far. They do not flush (a
+ * flush per row is a write per row): what is still buffered fails at
+ * braun_cli_output_complete, which flushes and reports it. */
 int braun_cli_csv_header(FILE *f, const braun_cli_target *t, int n);
 /* tg: for the scene's reported points (NAME.x, NAME.y, NAME.z after the
  * other columns), may be NULL. */

@@ -132,7 +132,8 @@ typedef struct plot_job {
 } plot_job;
 
 /* Writers: 0, or -1 after one message (cli_plot_svg.c, cli_plot_html.c,
- * cli_plot_gnuplot.c). */
+ * cli_plot_gnuplot.c): a picture that could not be drawn. The stream's
+ * own failure is braun_cli_output_close's to report (it flushes). */
 int plot_write_svg(FILE *f, const plot_job *job);
 int plot_write_html(FILE *f, const plot_job *job);
 /* The PNG through gnuplot, into a temporary file checked to hold a PNG

@@ -424,6 +424,19 @@ static void banner(FILE *out, const braun_scene_file *sf, const char *source)
     fputs("\"): do not edit.\n * ", out);
 }
 
+/* 0 once everything written has reached the file, else BRAUN_GEN_C_WRITE:
+ * flushed first, because text still in the stream's buffer (a header, a
+ * small scene's whole source) has not failed yet, and ferror alone said 0
+ * for a stream whose write then failed at the caller's fclose. */
+static int written(FILE *out, char *err, size_t err_size)
+{
+    if (fflush(out) != 0 || ferror(out)) {
+        if (err && err_size) snprintf(err, err_size, "write error");
+        return BRAUN_GEN_C_WRITE;
+    }
+    return 0;
+}
+
 int braun_gen_c_write_header(FILE *out, const braun_scene_file *sf, const char *sym, const char *source,
                              char *err, size_t err_size)
 {
@@ -455,11 +468,7 @@ int braun_gen_c_write_header(FILE *out, const braun_scene_file *sf, const char *
     fprintf(out, "int %s_build(braun_system *sys, braun_real *q0, braun_real *v0);\n", sym);
     fputs("\n#ifdef __cplusplus\n}\n#endif\n", out);
     fprintf(out, "#endif /* BRAUN_GEN_%s_H */\n", sym);
-    if (ferror(out)) {
-        if (err && err_size) snprintf(err, err_size, "write error");
-        return BRAUN_GEN_C_WRITE;
-    }
-    return 0;
+    return written(out, err, err_size);
 }
 
 int braun_gen_c_write(FILE *out, const braun_scene_file *sf, const char *sym, const char *source)
@@ -669,9 +678,5 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
     fputs("}\n", out);
     /* A file included rather than compiled alone leaves no R behind. */
     fputs("\n#undef R\n#undef RD\n", out);
-    if (ferror(out)) {
-        if (err && err_size) snprintf(err, err_size, "write error");
-        return BRAUN_GEN_C_WRITE;
-    }
-    return 0;
+    return written(out, err, err_size);
 }
