@@ -42,7 +42,7 @@ int main(void)
     const char *why = NULL;
     if (braun_linsolver_select("lapack", &sys, &ls, &why) != BRAUN_OK) ls = NULL; /* not built in */
     braun_model model;
-    braun_data data;
+    braun_data data = {0};
     st = braun_model_init(&model, &sys);
     model.opt.linsolver = ls; /* before braun_data_size */
     const size_t bytes = st ? 0 : braun_data_size(&model);

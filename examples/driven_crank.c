@@ -217,7 +217,7 @@ int main(void)
 {
     static unsigned char buffer[16384]; /* braun_data_size() is about 5 KB here */
     braun_model model;
-    braun_data data;
+    braun_data data = {0};
     crank k;
     braun_real pos, vel, en;
     int bad = 0;

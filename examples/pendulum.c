@@ -40,7 +40,7 @@ int main(void)
     braun_system sys = {.n = 2, .m = 1, .p = 0, .flags = BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC,
                         .mass = mass, .forces = forces, .holonomic = rod, .energy = energy};
     braun_model model;
-    braun_data data;
+    braun_data data = {0};
     static unsigned char buffer[4096];           /* no allocation anywhere */
     const braun_real q0[2] = {L, 0}, v0[2] = {0, 0};
     int st = braun_model_init(&model, &sys);     /* all corrections by default */

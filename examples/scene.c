@@ -22,12 +22,19 @@ int main(int argc, char **argv)
         return 2;
     }
     braun_model model;
-    braun_data data;
+    braun_data data = {0}; /* read by braun_error_format whatever step failed */
+    const char *problem = NULL;
     int st = braun_model_init(&model, &f->sys);
-    if (!st) model.opt.corrections &= f->corrections; /* what the file asks for */
+    /* No data yet to hold the reason: braun_system_check names it (a
+     * scene beyond BRAUN_MAX_DENSE coordinates, say). */
+    if (st) braun_system_check(&f->sys, &problem);
+    else model.opt.corrections &= f->corrections; /* what the file asks for */
     const size_t bytes = st ? 0 : braun_data_size(&model);
     void *buffer = bytes ? malloc(bytes) : NULL;
-    if (!st && !buffer) st = BRAUN_ERR_BUFFER;
+    if (!st && !buffer) {
+        st = BRAUN_ERR_BUFFER;
+        problem = "out of memory for the data buffer";
+    }
     if (!st) st = braun_data_init(&data, &model, buffer, bytes);
     if (!st) st = braun_set_state(&data, 0, f->q0, f->v0);
     if (!st) st = braun_integrate(&data, BRAUN_RK4, (braun_real)h, (braun_real)t_end, 0, NULL, NULL);
@@ -35,7 +42,8 @@ int main(int argc, char **argv)
     if (!st) st = braun_residuals(&data, data.t, data.q, data.v, &pos, &vel, &en);
     if (st) {
         char why[256];
-        braun_error_format(&data, why, sizeof why); /* where and why, one sentence */
+        if (problem) snprintf(why, sizeof why, "%s", problem);
+        else braun_error_format(&data, why, sizeof why); /* where and why, one sentence */
         fprintf(stderr, "%s: %s (%s)\n", f->name, why, braun_status_str(st));
     } else {
         printf("%s: t = %g, %ld steps, |Phi_q| = %.1e, |Phi_e| = %.1e, q =", f->name,

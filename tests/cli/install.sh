@@ -148,10 +148,18 @@ examples_run() { # examples_run DIR HOW: run the four examples built in DIR
     else
         no "$how: scene (exit $rc): $out; braun: $ref_q"
     fi
+    # A scene the model refuses (n = 4200 > BRAUN_MAX_DENSE): the reason
+    # named; the example read an uninitialised braun_data ("unknown status
+    # 1512411914", or a crash).
+    out=$("$d/scene" "$tmp/chain-1400.json" 1e-3 0.01 2>&1); rc=$?
+    case "$rc:$out" in "1:chain-1400: n, m or p above BRAUN_MAX_DENSE (4096"*"(BRAUN_ERR_SIZE"*)
+        ok "$how: scene names why the model refuses a 4200-coordinate scene" ;;
+    *) no "$how: scene on a 4200-coordinate scene (exit $rc): $out" ;; esac
     out=$("$d/backends" 2>&1); rc=$?
     case "$rc:$out" in "0:chain of 30 links (n = 90) with "*) ok "$how: backends runs ($out)" ;;
     *) no "$how: backends (exit $rc) $out" ;; esac
 }
+"$P/bin/braun" gen chain 1400 -o "$tmp/chain-1400.json" 2>"$tmp/gen.log" || cat "$tmp/gen.log"
 # needs_braun FILE: 1 if FILE names libbraun*.so in NEEDED.
 needs_braun() { readelf -d "$1" 2>/dev/null | grep -q "NEEDED.*libbraun"; }
 
