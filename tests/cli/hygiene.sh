@@ -133,6 +133,17 @@ check "gen-c -o --symbol: a forgotten value, no file '--symbol'" sh -c '
     sh "$rc" "$TMP/fv.err" "$TMP"
 expect "gen chain -o --angle 30: a forgotten value" 2 "option -o needs a value" gen chain 2 -o --angle 30
 expect "plot -o --dt: a forgotten value" 2 "option -o needs a value" plot data/pendulum.json -o --dt 1e-2 --t-end 1
+# check takes no option: one given is named as run names its unknown ones
+# (check said "needs exactly one SCENE" beside exactly one scene).
+expect "check four-bar --quiet: the option named" 2 "^braun: unknown option '--quiet' \\(check takes none" \
+    check four-bar --quiet
+expect "check --quiet four-bar: the option named" 2 "^braun: unknown option '--quiet' \\(check takes none" \
+    check --quiet four-bar
+expect "check four-bar --dt 1: the option named" 2 "^braun: unknown option '--dt' \\(check takes none" \
+    check four-bar --dt 1
+expect "check four-bar pendulum: the second scene named" 2 "^braun: unexpected argument 'pendulum' \\(one SCENE only\\)" \
+    check four-bar pendulum
+expect "check with no scene: still the count" 2 "^braun: check needs exactly one SCENE" check
 # "--" ends the options: a scene named "-x.json" after it (run called it an
 # unknown option, check read it).
 cp data/pendulum.json "$TMP/-x.json"

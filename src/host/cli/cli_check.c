@@ -709,12 +709,30 @@ done:
 
 int braun_cli_check(int argc, char **argv)
 {
-    /* "--" before the scene, as run takes it: a file named "-x.json". */
-    if (argc == 2 && strcmp(argv[0], "--") == 0) argc--, argv++;
-    if (argc != 1) return braun_cli_error("check needs exactly one SCENE (a .json file or a "
-                                          "built-in model)");
+    const char *scene = NULL;
+    int options_end = 0;
+    for (int i = 0; i < argc; i++) {
+        /* "--" ends the options, as run's: a file named "-x.json" after it. */
+        if (!options_end && strcmp(argv[i], "--") == 0) {
+            options_end = 1;
+            continue;
+        }
+        /* check takes no option: one given is named, as run names its
+         * unknown ones ("check needs exactly one SCENE" blamed the scene
+         * count). "-" alone is a name, as run reads it. */
+        if (!options_end && argv[i][0] == '-' && argv[i][1] != '\0') {
+            char name[32];
+            int rc = braun_cli_option(argc, argv, &i, name, sizeof name, NULL);
+            if (rc) return rc;
+            return braun_cli_error("unknown option '%s' (check takes none; see braun --help)", name);
+        }
+        if (scene) return braun_cli_error("unexpected argument '%s' (one SCENE only)", argv[i]);
+        scene = argv[i];
+    }
+    if (!scene) return braun_cli_error("check needs exactly one SCENE (a .json file or a "
+                                       "built-in model)");
     braun_cli_target tg;
-    int rc = braun_cli_target_open(argv[0], &tg);
+    int rc = braun_cli_target_open(scene, &tg);
     if (rc) return rc;
     /* check's rank, consistency and callback analyses are dense (O(n³)):
      * a large scene takes minutes (a 1000-link chain, n = 3000: about two),
