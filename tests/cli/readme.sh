@@ -8,7 +8,8 @@
 # what the quoted commands give; every make target the README names exists
 # (make -n); every file it names exists; its install commands are the ones
 # tests/cli/install.sh runs (which builds and runs them: not repeated here).
-# tests/cli/plot.sh checks the pictures in depth. "ok - NAME" / "not ok -
+# docs/scene-format.md's C program compiles with -Werror and prints what
+# the text quotes. tests/cli/plot.sh checks the pictures in depth. "ok - NAME" / "not ok -
 # NAME" / "ok - NAME # SKIP WHY" and "N passed, M failed, K skipped".
 BRAUN=${1:?usage: sh tests/cli/readme.sh path/to/braun}
 case $BRAUN in /*) ;; *) BRAUN=$(pwd)/$BRAUN ;; esac
@@ -167,6 +168,29 @@ for frag in "make install" "PREFIX=/opt/braun DESTDIR=" "PKG_CONFIG_SYSROOT_DIR=
 done
 check "the README's example output is what install.sh expects of pendulum ('t = 10 ')" sh -c '
     grep -q "./pendulum .*# t = 10 " "$1" && grep -q "\"0:t = 10 \"" "$2"' sh "$README" "$TOP/tests/cli/install.sh"
+
+# ------------------------------------------------------------------ docs' C
+# docs/scene-format.md's "Scenes in C" is a whole program: it compiles
+# with -Wall -Wextra -Wpedantic -Werror against the build's libbraun.a and
+# prints what the docs say (its positional initialisers stopped early:
+# -Wmissing-field-initializers, and its statements stood at file scope).
+LIB=$(dirname "$(dirname "$BRAUN")")/libbraun.a
+awk '/^## Scenes in C/ { on = 1 } on && /^```c$/ { code = 1; next } code && /^```$/ { exit } code' \
+    "$TOP/docs/scene-format.md" > "$TMP/scene_c.c"
+if [ ! -f "$LIB" ] || ! braun --version | grep -q ", double;"; then
+    skip "docs/scene-format.md's Scenes in C compiles and runs" "no double libbraun.a beside $BRAUN"
+elif ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -I"$TOP/include/core" "$TMP/scene_c.c" "$LIB" -lm \
+        -o "$TMP/scene_c" 2> "$TMP/scene_c.err"; then
+    out=$("$TMP/scene_c" 2>&1)
+    # The figure the text before it quotes (over two lines: joined first).
+    want=$(awk '/^## Scenes in C/ { on = 1 } on && /^```c$/ { exit } on' "$TOP/docs/scene-format.md" |
+        tr '\n' ' ' | sed -n 's/.*ends at, `\(t = 10  q = ([^`]*)\)`.*/\1/p' | sed 's/( /(/; s/, */, /')
+    check "docs/scene-format.md's Scenes in C compiles -Werror and prints what the docs quote ($out)" \
+        sh -c '[ -n "$2" ] && [ "$1" = "$2" ]' sh "$out" "$want"
+else
+    not_ok "docs/scene-format.md's Scenes in C compiles with -Wall -Wextra -Wpedantic -Werror" \
+        "$(head -c 300 "$TMP/scene_c.err")"
+fi
 
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]
