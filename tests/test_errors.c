@@ -814,6 +814,11 @@ static void test_status_names(void **state)
         assert_null(strstr(s, "UNKNOWN"));
     }
     assert_non_null(strstr(braun_status_str(99), "UNKNOWN"));
+    /* BRAUN_ERR_ARGUMENT is also a false claim found by a check (a wrong
+     * callback, BRAUN_MASS_CONSTANT, BRAUN_SCLERONOMIC): its text said
+     * "NULL pointer or invalid option" only. */
+    assert_non_null(strstr(braun_status_str(BRAUN_ERR_ARGUMENT), "claim"));
+    assert_non_null(strstr(braun_status_str(BRAUN_ERR_ARGUMENT), "braun_error_format"));
 }
 
 int main(void)

@@ -66,7 +66,9 @@ typedef double braun_real;
 /* ------------------------------------------------------------------ */
 typedef enum braun_status {
     BRAUN_OK = 0,
-    BRAUN_ERR_ARGUMENT = -1,      /* NULL pointer, unknown option or enum value, no state set */
+    BRAUN_ERR_ARGUMENT = -1,      /* NULL pointer, unknown option or enum value, no state set;
+                                     also a false claim: BRAUN_MASS_CONSTANT, BRAUN_SCLERONOMIC,
+                                     a callback braun_check_callbacks finds wrong */
     BRAUN_ERR_SIZE = -2,          /* negative or inconsistent n, m, p */
     BRAUN_ERR_BUFFER = -3,        /* buffer smaller than braun_data_size() (any alignment
                                      is fine), or a backend could not allocate */

@@ -6,7 +6,7 @@ const char *braun_status_str(int status)
     switch (status) {
     case BRAUN_OK: return "BRAUN_OK: success";
     case BRAUN_STOPPED: return "BRAUN_STOPPED: the output callback asked to stop";
-    case BRAUN_ERR_ARGUMENT: return "BRAUN_ERR_ARGUMENT: NULL pointer or invalid option";
+    case BRAUN_ERR_ARGUMENT: return "BRAUN_ERR_ARGUMENT: invalid argument, option or claim (a NULL pointer, an unknown option, a false BRAUN_MASS_CONSTANT or BRAUN_SCLERONOMIC, a wrong callback): braun_error_format or the check's report says which";
     case BRAUN_ERR_SIZE: return "BRAUN_ERR_SIZE: invalid or inconsistent sizes n, m, p";
     case BRAUN_ERR_BUFFER: return "BRAUN_ERR_BUFFER: workspace buffer smaller than braun_data_size(), or a backend could not allocate";
     case BRAUN_ERR_NONFINITE: return "BRAUN_ERR_NONFINITE: NaN or Inf in the state or a callback output";
