@@ -7,6 +7,7 @@
 #include "braun_models.h"
 #include "test_systems.h"
 #include "braun_reference.h"
+#include "braun_host.h"
 
 static braun_real g_traj_last_t;
 static long g_outputs;
@@ -384,6 +385,22 @@ static void test_time_resolution(void **state)
     assert_int_equal(braun_integrate_adaptive(&sim.data, &ctl, t0 + 1, 0, NULL, NULL),
                      BRAUN_ERR_TIME_RESOLUTION);
     assert_true(sim.data.stats.rejected_steps < 10);
+    /* A span below the resolution of t, with the default minimum step
+     * (16 eps |t|, above the span): the one step, to t_end, is rejected,
+     * and no shorter step advances time by its length. The fixed-step
+     * driver's status there; it was BRAUN_ERR_STEP_TOO_SMALL "(h = 6.4)"
+     * at t = 1e17 over 64 s, with nothing about the resolution. */
+    const braun_real tf = (braun_real)(BRAUN_EPS < 1e-10 ? 1e17 : 1e6);
+    assert_int_equal(braun_set_state(&sim.data, tf, b->q0, b->v0), BRAUN_OK);
+    braun_adaptive dflt = {1e-8, 1e-10, 0, 0, 0, 0};
+    assert_int_equal(braun_integrate_adaptive(&sim.data, &dflt, tf + 4 * BRAUN_EPS * tf, 0, NULL, NULL),
+                     BRAUN_ERR_TIME_RESOLUTION);
+    assert_true(sim.data.t == tf);
+    char why[256];
+    braun_error_format(&sim.data, why, sizeof why);
+    print_message("%s\n", why);
+    assert_non_null(strstr(why, "resolution"));
+    assert_non_null(strstr(why, "exceeds the span"));
     test_sim_close(&sim);
 }
 

@@ -164,6 +164,8 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
     if (!(h > 0)) h = span;
     const double hmax = ctl->h_max > 0 ? (double)ctl->h_max : span;
     double hmin = ctl->h_min > 0 ? (double)ctl->h_min : 1e-12 * span;
+    /* The time's resolution where it exceeds the span, else 0. */
+    double span_unresolved = 0;
     if (!(ctl->h_min > 0)) {
         /* The default stays above the time resolution, where t + h would
          * no longer advance t by h (braun__time_step_ok): a float run whose
@@ -173,10 +175,13 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
         const double tmax = fabs((double)d->t) > fabs((double)t_end) ? fabs((double)d->t) : fabs((double)t_end);
         const double resolution = 16 * (double)BRAUN_EPS * tmax;
         if (hmin < resolution) hmin = resolution;
-        /* A span below the resolution: the step says so (the float
-         * horizon). A maximum the program set below the default minimum
-         * is refused: no step could lie in [h_min, h_max]. */
-        if (hmin > hmax && !(ctl->h_max > 0)) hmin = hmax;
+        /* A span below the resolution: one step, to t_end; rejected, it is
+         * the float horizon (below). A maximum the program set below the
+         * default minimum is refused: no step could lie in [h_min, h_max]. */
+        if (hmin > hmax && !(ctl->h_max > 0)) {
+            span_unresolved = resolution;
+            hmin = hmax;
+        }
         if (hmin > hmax)
             return braun__fail(d, BRAUN_ERR_ARGUMENT,
                                "adaptive h_max (below the default h_min, 1e-12 of the span but at least "
@@ -335,6 +340,13 @@ static int integrate_adaptive(braun_data *d, const braun_adaptive *ctl, braun_re
                 /* Once more at h_min, unless that is what failed (or the
                  * last step, shorter, to t_end). */
                 if (tried <= hmin) {
+                    /* The whole span rejected where it is below the time's
+                     * resolution: a shorter step would be below it too, the
+                     * fixed-step drivers' status (it was "step too small
+                     * (h = 6.4)" at t = 1e17, the resolution 355). */
+                    if (!st && span_unresolved > 0)
+                        st = braun__fail(d, BRAUN_ERR_TIME_RESOLUTION, "time (span below its resolution)", -1, -1,
+                                         span_unresolved, (double)d->t);
                     if (!st) st = braun__fail(d, BRAUN_ERR_STEP_TOO_SMALL, "adaptive", -1, -1, h, (double)d->t);
                     break;
                 }

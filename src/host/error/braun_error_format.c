@@ -182,8 +182,16 @@ static void describe(msg *w, const braun_data *d)
         put(w, "energy correction requested but the system has no energy law");
         return;
     case BRAUN_ERR_TIME_RESOLUTION:
-        put(w, "the step h = %.6g cannot advance time here in this precision (t + h rounds to t, "
-               "or more than 10%% away from it: the float horizon)", e->value);
+        /* The adaptive driver's whole span rejected below the resolution
+         * (braun_adaptive.c): the figure is the resolution, not a step. */
+        if (where && strcmp(where, "time (span below its resolution)") == 0)
+            put(w, "the time's resolution here, 16 eps max(|t|, |t_end|) = %.3g (the adaptive "
+                   "driver's minimum step), exceeds the span to t_end: its one step, the whole "
+                   "span, was rejected, and a shorter one would be below the resolution (the "
+                   "float horizon)", e->value);
+        else
+            put(w, "the step h = %.6g cannot advance time here in this precision (t + h rounds to "
+                   "t, or more than 10%% away from it: the float horizon)", e->value);
         break;
     case BRAUN_ERR_ACCURACY: {
         /* The bound the guard used (braun.h: options.guard, braun_data.guard). */
