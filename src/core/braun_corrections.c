@@ -867,7 +867,9 @@ static int project_at_rest(braun_data *d, braun_real *y, unsigned corr, int plai
          * client). A step that does not decrease the residual is halved,
          * back towards the last point, and that point is kept if none does. */
         const braun_real merit = residual_against(pv, corr, pos0, vel0);
-        if (it > 0 && !(merit < merit_last)) {
+        /* Near the manifold (within sqrt(ε)) a step that does not decrease
+         * it is at the round-off floor: the iteration ends below, as before. */
+        if (it > 0 && !(merit < merit_last) && merit_last > braun_sqrt(BRAUN_EPS)) {
             if (cuts < 40) {
                 cuts++;
                 for (int i = 0; i < nv; i++) y[i] = prev[i] + BRAUN_R(0.5) * (y[i] - prev[i]);
