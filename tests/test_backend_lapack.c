@@ -571,6 +571,15 @@ static void test_rank_scale_invariant(void **state)
     be_close(&be);
 }
 
+/* S = D M D, D_kk = 2^(-40 + 60k/(n-1)): M with its coordinates in other
+ * units, exactly (powers of 2). */
+static void in_units(int n, const braun_real *M, braun_real *S)
+{
+    for (int k = 0; k < n * n; k++)
+        S[k] = M[k] * (braun_real)ldexp(1, -40 + 60 * (k / n) / (n - 1)) *
+               (braun_real)ldexp(1, -40 + 60 * (k % n) / (n - 1));
+}
+
 /* Errors of factor_mass: the same status, entry and value as
  * braun_chol_factor. */
 static void check_mass_error(int n, const braun_real *M, int expect)
@@ -627,6 +636,22 @@ static void test_mass_errors(void **state)
         memcpy(S, M, (size_t)n * (size_t)n * sizeof *M);
         for (int k = 0; k < n; k++) S[k] = S[k * n] = 0;
         check_mass_error(n, S, BRAUN_ERR_MASS_NOT_SPD);
+        /* In other units, D M D with D_kk from 2^-40 to 2^20 (powers of 2:
+         * the factorization scales exactly): the same verdicts, each pivot
+         * judged against its own diagonal entry. Diagonal entries 2^-80
+         * beside 2^40 were refused (n·ε·max M_kk). */
+        in_units(n, M, S);
+        backend be;
+        be_open(&be, n, 0, 0);
+        assert_int_equal(be.ls->factor_mass(be.st, S, 1e-12, NULL, NULL, NULL), BRAUN_OK);
+        be_close(&be);
+        braun_real *T = vec((size_t)n * (size_t)n);
+        memcpy(T, M, (size_t)n * (size_t)n * sizeof *M);
+        for (int k = 0; k < n; k++) T[3 * n + k] = T[1 * n + k];
+        for (int k = 0; k < n; k++) T[k * n + 3] = T[k * n + 1];
+        in_units(n, T, S);
+        check_mass_error(n, S, BRAUN_ERR_MASS_NOT_SPD);
+        free(T);
         free(M);
         free(S);
     }

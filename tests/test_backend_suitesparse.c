@@ -1269,6 +1269,19 @@ static void test_mass_errors(void **state)
     assert_int_equal(LS()->factor_mass(st, M, sym, NULL, NULL, NULL), BRAUN_ERR_MASS_NOT_SPD);
     RESET_M();
     assert_int_equal(LS()->factor_mass(st, M, sym, &bi, &bj, &bv), BRAUN_OK);
+    /* Block 2's coordinates in other units, 2^-30, 1 and 2^20 times their
+     * own (powers of 2: its factor scales exactly): each pivot judged
+     * against its own diagonal entry, so accepted (against the largest
+     * diagonal entry, 2^40 times block 2's third, its first was refused);
+     * a singular block in those units still is refused, at its coordinate. */
+    const double d3[3] = {ldexp(1, -30), 1, ldexp(1, 20)};
+    RESET_M();
+    for (int i = 0; i < 9; i++) M[18 + i] *= (braun_real)(d3[i / 3] * d3[i % 3]);
+    assert_int_equal(LS()->factor_mass(st, M, sym, &bi, &bj, &bv), BRAUN_OK);
+    RESET_M();
+    for (int i = 0; i < 9; i++) M[27 + i] = (braun_real)(2 * d3[i / 3] * d3[i % 3]);
+    assert_int_equal(LS()->factor_mass(st, M, sym, &bi, &bj, &bv), BRAUN_ERR_MASS_NOT_SPD);
+    assert_int_equal(bi, 10);
 #undef RESET_M
     free(M);
     LS()->destroy(st);

@@ -92,6 +92,59 @@ static void test_chol_rejects(void **state)
                      BRAUN_ERR_MASS_NOT_SPD);
 }
 
+/* The pivot rule does not depend on the coordinates' units: M and D M D
+ * (D diagonal, a coordinate in other units) get the same verdict at the
+ * same pivot. A rigid body whose radius of gyration is 1e-10 m, M =
+ * diag(1, 1, 1e-20), was refused (pivot 1e-20 <= n·ε·max M_ii = 6.7e-16:
+ * its inertia compared with its mass); M singular or indefinite in any
+ * units still is. */
+static void test_chol_unit_scale(void **state)
+{
+    (void)state;
+    int bi = -1, bj = -1;
+    braun_real bad = 0;
+    braun_chol c = chol_of(3);
+    const braun_real body[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1e-20};
+    assert_int_equal(braun_chol_factor(&c, body, 1e-12, &bi, &bj, &bad), BRAUN_OK);
+    braun_real y[3] = {1, 2, 3e-20};
+    braun_chol_solve_rt(&c, y);
+    braun_chol_solve_r(&c, y);
+    for (int i = 0; i < 3; i++) assert_near(y[i], i + 1, 1e-15);
+    /* test_chol_known's M (R = [2 1 0; 0 3 1; 0 0 4]), a rank-2 M (row 2 =
+     * row 0 + row 1: its last pivot is exactly 0) and an indefinite one, in
+     * units 2^-27, 1 and 2^17 times their own and the other way round
+     * (powers of 2: D M D factors exactly as R D, so the verdicts are those
+     * of M bit for bit). */
+    const braun_real spd[9] = {4, 2, 0, 2, 10, 3, 0, 3, 17};
+    const braun_real rank2[9] = {4, 2, 6, 2, 10, 12, 6, 12, 18};
+    const braun_real indef[9] = {1, 2, 0, 2, 1, 0, 0, 0, 1};
+    const braun_real lo = (braun_real)ldexp(1, -27), hi = (braun_real)ldexp(1, 17);
+    const braun_real units[2][3] = {{lo, 1, hi}, {hi, 1, lo}};
+    for (int u = 0; u < 2; u++) {
+        const braun_real *d = units[u];
+        braun_real S[9];
+        for (int i = 0; i < 9; i++) S[i] = spd[i] * d[i / 3] * d[i % 3];
+        assert_int_equal(braun_chol_factor(&c, S, 1e-12, &bi, &bj, &bad), BRAUN_OK);
+        /* R of D M D is R_known D, column j scaled by d_j. */
+        const braun_real Rk[9] = {2, 1, 0, 0, 3, 1, 0, 0, 4};
+        for (int i = 0; i < 9; i++)
+            assert_true(fabs((double)(c.R[i] - Rk[i] * d[i % 3])) <= 1e-14 * fabs((double)d[i % 3]));
+        for (int i = 0; i < 9; i++) S[i] = rank2[i] * d[i / 3] * d[i % 3];
+        bi = -1;
+        assert_int_equal(braun_chol_factor(&c, S, 1e-12, &bi, &bj, &bad), BRAUN_ERR_MASS_NOT_SPD);
+        assert_int_equal(bi, 2);
+        for (int i = 0; i < 9; i++) S[i] = indef[i] * d[i / 3] * d[i % 3];
+        bi = -1;
+        assert_int_equal(braun_chol_factor(&c, S, 1e-12, &bi, &bj, &bad), BRAUN_ERR_MASS_NOT_SPD);
+        assert_int_equal(bi, 1);
+        assert_true(bad < 0);
+    }
+    /* A zero diagonal entry (a massless coordinate) beside tiny ones. */
+    const braun_real zero[9] = {1e-30, 0, 0, 0, 0, 0, 0, 0, 1e-30};
+    assert_int_equal(braun_chol_factor(&c, zero, 1e-12, &bi, &bj, &bad), BRAUN_ERR_MASS_NOT_SPD);
+    assert_int_equal(bi, 1);
+}
+
 /* X = C^+ built column by column; then the four Penrose conditions. */
 typedef struct pinv_case {
     int rows, n;
@@ -965,6 +1018,7 @@ int main(void)
         cmocka_unit_test(test_chol_known),
         cmocka_unit_test(test_chol_envelope),
         cmocka_unit_test(test_chol_rejects),
+        cmocka_unit_test(test_chol_unit_scale),
         cmocka_unit_test(test_pinv_full_rank),
         cmocka_unit_test(test_pinv_duplicated_and_scaled_rows),
         cmocka_unit_test(test_pinv_more_rows_than_columns),

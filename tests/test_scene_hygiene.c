@@ -366,14 +366,17 @@ static void test_axis_limits(void **state)
     }
 }
 
-/* The mass matrix's pivot rule at load is the core's: n·ε·max|M_ii|. */
+/* The mass matrix's pivot rule at load is the core's: each pivot above
+ * n·ε·M_jj, its own diagonal entry, whatever the units. A rigid body of mass
+ * 1 whose inertia is below n·ε = 6.7e-16 (a radius of gyration below 2.6e-8
+ * m) was refused against its mass, n·ε·max M_ii: the 100 nm slider-crank. */
 static void test_mass_pivots(void **state)
 {
     (void)state;
     char text[512], err[512];
-    const double n_eps = 3 * DBL_EPSILON; /* n = 3, largest entry 1 */
-    const double inertia[] = {2 * n_eps, 0.5 * n_eps};
-    for (int i = 0; i < 2; i++) {
+    const double n_eps = 3 * DBL_EPSILON; /* n = 3 */
+    const double inertia[] = {2 * n_eps, 0.5 * n_eps, 1e-20};
+    for (int i = 0; i < 3; i++) {
         snprintf(text, sizeof text,
                  "{\"name\": \"r\", \"bodies\": [{\"name\": \"b\", \"type\": \"rigid\", \"mass\": "
                  "1, \"inertia\": %.17g, \"position\": [0.5, 0], \"points\": {\"o\": [-0.5, 0]}}], "
@@ -381,23 +384,33 @@ static void test_mass_pivots(void **state)
                  inertia[i]);
         braun_scene_file *f = load(text, err, sizeof err);
         braun_model model;
-        if (i == 0) {
-            /* Loads, and the core factors it. */
-            assert_non_null(f);
-            assert_int_equal(braun_model_init(&model, &f->sys), BRAUN_OK);
-            const size_t bytes = braun_data_size(&model);
-            void *buf = malloc(bytes);
-            braun_data d;
-            assert_int_equal(braun_data_init(&d, &model, buf, bytes), BRAUN_OK);
-            braun_data_release(&d);
-            free(buf);
-            braun_scene_free(f);
-        } else {
-            assert_null(f);
-            assert_non_null(strstr(err, "t.json:1:26: body 'b': its inertia gives the mass matrix "
-                                        "a pivot of"));
-            assert_non_null(strstr(err, "M would be singular to working precision"));
-        }
+        /* Loads, and the core factors it. */
+        assert_non_null(f);
+        assert_int_equal(braun_model_init(&model, &f->sys), BRAUN_OK);
+        const size_t bytes = braun_data_size(&model);
+        void *buf = malloc(bytes);
+        braun_data d;
+        assert_int_equal(braun_data_init(&d, &model, buf, bytes), BRAUN_OK);
+        braun_data_release(&d);
+        free(buf);
+        braun_scene_free(f);
+    }
+    /* A tensor singular to working precision (I_xy = 1 − 2^-53 beside I_xx =
+     * I_yy = 1: a pivot of 2^-50 beside its entry 4) is refused, and so is
+     * the same body 2^-66 times as large (inertias 1.4e-20). */
+    for (int i = 0; i < 2; i++) {
+        const double u = ldexp(1, i ? -66 : 0);
+        snprintf(text, sizeof text,
+                 "{\"name\": \"r\", \"bodies\": [{\"name\": \"b\", \"type\": \"rigid3d\", "
+                 "\"mass\": 1, \"inertia\": [%.17g, %.17g, %.17g], \"products\": [%.17g, 0, 0], "
+                 "\"position\": [0, 0, -0.5], \"points\": {\"top\": [0, 0, 0.5]}}], \"joints\": "
+                 "[{\"type\": \"spherical\", \"a\": \"b.top\", \"b\": [0, 0, 0]}]}",
+                 u, u, 2 * u, (1 - ldexp(1, -53)) * u);
+        assert_null(load(text, err, sizeof err));
+        assert_non_null(strstr(err, "t.json:1:26: body 'b': its inertia gives the mass matrix "
+                                    "a pivot of"));
+        assert_non_null(strstr(err, "not above n*eps*M_jj"));
+        assert_non_null(strstr(err, "M would be singular to working precision"));
     }
     /* A massless particle carried by a rod: the rod's m/3 on its diagonal. */
     const char *rods = "{\"name\": \"r\", \"bodies\": [{\"name\": \"a\", \"type\": \"particle\", "

@@ -75,8 +75,9 @@ typedef enum braun_status {
     BRAUN_ERR_NONFINITE = -4,     /* NaN/Inf in a state given to a call, or in a callback's
                                      output at it (at a state a step reached: DIVERGED) */
     BRAUN_ERR_MASS_NOT_SYMMETRIC = -5,
-    BRAUN_ERR_MASS_NOT_SPD = -6,  /* Cholesky pivot not above n·ε·max M_ii, at a state
-                                     given to a call (at one a step reached: DIVERGED) */
+    BRAUN_ERR_MASS_NOT_SPD = -6,  /* Cholesky pivot j not above n·ε·M_jj (its own
+                                     diagonal entry), at a state given to a call (at
+                                     one a step reached: DIVERGED) */
     BRAUN_ERR_CALLBACK = -7,      /* a callback returned < 0 (fatal) */
     BRAUN_ERR_CALLBACK_RECOVERABLE = -8, /* callback returned > 0 and no retry possible */
     BRAUN_ERR_STEP = -9,          /* step size not finite and positive */

@@ -51,8 +51,10 @@ struct braun_linsolver {
     void (*destroy)(void *state);
     /* Factor M (format above) = R^T R. Status as braun_chol_factor:
      * BRAUN_ERR_MASS_NOT_SYMMETRIC (|M_ij - M_ji| > sym_tol·max_i M_ii) or
-     * BRAUN_ERR_MASS_NOT_SPD, with the entry in *bad_i, *bad_j, *bad_value
-     * (coordinates of the full matrix). */
+     * BRAUN_ERR_MASS_NOT_SPD (a pivot j not above n·ε·|M_jj|, its own
+     * diagonal entry: a verdict no change of a coordinate's unit changes),
+     * with the entry in *bad_i, *bad_j, *bad_value (coordinates of the full
+     * matrix). */
     int (*factor_mass)(void *state, const braun_real *M, braun_real sym_tol,
                        int *bad_i, int *bad_j, braun_real *bad_value);
     /* x := R^-T b, x := R^-1 b, y := R x (n entries; x may alias b, y not x). */

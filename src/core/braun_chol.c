@@ -42,9 +42,14 @@ int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
     for (i = 0; i < n; i++) {
         braun_real s = M[i * n + i];
         for (k = 0; k < i; k++) s -= R[k * n + i] * R[k * n + i];
-        /* A pivot at round-off level of the largest diagonal entry means M is
-         * singular to working precision: refuse rather than amplify noise. */
-        if (!(s > (braun_real)n * BRAUN_EPS * dmax)) {
+        /* A pivot at round-off level of its own diagonal entry means M is
+         * singular to working precision: refuse rather than amplify noise.
+         * Its own entry, not the largest: this is the rule n·ε·max H_jj of
+         * H = D M D, D = diag(M_jj^-1/2) (H_jj = 1), so no change of a
+         * coordinate's unit (D M D for any diagonal D) changes the verdict;
+         * max M_jj compared kg m² with kg and refused any rigid body whose
+         * radius of gyration is below sqrt(n·ε) m. M_jj <= 0 or NaN fails. */
+        if (!(s > (braun_real)n * BRAUN_EPS * braun_fabs(M[i * n + i]))) {
             if (bad_i) *bad_i = i;
             if (bad_j) *bad_j = i;
             if (bad_value) *bad_value = s;

@@ -388,13 +388,25 @@ scene "$TMP/step.json" '{"name": "b", "type": "particle", "mass": 1, "position":
     '{"type": "distance", "a": [0, 0], "b": "b", "drive": {"type": "sine", "amplitude": 1, "omega": 1e-310}}'
 expect "a drive's omega of 1e-310 (subnormal): refused at load" 2 "field 'omega' underflows: 1e-310" \
     check "$TMP/step.json"
+# The mass matrix's pivots are judged against their own diagonal entries,
+# which no choice of units changes (they were against the largest one, an
+# inertia against a mass): a rigid body whose radius of gyration is 1e-10 m
+# and a particle 1e-20 times as heavy as its neighbour load and run (both
+# were refused at load); a body whose own block is singular to working
+# precision still is refused, at its size and at 2^-66 of it.
 printf '{"name": "s", "bodies": [{"name": "b", "type": "rigid", "mass": 1, "inertia": 1e-20, "position": [0.5, 0], "points": {"o": [-0.5, 0]}}], "joints": [{"type": "revolute", "a": "b.o", "b": [0, 0]}]}\n' > "$TMP/inertia.json"
-expect "inertia 1e-20 beside mass 1: refused at load (M singular to working precision)" 2 \
-    "inertia.json:1:[0-9]+: body 'b': its inertia gives the mass matrix a pivot of 1e-20" \
+expect "inertia 1e-20 beside mass 1 (radius of gyration 1e-10 m): loads and runs" 0 "" \
     run "$TMP/inertia.json" --dt 1e-3 --t-end 1
 printf '{"name": "s", "bodies": [{"name": "b1", "type": "particle", "mass": 1, "position": [1, 0]}, {"name": "b2", "type": "particle", "mass": 1e-20, "position": [2, 0]}], "joints": [{"type": "distance", "a": [0, 0], "b": "b1"}, {"type": "distance", "a": "b1", "b": "b2"}]}\n' > "$TMP/ratio.json"
-expect "masses 1 and 1e-20 in one scene: refused at load, names the light body" 2 \
-    "body 'b2': its mass gives the mass matrix a pivot of 1e-20" check "$TMP/ratio.json"
+expect "masses 1 and 1e-20 in one scene: loads, consistent" 0 "" check "$TMP/ratio.json"
+printf '{"name": "s", "bodies": [{"name": "b", "type": "rigid3d", "mass": 1, "inertia": [1, 1, 2], "products": [0.99999999999999989, 0, 0], "position": [0, 0, -0.5], "points": {"top": [0, 0, 0.5]}}], "joints": [{"type": "spherical", "a": "b.top", "b": [0, 0, 0]}]}\n' > "$TMP/tensor.json"
+expect "a rigid3d tensor singular to working precision: refused at load, the pivot against its own entry" 2 \
+    "tensor.json:1:[0-9]+: body 'b': its inertia gives the mass matrix a pivot of 8.88178e-16, not above n\\*eps\\*M_jj = 6.21725e-15 \\(n = 7, its diagonal entry M_jj = 4\\): M would be singular to working precision" \
+    check "$TMP/tensor.json"
+printf '{"name": "s", "bodies": [{"name": "b", "type": "rigid3d", "mass": 1, "inertia": [1.3552527156068805e-20, 1.3552527156068805e-20, 2.7105054312137611e-20], "products": [1.3552527156068804e-20, 0, 0], "position": [0, 0, -0.5], "points": {"top": [0, 0, 0.5]}}], "joints": [{"type": "spherical", "a": "b.top", "b": [0, 0, 0]}]}\n' > "$TMP/tensor-small.json"
+expect "the same tensor 2^-66 times as large: refused too (the same verdict in any units)" 2 \
+    "tensor-small.json:1:[0-9]+: body 'b': its inertia gives the mass matrix a pivot of 1.20371e-35, not above n\\*eps\\*M_jj = 8.42594e-35 \\(n = 7, its diagonal entry M_jj = 5.42101e-20\\)" \
+    check "$TMP/tensor-small.json"
 printf '{"name": "s", "bodies": [{"name": "b", "type": "rigid", "mass": 1, "inertia": 1, "position": [0, 0]}], "joints": [{"type": "knife", "body": "b", "direction": [1, 0]}, {"type": "revolute", "a": "b..", "b": [0, 0]}]}\n' > "$TMP/own.json"
 expect "a reference 'b..' does not reach a knife edge's own contact point" 2 \
     "refers to unknown point 'b..'" check "$TMP/own.json"

@@ -1009,5 +1009,39 @@ check "gen-c --symbol 9bad: exit 2, one line" sh -c '[ "$1" -eq 2 ] && [ "$(wc -
 "$BRAUN" gen-c data/no-such.json > /dev/null 2> "$TMP/gce"; rc=$?
 check "gen-c of a missing file: exit 2, names the file" sh -c '[ "$1" -eq 2 ] && grep -q "no-such.json" "$2"' sh "$rc" "$TMP/gce"
 
+# ------------------------------------------------- the same mechanism in any units
+# slider_crank L: data/slider-crank.json with every length L times its own
+# (inertias L^2 times, g L times: the same motion in the same time, with
+# the lengths among q L times the 1 m run's).
+slider_crank() {
+    awk -v L="$1" 'BEGIN {
+        a = 0.35355339059327379; c = 1.0606601717798214; I = 0.083333333333333329
+        printf "{\"name\": \"slider-crank-%s\",\n \"bodies\": [\n", L
+        printf "  {\"name\": \"crank\", \"type\": \"rigid\", \"mass\": 1, \"inertia\": %.17g, \"position\": [%.17g, %.17g], \"angle\": 0.78539816339744828, \"points\": {\"O\": [%.17g, 0], \"A\": [%.17g, 0]}},\n", I*L*L, a*L, a*L, -0.5*L, 0.5*L
+        printf "  {\"name\": \"rod\", \"type\": \"rigid\", \"mass\": 1, \"inertia\": %.17g, \"position\": [%.17g, %.17g], \"angle\": -0.78539816339744828, \"points\": {\"A\": [%.17g, 0], \"B\": [%.17g, 0]}}],\n", I*L*L, c*L, a*L, -0.5*L, 0.5*L
+        printf " \"joints\": [{\"name\": \"pivot\", \"type\": \"revolute\", \"a\": \"crank.O\", \"b\": [0, 0]},\n"
+        printf "  {\"name\": \"knee\", \"type\": \"revolute\", \"a\": \"crank.A\", \"b\": \"rod.A\"},\n"
+        printf "  {\"name\": \"slide\", \"type\": \"slider\", \"point\": \"rod.B\", \"line\": [0, 0], \"axis\": [1, 0]}],\n"
+        printf " \"effects\": [{\"type\": \"gravity\", \"g\": [0, %.17g]}]}\n", -9.81*L }'
+}
+# The mass matrix's pivots against their own diagonal entries: the
+# slider-crank with 100 nm links (inertias 8.3e-16 kg m^2 beside masses of
+# 1 kg) was refused at load, "M would be singular to working precision";
+# it loads, checks and moves as the 1 m one.
+slider_crank 1 > "$TMP/sc-1.json"
+slider_crank 1e-7 > "$TMP/sc-100nm.json"
+"$BRAUN" check "$TMP/sc-100nm.json" > "$TMP/sc7.out" 2> "$TMP/sc7.err"; rc=$?
+check "check: the slider-crank with 100 nm links loads: consistent, callbacks yes, exit 0" sh -c '
+    [ "$1" -eq 0 ] && [ ! -s "$3" ] && grep -q "^consistent: yes$" "$2" && grep -q "^callbacks: yes" "$2"' \
+    sh "$rc" "$TMP/sc7.out" "$TMP/sc7.err"
+"$BRAUN" run "$TMP/sc-1.json" --dt 1e-3 --t-end 1 > "$TMP/sc-1.run" 2> /dev/null; rc1=$?
+"$BRAUN" run "$TMP/sc-100nm.json" --dt 1e-3 --t-end 1 > "$TMP/sc-100nm.run" 2> /dev/null; rc2=$?
+check "run: the slider-crank with 100 nm links ends where the 1 m one does (q/L, angles) to 1e-10" sh -c '
+    [ "$1" -eq 0 ] && [ "$2" -eq 0 ] && { sed -n "s/^  \"final_q\": \[\(.*\)\],$/\1/p" "$3"; sed -n "s/^  \"final_q\": \[\(.*\)\],$/\1/p" "$4"; } |
+    awk -F", " "NR == 1 { for (i = 1; i <= NF; i++) a[i] = \$i; n = NF; next }
+        { d = 0; for (i = 1; i <= n; i++) { s = (i == 3 || i == 6) ? 1 : 1e-7; e = \$i / s - a[i]; if (e < 0) e = -e; if (e > d) d = e }
+          ok = NF == 6 && n == 6 && d <= 1e-10 }
+        END { exit !ok }"' sh "$rc1" "$rc2" "$TMP/sc-1.run" "$TMP/sc-100nm.run"
+
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

@@ -221,16 +221,18 @@ static int ls_factor_mass(void *state, const braun_real *M, braun_real sym_tol,
     int info = 0;
     LA(potrf)("L", &n, s->R, &n, &info, 1);
     if (info < 0) return BRAUN_ERR_ARGUMENT;
-    /* A pivot at round-off level of the largest diagonal entry means M is
+    /* A pivot at round-off level of its own diagonal entry means M is
      * singular to working precision (braun_chol_factor's test on the pivot
-     * before its square root); the first one is named. A failed pivot
-     * (info > 0) is left in place by xPOTRF. */
-    const braun_real tiny = (braun_real)n * (braun_real)LS_EPS * dmax;
+     * before its square root, n·ε·|M_ii|: no change of a coordinate's unit
+     * changes it); the first one is named. A failed pivot (info > 0) is
+     * left in place by xPOTRF. */
     const int failed = info > 0 ? info - 1 : n; /* xPOTRF's failed pivot */
     for (int i = 0; i < n && i <= failed; i++) {
         braun_real rii = s->R[(size_t)i * (size_t)n + (size_t)i];
         braun_real piv = i < failed ? rii * rii : rii;
-        if (!(piv > tiny)) {
+        braun_real mii = M[(size_t)i * (size_t)n + (size_t)i];
+        if (mii < 0) mii = -mii;
+        if (!(piv > (braun_real)n * (braun_real)LS_EPS * mii)) {
             if (bad_i) *bad_i = i;
             if (bad_j) *bad_j = i;
             if (bad_value) *bad_value = piv;

@@ -1223,7 +1223,7 @@ static int ss_factor_mass(void *state, const braun_real *M, braun_real sym_tol, 
                 }
             }
     }
-    const double thr = (double)s->n * (double)BRAUN_EPS * dmax;
+    const double n_eps = (double)s->n * (double)BRAUN_EPS;
     for (int b = 0; b < s->nblocks; b++) {
         const int bs = s->bsize[b];
         const braun_real *Mb = M + s->boff[b];
@@ -1231,9 +1231,11 @@ static int ss_factor_mass(void *state, const braun_real *M, braun_real sym_tol, 
         for (int i = 0; i < bs; i++) {
             double d = (double)Mb[i * bs + i];
             for (int k = 0; k < i; k++) d -= R[k * bs + i] * R[k * bs + i];
-            /* Pivot at round-off level of the largest diagonal: singular to
-             * working precision (also catches NaN). */
-            if (!(d > thr)) {
+            /* Pivot at round-off level of its own diagonal entry: singular
+             * to working precision (also catches NaN); braun_chol_factor's
+             * rule n·ε·|M_ii|, which no change of a coordinate's unit
+             * changes. */
+            if (!(d > n_eps * fabs((double)Mb[i * bs + i]))) {
                 if (bad_i) *bad_i = s->bstart[b] + i;
                 if (bad_j) *bad_j = s->bstart[b] + i;
                 if (bad_value) *bad_value = (braun_real)d;

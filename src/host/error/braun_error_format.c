@@ -120,7 +120,7 @@ static void describe(msg *w, const braun_data *d)
         break;
     case BRAUN_ERR_MASS_NOT_SPD:
         put(w, "mass matrix not positive definite at pivot %d (value %.3g, not above n*eps times its "
-               "largest diagonal entry)", e->index, e->value);
+               "own diagonal entry)", e->index, e->value);
         break;
     case BRAUN_ERR_CALLBACK:
         put(w, "callback '%s' failed (returned %d)", where ? where : "?", e->index);
@@ -150,7 +150,7 @@ static void describe(msg *w, const braun_data *d)
         } else if (strcmp(where, "mass") == 0 && isfinite(e->value)) {
             /* The mass matrix lost a pivot at a state the step reached. */
             put(w, "step diverged: the mass matrix is not positive definite there (pivot %d is "
-                   "%.3g, not above n*eps times its largest diagonal entry)", e->index, e->value);
+                   "%.3g, not above n*eps times its own diagonal entry)", e->index, e->value);
             put_time(w, e->t);
         } else {
             /* A callback output overflowed at a later stage of a step that

@@ -3,11 +3,14 @@
  * element with FILE:LINE:COLUMN:
  *
  *  - the mass matrix: every pivot of its Cholesky factorization must
- *    exceed n·ε·max|M_ii|, the rule of libbraun's kernels and of both
- *    backends. Without rods M is block diagonal (one block per body) and
- *    the pivots are the blocks' own, exactly as the core computes them; a
- *    rod couples its ends' blocks, and then each diagonal entry is checked
- *    (a pivot is never larger than its diagonal entry);
+ *    exceed n·ε·|M_jj|, its own diagonal entry, the rule of libbraun's
+ *    kernels and of both backends (no change of a coordinate's unit changes
+ *    it). Without rods M is block diagonal (one block per body) and the
+ *    pivots are the blocks' own, exactly as the core computes them; a rod
+ *    couples its ends' blocks, which are particles' (diagonal), and adds
+ *    (m/6)[2 1; 1 2] ⪰ (m/6) I to its ends' entries: M ⪰ ½ diag(M), so every
+ *    pivot is at least half its diagonal entry and the entry's own check
+ *    decides;
  *  - every joint's rows and every effect's forces, potential and power at
  *    the initial state: a class hook that fails there (a spring whose two
  *    points coincide has no direction) or gives a non-finite value would
@@ -64,10 +67,12 @@ int sj_check_mass(sj_reader *r)
     const braun_scene *s = &r->out->scene;
     const int n = s->n;
     double *rod = calloc((size_t)s->nbodies + 1, sizeof *rod);
-    double *piv = malloc(((size_t)n + 1) * sizeof *piv);
-    if (!rod || !piv) {
+    /* Each coordinate's pivot and diagonal entry. */
+    double *piv = malloc(((size_t)n + 1) * sizeof *piv), *diag = malloc(((size_t)n + 1) * sizeof *diag);
+    if (!rod || !piv || !diag) {
         free(rod);
         free(piv);
+        free(diag);
         return sj_fail(r, SJ_AT_VALUE, "out of memory");
     }
     /* A rod adds m/3 to the diagonal of each end's block. */
@@ -77,7 +82,6 @@ int sj_check_mass(sj_reader *r)
             const int b = p >= 0 && p < s->npoints ? s->points[p].body : -1;
             if (b >= 0 && b < s->nbodies) rod[b] += (double)s->rods[k].mass / 3;
         }
-    double dmax = 0;
     for (int k = 0; k < s->nbodies; k++) {
         const braun_scene_body *b = &s->bodies[k];
         const int dof = b->kind->dof;
@@ -91,7 +95,7 @@ int sj_check_mass(sj_reader *r)
          * (coupling to other blocks is zero without rods). */
         for (int i = 0; i < dof; i++) {
             double d = (double)M[i * dof + i] + rod[k];
-            if (fabs(d) > dmax) dmax = fabs(d);
+            diag[b->iq + i] = d;
             for (int j = 0; j < i; j++) d -= R[j * dof + i] * R[j * dof + i];
             piv[b->iq + i] = d;
             const double rii = d > 0 ? sqrt(d) : 0;
@@ -103,12 +107,12 @@ int sj_check_mass(sj_reader *r)
             }
         }
     }
-    const double tiny = (double)n * (double)SJ_EPS * dmax;
     int st = 0;
     for (int k = 0; k < s->nbodies && !st; k++) {
         const braun_scene_body *b = &s->bodies[k];
         for (int i = 0; i < b->kind->dof; i++) {
-            const double p = piv[b->iq + i];
+            const double p = piv[b->iq + i], mjj = diag[b->iq + i];
+            const double tiny = (double)n * (double)SJ_EPS * fabs(mjj);
             if (p > tiny) continue;
             /* A planar body's angle, or a spatial body's orientation. */
             const int spatial = b->kind->dim == 3 && i >= 3;
@@ -123,14 +127,15 @@ int sj_check_mass(sj_reader *r)
             who(r, "body", r->out->body_names[k], k);
             st = sj_fail(r, SJ_AT_VALUE,
                          "%s: its %s gives the mass matrix a pivot of %g, not above "
-                         "n*eps*max|M_ii| = %g (n = %d, largest entry %g): M would be singular "
-                         "to working precision",
-                         r->who, key, p, tiny, n, dmax);
+                         "n*eps*M_jj = %g (n = %d, its diagonal entry M_jj = %g): M would be "
+                         "singular to working precision",
+                         r->who, key, p, tiny, n, mjj);
             break;
         }
     }
     free(rod);
     free(piv);
+    free(diag);
     return st;
 }
 
