@@ -1010,19 +1010,21 @@ check "gen-c --symbol 9bad: exit 2, one line" sh -c '[ "$1" -eq 2 ] && [ "$(wc -
 check "gen-c of a missing file: exit 2, names the file" sh -c '[ "$1" -eq 2 ] && grep -q "no-such.json" "$2"' sh "$rc" "$TMP/gce"
 
 # ------------------------------------------------- the same mechanism in any units
-# slider_crank L: data/slider-crank.json with every length L times its own
-# (inertias L^2 times, g L times: the same motion in the same time, with
-# the lengths among q L times the 1 m run's).
+# slider_crank L [D]: data/slider-crank.json with every length L times its
+# own (inertias L^2 times, g L times: the same motion in the same time, with
+# the lengths among q L times the 1 m run's); with D, a distance joint
+# 'far' of length D L from crank.O to rod.B (1.41 L at the start).
 slider_crank() {
-    awk -v L="$1" 'BEGIN {
+    awk -v L="$1" -v D="${2:-0}" 'BEGIN {
         a = 0.35355339059327379; c = 1.0606601717798214; I = 0.083333333333333329
         printf "{\"name\": \"slider-crank-%s\",\n \"bodies\": [\n", L
         printf "  {\"name\": \"crank\", \"type\": \"rigid\", \"mass\": 1, \"inertia\": %.17g, \"position\": [%.17g, %.17g], \"angle\": 0.78539816339744828, \"points\": {\"O\": [%.17g, 0], \"A\": [%.17g, 0]}},\n", I*L*L, a*L, a*L, -0.5*L, 0.5*L
         printf "  {\"name\": \"rod\", \"type\": \"rigid\", \"mass\": 1, \"inertia\": %.17g, \"position\": [%.17g, %.17g], \"angle\": -0.78539816339744828, \"points\": {\"A\": [%.17g, 0], \"B\": [%.17g, 0]}}],\n", I*L*L, c*L, a*L, -0.5*L, 0.5*L
         printf " \"joints\": [{\"name\": \"pivot\", \"type\": \"revolute\", \"a\": \"crank.O\", \"b\": [0, 0]},\n"
         printf "  {\"name\": \"knee\", \"type\": \"revolute\", \"a\": \"crank.A\", \"b\": \"rod.A\"},\n"
-        printf "  {\"name\": \"slide\", \"type\": \"slider\", \"point\": \"rod.B\", \"line\": [0, 0], \"axis\": [1, 0]}],\n"
-        printf " \"effects\": [{\"type\": \"gravity\", \"g\": [0, %.17g]}]}\n", -9.81*L }'
+        printf "  {\"name\": \"slide\", \"type\": \"slider\", \"point\": \"rod.B\", \"line\": [0, 0], \"axis\": [1, 0]}"
+        if (D > 0) printf ",\n  {\"name\": \"far\", \"type\": \"distance\", \"a\": \"crank.O\", \"b\": \"rod.B\", \"length\": %.17g}", D*L
+        printf "],\n \"effects\": [{\"type\": \"gravity\", \"g\": [0, %.17g]}]}\n", -9.81*L }'
 }
 # The mass matrix's pivots against their own diagonal entries: the
 # slider-crank with 100 nm links (inertias 8.3e-16 kg m^2 beside masses of
@@ -1042,6 +1044,94 @@ check "run: the slider-crank with 100 nm links ends where the 1 m one does (q/L,
         { d = 0; for (i = 1; i <= n; i++) { s = (i == 3 || i == 6) ? 1 : 1e-7; e = \$i / s - a[i]; if (e < 0) e = -e; if (e > d) d = e }
           ok = NF == 6 && n == 6 && d <= 1e-10 }
         END { exit !ok }"' sh "$rc1" "$rc2" "$TMP/sc-1.run" "$TMP/sc-100nm.run"
+
+# braun check judges a start's residual relative to each row's own scale
+# (Σ_j |A_ij| s_j: lengths by the mechanism's size, angles by 1 rad), so a
+# mechanism reads the same in m, mm or um. With sqrt(eps) in the rows'
+# units the assembly search was skipped below ~100 um ("consistent: yes",
+# exit 0, for mechanisms no motion can assemble), and with one scale for
+# all coordinates (the angles' 1 rad) a 1 um parallelogram 2 % off its
+# third pivot was "reached" 0.13 % off it and read consistent.
+# reach L: a particle on two distance joints of 0.3 L from anchors L apart.
+reach() {
+    awk -v L="$1" 'BEGIN {
+        printf "{\"name\": \"reach\", \"bodies\": [{\"name\": \"b\", \"type\": \"particle\", \"mass\": 1, \"position\": [%.17g, %.17g]}],\n", 0.5*L, -0.2*L
+        printf " \"joints\": [{\"name\": \"left\", \"type\": \"distance\", \"a\": [0, 0], \"b\": \"b\", \"length\": %.17g},\n", 0.3*L
+        printf "  {\"name\": \"right\", \"type\": \"distance\", \"a\": [%.17g, 0], \"b\": \"b\", \"length\": %.17g}],\n", L, 0.3*L
+        printf " \"effects\": [{\"type\": \"gravity\", \"g\": [0, %.17g]}]}\n", -9.81*L }'
+}
+# para_off L: data/parallelogram-redundant.json, lengths L times, its third
+# ground pivot at 2.02 L (2 % off).
+para_off() {
+    awk -v L="$1" 'BEGIN {
+        I = 0.083333333333333329; y = 0.4330127018922193; th = 1.0471975511965976
+        printf "{\"name\": \"para-off\", \"ground\": {\"points\": {\"A\": [0, 0], \"E\": [%.17g, 0], \"B\": [%.17g, 0]}},\n \"bodies\": [\n", L, 2.02*L
+        for (k = 1; k <= 3; k++)
+            printf "  {\"name\": \"crank%d\", \"type\": \"rigid\", \"mass\": 1, \"inertia\": %.17g, \"position\": [%.17g, %.17g], \"angle\": %.17g, \"points\": {\"base\": [%.17g, 0], \"tip\": [%.17g, 0]}},\n", k, I*L*L, (k - 0.75)*L, y*L, th, -0.5*L, 0.5*L
+        printf "  {\"name\": \"coupler\", \"type\": \"rigid\", \"mass\": 2, \"inertia\": %.17g, \"position\": [%.17g, %.17g], \"angle\": 0, \"points\": {\"left\": [%.17g, 0], \"mid\": [0, 0], \"right\": [%.17g, 0]}}],\n", 0.66666666666666663*L*L, 1.5*L, 2*y*L, -L, L
+        printf " \"joints\": [{\"name\": \"pivot1\", \"type\": \"revolute\", \"a\": \"crank1.base\", \"b\": \"ground.A\"},\n"
+        printf "  {\"name\": \"pivot2\", \"type\": \"revolute\", \"a\": \"crank2.base\", \"b\": \"ground.E\"},\n"
+        printf "  {\"name\": \"pivot3\", \"type\": \"revolute\", \"a\": \"crank3.base\", \"b\": \"ground.B\"},\n"
+        printf "  {\"name\": \"pin1\", \"type\": \"revolute\", \"a\": \"crank1.tip\", \"b\": \"coupler.left\"},\n"
+        printf "  {\"name\": \"pin2\", \"type\": \"revolute\", \"a\": \"crank2.tip\", \"b\": \"coupler.mid\"},\n"
+        printf "  {\"name\": \"pin3\", \"type\": \"revolute\", \"a\": \"crank3.tip\", \"b\": \"coupler.right\"}],\n"
+        printf " \"effects\": [{\"type\": \"gravity\", \"g\": [0, %.17g]}]}\n", -9.81*L }'
+}
+# circles L: a particle at 1.5 L on two distance joints of L and 2 L from
+# one anchor.
+circles() {
+    awk -v L="$1" 'BEGIN {
+        printf "{\"name\": \"circles\", \"bodies\": [{\"name\": \"b\", \"type\": \"particle\", \"mass\": 1, \"position\": [%.17g, 0]}],\n", 1.5*L
+        printf " \"joints\": [{\"name\": \"short\", \"type\": \"distance\", \"a\": [0, 0], \"b\": \"b\", \"length\": %.17g},\n", L
+        printf "  {\"name\": \"long\", \"type\": \"distance\", \"a\": [0, 0], \"b\": \"b\", \"length\": %.17g}]}\n", 2*L }'
+}
+for L in 1 1e-3 1e-4 1e-6; do
+    reach "$L" > "$TMP/reach.json"
+    "$BRAUN" check "$TMP/reach.json" > "$TMP/reach.out" 2> "$TMP/reach.err"; rc=$?
+    check "check: a particle on two 0.3 L joints from anchors L apart, L = $L m: no assembly, consistent: no, exit 1" sh -c '
+        [ "$1" -eq 1 ] && grep -q "^position_residual_largest: .* (row 0, joint .left. (distance))$" "$2" &&
+        grep -q "^assembly: none found (Gauss-Newton stalls at residual [0-9.e+-]* after 3 steps)$" "$2" &&
+        grep -q "^consistent: no$" "$2" &&
+        grep -q "joint .left. (distance) (row 0) and joint .right. (distance) (row 1) cannot all be met" "$3"' \
+        sh "$rc" "$TMP/reach.out" "$TMP/reach.err"
+done
+for L in 1 1e-6; do
+    para_off "$L" > "$TMP/para-off.json"
+    "$BRAUN" check "$TMP/para-off.json" > "$TMP/po-$L.out" 2> "$TMP/po.err"; rc=$?
+    check "check: the parallelogram 2 % off its third pivot, links $L m: consistent: no (first order), assembled near, exit 1" sh -c '
+        [ "$1" -eq 1 ] && grep -q "^consistent: no$" "$2" && grep -q "^assembly: reached " "$2" &&
+        grep -q "^braun: para-off: the constraints have no solution at the initial state: .* disagree (their least-squares residual " "$3" &&
+        grep -q "note: para-off: they disagree to first order only" "$3"' sh "$rc" "$TMP/po-$L.out" "$TMP/po.err"
+done
+check "check: ... at 1 um the message gives the residual relative to the rows' own scale" sh -c '
+    grep -q "their least-squares residual 2.89e-09 is 0.000621 of the rows. own scale, above sqrt(eps) of it, in any units" "$1"' \
+    sh "$TMP/po.err"
+check "check: ... and the assembly search takes the same steps at 1 m and 1 um" sh -c '
+    a=$(sed -n "s/^assembly: reached (residual [0-9.e+-]* \(after [0-9]* Gauss-Newton steps, [0-9]* damped\), .*/\1/p" "$1")
+    b=$(sed -n "s/^assembly: reached (residual [0-9.e+-]* \(after [0-9]* Gauss-Newton steps, [0-9]* damped\), .*/\1/p" "$2")
+    [ -n "$a" ] && [ "$a" = "$b" ]' sh "$TMP/po-1.out" "$TMP/po-1e-6.out"
+circles 1e-5 > "$TMP/circles-10um.json"
+"$BRAUN" check "$TMP/circles-10um.json" > "$TMP/c5.out" 2> "$TMP/c5.err"; rc=$?
+check "check: two distances of 10 um and 20 um from one anchor: consistent: no, both joints named, exit 1" sh -c '
+    [ "$1" -eq 1 ] && grep -q "^consistent: no$" "$2" && grep -q "^assembly: none found " "$2" &&
+    grep -q "joint .short. (distance) (row 0) and joint .long. (distance) (row 1) disagree" "$3"' \
+    sh "$rc" "$TMP/c5.out" "$TMP/c5.err"
+# Rows of two units (revolutes in m, a distance in m^2) at 1 um: a distance
+# the slider-crank cannot reach (5 L) is found so, one it reaches (1.5 L)
+# assembles.
+slider_crank 1e-6 5 > "$TMP/far-1um.json"
+"$BRAUN" check "$TMP/far-1um.json" > "$TMP/f6.out" 2> "$TMP/f6.err"; rc=$?
+check "check: the slider-crank at 1 um with a distance it cannot reach: no assembly, consistent: no, exit 1" sh -c '
+    [ "$1" -eq 1 ] && grep -q "^position_residual_largest: .* (row 5, joint .far. (distance))$" "$2" &&
+    grep -q "^assembly: none found " "$2" && grep -q "^consistent: no$" "$2" &&
+    grep -q "no solution near the initial state: .*joint .far. (distance) (row 5).* cannot all be met" "$3"' \
+    sh "$rc" "$TMP/f6.out" "$TMP/f6.err"
+slider_crank 1e-6 1.5 > "$TMP/near-1um.json"
+"$BRAUN" check "$TMP/near-1um.json" > "$TMP/n6.out" 2> "$TMP/n6.err"; rc=$?
+check "check: the slider-crank at 1 um with a distance it reaches: assembled, consistent: yes, exit 0" sh -c '
+    [ "$1" -eq 0 ] && grep -q "^position_residual_largest: .* (row 5, joint .far. (distance))$" "$2" &&
+    grep -q "^assembly: reached (residual [0-9.e+-]* after [1-9] Gauss-Newton steps\{0,1\}, " "$2" &&
+    grep -q "^consistent: yes$" "$2"' sh "$rc" "$TMP/n6.out"
 
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

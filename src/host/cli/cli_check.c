@@ -200,17 +200,101 @@ done:
     return rank;
 }
 
+/* Each coordinate's scale s_j (n entries), in its own unit: how far it
+ * moves when the mechanism does, or its own size where that is larger (the
+ * size of its rounding). A length (a body's position): max(|q_j|, l), l
+ * the diagonal of the box around the scene's points and bodies at q0, the
+ * mechanism's size; an angle, a quaternion's or a unit vector's entry:
+ * max(|q_j|, 1). Σ_j |A_ij|·s_j (row_scales) then has row i's own unit,
+ * and a residual over it is one number in m, mm or km: one scale for all
+ * coordinates, max_k |q_k|, was the angles' 1 rad on a 1 µm mechanism. A
+ * system without a scene to say which coordinate is which (a built-in
+ * model in its own coordinates: Andrews' angles) keeps that one scale,
+ * max(|q_j|, ‖q‖∞, 1e-6). */
+static void coordinate_scales(const braun_cli_target *tg, double *s)
+{
+    const int n = tg->sys.n;
+    const braun_scene *sc = tg->drawing ? &tg->drawing->scene : NULL;
+    if (!sc || sc->n != n) {
+        double big = 1e-6;
+        for (int j = 0; j < n; j++)
+            if (fabs((double)tg->q0[j]) > big) big = fabs((double)tg->q0[j]);
+        for (int j = 0; j < n; j++) s[j] = big;
+        return;
+    }
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < sc->npoints; i++) {
+        braun_real pos[3];
+        if (braun_scene_point_state(sc, i, tg->q0, NULL, pos, NULL) != BRAUN_OK) continue;
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], (double)pos[k]);
+            hi[k] = fmax(hi[k], (double)pos[k]);
+        }
+    }
+    for (int b = 0; b < sc->nbodies; b++) {
+        const braun_scene_body *body = &sc->bodies[b];
+        for (int k = 0; k < body->kind->dim && k < body->kind->dof && k < 3; k++) {
+            if (k == body->kind->angle) continue;
+            const double x = (double)tg->q0[body->iq + k];
+            lo[k] = fmin(lo[k], x);
+            hi[k] = fmax(hi[k], x);
+        }
+    }
+    double l2 = 0;
+    for (int k = 0; k < 3; k++)
+        if (hi[k] >= lo[k]) l2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    const double size = isfinite(sqrt(l2)) ? sqrt(l2) : 0;
+    for (int j = 0; j < n; j++) s[j] = 1; /* (every coordinate is a body's) */
+    for (int b = 0; b < sc->nbodies; b++) {
+        const braun_scene_body *body = &sc->bodies[b];
+        for (int k = 0; k < body->kind->dof; k++)
+            s[body->iq + k] = k < body->kind->dim && k != body->kind->angle ? size : 1;
+    }
+    for (int j = 0; j < n; j++) s[j] = fmax(s[j], fabs((double)tg->q0[j]));
+}
+
+/* Row i's scale S_i = Σ_j |A_ij|·s_j (A: rows x n): the residual a
+ * displacement of the mechanism's size gives it, in the row's own unit (m
+ * for a revolute, m² for a distance, 1 for an angle joint). A row without
+ * one (its gradient zero, or every coordinate it reads 0 in a scene of no
+ * size) takes the largest row's, or 1. */
+static void row_scales(int rows, int n, const braun_real *A, const double *s, double *S)
+{
+    double big = 0;
+    for (int i = 0; i < rows; i++) {
+        S[i] = 0;
+        for (int j = 0; j < n; j++) S[i] += fabs((double)A[(size_t)i * n + j]) * s[j];
+        if (!isfinite(S[i])) S[i] = 0;
+        if (S[i] > big) big = S[i];
+    }
+    for (int i = 0; i < rows; i++)
+        if (!(S[i] > 0)) S[i] = big > 0 ? big : 1;
+}
+
+/* ‖(Φ_i / S_i)‖: a residual relative to its rows' scales. */
+static double scaled_norm(int rows, const braun_real *phi, const double *S)
+{
+    double r2 = 0;
+    for (int i = 0; i < rows; i++) r2 += ((double)phi[i] / S[i]) * ((double)phi[i] / S[i]);
+    return sqrt(r2);
+}
+
 /* A start off its holonomic constraints may still be one no motion can
  * reach (a distance joint longer than the mechanism stretches): first-order
  * consistency cannot tell, and a run only fails later, on its accuracy
  * guard. The assembly search tells: Gauss–Newton from q0 in the mass metric
  * (each step the minimum-norm dq = −R⁻¹C⁺Φ_q, as the position correction
- * of Eq. 16 takes it), halving a step until ‖Φ_q‖ decreases. It ends
- * `reached` when ‖Φ_q‖ ≤ ASSEMBLY_TOL_REL·scale — scale = Σ_ij |A_ij|·s_j,
- * s_j = max(|q_j|, max_k |q_k|, 1e-6), the size Φ_q's rounding has — or
- * stalled, where no halving decreases ‖Φ_q‖ or after ASSEMBLY_STEPS steps.
- * Local: a stall says no assembly near q0 was found, and a mechanism whose
- * constraints meet farther away (another branch) must be started there. */
+ * of Eq. 16 takes it), halving a step until ‖Φ_q/S‖ decreases — the rows
+ * relative to their scales S (row_scales at q0). It ends `reached` when
+ * ‖Φ_q/S‖ ≤ ASSEMBLY_TOL_REL·m (the old rule ‖Φ_q‖ ≤ ASSEMBLY_TOL_REL·Σ_i S_i
+ * where the rows' scales are equal; far above Φ_q's rounding, which s_j's
+ * |q_j| covers) or stalled, where no halving decreases it or after
+ * ASSEMBLY_STEPS steps. Each row against its own scale, it ends where it
+ * would in any units: against one scale for all, Σ_ij |A_ij|·max_k |q_k|,
+ * the angles' 1 rad let a 1 µm parallelogram 2 % off its third pivot be
+ * "reached" 0.13 % off it. Local: a stall says no assembly near q0 was
+ * found, and a mechanism whose constraints meet farther away (another
+ * branch) must be started there. */
 #define ASSEMBLY_STEPS 60
 #define ASSEMBLY_HALVINGS 40
 #define ASSEMBLY_TOL_REL 1e-10
@@ -219,28 +303,35 @@ typedef struct assembly {
     int reached;  /* 1 reached, 0 stalled, -1 out of memory or a callback failed */
     int steps;    /* Gauss–Newton steps taken */
     double resid; /* ‖Φ_q‖ at the end */
-    double tol;   /* the residual that counts as reached */
+    double rel;   /* ‖Φ_q/S‖ there, relative to the rows' scales */
+    double tol;   /* the ‖Φ_q/S‖ that counts as reached */
     double dist;  /* ‖R (q_end − q0)‖: the distance moved in the mass metric */
-    int damped;   /* steps that needed halving: a run's position correction,
-                   * one undamped step per time step, may not converge */
+    int damped;   /* steps that needed halving, or whose full length did not
+                   * decrease ‖Φ_q‖: a run's position correction, one
+                   * undamped step per time step judged by its accuracy
+                   * guard on ‖Φ_q‖, may not converge */
 } assembly;
 
+/* Φ_q and A_q at q, *res = ‖Φ_q/S‖ and *plain = ‖Φ_q‖. */
 static int holonomic_at(const braun_system *s, const braun_real *q, const braun_real *v,
-                        braun_real *phi, braun_real *A, braun_real *b, braun_real *bv, double *res)
+                        braun_real *phi, braun_real *A, braun_real *b, braun_real *bv,
+                        const double *S, double *res, double *plain)
 {
     for (size_t i = 0; i < (size_t)s->m * s->n; i++) A[i] = 0;
     if (s->holonomic(0, q, v, phi, A, b, bv, s->user) != 0) return -1;
     double r2 = 0;
     for (int i = 0; i < s->m; i++) r2 += (double)phi[i] * (double)phi[i];
-    *res = sqrt(r2);
-    return isfinite(*res) ? 0 : -1;
+    *plain = sqrt(r2);
+    *res = scaled_norm(s->m, phi, S);
+    return isfinite(*res) && isfinite(*plain) ? 0 : -1;
 }
 
-/* R: the upper Cholesky factor of M(q0) (the metric of every step);
- * phi_end (m): Φ_q where the search ended — the rows that cannot all be
- * met share its residual. */
+/* R: the upper Cholesky factor of M(q0) (the metric of every step); S
+ * (m): the rows' scales; phi_end (m): Φ_q/S where the search ended — the
+ * rows that cannot all be met share its residual (relative to their
+ * scales: a distance's m² beside revolutes' m at 1 µm). */
 static void assemble(const braun_system *s, const braun_real *q0, const braun_real *v0,
-                     const double *R, assembly *out, double *phi_end)
+                     const double *R, const double *S, assembly *out, double *phi_end)
 {
     const int n = s->n, m = s->m;
     const size_t mn = (size_t)m * n;
@@ -254,16 +345,9 @@ static void assemble(const braun_system *s, const braun_real *q0, const braun_re
     out->reached = -1;
     if (!q || !qt || !phi || !A || !phit || !At || !b || !bv || !C || !rhs || !x || !dq) goto done;
     for (int j = 0; j < n; j++) q[j] = q0[j];
-    double res;
-    if (holonomic_at(s, q, v0, phi, A, b, bv, &res)) goto done;
-    double big = 1e-6, scale = 0;
-    for (int j = 0; j < n; j++)
-        if (fabs((double)q0[j]) > big) big = fabs((double)q0[j]);
-    for (size_t i = 0; i < mn; i++) {
-        const double qj = fabs((double)q0[i % (size_t)n]);
-        scale += fabs((double)A[i]) * (qj > big ? qj : big);
-    }
-    out->tol = ASSEMBLY_TOL_REL * (scale > 0 ? scale : 1);
+    double res, plain;
+    if (holonomic_at(s, q, v0, phi, A, b, bv, S, &res, &plain)) goto done;
+    out->tol = ASSEMBLY_TOL_REL * m;
     const double rank_tol = (double)braun_default_rank_tol(m, n);
     int steps = 0, stalled = 0;
     while (res > out->tol && steps < ASSEMBLY_STEPS && !stalled) {
@@ -277,28 +361,33 @@ static void assemble(const braun_system *s, const braun_real *q0, const braun_re
             for (int k = i + 1; k < n; k++) acc -= R[(size_t)i * n + k] * dq[k];
             dq[i] = acc / R[(size_t)i * n + i];
         }
-        double rest = 0;
+        double rest = 0, plaint = 0;
+        /* Damped: the full step is not taken, or it does not decrease
+         * ‖Φ_q‖ — what a run's accuracy guard judges its correction by. */
+        int damped = 1;
         stalled = 1;
         for (int h = 0; h < ASSEMBLY_HALVINGS && stalled; h++) {
             const double step = ldexp(1.0, -h); /* 1, 1/2, 1/4, ... */
             for (int j = 0; j < n; j++) qt[j] = (braun_real)((double)q[j] + step * dq[j]);
-            if (holonomic_at(s, qt, v0, phit, At, b, bv, &rest)) continue; /* outside the callbacks' domain */
-            if (rest < res) {
-                stalled = 0;
-                if (h > 0) out->damped++;
-            }
+            /* (a failure: outside the callbacks' domain) */
+            if (holonomic_at(s, qt, v0, phit, At, b, bv, S, &rest, &plaint)) continue;
+            if (h == 0 && plaint < plain) damped = 0;
+            if (rest < res) stalled = 0;
         }
         if (stalled) break;
+        out->damped += damped;
         steps++;
         res = rest;
+        plain = plaint;
         memcpy(q, qt, sizeof(braun_real) * (size_t)n);
         memcpy(phi, phit, sizeof(braun_real) * (size_t)m);
         memcpy(A, At, sizeof(braun_real) * mn);
     }
     out->reached = res <= out->tol;
     out->steps = steps;
-    out->resid = res;
-    for (int i = 0; i < m; i++) phi_end[i] = (double)phi[i];
+    out->rel = res;
+    out->resid = plain;
+    for (int i = 0; i < m; i++) phi_end[i] = (double)phi[i] / S[i];
     /* ‖R (q − q0)‖ */
     double d2 = 0;
     for (int i = 0; i < n; i++) {
@@ -331,12 +420,17 @@ done:
  * and phi = Φ_q (positions), then with all rows [A_q; A_vv] and their
  * velocity error phi = [A_q v − b_q; Φ_v] (velocities). *resid: ‖e‖; e:
  * the residual vector (m), whose largest entries are the rows that
- * disagree; *rank_q: the rows' rank. Returns 1 consistent, 0 not, -1 out
- * of memory. */
-static int consistent_rows(int m, int n, const double *C, const double *phi, double *T,
-                           double *e, double *resid, int *rank_q)
+ * disagree; *rank_q: the rows' rank. With the rows' scales S (m; NULL:
+ * none), the verdict is on the rows relative to them instead, as the
+ * assembly search judges them: *rel, the least-squares residual of C's
+ * rows and phi over S_i (the same range), <= sqrt(ε), a verdict no unit
+ * changes (against sqrt(ε) in the rows' units a parallelogram 2 % off its
+ * third pivot was inconsistent at 1 m and consistent at 1 µm). Returns 1
+ * consistent, 0 not, -1 out of memory. */
+static int consistent_rows(int m, int n, const double *C, const double *phi, const double *S,
+                           double *T, double *e, double *resid, double *rel, int *rank_q)
 {
-    *resid = 0;
+    *resid = *rel = 0;
     *rank_q = 0;
     if (m == 0) return 1;
     memcpy(T, C, sizeof(double) * (size_t)m * n);
@@ -345,9 +439,18 @@ static int consistent_rows(int m, int n, const double *C, const double *phi, dou
     if (rank == m) return 1;
     memcpy(T, C, sizeof(double) * (size_t)m * n);
     for (int i = 0; i < m; i++) e[i] = -phi[i];
-    *resid = lsq_residual(m, n, T, rank, e);
+    *resid = *rel = lsq_residual(m, n, T, rank, e);
     if (*resid < 0) return -1;
-    return *resid <= sqrt((double)BRAUN_EPS);
+    if (!S) return *resid <= sqrt((double)BRAUN_EPS);
+    /* (e keeps the rows' own residual: it names them, as it did.) */
+    double *w = malloc(sizeof(double) * (size_t)m);
+    if (!w) return -1;
+    for (size_t i = 0; i < (size_t)m * n; i++) T[i] = C[i] / S[i / (size_t)n];
+    for (int i = 0; i < m; i++) w[i] = -phi[i] / S[i];
+    *rel = lsq_residual(m, n, T, rank, w);
+    free(w);
+    if (*rel < 0) return -1;
+    return *rel <= sqrt((double)BRAUN_EPS);
 }
 
 /* "joint 'left' (revolute) and joint 'right' (revolute)" (a built-in
@@ -402,13 +505,15 @@ static int name_disagreeing(const braun_cli_target *tg, int m, const double *e, 
 }
 
 /* The message of rows that cannot all hold (e: their least-squares
- * residual, count rows; vel: at the velocity level). One element alone:
- * its rows' gradients depend on others' here while its error does not (a
- * joint started at a singular configuration). */
+ * residual, count rows; vel: at the velocity level; rel: the positions'
+ * residual relative to the rows' scales, on which check judges them). One
+ * element alone: its rows' gradients depend on others' here while its
+ * error does not (a joint started at a singular configuration). */
 static void say_unsolvable(const braun_cli_target *tg, int count, const double *e, double resid,
-                           int vel)
+                           double rel, int vel)
 {
-    char who[800];
+    char who[800], why[400];
+    const double tol = sqrt((double)BRAUN_EPS);
     const char *what = vel ? "the constraints' velocities" : "the constraints";
     const char *run = vel ? "braun run stops with BRAUN_ERR_INCONSISTENT at its first step when the "
                             "velocity correction is on"
@@ -421,19 +526,25 @@ static void say_unsolvable(const braun_cli_target *tg, int count, const double *
                            : "; judged to first order where the rows lose rank: at a singular "
                              "configuration (a chain closed straight to a point within its reach) a "
                              "solution can lie off it, beyond the assembly search: start there";
+    if (vel || resid > tol)
+        snprintf(why, sizeof why, "above the library's inconsistency tolerance %.3g: %s", tol, run);
+    else /* apart relative to their own scale, within the tolerance in their units: a small mechanism */
+        snprintf(why, sizeof why, "%.3g of the rows' own scale, above sqrt(eps) of it, in any units; "
+                                  "the library's inconsistency tolerance %.3g is in the rows' units and "
+                                  "may let a mechanism this small pass its first step: docs/cli.md, "
+                                  "braun check", rel, tol);
     if (name_disagreeing(tg, count, e, who, sizeof who) == 1)
         braun_cli_error("%s: %s have no solution at the initial state: %s cannot be met (its gradient "
                         "depends on the other rows' here, its %serror does not; least-squares "
-                        "residual %.3g, above the library's inconsistency tolerance %.3g: %s)%s",
-                        tg->name, what, who, vel ? "velocity " : "", resid, sqrt((double)BRAUN_EPS),
-                        run, hint);
+                        "residual %.3g, %s)%s",
+                        tg->name, what, who, vel ? "velocity " : "", resid, why, hint);
     else
         braun_cli_error("%s: %s have no solution at the initial state: %s disagree (%s %.3g%s is "
-                        "above the library's inconsistency tolerance %.3g: %s)%s",
+                        "%s)%s",
                         tg->name, what, who,
                         vel ? "the least-squares residual of their velocity error," :
                               "their least-squares residual",
-                        resid, vel ? "," : "", sqrt((double)BRAUN_EPS), run, hint);
+                        resid, vel ? "," : "", why, hint);
 }
 
 /* A text of the scene on one "key: value" line (braun_cli_put_text), so a
@@ -478,9 +589,13 @@ static int report(const braun_cli_target *tg)
     double *ev = calloc((size_t)rows + 1, sizeof(double));
     double *T = rows > n ? calloc((size_t)rows * n, sizeof(double)) : NULL;
     double *Rm = NULL; /* M's Cholesky factor */
-    double *pend = calloc((size_t)m + 1, sizeof(double)); /* Φ_q where the assembly search ended */
+    double *pend = calloc((size_t)m + 1, sizeof(double)); /* Φ_q/S where the assembly search ended */
+    /* The coordinates' scales and the holonomic rows' (coordinate_scales,
+     * row_scales): what the start's residual is judged against. */
+    double *sq = calloc((size_t)n + 1, sizeof(double)), *S = calloc((size_t)m + 1, sizeof(double));
     int rc = BRAUN_CLI_FAILED;
-    if (!buf || !M || !A || !scratch || !Md || !Ad || !phi || !e || !ev || !pend || (rows > n && !T)) {
+    if (!buf || !M || !A || !scratch || !Md || !Ad || !phi || !e || !ev || !pend || !sq || !S ||
+        (rows > n && !T)) {
         braun_cli_error("out of memory");
         goto done;
     }
@@ -521,11 +636,19 @@ static int report(const braun_cli_target *tg)
     for (size_t i = 0; i < nn; i++) Md[i] = (double)M[i];
     for (size_t i = 0; i < rn; i++) Ad[i] = (double)A[i];
     int rank = 0, consistent = 1, vconsistent = 1, vrank = 0, loose_rank = -1;
-    double resid = 0, vresid = 0;
+    double resid = 0, rel = 0, vresid = 0, vrel = 0;
     assembly asm_ = {.reached = 1};
-    /* The search costs O(m n²) per Gauss–Newton step: up to the size
-     * from which check says it is slow. */
-    const int off = m > 0 && (double)pos > sqrt((double)BRAUN_EPS);
+    /* Off its constraints: ‖Φ_q/S‖ above sqrt(ε), each row relative to its
+     * own scale, so at any size of the mechanism (‖Φ_q‖ > sqrt(ε) in the
+     * rows' units skipped the search of a particle 100 µm across that no
+     * motion can put on its two distance joints: "consistent: yes"). The
+     * search costs O(m n²) per Gauss–Newton step: up to the size from
+     * which check says it is slow. */
+    coordinate_scales(tg, sq);
+    row_scales(m, n, A, sq, S);
+    double pos_rel = 0;
+    for (int i = 0; i < m; i++) pos_rel += (phi[i] / S[i]) * (phi[i] / S[i]);
+    const int off = m > 0 && sqrt(pos_rel) > sqrt((double)BRAUN_EPS);
     const int search = off && n < BRAUN_CLI_DENSE_NOTE_N;
     if (rows > 0) {
         /* C = A R⁻¹, the rows as the solver weighs them (M = RᵀR). */
@@ -540,11 +663,11 @@ static int report(const braun_cli_target *tg)
         rows_times_rinv(rows, n, Rm, Ad);
         /* The holonomic rows are Ad's first m: all of them without
          * nonholonomic rows, whose rank is then the one to print. */
-        consistent = consistent_rows(m, n, Ad, phi, T ? T : Md, e, &resid, &rank);
+        consistent = consistent_rows(m, n, Ad, phi, S, T ? T : Md, e, &resid, &rel, &rank);
         /* All rows, at the velocity level; their rank is the one to print
          * (the holonomic rows' alone without nonholonomic rows). ev
          * becomes its residual. */
-        vconsistent = consistent_rows(rows, n, Ad, ev, T ? T : Md, ev, &vresid, &vrank);
+        vconsistent = consistent_rows(rows, n, Ad, ev, NULL, T ? T : Md, ev, &vresid, &vrel, &vrank);
         if (p > 0) rank = vrank;
         if (consistent < 0 || vconsistent < 0 || rank < 0) {
             braun_cli_error("out of memory");
@@ -566,7 +689,7 @@ static int report(const braun_cli_target *tg)
         /* Rows that disagree to first order may still be met near the start
          * (a singular configuration): the search tells that too. Its Φ_q
          * goes to pend, e holding the least-squares residual. */
-        if (search) assemble(s, tg->q0, tg->v0, Rm, &asm_, pend);
+        if (search) assemble(s, tg->q0, tg->v0, Rm, S, &asm_, pend);
     }
     char corr[64];
     const unsigned supported = model.opt.corrections;
@@ -585,10 +708,11 @@ static int report(const braun_cli_target *tg)
      * joint (a distance longer than the mechanism reaches) is consistent
      * to first order and fails only in the run, on the energy guard, which
      * has no row to name. */
-    if ((double)pos > sqrt((double)BRAUN_EPS) && m > 0) {
+    if (off) {
+        /* The row furthest off relative to its own scale. */
         int worst = 0;
         for (int i = 1; i < m; i++)
-            if (fabs(phi[i]) > fabs(phi[worst])) worst = i;
+            if (fabs(phi[i]) / S[i] > fabs(phi[worst]) / S[worst]) worst = i;
         char owner[160];
         const char *who = braun_cli_row_owner(tg->scene, worst, owner, sizeof owner);
         printf("position_residual_largest: %.3g (row %d%s", fabs(phi[worst]), worst, who ? ", " : "");
@@ -681,7 +805,7 @@ static int report(const braun_cli_target *tg)
          * t = 0 on. */
         const int velocities = consistent;
         say_unsolvable(tg, velocities ? rows : m, velocities ? ev : e, velocities ? vresid : resid,
-                       velocities);
+                       velocities ? vrel : rel, velocities);
         if (!velocities && asm_.reached > 0)
             fprintf(stderr, "braun: note: %s: they disagree to first order only: a configuration %.3g "
                             "from the start (mass metric) meets them (Gauss-Newton, residual %.2g; the "
@@ -704,6 +828,8 @@ done:
     free(T);
     free(Rm);
     free(pend);
+    free(sq);
+    free(S);
     return rc;
 }
 
