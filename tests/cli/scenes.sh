@@ -101,7 +101,7 @@ EOF
 "$BRAUN" check "$TMP/pinned.json" > "$TMP/pin.out" 2> "$TMP/pin.err"; rc=$?
 check "check: pinned at x = 0 and x = 1: consistent: no, exit 1, joints 'left' and 'right' named" sh -c '
     [ "$1" -eq 1 ] && grep -q "^consistent: no$" "$2" && grep -q "^rank: 2$" "$2" && [ "$(wc -l < "$3")" -eq 1 ] &&
-    grep -q "^braun: pinned: the constraints have no solution at the initial state: joint .left. (revolute) (row 1) and joint .right. (revolute) (row 3) disagree (their least-squares residual 0.707 is above the library.s inconsistency tolerance 1.49e-08" "$3"' \
+    grep -q "^braun: pinned: the constraints have no solution at the initial state: joint .left. (revolute) (row 1) and joint .right. (revolute) (row 3) disagree (their least-squares residual 0.707 is 0.224 of the rows. own scale, above sqrt(eps) = 1.49e-08 of it, in any units: braun run stops with BRAUN_ERR_INCONSISTENT)" "$3"' \
     sh "$rc" "$TMP/pin.out" "$TMP/pin.err"
 # Three links closed straight to a point 1e-4 m within their reach: the rows
 # lose rank and disagree to first order, the local search stalls, but the
@@ -481,6 +481,10 @@ check "run: distance rows 10 um and 20 um from one anchor: BRAUN_ERR_INCONSISTEN
 check "run: a knife across a slider driven at 10 nm/s: BRAUN_ERR_INCONSISTENT at t = 0, rail and blade named" sh -c '
     [ "$1" -eq 1 ] && grep -q "velocity-level constraint rows disagree" "$2" && grep -q "rail" "$2" && grep -q "blade" "$2"' \
     sh "$rc" "$TMP/ks.err"
+"$BRAUN" check "$TMP/knife-slow.json" > "$TMP/ks.chk" 2> "$TMP/ks.chkerr"; rc=$?
+check "check: the same knife at 10 nm/s: consistent: no, exit 1, the velocity rows named (as the run judges them)" sh -c '
+    [ "$1" -eq 1 ] && grep -q "^consistent: no$" "$2" && grep -q "velocities have no solution" "$3" &&
+    grep -q "rail" "$3" && grep -q "blade" "$3"' sh "$rc" "$TMP/ks.chk" "$TMP/ks.chkerr"
 "$BRAUN" run "$TMP/rodpar-10km.json" --dt 0.1 --t-end 30 > "$TMP/rp.out" 2> /dev/null; rc=$?
 check "run: a redundant parallelogram of 10 km rods: BRAUN_OK (its round-off is no inconsistency)" sh -c '
     [ "$1" -eq 0 ] && grep -q "\"status\": \"BRAUN_OK\"" "$2"' sh "$rc" "$TMP/rp.out"
@@ -1104,7 +1108,7 @@ for L in 1 1e-6; do
         grep -q "note: para-off: they disagree to first order only" "$3"' sh "$rc" "$TMP/po-$L.out" "$TMP/po.err"
 done
 check "check: ... at 1 um the message gives the residual relative to the rows' own scale" sh -c '
-    grep -q "their least-squares residual 2.89e-09 is 0.000621 of the rows. own scale, above sqrt(eps) of it, in any units" "$1"' \
+    grep -q "their least-squares residual 2.89e-09 is 0.000621 of the rows. own scale, above sqrt(eps) = 1.49e-08 of it, in any units" "$1"' \
     sh "$TMP/po.err"
 check "check: ... and the assembly search takes the same steps at 1 m and 1 um" sh -c '
     a=$(sed -n "s/^assembly: reached (residual [0-9.e+-]* \(after [0-9]* Gauss-Newton steps, [0-9]* damped\), .*/\1/p" "$1")

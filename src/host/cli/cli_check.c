@@ -526,13 +526,10 @@ static void say_unsolvable(const braun_cli_target *tg, int count, const double *
                            : "; judged to first order where the rows lose rank: at a singular "
                              "configuration (a chain closed straight to a point within its reach) a "
                              "solution can lie off it, beyond the assembly search: start there";
-    if (vel || resid > tol)
-        snprintf(why, sizeof why, "above the library's inconsistency tolerance %.3g: %s", tol, run);
-    else /* apart relative to their own scale, within the tolerance in their units: a small mechanism */
-        snprintf(why, sizeof why, "%.3g of the rows' own scale, above sqrt(eps) of it, in any units; "
-                                  "the library's inconsistency tolerance %.3g is in the rows' units and "
-                                  "may let a mechanism this small pass its first step: docs/cli.md, "
-                                  "braun check", rel, tol);
+    /* Both judged relative to the rows' own size, as the run judges them
+     * (its default inconsistency tolerance: docs/api.md, Options). */
+    snprintf(why, sizeof why, "%.3g of the rows' own scale, above sqrt(eps) = %.3g of it, in any units: %s",
+             rel, tol, run);
     if (name_disagreeing(tg, count, e, who, sizeof who) == 1)
         braun_cli_error("%s: %s have no solution at the initial state: %s cannot be met (its gradient "
                         "depends on the other rows' here, its %serror does not; least-squares "
@@ -586,7 +583,7 @@ static int report(const braun_cli_target *tg)
      * of work (Md's once it is spent, when they fit). */
     double *phi = calloc((size_t)m + 1, sizeof(double)), *e = calloc((size_t)m + 1, sizeof(double));
     /* ... and of the velocity rows: [A_q v − b_q; Φ_v], then its residual. */
-    double *ev = calloc((size_t)rows + 1, sizeof(double));
+    double *ev = calloc((size_t)rows + 1, sizeof(double)), *scratch_v = calloc((size_t)rows + 1, sizeof(double));
     double *T = rows > n ? calloc((size_t)rows * n, sizeof(double)) : NULL;
     double *Rm = NULL; /* M's Cholesky factor */
     double *pend = calloc((size_t)m + 1, sizeof(double)); /* Φ_q/S where the assembly search ended */
@@ -594,7 +591,7 @@ static int report(const braun_cli_target *tg)
      * row_scales): what the start's residual is judged against. */
     double *sq = calloc((size_t)n + 1, sizeof(double)), *S = calloc((size_t)m + 1, sizeof(double));
     int rc = BRAUN_CLI_FAILED;
-    if (!buf || !M || !A || !scratch || !Md || !Ad || !phi || !e || !ev || !pend || !sq || !S ||
+    if (!buf || !M || !A || !scratch || !Md || !Ad || !phi || !e || !ev || !scratch_v || !pend || !sq || !S ||
         (rows > n && !T)) {
         braun_cli_error("out of memory");
         goto done;
@@ -667,7 +664,20 @@ static int report(const braun_cli_target *tg)
         /* All rows, at the velocity level; their rank is the one to print
          * (the holonomic rows' alone without nonholonomic rows). ev
          * becomes its residual. */
-        vconsistent = consistent_rows(rows, n, Ad, ev, NULL, T ? T : Md, ev, &vresid, &vrel, &vrank);
+        /* The velocity rows as the run judges them (braun_corrections.c,
+         * inconsistency_tol): relative to their own size, max_i Σ_j
+         * |A_ij|·|v_j| + |ev_i|, one scale for all (against sqrt(ε) in
+         * m/s a knife across a slider driven at 10 nm/s read consistent:
+         * yes, which the run refuses). 0 (at rest, no drive): ev is 0. */
+        double vs = 0;
+        for (int i = 0; i < rows; i++) {
+            double sum = fabs(ev[i]);
+            for (int k = 0; k < n; k++) sum += fabs((double)A[(size_t)i * n + k]) * fabs((double)tg->v0[k]);
+            if (sum > vs) vs = sum;
+        }
+        for (int i = 0; i < rows; i++) scratch_v[i] = vs;
+        vconsistent = consistent_rows(rows, n, Ad, ev, vs > 0 ? scratch_v : NULL, T ? T : Md, ev, &vresid,
+                                      &vrel, &vrank);
         if (p > 0) rank = vrank;
         if (consistent < 0 || vconsistent < 0 || rank < 0) {
             braun_cli_error("out of memory");
@@ -825,6 +835,7 @@ done:
     free(phi);
     free(e);
     free(ev);
+    free(scratch_v);
     free(T);
     free(Rm);
     free(pend);
