@@ -651,6 +651,13 @@ static void test_mass_errors(void **state)
         for (int k = 0; k < n; k++) T[k * n + 3] = T[k * n + 1];
         in_units(n, T, S);
         check_mass_error(n, S, BRAUN_ERR_MASS_NOT_SPD);
+        /* An asymmetry of the pair (0, 1), 1e-6 of its own entries' root,
+         * in those units (2^-40 of the largest): refused as the core
+         * refuses it (against the largest entry it went unseen). */
+        memcpy(T, M, (size_t)n * (size_t)n * sizeof *M);
+        T[1] += (braun_real)(1e-6 * sqrt((double)M[0] * (double)M[n + 1]));
+        in_units(n, T, S);
+        check_mass_error(n, S, BRAUN_ERR_MASS_NOT_SYMMETRIC);
         free(T);
         free(M);
         free(S);

@@ -1282,6 +1282,15 @@ static void test_mass_errors(void **state)
     for (int i = 0; i < 9; i++) M[27 + i] = (braun_real)(2 * d3[i / 3] * d3[i % 3]);
     assert_int_equal(LS()->factor_mass(st, M, sym, &bi, &bj, &bv), BRAUN_ERR_MASS_NOT_SPD);
     assert_int_equal(bi, 10);
+    /* ... and an asymmetry of block 2's first pair in those units, 1e-6 of
+     * its own entries' root: refused (against the largest entry it went
+     * unseen). */
+    RESET_M();
+    for (int i = 0; i < 9; i++) M[18 + i] *= (braun_real)(d3[i / 3] * d3[i % 3]);
+    M[18 + 1] += (braun_real)(1e-6 * sqrt((double)M[18] * (double)M[18 + 4]));
+    assert_int_equal(LS()->factor_mass(st, M, sym, &bi, &bj, &bv), BRAUN_ERR_MASS_NOT_SYMMETRIC);
+    assert_int_equal(bi, 6);
+    assert_int_equal(bj, 7);
 #undef RESET_M
     free(M);
     LS()->destroy(st);

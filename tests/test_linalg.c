@@ -106,6 +106,14 @@ static void test_chol_unit_scale(void **state)
     braun_chol c = chol_of(3);
     const braun_real body[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1e-20};
     assert_int_equal(braun_chol_factor(&c, body, 1e-12, &bi, &bj, &bad), BRAUN_OK);
+    /* Symmetry against the pair's own entries: a coupling of the small one
+     * asymmetric by 1e-13 (against sqrt(1·1e-20) = 1e-10: 1e-3 of it)
+     * went unseen against the largest entry (1e-12·1). */
+    const braun_real skew[9] = {1, 0, 0, 0, 1, 1e-13, 0, 0, 1e-20};
+    bi = bj = -1;
+    assert_int_equal(braun_chol_factor(&c, skew, 1e-12, &bi, &bj, &bad), BRAUN_ERR_MASS_NOT_SYMMETRIC);
+    assert_int_equal(bi, 1);
+    assert_int_equal(bj, 2);
     braun_real y[3] = {1, 2, 3e-20};
     braun_chol_solve_rt(&c, y);
     braun_chol_solve_r(&c, y);

@@ -20,18 +20,18 @@ int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
 {
     const int n = BRAUN_N(c->n);
     braun_real *R = c->R;
-    braun_real dmax = 0;
     int i, j, k;
-    for (i = 0; i < n; i++) {
-        braun_real d = braun_fabs(M[i * n + i]);
-        if (d > dmax) dmax = d;
-    }
     /* Symmetry is checked, not assumed: a non-symmetric M is a modelling bug
-     * the factorization would otherwise hide by reading one triangle. */
+     * the factorization would otherwise hide by reading one triangle. Each
+     * pair against its own diagonal entries, |M_ij − M_ji| > sym_tol·
+     * sqrt(|M_ii M_jj|) (M_ij has the units of that root: kg·m between a
+     * position and an angle), so no change of a coordinate's unit changes
+     * the verdict; against the largest M_ii (kg beside kg m²) an asymmetry
+     * of a small body's coupling went unseen. Squared: no root per pair. */
     for (i = 0; i < n; i++)
         for (j = i + 1; j < n; j++) {
             braun_real asym = braun_fabs(M[i * n + j] - M[j * n + i]);
-            if (asym > sym_tol * dmax) {
+            if (asym * asym > sym_tol * sym_tol * braun_fabs(M[i * n + i] * M[j * n + j])) {
                 if (bad_i) *bad_i = i;
                 if (bad_j) *bad_j = j;
                 if (bad_value) *bad_value = asym;

@@ -196,21 +196,17 @@ static int ls_factor_mass(void *state, const braun_real *M, braun_real sym_tol,
     lapack_state *s = state;
     if (!s || !M) return BRAUN_ERR_ARGUMENT;
     const int n = s->n;
-    braun_real dmax = 0;
     s->have_r = 0;
-    for (int i = 0; i < n; i++) {
-        braun_real d = M[(size_t)i * (size_t)n + (size_t)i];
-        if (d < 0) d = -d;
-        if (d > dmax) dmax = d;
-    }
     /* Symmetry is checked, not assumed (same order and test as
-     * braun_chol_factor: the same entry is named). */
+     * braun_chol_factor, each pair against its own diagonal entries: the
+     * same entry is named). */
     for (int i = 0; i < n; i++)
         for (int j = i + 1; j < n; j++) {
             braun_real asym = M[(size_t)i * (size_t)n + (size_t)j] -
                               M[(size_t)j * (size_t)n + (size_t)i];
+            const braun_real dd = M[(size_t)i * (size_t)n + (size_t)i] * M[(size_t)j * (size_t)n + (size_t)j];
             if (asym < 0) asym = -asym;
-            if (asym > sym_tol * dmax) {
+            if (asym * asym > sym_tol * sym_tol * (dd < 0 ? -dd : dd)) {
                 if (bad_i) *bad_i = i;
                 if (bad_j) *bad_j = j;
                 if (bad_value) *bad_value = asym;

@@ -1198,24 +1198,17 @@ static int ss_factor_mass(void *state, const braun_real *M, braun_real sym_tol, 
                           int *bad_j, braun_real *bad_value)
 {
     ss_state *s = state;
-    double dmax = 0;
-    for (int b = 0; b < s->nblocks; b++) {
-        const int bs = s->bsize[b];
-        const braun_real *Mb = M + s->boff[b];
-        for (int i = 0; i < bs; i++) {
-            double d = fabs((double)Mb[i * bs + i]);
-            if (d > dmax) dmax = d;
-        }
-    }
     /* Symmetry first, for all blocks (as braun_chol_factor: a non-symmetric
-     * M is a modelling bug, reported before any pivot). */
+     * M is a modelling bug, reported before any pivot; each pair against
+     * its own diagonal entries). */
     for (int b = 0; b < s->nblocks; b++) {
         const int bs = s->bsize[b];
         const braun_real *Mb = M + s->boff[b];
         for (int i = 0; i < bs; i++)
             for (int j = i + 1; j < bs; j++) {
                 double asym = fabs((double)Mb[i * bs + j] - (double)Mb[j * bs + i]);
-                if (asym > (double)sym_tol * dmax) {
+                if (asym * asym > (double)sym_tol * (double)sym_tol *
+                                      fabs((double)Mb[i * bs + i] * (double)Mb[j * bs + j])) {
                     if (bad_i) *bad_i = s->bstart[b] + i;
                     if (bad_j) *bad_j = s->bstart[b] + j;
                     if (bad_value) *bad_value = (braun_real)asym;
