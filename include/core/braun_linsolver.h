@@ -50,7 +50,7 @@ struct braun_linsolver {
     int (*create)(void **state, const braun_model *model);
     void (*destroy)(void *state);
     /* Factor M (format above) = R^T R. Status as braun_chol_factor:
-     * BRAUN_ERR_MASS_NOT_SYMMETRIC (|M_ij - M_ji| > sym_tol·max_i M_ii) or
+     * BRAUN_ERR_MASS_NOT_SYMMETRIC (|M_ij - M_ji| > sym_tol·sqrt(|M_ii M_jj|)) or
      * BRAUN_ERR_MASS_NOT_SPD (a pivot j not above n·ε·|M_jj|, its own
      * diagonal entry: a verdict no change of a coordinate's unit changes),
      * with the entry in *bad_i, *bad_j, *bad_value (coordinates of the full

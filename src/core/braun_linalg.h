@@ -56,7 +56,7 @@ void braun_chol_bind(braun_chol *c, int n, braun_real *reals, int *ints);
 
 /* Factor the n x n row-major SPD matrix M into c (M may alias c->R).
  * Returns BRAUN_OK, BRAUN_ERR_MASS_NOT_SYMMETRIC (|M_ij - M_ji| >
- * sym_tol·max_i M_ii) or BRAUN_ERR_MASS_NOT_SPD (pivot j <= n·ε·|M_jj|: its own
+ * sym_tol·sqrt(|M_ii M_jj|)) or BRAUN_ERR_MASS_NOT_SPD (pivot j <= n·ε·|M_jj|: its own
  * diagonal entry, so the verdict does not depend on the coordinates' units).
  * On error *bad_i, *bad_j, *bad_value (may be NULL) name the entry. */
 int braun_chol_factor(braun_chol *c, const braun_real *M, braun_real sym_tol,
