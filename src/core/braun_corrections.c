@@ -521,12 +521,22 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
     }
     const braun_real smax = energy_max_rel(d);
     braun_real sigma;
-    const int saturated = !(braun_fabs(r) <= smax * xx);
+    /* Φ_e and the step's predicted change within a few ulps of E, E0 and
+     * ∫Ė are round-off, as at the step's end (braun__energy_at_end): no
+     * force. Sized on them, the force took from a motion starting from
+     * rest the kinetic energy its positions, whose first increments h·v
+     * fall below their ulp, could not yet turn into a fall: a float
+     * slider-crank at h = 1e-5 never moved, status OK (found by an outside
+     * client; see also the state's compensated sum, braun_step.c). */
+    const braun_real floor_e = 4 * BRAUN_EPS * (braun_fabs(E) + braun_fabs(d->E0) + braun_fabs(pv->at.W));
+    const int roundoff = braun_fabs(r) <= floor_e;
+    const int saturated = !roundoff && !(braun_fabs(r) <= smax * xx);
     /* No direction at all where the rows leave no motion free (every
      * coordinate driven): nothing to saturate, no hit (at rest there is a
      * direction, which the motion does not yet have). */
     const int free_motion = pv->rank[0] < n;
-    if (!saturated) sigma = xx > 0 ? r / xx : 0;
+    if (roundoff) sigma = 0;
+    else if (!saturated) sigma = xx > 0 ? r / xx : 0;
     else sigma = r > 0 ? smax : -smax;
     if (pv->energy_end) {
         /* Sized at the end of the step (braun__energy_at_end): the

@@ -180,6 +180,11 @@ typedef struct braun_priv {
     braun_real *enorm;    /* rows: the normal error of an adaptive step */
     /* Integrator scratch: states of length N = 2n + 1 ([q; v; ∫Ė]). */
     braun_real *y0, *ys, *y1, *yerr;
+    /* The state's compensation (Kahan): the part of [q; v; ∫Ė] that the
+     * last step's sum y0 + Σ b h k lost to rounding, added to the next
+     * step's sum. Zero after braun_set_state and a guard rollback. ylo1:
+     * the step being taken's, kept by braun__commit. */
+    braun_real *ylo, *ylo1;
     braun_real *k[BRAUN_MAX_STAGES];
 } braun_priv;
 

@@ -57,6 +57,8 @@ typedef struct shape {
     X(ys, (s).N)                                                                     \
     X(y1, (s).N)                                                                     \
     X(yerr, (s).N)                                                                   \
+    X(ylo, BRAUN_COMPENSATED_STATE ? (s).N : 0)                                      \
+    X(ylo1, BRAUN_COMPENSATED_STATE ? (s).N : 0)                                     \
     X(dq, (s).n)                                                                     \
     X(dv, (s).n)                                                                     \
     X(de, (s).n)                                                                     \

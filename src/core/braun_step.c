@@ -214,7 +214,29 @@ static int rk_stages(braun_data *d, const braun_tableau *tb, braun_real h, braun
     /* y1 = y0 + Σ_s (b_s h) k_s; its finiteness check rides on the pass
      * that last writes y1. */
     const int add_corr = corr && where == BRAUN__CORR_AT_START;
-    braun_real y1_0 = combine(N, y0, y1, tb->b, stages, h, pv->k);
+    /* Compensated (Kahan): the increments of a small step fall below the
+     * state's ulp — in float a slider-crank released from rest at h = 1e-5
+     * moved h·v ≈ 1e-9 per step against an ulp of 6e-8 and never fell, its
+     * energy force taking back the kinetic energy the stalled positions
+     * could not turn into a fall (status OK, found by an outside client).
+     * The rounding of each step's sum is carried to the next (ylo1, which
+     * braun__commit keeps; not ys: the last stage's point, pv->at, may be
+     * it and the corrections at the end read it). */
+    braun_real y1_0;
+    if (BRAUN_COMPENSATED_STATE) {
+        /* q and ∫Ė only: v's increments h·a are not small against v's
+         * ulp where v is small, and v's carried rounding, invisible to the
+         * velocity correction, raised ‖[Φ̇_q; Φ_v]‖ to an ulp of v (float
+         * slider-crank, h = 1e-6: 1.8e-9). */
+        y1_0 = combine(N, pv->ylo, y1, tb->b, stages, h, pv->k);
+        for (int i = 0; i < N; i++) {
+            const braun_real a = y1[i], y = y0[i] + a;
+            pv->ylo1[i] = i >= n && i < 2 * n ? 0 : a - (y - y0[i]);
+            y1[i] = y;
+        }
+    } else {
+        y1_0 = combine(N, y0, y1, tb->b, stages, h, pv->k);
+    }
     if (yerr) {
         for (int i = 0; i < N; i++) yerr[i] = 0;
         for (int s = 0; s < tb->stages; s++) {
@@ -264,6 +286,7 @@ void braun__guard_rollback(braun_data *d)
     d->guard.energy0 = pv->guard_prev[5];
     d->stats.steps--;
     pv->has_prev = 0;
+    for (int i = 0; BRAUN_COMPENSATED_STATE && i < 2 * n + 1; i++) pv->ylo[i] = 0;
 }
 
 void braun__load_state(braun_data *d)
@@ -289,6 +312,12 @@ void braun__commit(braun_data *d, const braun_real *y1, braun_real t_new, braun_
     pv->tprev_lo = pv->t_lo;
     pv->t_lo = t_lo;
     pv->has_prev = 1;
+    /* The step's rounding, carried to the next step (rk_stages). */
+    if (BRAUN_COMPENSATED_STATE) {
+        braun_real *lo = pv->ylo;
+        pv->ylo = pv->ylo1;
+        pv->ylo1 = lo;
+    }
     /* ... and its guard scales: a refused state raised them (the slow
      * path measures them at the state it judges), and a retry from the
      * kept state was judged by the blown-up state's (a velocity residual
