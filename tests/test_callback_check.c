@@ -523,6 +523,159 @@ static void test_large_scales(void **state)
     far_which = 0;
 }
 
+/* Small mechanisms: the steps follow the scene's own lengths
+ * (braun_scene_coordinate_sizes). Stepped by 6e-6 m (a floor of 1 m), the
+ * shipped spatial-arm scaled to 1e-6 m failed at dE_dq[7] and a rigid3d on
+ * a spring at its rest length at 1e-7 m at dE_dq[0] ("off by 1"), while
+ * their runs matched the unit ones to 1e-13. Scaled by L (masses by M, so
+ * that every number is within the scene limits) they pass at the start
+ * and moving; a misprint of 1e-4 is caught at every scale; the sizes of
+ * the lengths are L times those at 1 m, the Euler parameters' 1. */
+static braun_system small_base;
+/* Off by small_slip: 1 A_q's column 7 (bob's x), 2 b_qv[6] (a point row),
+ * 3 b_qv[9] (the bob's unit quaternion row), 4 A_q[5][small_col] (a point
+ * row, the bob's largest Euler-parameter column there), 5 dE_dq[8] (bob's
+ * y), 6 dE_dq[10] (its e0). */
+static int small_which, small_col;
+static double small_slip;
+static int small_holonomic(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi,
+                           braun_real *A, braun_real *b, braun_real *bv, void *u)
+{
+    const int r = small_base.holonomic(t, q, v, phi, A, b, bv, u);
+    for (int i = 0; i < small_base.m && small_which == 1 && A; i++) A[(size_t)i * small_base.n + 7] *= 1 - small_slip;
+    if (small_which == 2 && bv) bv[6] *= 1 - small_slip;
+    if (small_which == 3 && bv) bv[9] *= 1 - small_slip;
+    if (small_which == 4 && A) A[5 * small_base.n + small_col] *= 1 - small_slip;
+    return r;
+}
+static int small_energy(braun_real t, const braun_real *q, const braun_real *v, braun_real *E,
+                        braun_real *dq, braun_real *dv, braun_real *dt, void *u)
+{
+    const int r = small_base.energy(t, q, v, E, dq, dv, dt, u);
+    if (small_which == 5 && dq) dq[8] *= 1 - small_slip;
+    if (small_which == 6 && dq) dq[10] *= 1 - small_slip;
+    return r;
+}
+
+/* The spatial-arm (data/spatial-arm.json) with lengths times L, masses
+ * times M. */
+static braun_scene_file *scaled_arm(double L, double M)
+{
+    char text[3072], err[512];
+    const double I = M * L * L;
+    snprintf(text, sizeof text,
+             "{\"name\": \"arm\", \"ground\": {\"points\": {\"pivot\": [0, 0, 0], \"anchor\": [%.17g, %.17g, "
+             "%.17g]}}, \"bodies\": [{\"name\": \"arm\", \"type\": \"rigid3d\", \"mass\": %.17g, \"inertia\": "
+             "[%.17g, %.17g, %.17g], \"position\": [%.17g, 0, 0], \"points\": {\"root\": [%.17g, 0, 0], "
+             "\"tip\": [%.17g, 0, 0]}}, {\"name\": \"bob\", \"type\": \"rigid3d\", \"mass\": %.17g, "
+             "\"inertia\": [%.17g, %.17g, %.17g], \"position\": [%.17g, %.17g, 0], \"orientation\": "
+             "[0.70710678118654757, 0, 0, -0.70710678118654757], \"velocity\": [0, 0, %.17g], \"omega\": "
+             "[-2, 0, 0], \"points\": {\"top\": [%.17g, 0, 0], \"end\": [%.17g, 0, 0]}}], \"joints\": "
+             "[{\"name\": \"hinge\", \"type\": \"revolute3d\", \"a\": \"arm.root\", \"b\": \"ground.pivot\", "
+             "\"axis\": [0, 0, 1]}, {\"name\": \"ball\", \"type\": \"spherical\", \"a\": \"arm.tip\", \"b\": "
+             "\"bob.top\"}], \"effects\": [{\"type\": \"gravity\", \"g\": [0, %.17g, 0]}, {\"name\": "
+             "\"cord\", \"type\": \"spring\", \"a\": \"bob.end\", \"b\": \"ground.anchor\", \"stiffness\": "
+             "%.17g, \"damping\": %.17g}, {\"name\": \"coil\", \"type\": \"torsion3d\", \"joint\": "
+             "\"hinge\", \"stiffness\": %.17g, \"damping\": %.17g}]}",
+             1.5 * L, -L, 0.5 * L, M, 0.0016666666666666668 * I, 0.084166666666666667 * I,
+             0.084166666666666667 * I, 0.5 * L, -0.5 * L, 0.5 * L, 0.5 * M, 0.00083333333333333339 * I,
+             0.042083333333333334 * I, 0.042083333333333334 * I, L, -0.5 * L, L, -0.5 * L, 0.5 * L,
+             -9.81 * L, 20 * M, 0.1 * M, 5 * I, 0.2 * I);
+    braun_scene_file *f = braun_scene_load_text(NULL, text, strlen(text), err, sizeof err);
+    if (!f) fail_msg("arm at L = %g: %s", L, err);
+    return f;
+}
+
+static void test_small_scales(void **state)
+{
+    (void)state;
+    static const double scale[4][2] = {{1, 1}, {1e-6, 1}, {1e-6, 1e-18}, {1e6, 1e-6}};
+    braun_real size1[14];
+    double figure1[2][7]; /* at 1 m: the same at every scale */
+    for (int c = 0; c < 4; c++) {
+        const double L = scale[c][0];
+        braun_scene_file *f = scaled_arm(L, scale[c][1]);
+        assert_int_equal(f->sys.n, 14);
+        braun_real size[14];
+        assert_int_equal(braun_scene_coordinate_sizes(&f->scene, f->q0, size), BRAUN_OK);
+        if (c == 0) memcpy(size1, size, sizeof size);
+        for (int k = 0; k < 14; k++) {
+            /* x, y, z of each body are lengths; its Euler parameters are not. */
+            const double want = k % 7 < 3 ? L * (double)size1[k] : 1;
+            assert_true(fabs((double)size[k] - want) <= 1e-12 * want);
+        }
+        small_base = f->sys;
+        braun_system s = f->sys;
+        s.holonomic = small_holonomic;
+        s.energy = small_energy;
+        test_sim sim;
+        assert_int_equal(test_sim_open(&sim, &f->sys, f->corrections), BRAUN_OK);
+        assert_int_equal(braun_set_state(&sim.data, 0, f->q0, f->v0), BRAUN_OK);
+        for (int at = 0; at < 2; at++) {
+            if (at) assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 1e-4, 0.37, 0, NULL, NULL), BRAUN_OK);
+            assert_int_equal(braun_scene_coordinate_sizes(&f->scene, sim.data.q, size), BRAUN_OK);
+            braun_real phi[10], A[140] = {0}, bq[10], bv[10]; /* A: the callback adds into it */
+            assert_int_equal(f->sys.holonomic(sim.data.t, sim.data.q, sim.data.v, phi, A, bq, bv, f->sys.user), 0);
+            small_col = 10;
+            for (int k = 11; k < 14; k++)
+                if (fabs((double)A[5 * 14 + k]) > fabs((double)A[5 * 14 + small_col])) small_col = k;
+            char entry[16];
+            snprintf(entry, sizeof entry, "A_q[5][%d]", small_col);
+            for (small_which = 0; small_which <= 6; small_which++) {
+                small_slip = 1e-4;
+                braun_callback_report rep;
+                const int st = braun_check_callbacks_sized(&s, sim.data.t, sim.data.q, sim.data.v, size, 0, &rep);
+                print_message("arm L = %g, M = %g, t = %.2f, misprint %d: %d %s %.2e\n", L, scale[c][1],
+                              (double)sim.data.t, small_which, st, rep.worst, rep.worst_value);
+                if (small_which == 0) {
+                    assert_int_equal(st, BRAUN_OK);
+                    assert_false(isnan(rep.energy_rate));
+                    continue;
+                }
+                const char *const named[7] = {NULL, "A_q[", "b_qv[6]", "b_qv[9]", entry, "dE_dq[8]", "dE_dq[10]"};
+                assert_int_equal(st, BRAUN_ERR_ARGUMENT);
+                assert_true(strncmp(rep.worst, named[small_which], strlen(named[small_which])) == 0);
+                if (c == 0) figure1[at][small_which] = rep.worst_value;
+                assert_true(fabs(rep.worst_value / figure1[at][small_which] - 1) < 0.01);
+                /* (dE_dq[10] is small beside the gradient's lengths.) */
+                assert_true(rep.worst_value > (small_which == 6 ? 1e-3 : 0.1) * small_slip);
+            }
+        }
+        small_which = 0;
+        test_sim_close(&sim);
+        braun_scene_free(f);
+    }
+    /* A rigid3d on a spring at its rest length, 1e-7 m and 1 m. */
+    for (int c = 0; c < 2; c++) {
+        const double L = c ? 1 : 1e-7;
+        char text[1024], err[512];
+        snprintf(text, sizeof text,
+                 "{\"name\": \"spring3d\", \"bodies\": [{\"name\": \"b\", \"type\": \"rigid3d\", \"mass\": 1, "
+                 "\"inertia\": [%.17g, %.17g, %.17g], \"position\": [%.17g, %.17g, %.17g], \"velocity\": "
+                 "[%.17g, %.17g, %.17g], \"points\": {\"e\": [%.17g, 0, 0]}}], \"effects\": [{\"type\": "
+                 "\"spring\", \"a\": [0, 0, 0], \"b\": \"b.e\", \"stiffness\": 10, \"damping\": 0.5}, "
+                 "{\"type\": \"gravity\", \"g\": [0, %.17g, 0]}]}",
+                 0.1 * L * L, 0.1 * L * L, 0.1 * L * L, 0.6 * L, 0.8 * L, 0.3 * L, 0.3 * L, -0.2 * L, 0.1 * L,
+                 0.5 * L, -9.81 * L);
+        braun_scene_file *f = braun_scene_load_text(NULL, text, strlen(text), err, sizeof err);
+        if (!f) fail_msg("spring3d at L = %g: %s", L, err);
+        braun_real size[7];
+        assert_int_equal(braun_scene_coordinate_sizes(&f->scene, f->q0, size), BRAUN_OK);
+        braun_callback_report rep;
+        const int st = braun_check_callbacks_sized(&f->sys, 0, f->q0, f->v0, size, 0, &rep);
+        print_message("spring3d L = %g: %d %s %.2e (size %g, %g)\n", L, st, rep.worst, rep.worst_value,
+                      (double)size[0], (double)size[3]);
+        assert_int_equal(st, BRAUN_OK);
+        /* A size that is no size is refused, named. */
+        size[3] = 0;
+        assert_int_equal(braun_check_callbacks_sized(&f->sys, 0, f->q0, f->v0, size, 0, &rep), BRAUN_ERR_ARGUMENT);
+        assert_string_equal(rep.worst, "size[3] (must be finite and > 0)");
+        braun_scene_free(f);
+    }
+    braun_real q[1] = {0}, out[1];
+    assert_int_equal(braun_scene_coordinate_sizes(NULL, q, out), BRAUN_ERR_ARGUMENT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -534,6 +687,7 @@ int main(void)
         cmocka_unit_test(test_nonfinite_named),
         cmocka_unit_test(test_scleronomic_homogeneous),
         cmocka_unit_test(test_large_scales),
+        cmocka_unit_test(test_small_scales),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -229,6 +229,20 @@ void braun_scene_dir_eval(const braun_scene *s, int body, const braun_real *d,
 int braun_scene_point_state(const braun_scene *s, int i, const braun_real *q,
                             const braun_real *v, braun_real *pos, braun_real *vel);
 
+/* Each coordinate's typical size at q (size: n entries) in the scene's own
+ * unit of length: for a coordinate that moves its body's origin (x, y, z
+ * of a body or particle) the body's smallest length — its points' distances
+ * from its origin and the lengths (largest distance between their points)
+ * of the rods, joints and effects with a point on it, lengths below 1e-6 of
+ * its largest left out as coinciding points —, divided by the origin's
+ * speed per unit of the coordinate (1); a body with none takes the scene's
+ * smallest, a scene with none 1. A coordinate that does not move the origin
+ * (an angle, an Euler parameter) has size 1. The same numbers per second
+ * are the velocities' sizes. What braun_check_callbacks_sized (braun_host.h)
+ * steps by: scaled by L, a scene's sizes are L times. A built scene;
+ * BRAUN_ERR_ARGUMENT for a NULL argument or a scene not built. */
+int braun_scene_coordinate_sizes(const braun_scene *s, const braun_real *q, braun_real *size);
+
 /* Angle θ and angular velocity ω of a body that has one (0 for the ground
  * or a body without angle; omega 0 when v is NULL); returns θ's column, or
  * -1 when the body has none. theta and omega may be NULL. A body that does

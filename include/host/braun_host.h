@@ -45,8 +45,10 @@ int braun_error_format(const braun_data *d, char *buf, size_t size);
  *   energy_rate |dE/dt along the ideal motion − Ė| over its terms, with
  *               Ė = power (BRAUN_ENERGY_INPUT) + the constraint force's
  *               work rate: judged only at a state on the constraints
- *               (state_residual, ‖Φ_q‖ + ‖[Φ̇_q; Φ_v]‖, below 1e-8 of the
- *               state's size), NaN elsewhere.
+ *               (state_residual, ‖Φ_q‖ + ‖[Φ̇_q; Φ_v]‖, each below 1e-8 of
+ *               its rows' terms: Σ_j |A_ij| max(|q_j|, s_j), resp.
+ *               Σ_j |A_ij| max(|v_j|, s_j) + |b_i|, with the sizes s),
+ *               NaN elsewhere.
  *   homogeneous_v  with BRAUN_SCLERONOMIC: |Φ_v − A_vv v| over its terms,
  *               the largest row — the flag needs Φ_v = A_vv v (no term
  *               without v, whose ideal force does work the flag drops);
@@ -56,7 +58,9 @@ int braun_error_format(const braun_data *d, char *buf, size_t size);
  * BRAUN_ERR_NONFINITE, rep->worst "A_vv[0][1] is +Inf (nonholonomic
  * callback at t = 0)" (names Phi_q, A_q, b_q, b_qv, Phi_v, A_vv, b_vv, M,
  * Q, E, dE_dq, dE_dv, dE_dt, P), whatever the system's flags.
- * Steps: each coordinate's own (cbrt(ε)·max(1, |x|)), and time's own
+ * Steps: each coordinate's own (cbrt(ε)·max(s, |x|), s its typical size: 1
+ * here, given to braun_check_callbacks_sized; the same s per second for
+ * its velocity), and time's own
  * (cbrt(ε·max(1, |t|)): a drive varies on its period, not on |t|); along
  * the motion time and groups of coordinates of like step separately, so a
  * body far away or a large t does not set the others' step. An entry
@@ -102,6 +106,15 @@ typedef struct braun_callback_report {
 } braun_callback_report;
 int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_real *q,
                           const braun_real *v, double tol, braun_callback_report *rep);
+/* The same with each coordinate's typical size (size: n entries, finite
+ * and > 0, else BRAUN_ERR_ARGUMENT "size[k] ..."; NULL: 1 each, as
+ * braun_check_callbacks): the steps' floor, in the coordinates' own units.
+ * A floor of 1 is 1 m: a spatial mechanism of 1 µm (the shipped
+ * spatial-arm scaled down) failed at dE_dq, stepped 6e-6 m through it. A
+ * scene's: braun_scene_coordinate_sizes (braun_scene.h). */
+int braun_check_callbacks_sized(const braun_system *sys, braun_real t, const braun_real *q,
+                                const braun_real *v, const braun_real *size, double tol,
+                                braun_callback_report *rep);
 
 #ifdef __cplusplus
 }

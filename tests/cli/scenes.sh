@@ -190,6 +190,29 @@ for f in data/*.json data/iftomm/*.json slider-crank four-bar pendulum andrews; 
     check "check $f: callbacks: yes, the last line" sh -c '
         [ "$1" -eq 0 ] && tail -n 1 "$2" | grep -q "^callbacks: yes (largest difference "' sh "$rc" "$TMP/cb.out"
 done
+# The same callbacks at other scales: the spatial-arm with its lengths
+# times L (masses times M, within the scene limits) and a rigid3d on a
+# spring at its rest length. Differenced by 6e-6 m whatever the scene's
+# size, the arm at 1 um failed at dE_dq[7] and the spring at 100 nm at
+# dE_dq[0] (exit 1) while their runs matched the unit ones to 1e-13.
+scaled_arm() { # scaled_arm L M: data/spatial-arm.json, lengths x L, masses x M
+    awk -v L="$1" -v M="$2" 'BEGIN { I = M * L * L; printf "{\"name\": \"arm\", \"ground\": {\"points\": {\"pivot\": [0, 0, 0], \"anchor\": [%.17g, %.17g, %.17g]}}, \"bodies\": [{\"name\": \"arm\", \"type\": \"rigid3d\", \"mass\": %.17g, \"inertia\": [%.17g, %.17g, %.17g], \"position\": [%.17g, 0, 0], \"points\": {\"root\": [%.17g, 0, 0], \"tip\": [%.17g, 0, 0]}}, {\"name\": \"bob\", \"type\": \"rigid3d\", \"mass\": %.17g, \"inertia\": [%.17g, %.17g, %.17g], \"position\": [%.17g, %.17g, 0], \"orientation\": [0.70710678118654757, 0, 0, -0.70710678118654757], \"velocity\": [0, 0, %.17g], \"omega\": [-2, 0, 0], \"points\": {\"top\": [%.17g, 0, 0], \"end\": [%.17g, 0, 0]}}], \"joints\": [{\"name\": \"hinge\", \"type\": \"revolute3d\", \"a\": \"arm.root\", \"b\": \"ground.pivot\", \"axis\": [0, 0, 1]}, {\"name\": \"ball\", \"type\": \"spherical\", \"a\": \"arm.tip\", \"b\": \"bob.top\"}], \"effects\": [{\"type\": \"gravity\", \"g\": [0, %.17g, 0]}, {\"name\": \"cord\", \"type\": \"spring\", \"a\": \"bob.end\", \"b\": \"ground.anchor\", \"stiffness\": %.17g, \"damping\": %.17g}, {\"name\": \"coil\", \"type\": \"torsion3d\", \"joint\": \"hinge\", \"stiffness\": %.17g, \"damping\": %.17g}]}\n",
+        1.5 * L, -L, 0.5 * L, M, 0.0016666666666666668 * I, 0.084166666666666667 * I, 0.084166666666666667 * I,
+        0.5 * L, -0.5 * L, 0.5 * L, 0.5 * M, 0.00083333333333333339 * I, 0.042083333333333334 * I,
+        0.042083333333333334 * I, L, -0.5 * L, L, -0.5 * L, 0.5 * L, -9.81 * L, 20 * M, 0.1 * M, 5 * I, 0.2 * I }'
+}
+spring3d() { # spring3d L: a rigid3d of 1 kg on a spring at its rest length, lengths x L
+    awk -v L="$1" 'BEGIN { printf "{\"name\": \"spring3d\", \"bodies\": [{\"name\": \"b\", \"type\": \"rigid3d\", \"mass\": 1, \"inertia\": [%.17g, %.17g, %.17g], \"position\": [%.17g, %.17g, %.17g], \"velocity\": [%.17g, %.17g, %.17g], \"points\": {\"e\": [%.17g, 0, 0]}}], \"effects\": [{\"type\": \"spring\", \"a\": [0, 0, 0], \"b\": \"b.e\", \"stiffness\": 10, \"damping\": 0.5}, {\"type\": \"gravity\", \"g\": [0, %.17g, 0]}]}\n",
+        0.1 * L * L, 0.1 * L * L, 0.1 * L * L, 0.6 * L, 0.8 * L, 0.3 * L, 0.3 * L, -0.2 * L, 0.1 * L, 0.5 * L, -9.81 * L }'
+}
+for s in "arm 1e-6 1" "arm 1e-6 1e-18" "arm 1e6 1e-6" "spring3d 1e-7" "spring3d 1e6"; do
+    set -- $s
+    if [ "$1" = arm ]; then scaled_arm "$2" "$3" > "$TMP/scaled.json"; else spring3d "$2" > "$TMP/scaled.json"; fi
+    "$BRAUN" check "$TMP/scaled.json" > "$TMP/scaled.out" 2> "$TMP/scaled.err"; rc=$?
+    check "check $s (lengths x $2): callbacks: yes, exit 0" sh -c '
+        [ "$1" -eq 0 ] && grep -q "^callbacks: yes (largest difference " "$2" && [ ! -s "$3" ]' \
+        sh "$rc" "$TMP/scaled.out" "$TMP/scaled.err"
+done
 for f in data/parallelogram-redundant.json data/iftomm/a04-bricard.json four-bar; do
     "$BRAUN" check "$f" > "$TMP/cons.out" 2>&1; rc=$?
     check "check $f (redundant rows that agree, or none): consistent: yes" sh -c '

@@ -3,9 +3,11 @@
  * Jacobian, b-term and energy gradient as given and its corrections hide a
  * wrong one: a misprinted b_qv is removed step by step as "drift", a law
  * that disagrees with the forces is enforced (docs/api.md, section 6).
- * Five-point differences in double, step cbrt(ε)·max(1, |x|); each figure is
+ * Five-point differences in double, step cbrt(ε)·max(s, |x|) with s the
+ * coordinate's typical size (1 unless the caller gives them); each figure is
  * the largest difference beyond the differences' own round-off, over the
- * quantity's scale (so a quantity at rest is not judged by noise). */
+ * quantity's scale (so a quantity at rest is not judged by noise), each
+ * entry made unit-free by its row's and column's sizes (judge). */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -22,6 +24,7 @@ typedef struct work {
     braun_real *Avals; /* a sparse system's compressed rows (else A itself) */
     double *f0, *fp;                                       /* scratch values */
     double *dir; /* ALONG_MOTION's direction in (t, q): n + 1 entries */
+    double *size; /* the coordinates' typical sizes (the caller's, or 1 each) */
     braun_callback_report *rep;
     double tol;
     int named_fail; /* rep->worst names a figure above tol: the first one in
@@ -40,7 +43,18 @@ typedef struct work {
 #define DEFAULT_TOL 1e-6
 #endif
 
-static double fd_step(double x) { return cbrt(REAL_EPS) * (fabs(x) > 1 ? fabs(x) : 1); }
+/* Coordinate k's typical size: the caller's, else 1 (a metre, a radian):
+ * a 1 µm mechanism stepped by 6e-6 m was never resolved (a spring at its
+ * rest length gave dE_dq off by 1 of its scale). Its velocity's: the same
+ * number per second. */
+static double size_of(const work *w, int k) { return w->size[k]; }
+
+/* A step that resolves what varies on the coordinate's size and keeps its
+ * own rounding (ε|x|) at ε^(2/3) of itself. */
+static double fd_step(double x, double size)
+{
+    return cbrt(REAL_EPS) * (fabs(x) > size ? fabs(x) : size);
+}
 
 /* Time's own step: what a callback does in t varies on its own scale (a
  * drive's period), not on |t|'s — t = 1e6 gave steps of 6 s, across which
@@ -49,35 +63,48 @@ static double fd_step(double x) { return cbrt(REAL_EPS) * (fabs(x) > 1 ? fabs(x)
  * arguments) sets the step instead: the rounding is (ε|t|)^(2/3) of it. */
 static double time_step(double t) { return cbrt(REAL_EPS * (fabs(t) > 1 ? fabs(t) : 1)); }
 
-/* One figure: analytic x[k] against finite differences d[k] (count k), the
- * differences computed from values of magnitude up to `mag` with step tau,
- * each with its allowance (deriv_best; NULL: none). The worst is kept in
- * *fig and, when it is the report's worst so far, named. */
+/* Round-off of a central difference of values of size mag at step tau (a
+ * bound, with room for cancellation inside the callback). */
+static double roundoff(double mag, double tau) { return 1e2 * REAL_EPS * mag / tau; }
+
+/* One figure: analytic x[k] against finite differences d[k] (rows x cols),
+ * each difference with its round-off noise[k] (roundoff: its column's step,
+ * its row's values — one bound for all, the smallest step's with the
+ * largest values, took a 1 µm arm's Euler parameters' noise into its
+ * lengths' columns and rows, and a misprint of 1e-4 there passed) and its
+ * allowance (deriv_best; NULL: none). The scale is the largest entry
+ * once each is made a number of one unit: times its column's size
+ * col_size[j] (a coordinate's), over its row's size row_size[i] (NULL:
+ * 1) — against the largest entry as given, a 1e6 m arm's Euler-parameter
+ * columns (1e6 m) hid a misprint of 1e-4 in its lengths' (1). The worst
+ * is kept in *fig and, when it is the report's worst so far, named. */
 static void judge(work *w, double *fig, const char *name, int rows, int cols, const double *x,
-                  const double *d, const double *allow, double mag, double tau)
+                  const double *d, const double *allow, const double *noise, const double *row_size,
+                  const double *col_size)
 {
     const int count = rows * cols;
     double scale = 0, worst = 0;
     int at = -1;
+#define WEIGHT(k) ((col_size ? col_size[(k) % cols] : 1) / (row_size ? row_size[(k) / cols] : 1))
     for (int k = 0; k < count; k++) {
-        if (fabs(x[k]) > scale) scale = fabs(x[k]);
-        if (fabs(d[k]) > scale) scale = fabs(d[k]);
+        const double wk = WEIGHT(k);
+        if (fabs(x[k]) * wk > scale) scale = fabs(x[k]) * wk;
+        if (fabs(d[k]) * wk > scale) scale = fabs(d[k]) * wk;
     }
-    /* Round-off of a central difference of values of size mag (a bound,
-     * with room for cancellation inside the callback): what the differences
-     * cannot resolve is not held against the callback. */
-    const double noise0 = 1e2 * REAL_EPS * mag / tau;
     for (int k = 0; k < count; k++) {
-        /* ... nor what they do not resolve (deriv_best's allowance). */
-        const double noise = noise0 + (allow ? allow[k] : 0);
+        /* What the differences cannot resolve is not held against the
+         * callback: their round-off, and their allowance (deriv_best). */
+        const double wk = WEIGHT(k), noise0 = noise[k];
+        const double limit = noise0 + (allow ? allow[k] : 0);
         const double diff = fabs(x[k] - d[k]);
-        const double e = (diff > noise ? diff - noise : (diff == diff ? 0 : diff)) /
-                         (scale + noise0 + DBL_MIN);
+        const double e = (diff > limit ? diff - limit : (diff == diff ? 0 : diff)) * wk /
+                         (scale + noise0 * wk + DBL_MIN);
         if (e > worst || (e != e)) {
             worst = e;
             at = k;
         }
     }
+#undef WEIGHT
     if (worst > *fig || worst != worst) *fig = worst;
     const int fails = !(worst <= w->tol);
     if (at >= 0 && !w->named_fail && (fails || worst > w->rep->worst_value)) {
@@ -87,14 +114,6 @@ static void judge(work *w, double *fig, const char *name, int rows, int cols, co
             snprintf(w->rep->worst, sizeof w->rep->worst, "%s[%d][%d]", name, at / cols, at % cols);
         else snprintf(w->rep->worst, sizeof w->rep->worst, "%s[%d]", name, at);
     }
-}
-
-static double max_abs(int k, const double *x)
-{
-    double s = 0;
-    for (int i = 0; i < k; i++)
-        if (fabs(x[i]) > s) s = fabs(x[i]);
-    return s;
 }
 
 /* A callback refused a point of the differences (or the state): named. */
@@ -308,8 +327,11 @@ static int value_at(work *w, enum quantity f, enum direction dir, int j, double 
 
 /* The derivative of the quantity along the line at s = 0: the five-point
  * stencil (f(−τ) − 8f(−τ/2) + 8f(τ/2) − f(τ))/(6τ), exact to O(τ⁴) —
- * a curvature on a length ℓ ≪ 1 leaves (τ/ℓ)⁴, not (τ/ℓ)². *mag: the
- * largest |f| seen (for the round-off bound). spread (count entries, or
+ * a curvature on a length ℓ ≪ 1 leaves (τ/ℓ)⁴, not (τ/ℓ)². mag (count
+ * entries): each entry's largest |f| seen, for its round-off bound (rows
+ * in different units — a point's in m, a unit quaternion's in 1 — each by
+ * its own: one bound for all hid a 1 µm arm's misprints in its point
+ * rows behind its quaternion rows' values). spread (count entries, or
  * NULL): |that estimate − the same stencil at τ/2|, about its truncation
  * error — a quantity that varies on a scale below τ (a drive of 1e12 rad/s
  * against τ = 6e-6 s) is not resolved by the differences, and judge() does
@@ -331,7 +353,7 @@ static int deriv(work *w, enum quantity f, enum direction dir, int j, double tau
         for (int i = 0; i < count; i++) {
             out[i] += weight[k] * w->fp[i];
             if (spread) spread[i] += weight2[k] * w->fp[i];
-            if (fabs(w->fp[i]) > *mag) *mag = fabs(w->fp[i]);
+            if (fabs(w->fp[i]) > mag[i]) mag[i] = fabs(w->fp[i]);
         }
     }
     for (int i = 0; i < count; i++) {
@@ -413,13 +435,13 @@ static int any_open(const work *w, int count, const double *x, int stride, doubl
 }
 
 /* Each entry takes the estimate alt at `step` (its spread alt_spread,
- * magnitude m, rounding rnd) where that one's allowance is the smaller
+ * magnitudes m, rounding rnd) where that one's allowance is the smaller
  * part of itself. */
-static void take_better(int count, const double *alt, const double *alt_spread, double m, double step,
+static void take_better(int count, const double *alt, const double *alt_spread, const double *m, double step,
                         double rnd, double *out, double *allow)
 {
     for (int i = 0; i < count; i++) {
-        const double allow_alt = 2 * alt_spread[i] + 1e2 * REAL_EPS * m / step + rnd * fabs(alt[i]);
+        const double allow_alt = 2 * alt_spread[i] + roundoff(m[i], step) + rnd * fabs(alt[i]);
         if (allow_alt / (fabs(alt[i]) + DBL_MIN) < allow[i] / (fabs(out[i]) + DBL_MIN)) {
             out[i] = alt[i];
             allow[i] = allow_alt;
@@ -442,18 +464,19 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
                       const braun_real *q0, const braun_real *v0, int count, const double *x, int stride,
                       double sign, double *out, double *allow, double *mag, const entry_label *lab)
 {
-    double *alt = calloc(2 * (size_t)count + 1, sizeof(double)), *alt_spread = alt ? alt + count : NULL;
+    double *alt = calloc(3 * (size_t)count + 1, sizeof(double)), *alt_spread = alt ? alt + count : NULL;
     if (!alt) return BRAUN_ERR_BUFFER;
+    double *m = alt_spread + count; /* an estimate's magnitudes */
     int st = deriv(w, f, dir, j, tau, t0, q0, v0, count, out, allow, mag);
     const double rnd = rounding(w, dir, j, t0, q0, v0, tau);
     for (int i = 0; i < count && !st; i++)
-        allow[i] = 2 * allow[i] + 1e2 * REAL_EPS * *mag / tau + rnd * fabs(out[i]);
+        allow[i] = 2 * allow[i] + roundoff(mag[i], tau) + rnd * fabs(out[i]);
     double step = tau;
     for (int level = 0; level < 8 && !st; level++) {
         if (!any_open(w, count, x, stride, sign, out, allow)) break;
         step /= 16;
-        double m = *mag;
-        st = deriv(w, f, dir, j, step, t0, q0, v0, count, alt, alt_spread, &m);
+        memcpy(m, mag, sizeof *m * (size_t)count);
+        st = deriv(w, f, dir, j, step, t0, q0, v0, count, alt, alt_spread, m);
         if (!st) take_better(count, alt, alt_spread, m, step, rounding(w, dir, j, t0, q0, v0, step), out, allow);
     }
     /* ... and at steps up to 16⁴ the first: a callback whose output moves
@@ -466,10 +489,10 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
     for (int level = 0; level < 4 && !st; level++) {
         if (!any_open(w, count, x, stride, sign, out, allow)) break;
         step *= 16;
-        double m = *mag;
+        memcpy(m, mag, sizeof *m * (size_t)count);
         char said[sizeof w->rep->worst];
         memcpy(said, w->rep->worst, sizeof said);
-        if (deriv(w, f, dir, j, step, t0, q0, v0, count, alt, alt_spread, &m)) {
+        if (deriv(w, f, dir, j, step, t0, q0, v0, count, alt, alt_spread, m)) {
             memcpy(w->rep->worst, said, sizeof said);
             break;
         }
@@ -488,7 +511,7 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
             if (value_at(w, f, dir, j, at[k] * tau, t0, q0, v0, w->fp)) st = BRAUN_ERR_CALLBACK;
             for (int i = 0; i < count && !st; i++) {
                 v5[(size_t)k * count + i] = w->fp[i];
-                if (fabs(w->fp[i]) > *mag) *mag = fabs(w->fp[i]);
+                if (fabs(w->fp[i]) > mag[i]) mag[i] = fabs(w->fp[i]);
             }
         }
         for (int i = 0; i < count && !st; i++) {
@@ -497,7 +520,7 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
             double est;
             if (fabs(xi - di) - allow[i] > w->tol * scale &&
                 kink(w, xi, sign, v5[i], v5[count + i], v5[2 * (size_t)count + i],
-                     v5[3 * (size_t)count + i], v5[4 * (size_t)count + i], tau, *mag, lab, i, &est))
+                     v5[3 * (size_t)count + i], v5[4 * (size_t)count + i], tau, mag[i], lab, i, &est))
                 out[i] = sign * est;
         }
         free(v5);
@@ -508,7 +531,7 @@ static int deriv_best(work *w, enum quantity f, enum direction dir, int j, doubl
 
 /* The derivative along the motion (t, q) → (t + s, q + s v0), with each
  * coordinate moved by its own step: coordinate k wants s·|v_k| =
- * fd_step(q_k), time s = fd_step(t). One s for all (the largest
+ * fd_step(q_k, its size), time s = time_step(t). One s for all (the largest
  * coordinate's) moved a bob at 10 m by 6 m when an unrelated body sat at
  * 1e6 m, and a sine drive's time by 6 s; the smallest for all rounds a
  * large coordinate's move (1e6 + 3e-6). So the direction is split into
@@ -535,7 +558,7 @@ static int deriv_motion(work *w, enum quantity f, double t0, const braun_real *q
     int k = 0;
     nat[0] = time_step(t0);
     for (int i = 0; i < n; i++) {
-        const double vi = fabs((double)v0[i]), si = vi > 0 ? fd_step((double)q0[i]) / vi : 0;
+        const double vi = fabs((double)v0[i]), si = vi > 0 ? fd_step((double)q0[i], size_of(w, i)) / vi : 0;
         nat[1 + i] = si > 0 && si < 1e300 ? si : 0; /* a motion below what differences see */
         if (nat[1 + i] > 0) sorted[k++] = nat[1 + i];
     }
@@ -569,7 +592,7 @@ static int deriv_motion(work *w, enum quantity f, double t0, const braun_real *q
                 st = deriv(w, f, ALONG_MOTION, 0, lo, t0, q0, v0, count, est, spr, mag);
                 for (int i = 0; i < count && !st; i++) {
                     out[i] += est[i];
-                    allow[i] += 2 * spr[i] + 1e2 * REAL_EPS * *mag / lo;
+                    allow[i] += 2 * spr[i] + roundoff(mag[i], lo);
                 }
                 continue;
             }
@@ -578,7 +601,7 @@ static int deriv_motion(work *w, enum quantity f, double t0, const braun_real *q
                 st = deriv(w, f, ALONG_MOTION, 0, lo, t0, q0, v0, count, est, spr, mag);
                 for (int i = 0; i < count && !st; i++) {
                     out[i] -= est[i];
-                    allow[i] -= 2 * spr[i] + 1e2 * REAL_EPS * *mag / lo;
+                    allow[i] -= 2 * spr[i] + roundoff(mag[i], lo);
                     if (allow[i] < 0) allow[i] = 0;
                 }
             }
@@ -602,10 +625,12 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
 {
     const int n = w->n, r = nonholo ? w->p : w->m;
     const enum quantity f = nonholo ? PHI_V : PHI_Q;
-    double *A = calloc((size_t)r * n * 3 + 5 * (size_t)r + 1, sizeof(double));
+    double *A = calloc((size_t)r * n * 4 + 10 * (size_t)r + 1, sizeof(double));
     if (!A) return BRAUN_ERR_BUFFER;
     double *fd = A + (size_t)r * n, *b = fd + (size_t)r * n, *bv = b + r, *col = bv + r, *g0 = col + r;
-    double *spread = g0 + r, *spcol = spread + (size_t)r * n;
+    double *spread = g0 + r, *spcol = spread + (size_t)r * n, *noise = spcol + r;
+    double *row_size = noise + (size_t)r * n, *row_term = row_size + r, *mag = row_term + r,
+           *mj = mag + r, *m2 = mj + r;
     int st = nonholo ? nonholonomic(w, t, q0, v0, g0) : holonomic(w, t, q0, v0, g0, 0);
     if (st) st = BRAUN_ERR_CALLBACK;
     if (!st) {
@@ -615,44 +640,76 @@ static int check_rows(work *w, int nonholo, double t, const braun_real *q0, cons
             bv[i] = (double)w->bv[i];
         }
     }
-    /* The round-off bound takes the smallest step (the largest noise): a
-     * column's noise grows as its step shrinks, and the largest step let
-     * the noise of a small coordinate's column count as a callback's error. */
-    double mag = max_abs(r, g0), tau_min = HUGE_VAL;
+    /* Each row's size, Σ_j |A_ij| s_j, and its largest term |A_ij| x_j
+     * (x_j: |q_j|, or |v_j|, or s_j if larger; in the row's own unit: m for
+     * a point's row, 1 for a unit quaternion's): its entries are judged
+     * over its size (a row with none: the largest), and its largest term is
+     * what the callback's sum may cancel (a point row is 0 at the state,
+     * its round-off that of its points' positions). */
+    double largest = 0;
+    for (int i = 0; i < r; i++) {
+        double sum = 0, term = 0;
+        for (int j = 0; j < n; j++) {
+            const double a = fabs(A[(size_t)i * n + j]);
+            const double x = fabs(nonholo ? (double)v0[j] : (double)q0[j]);
+            sum += a * size_of(w, j);
+            term = fmax(term, a * fmax(x, size_of(w, j)));
+        }
+        row_size[i] = sum;
+        row_term[i] = term;
+        largest = fmax(largest, sum);
+        mag[i] = fabs(g0[i]) + term;
+    }
+    for (int i = 0; i < r; i++)
+        if (!(row_size[i] > 0)) row_size[i] = largest > 0 ? largest : 1;
+    /* Each difference's round-off at its column's own step, from the
+     * values its row saw there and the row's largest term (the largest step
+     * let the noise of a small coordinate's column count as a callback's
+     * error; the smallest for all, with every row's values, hid a misprint
+     * in a 1 µm mechanism's lengths). mag: each row's largest value in any
+     * column (b_q starts from it). */
     for (int j = 0; j < n && !st; j++) {
-        const double x = nonholo ? (double)v0[j] : (double)q0[j], tau = fd_step(x);
-        if (tau < tau_min) tau_min = tau;
+        const double x = nonholo ? (double)v0[j] : (double)q0[j], tau = fd_step(x, size_of(w, j));
         const entry_label lab = {nonholo ? "A_vv" : "A_q", j, 0};
+        for (int i = 0; i < r; i++) mj[i] = fabs(g0[i]) + row_term[i];
         st = deriv_best(w, f, nonholo ? ALONG_V : ALONG_Q, j, tau, t, q0, v0, r, A + j, n, 1, col, spcol,
-                        &mag, &lab);
+                        mj, &lab);
         for (int i = 0; i < r && !st; i++) {
             fd[(size_t)i * n + j] = col[i];
             spread[(size_t)i * n + j] = spcol[i];
+            noise[(size_t)i * n + j] = roundoff(mj[i], tau);
+            mag[i] = fmax(mag[i], mj[i]);
         }
     }
     if (!st)
         judge(w, nonholo ? &w->rep->jacobian_v : &w->rep->jacobian_q, nonholo ? "A_vv" : "A_q", r, n,
-              A, fd, spread, mag + max_abs(r * n, A), tau_min);
+              A, fd, spread, noise, row_size, w->size);
     if (!st && !nonholo) {
         const double tt = time_step(t);
-        double m2 = mag;
+        memcpy(m2, mag, sizeof *m2 * (size_t)r);
         const entry_label lab = {"b_q", -1, 0};
-        st = deriv_best(w, PHI_Q, ALONG_T, 0, tt, t, q0, v0, r, b, 1, -1, col, spcol, &m2, &lab);
-        for (int i = 0; i < r && !st; i++) col[i] = -col[i];
-        if (!st) judge(w, &w->rep->b_q, "b_q", r, 1, b, col, spcol, m2, tt);
+        st = deriv_best(w, PHI_Q, ALONG_T, 0, tt, t, q0, v0, r, b, 1, -1, col, spcol, m2, &lab);
+        for (int i = 0; i < r && !st; i++) {
+            col[i] = -col[i];
+            noise[i] = roundoff(m2[i], tt);
+        }
+        if (!st) judge(w, &w->rep->b_q, "b_q", r, 1, b, col, spcol, noise, row_size, NULL);
     }
     if (!st) {
-        double tv = 0, gmag = 0;
+        double tv = 0, *gmag = m2; /* each row's terms of A v − b (Φ_v) */
         for (int i = 0; i < r; i++) {
             double terms = fabs(b[i]) + fabs(g0[i]);
             for (int j = 0; j < n; j++) terms += fabs(A[(size_t)i * n + j] * (double)v0[j]);
-            if (terms > gmag) gmag = terms;
+            gmag[i] = terms;
         }
         const entry_label lab = {nonholo ? "b_vv" : "b_qv", -1, 0};
-        st = deriv_motion(w, nonholo ? PHI_V : RATE_Q, t, q0, v0, r, bv, -1, col, spcol, &gmag, &lab, &tv);
-        for (int i = 0; i < r && !st; i++) col[i] = -col[i];
+        st = deriv_motion(w, nonholo ? PHI_V : RATE_Q, t, q0, v0, r, bv, -1, col, spcol, gmag, &lab, &tv);
+        for (int i = 0; i < r && !st; i++) {
+            col[i] = -col[i];
+            noise[i] = roundoff(gmag[i], tv);
+        }
         if (!st) judge(w, nonholo ? &w->rep->b_vv : &w->rep->b_qv, nonholo ? "b_vv" : "b_qv", r, 1, bv,
-                       col, spcol, gmag, tv);
+                       col, spcol, noise, row_size, NULL);
     }
     free(A);
     return st;
@@ -709,9 +766,9 @@ static int check_homogeneous(work *w, double t, const braun_real *q, const braun
 static int check_energy_gradient(work *w, double t, const braun_real *q0, const braun_real *v0)
 {
     const int n = w->n;
-    double *g = calloc(6 * (size_t)n + 4, sizeof(double));
+    double *g = calloc(8 * (size_t)n + 4, sizeof(double));
     if (!g) return BRAUN_ERR_BUFFER;
-    double *fd = g + 2 * n + 1, *spread = fd + 2 * n + 1, E0 = 0;
+    double *fd = g + 2 * n + 1, *spread = fd + 2 * n + 1, *taus = spread + 2 * n + 1, E0 = 0;
     braun_real e = 0, dt = 0;
     const int rc = w->s->energy((braun_real)t, q0, v0, &e, w->dq, w->dv, &dt, w->s->user);
     int st = rc ? (failed(w, "energy", rc, t), BRAUN_ERR_CALLBACK) : BRAUN_OK;
@@ -723,15 +780,16 @@ static int check_energy_gradient(work *w, double t, const braun_real *q0, const 
         }
         g[2 * n] = (double)dt;
     }
-    /* The smallest step of each part sets its round-off bound (check_rows):
-     * with the largest over q and v together, a velocity of 1e6 made the
-     * steps in v 1e6 times those in q, and E's round-off in dE_dq's
-     * differences read as a wrong gradient. */
-    double mag = fabs(E0), tau_min[2] = {HUGE_VAL, HUGE_VAL};
+    /* Each entry's step sets its round-off bound (check_rows): with the
+     * smallest over q and v together, a velocity of 1e6 made the steps in v
+     * 1e6 times those in q, and E's round-off in dE_dq's differences read
+     * as a wrong gradient; with the smallest over q, a 1 µm arm's lengths
+     * set its Euler parameters'. E's values: the largest any saw. */
+    double mag = fabs(E0);
     for (int j = 0; j < 2 * n && !st; j++) {
         const int in_v = j >= n, k = in_v ? j - n : j;
-        const double tau = fd_step(in_v ? (double)v0[k] : (double)q0[k]);
-        if (tau < tau_min[in_v]) tau_min[in_v] = tau;
+        const double tau = fd_step(in_v ? (double)v0[k] : (double)q0[k], size_of(w, k));
+        taus[j] = tau;
         const entry_label lab = {in_v ? "dE_dv" : "dE_dq", -1, k};
         st = deriv_best(w, ENERGY, in_v ? ALONG_V : ALONG_Q, k, tau, t, q0, v0, 1, g + j, 1, 1, fd + j,
                         spread + j, &mag, &lab);
@@ -743,12 +801,50 @@ static int check_energy_gradient(work *w, double t, const braun_real *q0, const 
         st = deriv_best(w, ENERGY, ALONG_T, 0, tt, t, q0, v0, 1, g + 2 * n, 1, 1, fd + 2 * n,
                         spread + 2 * n, &mt, &lab_t);
     if (!st) {
-        judge(w, &w->rep->energy_gradient, "dE_dq", 1, n, g, fd, spread, mag, tau_min[0]);
-        judge(w, &w->rep->energy_gradient, "dE_dv", 1, n, g + n, fd + n, spread + n, mag, tau_min[1]);
-        judge(w, &w->rep->energy_gradient, "dE_dt", 1, 1, g + 2 * n, fd + 2 * n, spread + 2 * n, mt, tt);
+        for (int j = 0; j < 2 * n; j++) taus[j] = roundoff(mag, taus[j]);
+        taus[2 * n] = roundoff(mt, tt);
+        judge(w, &w->rep->energy_gradient, "dE_dq", 1, n, g, fd, spread, taus, NULL, w->size);
+        judge(w, &w->rep->energy_gradient, "dE_dv", 1, n, g + n, fd + n, spread + n, taus + n, NULL, w->size);
+        judge(w, &w->rep->energy_gradient, "dE_dt", 1, 1, g + 2 * n, fd + 2 * n, spread + 2 * n, taus + 2 * n,
+              NULL, NULL);
     }
     free(g);
     return st;
+}
+
+/* The sizes the residuals are judged against: ‖Σ_j |A_ij| max(|q_j|, s_j)‖
+ * over the holonomic rows, and ‖Σ_j |A_ij| max(|v_j|, s_j) + |b_i|‖ over
+ * them and the nonholonomic rows (|Φ_v,i| in b's place), s_j the
+ * coordinates' sizes (per second for v) — each in its rows' units. An
+ * absolute 1e-8 (1 + max|q|) judged a 1 µm pendulum 1e-3 off its rod (its
+ * residual 2e-14 m²) as on it. */
+static int row_terms(work *w, double t, const braun_real *q, const braun_real *v, double *pos,
+                     double *vel)
+{
+    const int n = w->n;
+    double p2 = 0, v2 = 0;
+    for (int kind = 0; kind < 2; kind++) {
+        const int r = kind ? w->p : w->m;
+        if (r == 0) continue;
+        double *g = calloc((size_t)r + 1, sizeof(double));
+        if (!g) return BRAUN_ERR_BUFFER;
+        const int rc = kind ? nonholonomic(w, t, q, v, g) : holonomic(w, t, q, v, g, 0);
+        for (int i = 0; i < r && !rc; i++) {
+            double tq = 0, tv = kind ? fabs(g[i]) : fabs((double)w->b[i]);
+            for (int j = 0; j < n; j++) {
+                const double a = fabs((double)w->A[(size_t)i * n + j]), sz = size_of(w, j);
+                tq += a * fmax(fabs((double)q[j]), sz);
+                tv += a * fmax(fabs((double)v[j]), sz);
+            }
+            if (!kind) p2 += tq * tq;
+            v2 += tv * tv;
+        }
+        free(g);
+        if (rc) return BRAUN_ERR_CALLBACK;
+    }
+    *pos = sqrt(p2);
+    *vel = sqrt(v2);
+    return BRAUN_OK;
 }
 
 /* dE/dt along the ideal motion against Ė = power + Q_c·v (the library's
@@ -779,14 +875,11 @@ static int check_energy_rate(work *w, double t, const braun_real *q0, const brau
      * hold, a non-SPD M, ...): its sentence. */
     if (st && inited && !w->named_fail) braun_error_format(&d, w->rep->worst, sizeof w->rep->worst);
     if (inited) braun_data_release(&d);
-    double qn = 0, vn = 0;
-    for (int j = 0; j < n; j++) {
-        qn = fabs((double)q0[j]) > qn ? fabs((double)q0[j]) : qn;
-        vn = fabs((double)v0[j]) > vn ? fabs((double)v0[j]) : vn;
-    }
+    double pos_terms = 0, vel_terms = 0;
+    if (!st) st = row_terms(w, t, q0, v0, &pos_terms, &vel_terms);
     w->rep->state_residual = (double)pos + (double)vel;
     const double on = 1e-8 * sqrt(REAL_EPS / DBL_EPSILON); /* 1e-8 in double, 2.3e-4 in float */
-    if (!st && ((double)pos > on * (1 + qn) || (double)vel > on * (1 + vn))) {
+    if (!st && ((double)pos > on * pos_terms || (double)vel > on * vel_terms)) {
         /* Off the constraints the identity does not hold: not judged. */
         w->rep->energy_rate = NAN;
         free(buf);
@@ -840,6 +933,13 @@ static int check_energy_rate(work *w, double t, const braun_real *q0, const brau
 int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_real *q,
                           const braun_real *v, double tol, braun_callback_report *rep)
 {
+    return braun_check_callbacks_sized(sys, t, q, v, NULL, tol, rep);
+}
+
+int braun_check_callbacks_sized(const braun_system *sys, braun_real t, const braun_real *q,
+                                const braun_real *v, const braun_real *size, double tol,
+                                braun_callback_report *rep)
+{
     if (!rep) return BRAUN_ERR_ARGUMENT;
     memset(rep, 0, sizeof *rep);
     rep->energy_rate = NAN;
@@ -848,6 +948,12 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
         snprintf(rep->worst, sizeof rep->worst, "%s (NULL)", !sys ? "system" : !q ? "state q" : "state v");
         return BRAUN_ERR_ARGUMENT;
     }
+    /* A size steps by itself: positive and finite. */
+    for (int i = 0; size && i < sys->n; i++)
+        if (!((double)size[i] > 0) || !isfinite((double)size[i])) {
+            snprintf(rep->worst, sizeof rep->worst, "size[%d] (must be finite and > 0)", i);
+            return BRAUN_ERR_ARGUMENT;
+        }
     /* A state the differences can use: finite. */
     if (!isfinite((double)t)) {
         snprintf(rep->worst, sizeof rep->worst, "state t");
@@ -881,7 +987,7 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
     braun_real *r = calloc(4 * (size_t)n + 3 * (size_t)rows + (size_t)rows * n + mass + mblocks +
                                (size_t)n + nnz + 1,
                            sizeof(braun_real));
-    double *f = calloc(2 * (size_t)(rows + n) + (size_t)n + 1, sizeof(double)); /* f0, fp, dir */
+    double *f = calloc(2 * (size_t)(rows + n) + 2 * (size_t)n + 2, sizeof(double)); /* f0, fp, dir, size */
     if (!r || !f) {
         free(r);
         free(f);
@@ -901,6 +1007,8 @@ int braun_check_callbacks(const braun_system *sys, braun_real t, const braun_rea
     w.f0 = f;
     w.fp = f + rows + n;
     w.dir = w.fp + rows + n;
+    w.size = w.dir + n + 1;
+    for (int i = 0; i < n; i++) w.size[i] = size ? (double)size[i] : 1;
     st = check_finite(&w, (double)t, q, v);
     if (!st && sys->m > 0) st = check_rows(&w, 0, (double)t, q, v);
     if (!st && sys->p > 0) st = check_rows(&w, 1, (double)t, q, v);

@@ -761,7 +761,15 @@ static int report(const braun_cli_target *tg)
      * state (braun_check_callbacks): a wrong Jacobian, b-term or energy
      * gradient, which a run's corrections would hide. */
     braun_callback_report cb;
-    const int cst = braun_check_callbacks(s, 0, tg->q0, tg->v0, 0, &cb);
+    /* A scene's steps follow its own lengths (a 1 µm spatial-arm was
+     * stepped by 6e-6 m and failed); a built-in model's are 1 (metres). */
+    braun_real *size = tg->scene ? malloc(sizeof *size * (size_t)(n > 0 ? n : 1)) : NULL;
+    if (size && braun_scene_coordinate_sizes(&tg->scene->scene, tg->q0, size) != BRAUN_OK) {
+        free(size);
+        size = NULL;
+    }
+    const int cst = braun_check_callbacks_sized(s, 0, tg->q0, tg->v0, size, 0, &cb);
+    free(size);
     if (cst == BRAUN_OK || cst == BRAUN_ERR_ARGUMENT)
         printf("callbacks: %s (largest difference %.2g%s%s)\n", cst ? "no" : "yes", cb.worst_value,
                cb.worst[0] ? ", " : "", cb.worst);
