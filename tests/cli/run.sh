@@ -396,6 +396,31 @@ check "run: an overflow caught by the monitoring is BRAUN_ERR_NONFINITE, not BRA
     [ "$1" -eq 1 ] && grep -q "\"status\": \"BRAUN_ERR_NONFINITE\"" "$2" &&
     ! grep -q "BRAUN_STOPPED" "$2" && grep -q "monitoring failed after t = " "$3"' \
     sh "$rc" "$TMP/ovf.json" "$TMP/ovf.err"
+# Its summary agrees with itself: the state the monitoring failed on is not
+# kept (the CSV and final_t end before it), nor counted in steps, and
+# error_t is its time, the stderr line's "at t = ". A particle on a 1e6 N/m
+# spring, Euler at 0.01 s: the energy is +Inf at the 153rd state; the
+# summary said steps 153, final_t 1.52, error_t 1.52 (RK4's divergence of
+# the same scene: steps 58, final_t 0.58, error_t 0.59).
+cat > "$TMP/stiff.json" << 'EOF'
+{"name": "stiff", "bodies": [{"name": "b", "type": "particle", "mass": 1, "position": [1.1, 0]}],
+ "joints": [{"name": "rail", "type": "slider", "point": "b", "line": [0, 0], "axis": [1, 0]}],
+ "effects": [{"type": "spring", "a": [0, 0], "b": "b", "stiffness": 1e6, "rest_length": 1}]}
+EOF
+"$BRAUN" run "$TMP/stiff.json" --dt 0.01 --t-end 10 --integrator euler --guard -1 --out "$TMP/stiff.csv" \
+    > "$TMP/stiff.sum" 2> "$TMP/stiff.err"; rc=$?
+check "run: monitoring failure: steps count the states kept, error_t the failing state's (153rd, t = 1.53)" sh -c '
+    [ "$1" -eq 1 ] && [ "$2" = "BRAUN_ERR_NONFINITE 152 1.52 1.53" ] &&
+    grep -q "^braun: monitoring failed after t = 1.52: energy E\[0\] is +Inf at t = 1.53 " "$3" &&
+    [ "$(tail -n 1 "$4" | cut -d, -f1)" = 1.52 ] && [ "$(wc -l < "$4")" -eq 154 ]' \
+    sh "$rc" "$(json_value status "$TMP/stiff.sum") $(json_value steps "$TMP/stiff.sum") $(json_value final_t \
+    "$TMP/stiff.sum") $(json_value error_t "$TMP/stiff.sum")" "$TMP/stiff.err" "$TMP/stiff.csv"
+# The same rule on the slider-crank's overflow above (Heun, 2.5e-4 s):
+# final_t is steps x dt, error_t one step later.
+check "run: monitoring failure (slider-crank, Heun): final_t = steps x dt, error_t = final_t + dt" \
+    awk -v n="$(json_value steps "$TMP/ovf.json")" -v t="$(json_value final_t "$TMP/ovf.json")" \
+    -v e="$(json_value error_t "$TMP/ovf.json")" -v h=2.5e-4 \
+    'BEGIN { exit !(n > 0 && (n * h - t) ^ 2 < 1e-20 && (t + h - e) ^ 2 < 1e-20) }'
 
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

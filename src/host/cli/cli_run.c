@@ -19,6 +19,7 @@ typedef struct run_state {
     double t, *q, *v;
     braun_cli_errors e;
     long index;
+    long steps; /* the run's steps up to it (d->stats.steps when reported) */
 } run_state;
 
 /* What the output callback of the monitored run needs. The drivers report
@@ -40,6 +41,7 @@ typedef struct run_ctx {
     run_state good;     /* the last state reported */
     int good_written;   /* good has its CSV row */
     int monitor_status; /* non-zero: sampling failed, run stopped */
+    double failed_t;    /* the time of the state it failed on */
 } run_ctx;
 
 static void write_good(run_ctx *c)
@@ -56,9 +58,11 @@ static int on_step(const braun_data *d, void *user)
     int st = braun_cli_monitor_measure(c->mon, d, &c->good.e);
     if (st) {
         c->monitor_status = st;
+        c->failed_t = (double)d->t;
         return 1;
     }
     c->good.t = (double)d->t;
+    c->good.steps = d->stats.steps;
     for (int i = 0; i < c->n; i++) {
         c->good.q[i] = (double)d->q[i];
         c->good.v[i] = (double)d->v[i];
@@ -454,7 +458,8 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
         stop.dropped_t = d.error.t;
     }
     cpu_monitored = braun_cli_cpu_seconds() - c0;
-    braun_cli_progress_end(&progress, ctx.have_good ? ctx.good.t : (double)d.t, d.stats.steps);
+    braun_cli_progress_end(&progress, ctx.have_good ? ctx.good.t : (double)d.t,
+                           ctx.monitor_status && ctx.have_good ? ctx.good.steps : d.stats.steps);
     /* The file ends where the run did: the last state that passed. */
     if (csv && ctx.have_good && !ctx.good_written) write_good(&ctx);
 
@@ -499,6 +504,10 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
     r.scene = tg->name;
     r.method = method_name(model.opt.corrections, supported);
     r.stats = d.stats;
+    /* A state the monitoring failed on is not kept (the file and final_*
+     * end before it): nor is its step. The other counters keep the work
+     * done, its step's included, as a failing step's are. */
+    if (ctx.monitor_status) r.stats.steps = ctx.have_good ? ctx.good.steps : 0;
     r.cpu_s = cpu_s;
     r.interrupted = interrupted ? braun_cli_interrupted() : 0;
     r.cpu_monitored_s = cpu_monitored;
@@ -523,7 +532,9 @@ static int run_model(const braun_cli_run_args *a, const braun_cli_target *tg,
      * which says a signal or callback stopped it. */
     r.status = ctx.monitor_status ? ctx.monitor_status : st;
     r.stop = stop;
-    r.error_t = ctx.monitor_status ? r.final_t : st && d.error.status == st ? d.error.t : NAN;
+    /* The monitoring's failure: the time of the state it failed on (the
+     * stderr line's "at t = ..."), after final_t. */
+    r.error_t = ctx.monitor_status ? ctx.failed_t : st && d.error.status == st ? d.error.t : NAN;
     if (summary && braun_cli_write_summary(summary, &r)) braun_cli_output_failed(&out_summary);
     if (show) braun_cli_write_human(stderr, &r);
     if (braun_cli_output_close(&out_summary)) exit_status = BRAUN_CLI_FAILED;
