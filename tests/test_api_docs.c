@@ -194,6 +194,15 @@ static void test_residuals_in_output_callback(void **state)
         }
 }
 
+/* The right-hand sides counted when the run's first state (t0) is
+ * reported. */
+static int start_rhs(const braun_data *d, void *u)
+{
+    long *start = u;
+    if (*start < 0) *start = d->stats.rhs_evals;
+    return 0;
+}
+
 /* ------------------------------------------------------------------ */
 /* api.md, "Statistics": braun_set_state starts them from zero (a constant
  * M's one factorization, made by braun_data_init, stays counted); the
@@ -272,6 +281,35 @@ static void test_statistics(void **state)
             assert_true(sc.data.stats.rhs_evals <= 6 * att + 1 + att / 100);
         }
         test_sim_close(&sc);
+    }
+
+    /* A new adaptive run's start: one per point its projection measures
+     * (2 on the constraints with the position correction, 1 with the
+     * velocity correction alone, none with neither; 5 for the pendulum 1e-3
+     * off its rod), seen by the output callback at t0; then the first
+     * attempt evaluates the start again. The pendulum has no singular
+     * configuration: start + 7 per attempt less one per rejection, exactly
+     * (docs said one at the start whatever the corrections). */
+    static const unsigned corrs[5] = {BRAUN_CORRECT_ALL, BRAUN_CORRECT_POSITION, BRAUN_CORRECT_VELOCITY, 0,
+                                      BRAUN_CORRECT_ALL};
+    static const long at_start[5] = {2, 2, 1, 0, 5};
+    for (int k = 0; k < 5; k++) {
+        test_sim pd;
+        const braun_builtin *p = builtin("pendulum");
+        assert_int_equal(test_sim_open(&pd, &p->sys, corrs[k]), BRAUN_OK);
+        braun_real q[2] = {p->q0[0], p->q0[1]};
+        if (k == 4) q[0] *= 1 + 1e-3;
+        assert_int_equal(braun_set_state(&pd.data, 0, q, p->v0), BRAUN_OK);
+        long start = -1;
+        braun_adaptive c8 = {1e-8, 1e-8, 0, 0, 0, 0};
+        assert_int_equal(braun_integrate_adaptive(&pd.data, &c8, 1.0, 0, start_rhs, &start), BRAUN_OK);
+        const long att = pd.data.stats.steps + pd.data.stats.rejected_steps;
+        print_message("pendulum adaptive, corrections %u%s: %ld at the start, %ld attempts (%ld rejected), %ld "
+                      "right-hand sides\n", corrs[k], k == 4 ? " (1e-3 off)" : "", start, att,
+                      pd.data.stats.rejected_steps, pd.data.stats.rhs_evals);
+        assert_int_equal(start, at_start[k]);
+        if (corrs[k]) assert_int_equal(pd.data.stats.rhs_evals, start + 7 * att - pd.data.stats.rejected_steps);
+        test_sim_close(&pd);
     }
 
     /* A mass that depends on q (Andrews' mechanism): nothing is factored
