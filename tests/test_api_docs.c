@@ -350,6 +350,43 @@ static int against_out(const braun_data *d, void *u)
 }
 
 /* ------------------------------------------------------------------ */
+/* api.md, braun_integrate: N = max(1, ceil(R - a)) steps, R the span over
+ * h, a = min(1/2, 1e-9 R) in double; the last ends on t_end exactly, a
+ * leftover of at most a steps folded into it (docs said "shortened"). */
+typedef struct last_steps {
+    double prev, last;
+} last_steps;
+static int record_last(const braun_data *d, void *u)
+{
+    last_steps *r = u;
+    r->last = (double)d->t - r->prev;
+    r->prev = (double)d->t;
+    return 0;
+}
+
+static void test_last_fixed_step(void **state)
+{
+    (void)state;
+    static const struct {
+        double t_end;
+        long steps;
+        double last;
+    } cases[] = {{1 + 1e-10, 100, 0.0100000001}, {1 + 1e-8, 101, 1e-8}, {1 - 1e-10, 100, 0.0099999999},
+                 {1, 100, 0.01}};
+    for (int k = 0; k < 4; k++) {
+        test_sim sim;
+        open_builtin(&sim, "pendulum", BRAUN_CORRECT_ALL);
+        last_steps r = {0, 0};
+        assert_int_equal(braun_integrate(&sim.data, BRAUN_RK4, 0.01, cases[k].t_end, 1, record_last, &r), BRAUN_OK);
+        print_message("t_end = 1%+.0e: %ld steps, the last %.17g\n", cases[k].t_end - 1, sim.data.stats.steps, r.last);
+        assert_int_equal(sim.data.stats.steps, cases[k].steps);
+        assert_true(sim.data.t == cases[k].t_end);
+        assert_true(fabs(r.last - cases[k].last) < 1e-15);
+        test_sim_close(&sim);
+    }
+}
+
+/* ------------------------------------------------------------------ */
 /* api.md, "Step": braun_step takes BRAUN_DOPRI5 (its 5th-order solution,
  * no error control); stepped by hand it converges with order 5. */
 static double dopri5_by_hand(const char *name, double h, double T)
@@ -757,6 +794,7 @@ int main(void)
         cmocka_unit_test(test_output_callback_stops),
         cmocka_unit_test(test_residuals_in_output_callback),
         cmocka_unit_test(test_statistics),
+        cmocka_unit_test(test_last_fixed_step),
         cmocka_unit_test(test_dopri5_through_braun_step),
         cmocka_unit_test(test_buffer_alignment),
         cmocka_unit_test(test_time_dependent_potential),

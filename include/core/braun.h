@@ -540,8 +540,12 @@ int braun_step(braun_data *d, braun_method method, braun_real h);
  * BRAUN_STOPPED with d at the state the callback saw. */
 typedef int (*braun_output_fn)(const braun_data *d, void *user);
 
-/* Fixed-step driver from d->t to t_end; the last step is shortened to land
- * on t_end. Step i ends at t0 + i·h (no accumulated round-off in t). */
+/* Fixed-step driver from d->t to t_end. Step i ends at t0 + i·h (no
+ * accumulated round-off in t) but the last, which ends on t_end exactly:
+ * N = max(1, ceil(R - a)) steps, R = (t_end - t0)/h, a = min(1/2,
+ * max(8ε, 1e-9)·R), so the last is h less a shortfall or h plus a leftover
+ * of at most a steps (1e-9 of the span in double): h = 0.01 to
+ * t_end = 1 + 1e-10 is 100 steps, the last 0.0100000001. */
 int braun_integrate(braun_data *d, braun_method method, braun_real h,
                     braun_real t_end, long every, braun_output_fn out,
                     void *out_user);

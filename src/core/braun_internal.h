@@ -251,8 +251,9 @@ int braun__data_intact(const braun_data *d, const braun_priv *pv, int busy);
 int braun__energy(braun_data *d, braun_real t, const braun_real *q, const braun_real *v, braun_real *E);
 
 /* Steps of braun_integrate for a span of `ratio` steps of h: a span that
- * is a whole number of steps up to round-off takes exactly that many,
- * otherwise the last step is shortened to land on t_end. The round-off
+ * is a whole number of steps up to round-off takes exactly that many (the
+ * last one h plus that leftover, up to 1e-9 of the span in double),
+ * otherwise one more, the last shortened to land on t_end. The round-off
  * allowed is relative (h carries the working precision's rounding: a
  * float h makes the ratio off by ~1e-7 relative) but never a whole step:
  * at 1e12 steps a relative 1e-9 would make the last step 1000 h long. */
