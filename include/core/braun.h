@@ -552,7 +552,9 @@ int braun_integrate(braun_data *d, braun_method method, braun_real h,
 
 typedef struct braun_adaptive {
     braun_real rtol, atol;  /* mixed error test on q, v: 0 <= rtol < 1, atol >= 0 and
-                             * finite, not both 0 (else BRAUN_ERR_ARGUMENT) */
+                             * finite, not both 0 (else BRAUN_ERR_ARGUMENT); atol is
+                             * absolute, in q's and v's units: scale it with the
+                             * mechanism (docs/api.md) */
     braun_real h0;          /* first trial step (<= 0: 1e-3·(t_end - t), the span if
                              * that is 0) */
     braun_real h_min, h_max;/* <= 0: 1e-12·|span| but at least 16ε·max(|t|, |t_end|),

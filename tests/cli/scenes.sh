@@ -213,6 +213,25 @@ for s in "arm 1e-6 1" "arm 1e-6 1e-18" "arm 1e6 1e-6" "spring3d 1e-7" "spring3d 
         [ "$1" -eq 0 ] && grep -q "^callbacks: yes (largest difference " "$2" && [ ! -s "$3" ]' \
         sh "$rc" "$TMP/scaled.out" "$TMP/scaled.err"
 done
+# dopri5's atol is absolute (docs/cli.md): the pendulum at 1 um keeps the
+# unit run's steps and answer only with atol scaled by 1e-6 too (at the
+# default 1e-10 it took 31 steps, not 146, and ended 5.2e-5 rad off).
+cat > "$TMP/pend-1um.json" << 'EOF'
+{"name": "pendulum-1um", "bodies": [{"name": "bob", "type": "particle", "mass": 1, "position": [1e-6, 0]}],
+ "joints": [{"name": "rod", "type": "distance", "a": [0, 0], "b": "bob", "length": 1e-6}],
+ "effects": [{"type": "gravity", "g": [0, -9.81e-6]}]}
+EOF
+"$BRAUN" run data/pendulum.json --dt 1e-3 --t-end 3 --integrator dopri5 --quiet > "$TMP/p1m.sum"
+"$BRAUN" run "$TMP/pend-1um.json" --dt 1e-3 --t-end 3 --integrator dopri5 --quiet > "$TMP/p1u.sum"
+"$BRAUN" run "$TMP/pend-1um.json" --dt 1e-3 --t-end 3 --integrator dopri5 --atol 1e-16 --quiet > "$TMP/p1us.sum"
+check "dopri5, the pendulum at 1 um: the unit run's steps and angle (to 1e-9) with --atol 1e-16, not at the default" \
+    awk -v s1="$(json_value steps "$TMP/p1m.sum")" -v su="$(json_value steps "$TMP/p1u.sum")" \
+    -v ss="$(json_value steps "$TMP/p1us.sum")" -v a="$(sed -n 's/^  "final_q": \[\(.*\), \(.*\)\],$/\1 \2/p' "$TMP/p1m.sum")" \
+    -v b="$(sed -n 's/^  "final_q": \[\(.*\), \(.*\)\],$/\1 \2/p' "$TMP/p1us.sum")" \
+    -v c="$(sed -n 's/^  "final_q": \[\(.*\), \(.*\)\],$/\1 \2/p' "$TMP/p1u.sum")" '
+    BEGIN { split(a, x, " "); split(b, y, " "); split(c, z, " "); a0 = atan2(x[1], -x[2]);
+            d = a0 - atan2(y[1], -y[2]); e = a0 - atan2(z[1], -z[2]);
+            exit !(s1 == ss && su < s1 && d * d < 1e-18 && e * e > 1e-10) }'
 for f in data/parallelogram-redundant.json data/iftomm/a04-bricard.json four-bar; do
     "$BRAUN" check "$f" > "$TMP/cons.out" 2>&1; rc=$?
     check "check $f (redundant rows that agree, or none): consistent: yes" sh -c '
