@@ -482,6 +482,33 @@ check "plot: 289 frames over 289 kept states are 289 distinct states" \
     --points bob2 -o stop.svg 2> /dev/null
 check "plot: a stopped run's path has a point per kept state (>= 200 of its 300 steps)" \
     [ "$(grep -o '<polyline[^>]*points="[^"]*"' stop.svg | head -1 | tr ' ' '\n' | wc -l)" -ge 200 ]
+# Kept states 2.35 s apart of a pendulum of period 2.37 s: joined by lines
+# they drew 14 slow swings over 470 s where there were 200 (aliasing). The
+# chart shades each bin's least to greatest value, which covers the swing
+# in every bin (but the last state's own), and says so; the path draws no
+# chord across the circle.
+"$BRAUN" plot pendulum --dt 1e-2 --t-end 470 --samples 200 --plot bob.x -o alias.svg 2> /dev/null
+check "plot: an aliased chart shades the swing's whole range in every bin, and says so" sh -c '
+    grep -q "<title>[^<]*shaded: least to greatest" alias.svg &&
+    grep -o "<polygon class=\"envelope\"[^>]*points=\"[^\"]*\"" alias.svg | sed "s/.*points=\"//; s/\"//" |
+    tr " " "\n" | awk -F, "{ y[++n] = \$2; if (n == 1 || \$2 < lo) lo = \$2; if (n == 1 || \$2 > hi) hi = \$2 }
+        END { if (n < 400 || hi - lo < 100) exit 1
+              for (i = 1; i <= n / 2 - 2; i++) { d = y[n + 1 - i] - y[i]; if (d < 0) d = -d; if (d < 0.9 * (hi - lo)) exit 1 } }"'
+"$BRAUN" plot pendulum --dt 1e-2 --t-end 470 --samples 200 --points bob -o chords.svg 2> /dev/null
+check "plot: a path of kept states far apart draws no chord inside the swing's circle" sh -c '
+    grep -q "<title>[^<]*paths: dots where" chords.svg &&
+    { grep -o "<polygon points=\"[^\"]*\" fill=\"#ffffff\" stroke=\"#222222\"" chords.svg | head -1 |
+        sed "s/<polygon points=\"//; s/ .*//"
+      grep -o "<g class=\"frame\"" chords.svg | head -1 > /dev/null
+      grep -o "<circle cx=\"[^\"]*\" cy=\"[^\"]*\" r=\"1.3\"" chords.svg | sed "s/.*cx=\"//; s/\" cy=\"/,/; s/\".*//" | sed "s/^/D /"
+      grep -o "<polyline fill=\"none\" stroke=\"#d62728\"[^>]*points=\"[^\"]*\"" chords.svg |
+        sed "s/.*points=\"//; s/\"//" | sed "s/^/P /"; } |
+    awk "NR == 1 { split(\$0, c, \",\"); px = c[1]; py = c[2]; next }
+         { for (i = 2; i <= NF; i++) { split(\$i, c, \",\"); x[i] = c[1]; y[i] = c[2]
+               r = sqrt((x[i] - px) ^ 2 + (y[i] - py) ^ 2); if (!R) R = r; pts++
+               if (i > 2) { mx = (x[i] + x[i - 1]) / 2 - px; my = (y[i] + y[i - 1]) / 2 - py
+                            if (R - sqrt(mx * mx + my * my) > 4) bad++ } } }
+         END { exit !(R > 50 && pts >= 199 && !bad) }"'
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

@@ -111,6 +111,36 @@ static int resolve_series(plot_job *job, plot_drawing *dr, const braun_cli_targe
     return 0;
 }
 
+/* The envelope's values of a state: each --plot series', or each traced
+ * point's position across and up the view (cli_plot_samples.c). */
+typedef struct plot_extra {
+    const plot_job *job;
+    const plot_drawing *dr;
+    double *pos;
+    braun_real *qr;
+} plot_extra;
+
+static void extra_values(void *ctx, const double *row, double *out)
+{
+    const plot_extra *x = (const plot_extra *)ctx;
+    const plot_job *job = x->job;
+    if (x->dr) plot_drawing_eval(x->dr, row + 1, x->qr, x->pos);
+    if (job->nseries > 0) {
+        for (int k = 0; k < job->nseries; k++) {
+            const plot_series *sr = &job->series[k];
+            out[k] = sr->column >= 0 ? row[sr->column]
+                     : x->dr       ? x->pos[3 * sr->anchor + sr->axis]
+                                   : NAN;
+        }
+        return;
+    }
+    for (int i = 0; i < x->dr->ntraces; i++) {
+        const double *p = x->pos + 3 * x->dr->traces[i].anchor;
+        out[2 * i] = p[x->dr->axis_u];
+        out[2 * i + 1] = p[x->dr->axis_v];
+    }
+}
+
 static int done(void *user, const braun_cli_result *r)
 {
     ((plot_run *)user)->status = r->status;
@@ -157,6 +187,18 @@ int braun_cli_plot(int argc, char **argv)
     if (!rc && a.plot_columns) rc = resolve_series(&job, want_drawing ? &dr : NULL, &tg, a.plot_columns);
     job.frames = a.frames > 0 ? a.frames : fmt == FMT_HTML ? 400 : 12;
     const long cap = a.samples > 0 ? a.samples : (job.frames > 2000 ? job.frames : 2000);
+    /* The envelope of what the picture joins by lines: the chart's series,
+     * else the traced points' paths. */
+    plot_extra ex = {&job, want_drawing ? &dr : NULL, NULL, NULL};
+    if (!rc && (job.nseries > 0 || (want_drawing && dr.ntraces > 0))) {
+        samples.nextra = job.nseries > 0 ? job.nseries : 2 * dr.ntraces;
+        samples.paired = job.nseries == 0;
+        samples.extra = extra_values;
+        samples.extra_ctx = &ex;
+        ex.pos = want_drawing ? malloc((size_t)dr.nanchors * 3 * sizeof *ex.pos + 1) : NULL;
+        ex.qr = malloc((size_t)tg.sys.n * sizeof *ex.qr + 1);
+        if ((want_drawing && !ex.pos) || !ex.qr) rc = braun_cli_error("out of memory");
+    }
 
     /* Written whole: a picture that fails to be written leaves the file as
      * it was. */
@@ -236,6 +278,17 @@ int braun_cli_plot(int argc, char **argv)
             rc = a.traj_path ? BRAUN_CLI_USAGE : BRAUN_CLI_FAILED;
             goto finish;
         }
+        /* Lines that would show a motion the states between the kept ones
+         * did not take: the picture says what it drew instead. */
+        const int strays = plot_job_resolution(&job);
+        len = strlen(caption);
+        if (strays && len < sizeof caption)
+            snprintf(caption + len, sizeof caption - len,
+                     job.nseries > 0 ? "; shaded: least to greatest value between the %ld kept "
+                                       "states (the motion is faster than they resolve)"
+                                     : "; paths: dots where the motion left the line between "
+                                       "the %ld kept states",
+                     samples.count);
         /* A .png is rendered before the output is touched: a gnuplot that
          * fails leaves a file that existed as it was (and removes one this
          * command created, at finish). */
@@ -266,6 +319,8 @@ int braun_cli_plot(int argc, char **argv)
 finish:
     braun_cli_output_abandon(&out);
     free(row);
+    free(ex.pos);
+    free(ex.qr);
     plot_samples_free(&samples);
     plot_drawing_free(&dr);
     braun_cli_target_close(&tg);

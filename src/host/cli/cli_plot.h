@@ -91,6 +91,7 @@ typedef struct plot_samples {
     double from, to;          /* the time window kept */
     double next, step;        /* next time to keep, spacing */
     int have_last;            /* last: the latest state, kept at the end */
+    int have_prev;            /* a state before last (its envelope values: last_ex) */
     double *last;
     /* Beside the grid over the window asked for, every state at least
      * fine_step apart, the spacing doubled (every other row dropped) when
@@ -99,6 +100,20 @@ typedef struct plot_samples {
     double *fine;
     long fine_count;
     double fine_step, fine_next;
+    /* The envelope: nextra values of each state (extra(), set before
+     * plot_samples_init, which keeps them), their least and greatest over
+     * each kept row's bin — the states from it to the next kept row — so a
+     * picture can tell where joining kept rows by straight lines would
+     * show a motion that did not happen (a pendulum of period 2.37 s drawn
+     * as one of 335 s from rows 2.35 s apart). Per row 2 * nextra doubles:
+     * the lows, then the highs; env beside rows, fine_env beside fine.
+     * paired: the values are (u, v) pairs of points, and each row also
+     * has, per pair, the length the point travelled from it to the next
+     * kept row (a chord of a monotone arc stays in the arc's box). */
+    int nextra, paired;
+    void (*extra)(void *ctx, const double *row, double *out);
+    void *extra_ctx;
+    double *env, *fine_env, *ex, *last_ex;
 } plot_samples;
 
 int plot_samples_init(plot_samples *s, int n, long cap, double from, double to);
@@ -106,6 +121,9 @@ void plot_samples_add(plot_samples *s, const double *row);
 /* After the last state: keep the latest one too. */
 void plot_samples_finish(plot_samples *s);
 void plot_samples_free(plot_samples *s);
+/* Row r's envelope: nextra lows, nextra highs, then (paired) nextra / 2
+ * lengths travelled; NULL without one. */
+const double *plot_samples_env(const plot_samples *s, long r);
 
 /* --traj FILE: read a CSV written by `braun run --out` (its header must be
  * the target's columns) into s. 0, or an exit status after one message. */
@@ -128,6 +146,10 @@ typedef struct plot_job {
     int nseries;
     plot_series series[16];
     long frames;              /* configurations drawn */
+    /* Series k (a chart) or trace k (paths) strays between kept rows from
+     * the straight line joining them (plot_job_resolution): a chart shades
+     * its envelope, a path is broken there and its rows drawn as dots. */
+    int strays[16];
     const char *caption;      /* one line under the picture */
 } plot_job;
 
@@ -182,6 +204,14 @@ void plot_svg_header(FILE *f, double width, double height, const char *title, in
 /* The caption line, the traced points' names, the scale bar. */
 void plot_svg_caption(FILE *f, const plot_job *job, const plot_canvas *cv);
 void plot_svg_scale_bar(FILE *f, const plot_canvas *cv);
+/* Trace i's path from kept row r to r + 1, at world (u, v) a and b:
+ * whether the point may have left that line by more than tol (m). */
+int plot_path_strays(const plot_samples *s, int i, long r, const double *a, const double *b,
+                     double tol);
+/* ... by more than 3 px of the canvas (less is hardly seen). */
+#define PLOT_PATH_TOL_PX 3.0
+/* Fills job->strays; the number of series or traces that stray. */
+int plot_job_resolution(plot_job *job);
 /* Colour of trace or series i. */
 const char *plot_colour(int i);
 

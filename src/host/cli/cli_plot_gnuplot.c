@@ -126,7 +126,27 @@ static int script(FILE *g, const plot_job *job)
             }
             fputc('\n', g);
         }
-        fputs("EOD\nplot ", g);
+        fputs("EOD\n", g);
+        /* A series faster than the kept states: its envelope, shaded
+         * (the SVG's), each bin's least to greatest value over its time. */
+        for (int k = 0; k < job->nseries; k++) {
+            if (!job->strays[k]) continue;
+            fprintf(g, "$E%d << EOD\n", k);
+            for (long r = 0; r < s->count; r++) {
+                const double *e = plot_samples_env(s, r);
+                const double ta = s->rows[(size_t)r * (size_t)s->cols];
+                const double tb = r + 1 < s->count ? s->rows[(size_t)(r + 1) * (size_t)s->cols] : ta;
+                if (e && isfinite(e[k]) && isfinite(e[s->nextra + k]))
+                    fprintf(g, "%.17g %.17g %.17g\n%.17g %.17g %.17g\n", ta, e[k],
+                            e[s->nextra + k], tb, e[k], e[s->nextra + k]);
+            }
+            fputs("EOD\n", g);
+        }
+        fputs("plot ", g);
+        for (int k = 0; k < job->nseries; k++)
+            if (job->strays[k])
+                fprintf(g, "$E%d using 1:2:3 with filledcurves fc rgb '%s' fs transparent solid "
+                           "0.35 noborder notitle, ", k, plot_colour(k));
         for (int k = 0; k < job->nseries; k++) {
             char title[160];
             snprintf(title, sizeof title, "%s%s%s%s", job->series[k].label,
@@ -155,12 +175,20 @@ static int script(FILE *g, const plot_job *job)
             plot_drawing_eval(dr, s->rows + (size_t)plot_frame_row(job, k) * (size_t)s->cols + 1, qr, pos);
             moving = frame_blocks(g, dr, pos, name, 0);
         }
+        /* A path is broken (a blank line) where the motion left the line
+         * between kept rows, as the SVG's. */
+        const double tol = PLOT_PATH_TOL_PX / cv.scale;
         for (int i = 0; i < dr->ntraces; i++) {
+            double prev[2] = {0, 0};
             fprintf(g, "$T%d << EOD\n", i);
             for (long r = 0; r < s->count; r++) {
                 plot_drawing_eval(dr, s->rows + (size_t)r * (size_t)s->cols + 1, qr, pos);
                 const double *p = pos + 3 * dr->traces[i].anchor;
-                fprintf(g, "%.9g %.9g\n", p[dr->axis_u], p[dr->axis_v]);
+                const double uv[2] = {p[dr->axis_u], p[dr->axis_v]};
+                if (r > 0 && job->strays[i] && plot_path_strays(s, i, r - 1, prev, uv, tol))
+                    fputc('\n', g);
+                fprintf(g, "%.9g %.9g\n", uv[0], uv[1]);
+                prev[0] = uv[0], prev[1] = uv[1];
             }
             fputs("EOD\n", g);
         }
@@ -173,7 +201,8 @@ static int script(FILE *g, const plot_job *job)
         if (ground & 2)
             fprintf(g, "%s$PG using 1:2 with points pt 9 ps 2 lc rgb '#222222'", sep), sep = ", ";
         for (int i = 0; i < dr->ntraces; i++, sep = ", ")
-            fprintf(g, "%s$T%d with lines lw 1.5 lc rgb '%s'", sep, i, plot_colour(i));
+            fprintf(g, "%s$T%d with %s lw 1.5 lc rgb '%s'", sep, i,
+                    job->strays[i] ? "linespoints pt 7 ps 0.3" : "lines", plot_colour(i));
         for (long k = 0; k < frames; k++) {
             const double op = frames > 1 ? 0.2 + 0.8 * (double)k / (double)(frames - 1) : 1;
             if (moving & 1) {

@@ -17,6 +17,9 @@
 #define CANVAS_MARGIN 28.0
 #define CANVAS_BOTTOM 40.0
 
+static double series_value(const plot_job *job, const plot_series *sr, const double *row,
+                           double *pos, braun_real *qr);
+
 const char *plot_colour(int i)
 {
     static const char *const c[] = {"#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
@@ -274,29 +277,155 @@ void plot_svg_items(FILE *f, const plot_job *job, const plot_canvas *cv, const d
     }
 }
 
+/* Whether the states between kept rows left the straight line joining
+ * values a and b by more than tol: their envelope, lo ... hi, reaches past
+ * the segment's own range. */
+static int bin_strays(double lo, double hi, double a, double b, double tol)
+{
+    const double top = a > b ? a : b, bot = a < b ? a : b;
+    return hi - top > tol || bot - lo > tol;
+}
+
+/* Trace i's segment from row r to r + 1, at world (u, v) a and b: whether
+ * the point may have left it by more than tol. A path of length L between
+ * ends c apart stays within sqrt(L^2 - c^2) / 2 of their chord (an
+ * ellipse with the ends as foci), and a chord across a swing is far
+ * shorter than the arc. */
+int plot_path_strays(const plot_samples *s, int i, long r, const double *a, const double *b,
+                       double tol)
+{
+    const double *e = plot_samples_env(s, r);
+    if (!e || !s->paired || s->nextra < 2 * (i + 1)) return 0;
+    const double len = e[2 * s->nextra + i], c = hypot(b[0] - a[0], b[1] - a[1]);
+    return len > c && sqrt(len * len - c * c) / 2 > tol;
+}
+
+/* Every traced point's (u, v) at every kept row, trace by trace (NULL
+ * when out of memory). */
+static double *trace_uv(const plot_job *job)
+{
+    const plot_drawing *dr = job->drawing;
+    const plot_samples *s = job->samples;
+    double *pos = malloc((size_t)dr->nanchors * 3 * sizeof *pos + 1);
+    braun_real *qr = malloc((size_t)s->n * sizeof *qr + 1);
+    double *uv = malloc((size_t)dr->ntraces * (size_t)s->count * 2 * sizeof *uv + 1);
+    if (!pos || !qr || !uv) {
+        free(pos);
+        free(qr);
+        free(uv);
+        return NULL;
+    }
+    for (long r = 0; r < s->count; r++) {
+        plot_drawing_eval(dr, s->rows + (size_t)r * (size_t)s->cols + 1, qr, pos);
+        for (int i = 0; i < dr->ntraces; i++) {
+            const double *p = pos + 3 * dr->traces[i].anchor;
+            double *o = uv + ((size_t)i * (size_t)s->count + (size_t)r) * 2;
+            o[0] = p[dr->axis_u];
+            o[1] = p[dr->axis_v];
+        }
+    }
+    free(pos);
+    free(qr);
+    return uv;
+}
+
+
 void plot_svg_paths(FILE *f, const plot_job *job, const plot_canvas *cv, const char *style)
 {
     const plot_drawing *dr = job->drawing;
     const plot_samples *s = job->samples;
-    double *pos = malloc((size_t)dr->nanchors * 3 * sizeof *pos);
-    braun_real *qr = malloc((size_t)s->n * sizeof *qr);
-    if (!pos || !qr || dr->ntraces == 0) {
+    if (dr->ntraces == 0) return;
+    double *uv = trace_uv(job);
+    if (!uv) return;
+    const double tol = PLOT_PATH_TOL_PX / cv->scale;
+    for (int i = 0; i < dr->ntraces; i++) {
+        const double *p = uv + (size_t)i * (size_t)s->count * 2;
+        /* Polylines through the rows joined by segments that do not
+         * stray, a dot at a row that joins none: a chord across the
+         * swing's circle is a path the motion never took. */
+        long start = 0;
+        for (long r = 0; r < s->count; r++) {
+            const int end = r == s->count - 1 ||
+                            (job->strays[i] && plot_path_strays(s, i, r, p + 2 * r, p + 2 * r + 2, tol));
+            if (!end) continue;
+            if (r == start && job->strays[i]) {
+                double x, y, pw[3];
+                pw[dr->axis_u] = p[2 * r], pw[dr->axis_v] = p[2 * r + 1];
+                pw[3 - dr->axis_u - dr->axis_v] = 0;
+                plot_canvas_xy(cv, dr, pw, &x, &y);
+                if (isfinite(x) && isfinite(y))
+                    fprintf(f, "  <circle cx=\"%.2f\" cy=\"%.2f\" r=\"1.3\" fill=\"%s\"/>\n", x, y,
+                            plot_colour(i));
+            } else {
+                fprintf(f, "  <polyline fill=\"none\" stroke=\"%s\" %s points=\"", plot_colour(i),
+                        style);
+                for (long k = start; k <= r; k++) {
+                    double x, y, pw[3];
+                    pw[dr->axis_u] = p[2 * k], pw[dr->axis_v] = p[2 * k + 1];
+                    pw[3 - dr->axis_u - dr->axis_v] = 0;
+                    plot_canvas_xy(cv, dr, pw, &x, &y);
+                    if (isfinite(x) && isfinite(y)) fprintf(f, "%s%.2f,%.2f", k > start ? " " : "", x, y);
+                }
+                fputs("\"/>\n", f);
+            }
+            start = r + 1;
+        }
+    }
+    free(uv);
+}
+
+int plot_job_resolution(plot_job *job)
+{
+    const plot_samples *s = job->samples;
+    const plot_drawing *dr = job->drawing;
+    int count = 0;
+    memset(job->strays, 0, sizeof job->strays);
+    if (s->nextra == 0 || !s->env || s->count < 2) return 0;
+    if (job->nseries > 0) {
+        /* Two pixels of the chart's value axis (about 400 px high). */
+        double *pos = dr ? malloc((size_t)dr->nanchors * 3 * sizeof *pos + 1) : NULL;
+        braun_real *qr = malloc((size_t)s->n * sizeof *qr + 1);
+        double range[4];
+        if ((dr && !pos) || !qr || plot_chart_range(job, pos, qr, range)) {
+            free(pos);
+            free(qr);
+            return 0;
+        }
+        const double tol = (range[1] - range[0]) / 200;
+        for (int k = 0; k < job->nseries && k < s->nextra; k++) {
+            double prev = NAN;
+            for (long r = 0; r < s->count && !job->strays[k]; r++) {
+                const double *row = s->rows + (size_t)r * (size_t)s->cols;
+                const double v = series_value(job, &job->series[k], row, pos, qr);
+                if (r > 0 && isfinite(prev) && isfinite(v)) {
+                    const double *ep = plot_samples_env(s, r - 1);
+                    job->strays[k] = bin_strays(ep[k], ep[s->nextra + k], prev, v, tol);
+                }
+                prev = v;
+            }
+            count += job->strays[k];
+        }
         free(pos);
         free(qr);
-        return;
+        return count;
     }
+    if (!dr || dr->ntraces == 0) return 0;
+    plot_canvas cv;
+    plot_canvas_fit(&cv, job);
+    double *uv = trace_uv(job);
+    if (!uv || !(cv.scale > 0)) {
+        free(uv);
+        return 0;
+    }
+    const double tol = PLOT_PATH_TOL_PX / cv.scale;
     for (int i = 0; i < dr->ntraces; i++) {
-        fprintf(f, "  <polyline fill=\"none\" stroke=\"%s\" %s points=\"", plot_colour(i), style);
-        for (long r = 0; r < s->count; r++) {
-            double x, y;
-            plot_drawing_eval(dr, s->rows + (size_t)r * (size_t)s->cols + 1, qr, pos);
-            xy_of(job, cv, pos, dr->traces[i].anchor, &x, &y);
-            if (isfinite(x) && isfinite(y)) fprintf(f, "%s%.2f,%.2f", r ? " " : "", x, y);
-        }
-        fputs("\"/>\n", f);
+        const double *p = uv + (size_t)i * (size_t)s->count * 2;
+        for (long r = 0; r + 1 < s->count && !job->strays[i]; r++)
+            job->strays[i] = plot_path_strays(s, i, r, p + 2 * r, p + 2 * r + 2, tol);
+        count += job->strays[i];
     }
-    free(pos);
-    free(qr);
+    free(uv);
+    return count;
 }
 
 /* A scale bar of 1, 2 or 5 times a power of ten metres, about a fifth of
@@ -489,10 +618,32 @@ int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, in
     }
     fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"13\" "
                "text-anchor=\"middle\">t [s]</text>\n", ml + pw / 2, height - 12);
+    /* A series faster than the kept states resolve: its envelope, each
+     * bin's least to greatest value over the bin's time, shaded under the
+     * line (as an oscilloscope's), so no swing is drawn that did not
+     * happen. */
+    for (int k = 0; k < job->nseries; k++) {
+        if (!job->strays[k]) continue;
+        fprintf(f, "  <polygon class=\"envelope\" fill=\"%s\" fill-opacity=\"0.35\" "
+                   "stroke=\"none\" points=\"", plot_colour(k));
+        for (int side = 0; side < 2; side++)
+            for (long i = 0; i < s->count; i++) {
+                const long r = side ? s->count - 1 - i : i;
+                const double *e = plot_samples_env(s, r);
+                const double v = e[side ? k : s->nextra + k];
+                const double ta = s->rows[(size_t)r * (size_t)s->cols];
+                const double tb = r + 1 < s->count ? s->rows[(size_t)(r + 1) * (size_t)s->cols] : ta;
+                if (!isfinite(v)) continue;
+                fprintf(f, "%s%.2f,%.2f %.2f,%.2f", side || i ? " " : "", X(side ? tb : ta), Y(v),
+                        X(side ? ta : tb), Y(v));
+            }
+        fputs("\"/>\n", f);
+    }
     for (int k = 0; k < job->nseries; k++) {
         const plot_series *sr = &job->series[k];
-        fprintf(f, "  <polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\" points=\"",
-                plot_colour(k));
+        /* Over a shaded envelope the line only joins the kept states: thin. */
+        fprintf(f, "  <polyline fill=\"none\" stroke=\"%s\" stroke-width=\"%s\" points=\"",
+                plot_colour(k), job->strays[k] ? "0.8" : "1.6");
         for (long r = 0; r < s->count; r++) {
             const double *row = s->rows + (size_t)r * (size_t)s->cols;
             const double y = series_value(job, sr, row, pos, qr);
