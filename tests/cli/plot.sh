@@ -509,6 +509,24 @@ check "plot: a path of kept states far apart draws no chord inside the swing's c
                if (i > 2) { mx = (x[i] + x[i - 1]) / 2 - px; my = (y[i] + y[i - 1]) / 2 - py
                             if (R - sqrt(mx * mx + my * my) > 4) bad++ } } }
          END { exit !(R > 50 && pts >= 199 && !bad) }"'
+# Tick labels read apart: four digits drew 999.9 six times and 1000 five
+# times on a 0.1 s window at t = 1000, and 1e+08 on every value tick of a
+# pendulum pivoted at x = 1e8.
+cat > far.json << 'EOF'
+{"name": "far", "bodies": [{"name": "bob", "type": "particle", "mass": 1, "position": [100000001, 0]}],
+ "joints": [{"name": "rod", "type": "distance", "a": [100000000, 0], "b": "bob", "length": 1}],
+ "effects": [{"type": "gravity", "g": [0, -9.81]}]}
+EOF
+"$BRAUN" plot pendulum --dt 1e-2 --t-end 1000.1 --from 1000 --plot bob.x -o tail.svg 2> /dev/null
+"$BRAUN" plot far.json --dt 1e-3 --t-end 3 --plot bob.x -o far.svg 2> /dev/null
+# apart FILE ANCHOR: at least 4 tick labels (end: values; middle: times),
+# no two alike.
+apart() {
+    grep -o "text-anchor=\"$2\">[^<]*<" "$1" | grep -v 't \[s\]' > ticks.txt
+    [ "$(wc -l < ticks.txt)" -ge 4 ] && [ "$(sort -u ticks.txt | wc -l)" -eq "$(wc -l < ticks.txt)" ]
+}
+check "plot: the time ticks of a 0.1 s window at t = 1000 all read apart" apart tail.svg middle
+check "plot: the value ticks of a pendulum at x = 1e8 all read apart" apart far.svg end
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

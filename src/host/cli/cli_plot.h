@@ -210,6 +210,11 @@ int plot_path_strays(const plot_samples *s, int i, long r, const double *a, cons
                      double tol);
 /* ... by more than 3 px of the canvas (less is hardly seen). */
 #define PLOT_PATH_TOL_PX 3.0
+/* Chart ticks: a step of 1, 2 or 5 times a power of ten, about six over
+ * lo ... hi; the %g digits (4 or more) that tell ticks first + i step, i =
+ * 0 ... n, apart. */
+double plot_tick_step(double lo, double hi);
+int plot_tick_digits(double first, double step, long n);
 /* Fills job->strays; the number of series or traces that stray. */
 int plot_job_resolution(plot_job *job);
 /* Colour of trace or series i. */

@@ -111,7 +111,23 @@ static int script(FILE *g, const plot_job *job)
     }
     if (!dr || job->nseries > 0) {
         /* The chart: t against each series. */
-        fputs("set xlabel 't [s]'\nset key top left opaque\n$S << EOD\n", g);
+        fputs("set xlabel 't [s]'\nset key top left opaque\n", g);
+        /* The SVG's ranges and ticks, with digits enough to tell ticks
+         * apart: gnuplot's own read 1e+08 on every tick near 1e8. */
+        double range[4];
+        if (plot_chart_range(job, pos, qr, range) == 0) {
+            const double ty = plot_tick_step(range[0], range[1]);
+            const double tt = plot_tick_step(range[2], range[3]);
+            const double first = ceil(range[2] / tt) * tt;
+            const long nv = lround((range[1] - range[0]) / ty);
+            const long nt = (long)floor((range[3] - first) / tt + 1e-9);
+            fprintf(g, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", range[2], range[3],
+                    range[0], range[1]);
+            fprintf(g, "set xtics %.17g, %.17g\nset ytics %.17g, %.17g\n", first, tt, range[0], ty);
+            fprintf(g, "set format x '%%.%dg'\nset format y '%%.%dg'\n",
+                    plot_tick_digits(first, tt, nt), plot_tick_digits(range[0], ty, nv));
+        }
+        fputs("$S << EOD\n", g);
         for (long r = 0; r < s->count; r++) {
             const double *row = s->rows + (size_t)r * (size_t)s->cols;
             fprintf(g, "%.17g", row[0]);

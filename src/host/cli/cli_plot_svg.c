@@ -531,12 +531,37 @@ int plot_write_svg(FILE *f, const plot_job *job)
 
 /* ------------------------------------------------------------ the chart */
 /* Ticks at 1, 2 or 5 times a power of ten, about six over the range. */
-static double tick_step(double lo, double hi)
+double plot_tick_step(double lo, double hi)
 {
     const double want = (hi - lo) / 6;
     if (!(want > 0) || !isfinite(want)) return 1;
     const double p = pow(10, floor(log10(want)));
     return want / p >= 5 ? 5 * p : want / p >= 2 ? 2 * p : p;
+}
+
+/* A tick's value: an ulp off zero is zero. */
+static double tick_value(double first, double step, long i)
+{
+    const double v = first + (double)i * step;
+    return fabs(v) < 1e-12 * step ? 0.0 : v;
+}
+
+int plot_tick_digits(double first, double step, long n)
+{
+    /* Four digits read 999.9 for 999.90 ... 999.98 and 1e+08 for every
+     * tick near 1e8: as many as consecutive ticks need to differ. */
+    for (int p = 4; p < 17; p++) {
+        int same = 0;
+        char a[40], b[40];
+        snprintf(a, sizeof a, "%.*g", p, tick_value(first, step, 0));
+        for (long i = 1; i <= n && !same; i++) {
+            snprintf(b, sizeof b, "%.*g", p, tick_value(first, step, i));
+            same = strcmp(a, b) == 0;
+            memcpy(a, b, sizeof a);
+        }
+        if (!same) return p;
+    }
+    return 17;
 }
 
 /* Value of series k at row r. */
@@ -562,7 +587,7 @@ int plot_chart_range(const plot_job *job, double *pos, braun_real *qr, double ra
     if (!(lo <= hi)) lo = hi = 0;
     if (hi - lo < 1e-12 * (fabs(lo) + fabs(hi)) || hi == lo) lo -= 0.5 + fabs(lo) * 0.1, hi += 0.5 + fabs(hi) * 0.1;
     if (!(t1 > t0)) t1 = t0 + 1;
-    const double ty = tick_step(lo, hi);
+    const double ty = plot_tick_step(lo, hi);
     lo = floor(lo / ty) * ty, hi = ceil(hi / ty) * ty;
     range[0] = lo, range[1] = hi, range[2] = t0, range[3] = t1;
     /* A span past the largest double (1e308 and -1e308) would place every
@@ -582,7 +607,7 @@ int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, in
         braun_cli_error("out of memory");
         return -1;
     }
-    const double ml = 70, mr = 20, mt = 20 + 16.0 * job->nseries, mb = 50;
+    const double mr = 20, mt = 20 + 16.0 * job->nseries, mb = 50;
     double range[4];
     if (plot_chart_range(job, pos, qr, range)) {
         free(pos);
@@ -592,29 +617,38 @@ int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, in
     }
     const double lo = range[0], hi = range[1];
     const double t0 = range[2], t1 = range[3];
-    const double ty = tick_step(lo, hi), tt = tick_step(t0, t1);
+    const double ty = plot_tick_step(lo, hi), tt = plot_tick_step(t0, t1);
+    const long nv = lround((hi - lo) / ty);
+    const double first = ceil(t0 / tt) * tt;
+    const long nt = (long)floor((t1 - first) / tt + 1e-9);
+    const int dv = plot_tick_digits(lo, ty, nv), dt = plot_tick_digits(first, tt, nt);
+    /* Room on the left for the longest value label (about 7 px a digit). */
+    size_t widest = 0;
+    for (long i = 0; i <= nv; i++) {
+        char num[40];
+        const size_t w = (size_t)snprintf(num, sizeof num, "%.*g", dv, tick_value(lo, ty, i));
+        if (w > widest) widest = w;
+    }
+    const double ml = 12 + 7.0 * (double)widest > 70 ? 12 + 7.0 * (double)widest : 70;
     const double pw = width - ml - mr, ph = height - mt - mb;
 #define X(t) (ml + ((t) - t0) / (t1 - t0) * pw)
 #define Y(v) (mt + ph - ((v) - lo) / (hi - lo) * ph)
     plot_svg_header(f, width, height, job->caption, inline_html);
     fprintf(f, "  <rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"none\" "
                "stroke=\"#222222\"/>\n", ml, mt, pw, ph);
-    const long nv = lround((hi - lo) / ty);
     for (long i = 0; i <= nv; i++) {
         const double v = lo + (double)i * ty, y = Y(v);
-        char num[BRAUN_CLI_NUMBER_SIZE];
-        snprintf(num, sizeof num, "%.4g", fabs(v) < 1e-12 * ty ? 0.0 : v);
+        char num[40];
+        snprintf(num, sizeof num, "%.*g", dv, tick_value(lo, ty, i));
         line(f, "  ", ml, y, ml + pw, y, "stroke=\"#dddddd\" stroke-width=\"1\"");
         fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"12\" "
                    "text-anchor=\"end\">%s</text>\n", ml - 6, y + 4, num);
     }
-    const double first = ceil(t0 / tt) * tt;
-    const long nt = (long)floor((t1 - first) / tt + 1e-9);
     for (long i = 0; i <= nt; i++) {
         const double t = first + (double)i * tt, x = X(t);
         line(f, "  ", x, mt + ph, x, mt + ph + 5, "stroke=\"#222222\" stroke-width=\"1\"");
         fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"12\" "
-                   "text-anchor=\"middle\">%.4g</text>\n", x, mt + ph + 18, fabs(t) < 1e-12 * tt ? 0.0 : t);
+                   "text-anchor=\"middle\">%.*g</text>\n", x, mt + ph + 18, dt, tick_value(first, tt, i));
     }
     fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"13\" "
                "text-anchor=\"middle\">t [s]</text>\n", ml + pw / 2, height - 12);
