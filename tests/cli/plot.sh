@@ -527,6 +527,14 @@ apart() {
 }
 check "plot: the time ticks of a 0.1 s window at t = 1000 all read apart" apart tail.svg middle
 check "plot: the value ticks of a pendulum at x = 1e8 all read apart" apart far.svg end
+# A drive's arrow turns with the crank on screen: --view yx mirrors the
+# plane, and the arrow kept xy's counter-clockwise arc (sweep flag 0) while
+# the crank turned clockwise.
+"$BRAUN" plot driven-crank --dt 1e-3 --t-end 0.2 --frames 3 -o dc-xy.svg 2> /dev/null
+"$BRAUN" plot driven-crank --dt 1e-3 --t-end 0.2 --frames 3 --view yx -o dc-yx.svg 2> /dev/null
+check "plot --view yx: the drive's arrow turns the other way on screen than in xy" sh -c '
+    a=$(grep -o "A 15.0 15.0 0 1 [01]" dc-xy.svg | sort -u); b=$(grep -o "A 15.0 15.0 0 1 [01]" dc-yx.svg | sort -u)
+    [ "$a" = "A 15.0 15.0 0 1 0" ] && [ "$b" = "A 15.0 15.0 0 1 1" ]'
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

@@ -264,7 +264,11 @@ void plot_svg_items(FILE *f, const plot_job *job, const plot_canvas *cv, const d
             spring(f, in, xa, ya, xb, yb);
             break;
         case PLOT_ROTOR: {
-            const int sense = plot_item_sense(it, t);
+            /* The sense is about +z (x towards y); a view that shows the
+             * plane mirrored (yx, xz, zy: across and up not in the order
+             * x, y, z, x) turns it over on screen. */
+            const int mirrored = (dr->axis_v - dr->axis_u + 3) % 3 != 1;
+            const int sense = plot_item_sense(it, t) * (mirrored ? -1 : 1);
             if (sense) rotor(f, in, xa, ya, sense);
             break;
         }
