@@ -535,6 +535,34 @@ check "plot: the value ticks of a pendulum at x = 1e8 all read apart" apart far.
 check "plot --view yx: the drive's arrow turns the other way on screen than in xy" sh -c '
     a=$(grep -o "A 15.0 15.0 0 1 [01]" dc-xy.svg | sort -u); b=$(grep -o "A 15.0 15.0 0 1 [01]" dc-yx.svg | sort -u)
     [ "$a" = "A 15.0 15.0 0 1 0" ] && [ "$b" = "A 15.0 15.0 0 1 1" ]'
+# The caption stays on the canvas, clear of the scale bar and of the
+# chart's "t [s]", with the run's status whole: a 50-letter scene name ran
+# it under the bar and off the edge at "stopped, BRAUN_ERR_AC".
+cat > longname.json << 'EOF'
+{"name": "a-rather-long-but-perfectly-ordinary-scene-name-v2", "bodies": [{"name": "bob", "type": "particle", "mass": 1, "position": [1, 0]}],
+ "joints": [{"name": "rod", "type": "distance", "a": [0, 0], "b": "bob", "drive": {"type": "linear", "value": 1, "rate": -0.5}}],
+ "effects": [{"type": "gravity", "g": [0, -9.81]}]}
+EOF
+"$BRAUN" plot longname.json --dt 1e-3 --t-end 3 -o longname.svg 2> /dev/null
+"$BRAUN" plot longname.json --dt 1e-3 --t-end 3 --plot bob.x,bob.y -o longname-chart.svg 2> /dev/null
+# Text widths at 0.6 em a letter (DejaVu Sans's lower case and digits are
+# narrower); the bar's line is the last of stroke-width 2.
+check "plot: a long caption stays on the canvas, left of the scale bar, its status whole" sh -c '
+    grep -q ">(of 3 s: stopped, BRAUN_ERR_ACCURACY)" longname.svg &&
+    { grep -o "<line [^>]*stroke-width=\"2\"/>" longname.svg | tail -1 | sed "s/.*x1=\"\([^\"]*\)\" y1=\"\([^\"]*\)\".*/B \1 \2/"
+      grep "<text x=\"28.00\" [^>]*font-size=\"13\">" longname.svg | sed "s/.*x=\"\([^\"]*\)\" y=\"\([^\"]*\)\"[^>]*>\(.*\)<\/text>/T \1 \2 \3/"; } |
+    awk "\$1 == \"B\" { bx = \$2; by = \$3; next }
+         \$1 == \"T\" { n++; x = \$2; y = \$3; t = \$0; sub(/^T [^ ]* [^ ]* /, \"\", t); e = x + 0.6 * 13 * length(t)
+                      if (e > 800 || (y > by - 20 && y < by + 20 && e > bx - 4)) bad = 1 }
+         END { exit !(bx > 400 && n >= 1 && !bad) }"'
+check "plot: a long chart caption stays on the canvas, under the time axis's label" sh -c '
+    grep -q ">(of 3 s: stopped, BRAUN_ERR_ACCURACY)" longname-chart.svg &&
+    { grep -o "<text x=\"[^\"]*\" y=\"[^\"]*\"[^>]*>t \[s\]<" longname-chart.svg | sed "s/<text x=\"\([^\"]*\)\" y=\"\([^\"]*\)\".*/L \1 \2/"
+      grep "font-size=\"11\"" longname-chart.svg | sed "s/.*x=\"\([^\"]*\)\" y=\"\([^\"]*\)\"[^>]*>\(.*\)<\/text>/T \1 \2 \3/"; } |
+    awk "\$1 == \"L\" { ly = \$3; next }
+         \$1 == \"T\" { n++; x = \$2; y = \$3; t = \$0; sub(/^T [^ ]* [^ ]* /, \"\", t)
+                      if (x + 0.6 * 11 * length(t) > 800 || y < ly + 11) bad = 1 }
+         END { exit !(ly > 0 && n >= 1 && !bad) }"'
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

@@ -168,7 +168,15 @@ typedef struct plot_canvas {
     double width, height, margin, bottom; /* px; bottom: room for the caption */
     double scale;                         /* px per metre */
     double u0, v0;                        /* world coordinates at the plot's lower left */
+    double caption_width;                 /* px left of the scale bar for the caption */
+    int caption_lines;                    /* lines it wraps to (bottom grows with them) */
 } plot_canvas;
+/* The caption wrapped to lines of at most width px at font px (an
+ * estimate of sans-serif's widest letters): line k of them into out (NULL:
+ * only count); a word longer than a line keeps its ends around "...".
+ * Returns the number of lines. */
+int plot_caption_wrap(const char *caption, double width, double font, int k, char *out,
+                      size_t size);
 /* The canvas fitting every frame's extent (guides and ground marks aside). */
 void plot_canvas_fit(plot_canvas *cv, const plot_job *job);
 /* Screen position of a world point. */

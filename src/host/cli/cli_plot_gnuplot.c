@@ -99,8 +99,16 @@ static int script(FILE *g, const plot_job *job)
     }
     fprintf(g, "set terminal pngcairo noenhanced size 1000,%d font 'sans,11' background '#ffffff'\n"
                "set output\nset grid\n", height);
+    /* The title wrapped as the SVG's caption (1000 px at 11 pt): on one
+     * line a long one ran off both sides. */
     fputs("set title ", g);
-    gp_string(g, job->caption);
+    const int lines = plot_caption_wrap(job->caption, 960, 15, 0, NULL, 0);
+    for (int k = 0; k < lines; k++) {
+        char text[1024];
+        plot_caption_wrap(job->caption, 960, 15, k, text, sizeof text);
+        if (k) fputs(" . \"\\n\" . ", g);
+        gp_string(g, text);
+    }
     fputc('\n', g);
     double *pos = dr ? malloc((size_t)dr->nanchors * 3 * sizeof *pos) : NULL;
     braun_real *qr = malloc((size_t)s->n * sizeof *qr);

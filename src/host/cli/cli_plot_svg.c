@@ -39,6 +39,106 @@ void plot_xml_text(FILE *f, const char *s)
     }
 }
 
+/* Caption text: 13 px, estimated at 0.66 em a letter (capitals and digits
+ * of DejaVu Sans are 0.6 to 0.77 em). */
+#define CAPTION_FONT 13.0
+#define EM_ESTIMATE 0.66
+
+/* Append word (len letters) to the wrapped lines: a new line first when
+ * it does not fit; line k kept in out. */
+typedef struct wrap_state {
+    size_t most, used;
+    int line, k;
+    char buf[1024];
+    char *out;
+    size_t size;
+} wrap_state;
+
+static void wrap_word(wrap_state *w, const char *word, size_t len)
+{
+    char cut[1024];
+    if (len >= sizeof cut) len = sizeof cut - 1;
+    if (len > w->most) {
+        /* A name longer than a line: its head and tail around "...". */
+        const size_t head = (w->most - 3) / 2, tail = w->most - 3 - head;
+        memcpy(cut, word, head);
+        memcpy(cut + head, "...", 3);
+        memcpy(cut + head + 3, word + len - tail, tail);
+        word = cut;
+        len = w->most;
+    }
+    if (w->used > 0 && w->used + 1 + len > w->most) {
+        if (w->line == w->k && w->out) snprintf(w->out, w->size, "%s", w->buf);
+        w->line++;
+        w->used = 0;
+    }
+    if (w->used > 0) w->buf[w->used++] = ' ';
+    memcpy(w->buf + w->used, word, len);
+    w->used += len;
+    w->buf[w->used] = '\0';
+}
+
+int plot_caption_wrap(const char *caption, double width, double font, int k, char *out,
+                      size_t size)
+{
+    wrap_state w;
+    memset(&w, 0, sizeof w);
+    w.most = (size_t)(width / (EM_ESTIMATE * font));
+    if (w.most < 12) w.most = 12;
+    if (w.most > sizeof w.buf / 2) w.most = sizeof w.buf / 2;
+    w.k = k;
+    w.out = out;
+    w.size = size;
+    if (out && size) out[0] = '\0';
+    /* Lines break between clauses — after ", " or "; ", before " (" — so
+     * "(of 3 s: stopped, BRAUN_ERR_ACCURACY)" stays whole; a clause
+     * longer than a line breaks between its words. */
+    const char *p = caption ? caption : "";
+    while (*p) {
+        while (*p == ' ') p++;
+        if (!*p) break;
+        const char *end = p;
+        for (;;) {
+            const char *sp = strchr(end, ' ');
+            if (!sp) {
+                end += strlen(end);
+                break;
+            }
+            const int paren = *p != '(' && sp[1] == '(';
+            const int clause = sp > end && (sp[-1] == ',' || sp[-1] == ';') && *p != '(';
+            end = sp;
+            if (paren || clause || (*p == '(' && sp > p && sp[-1] == ')')) break;
+            end = sp + 1;
+        }
+        while (end > p && end[-1] == ' ') end--;
+        const size_t len = (size_t)(end - p);
+        if (len <= w.most) {
+            wrap_word(&w, p, len);
+        } else {
+            for (const char *q = p; q < end;) {
+                while (q < end && *q == ' ') q++;
+                const char *e = q;
+                while (e < end && *e != ' ') e++;
+                if (e > q) wrap_word(&w, q, (size_t)(e - q));
+                q = e;
+            }
+        }
+        p = end;
+    }
+    if (w.line == k && out) snprintf(out, size, "%s", w.buf);
+    return w.line + 1;
+}
+
+/* The scale bar's length in m: 1, 2 or 5 times a power of ten, about a
+ * fifth of the width (0 when there is none). */
+static double scale_bar_length(const plot_canvas *cv)
+{
+    const double want = (cv->width - 2 * cv->margin) / 5 / cv->scale;
+    if (!(want > 0) || !isfinite(want)) return 0;
+    const double p = pow(10, floor(log10(want)));
+    return want / p >= 5 ? 5 * p : want / p >= 2 ? 2 * p : p;
+}
+
 long plot_frame_row(const plot_job *job, long k)
 {
     const plot_samples *s = job->samples;
@@ -133,6 +233,16 @@ void plot_canvas_fit(plot_canvas *cv, const plot_job *job)
     if (dv * cv->scale > CANVAS_MAX_PLOT_HEIGHT) cv->scale = CANVAS_MAX_PLOT_HEIGHT / dv;
     double plot_h = dv * cv->scale;
     if (plot_h < 120) plot_h = 120;
+    /* The caption left of the scale bar, on as many lines as it takes: a
+     * long one ran under the bar and off the canvas, losing the run's
+     * status at its end. */
+    const double bar = scale_bar_length(cv) * cv->scale;
+    cv->caption_width = cv->width - 2 * cv->margin - (isfinite(bar) ? bar : 0) - 24;
+    cv->caption_lines = plot_caption_wrap(job->caption, cv->caption_width, CAPTION_FONT, 0, NULL, 0);
+    /* Room for two lines always: most captions take one or two, and a
+     * picture's size should not hang on which (--traj's and the run's
+     * captions differ, their drawings do not). */
+    cv->bottom += 16.0 * (cv->caption_lines > 2 ? cv->caption_lines - 1 : 1);
     cv->height = plot_h + 2 * cv->margin + cv->bottom;
     cv->u0 = lo[0] - (avail_w / cv->scale - du) / 2;
     cv->v0 = lo[1] - (plot_h / cv->scale - dv) / 2;
@@ -436,10 +546,8 @@ int plot_job_resolution(plot_job *job)
  * the width, at the lower right. */
 void plot_svg_scale_bar(FILE *f, const plot_canvas *cv)
 {
-    const double want = (cv->width - 2 * cv->margin) / 5 / cv->scale;
-    if (!(want > 0) || !isfinite(want)) return;
-    const double p = pow(10, floor(log10(want)));
-    const double len = want / p >= 5 ? 5 * p : want / p >= 2 ? 2 * p : p;
+    const double len = scale_bar_length(cv);
+    if (!(len > 0)) return;
     const double x1 = cv->width - cv->margin, x0 = x1 - len * cv->scale;
     const double y = cv->height - 14;
     line(f, "  ", x0, y, x1, y, "stroke=\"#222222\" stroke-width=\"2\"");
@@ -451,10 +559,14 @@ void plot_svg_scale_bar(FILE *f, const plot_canvas *cv)
 
 void plot_svg_caption(FILE *f, const plot_job *job, const plot_canvas *cv)
 {
-    fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"13\">",
-            cv->margin, cv->height - 12);
-    plot_xml_text(f, job->caption);
-    fputs("</text>\n", f);
+    for (int k = 0; k < cv->caption_lines; k++) {
+        char text[1024];
+        plot_caption_wrap(job->caption, cv->caption_width, CAPTION_FONT, k, text, sizeof text);
+        fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"13\">",
+                cv->margin, cv->height - 12 - 16.0 * (cv->caption_lines - 1 - k));
+        plot_xml_text(f, text);
+        fputs("</text>\n", f);
+    }
     const plot_drawing *dr = job->drawing;
     for (int i = 0; dr && i < dr->ntraces; i++) {
         fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"12\" "
@@ -611,7 +723,10 @@ int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, in
         braun_cli_error("out of memory");
         return -1;
     }
-    const double mr = 20, mt = 20 + 16.0 * job->nseries, mb = 50;
+    /* The caption on its own lines under the time axis's label (it ran
+     * over "t [s]" at the right). */
+    const int lines = plot_caption_wrap(job->caption, width - 20, 11, 0, NULL, 0);
+    const double mr = 20, mt = 20 + 16.0 * job->nseries, mb = 50 + 14.0 * lines;
     double range[4];
     if (plot_chart_range(job, pos, qr, range)) {
         free(pos);
@@ -655,7 +770,7 @@ int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, in
                    "text-anchor=\"middle\">%.*g</text>\n", x, mt + ph + 18, dt, tick_value(first, tt, i));
     }
     fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"13\" "
-               "text-anchor=\"middle\">t [s]</text>\n", ml + pw / 2, height - 12);
+               "text-anchor=\"middle\">t [s]</text>\n", ml + pw / 2, mt + ph + 36);
     /* A series faster than the kept states resolve: its envelope, each
      * bin's least to greatest value over the bin's time, shaded under the
      * line (as an oscilloscope's), so no swing is drawn that did not
@@ -700,10 +815,15 @@ int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, in
     }
 #undef X
 #undef Y
-    fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"11\" "
-               "fill=\"#555555\" text-anchor=\"end\">", width - mr, height - 12);
-    plot_xml_text(f, job->caption);
-    fputs("</text>\n</svg>\n", f);
+    for (int k = 0; k < lines; k++) {
+        char text[1024];
+        plot_caption_wrap(job->caption, width - 20, 11, k, text, sizeof text);
+        fprintf(f, "  <text x=\"10\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"11\" "
+                   "fill=\"#555555\">", height - 10 - 14.0 * (lines - 1 - k));
+        plot_xml_text(f, text);
+        fputs("</text>\n", f);
+    }
+    fputs("</svg>\n", f);
     free(pos);
     free(qr);
     return 0;
