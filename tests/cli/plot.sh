@@ -563,6 +563,13 @@ check "plot: a long chart caption stays on the canvas, under the time axis's lab
          \$1 == \"T\" { n++; x = \$2; y = \$3; t = \$0; sub(/^T [^ ]* [^ ]* /, \"\", t)
                       if (x + 0.6 * 11 * length(t) > 800 || y < ly + 11) bad = 1 }
          END { exit !(ly > 0 && n >= 1 && !bad) }"'
+# A run that stops before --from draws nothing, and says so: only the
+# guard's message was printed, and the file stayed as it was.
+echo old > before.svg
+"$BRAUN" plot pendulum --dt 0.25 --t-end 3 --from 0.3 -o before.svg 2> before.err; rc=$?
+check "plot: a run stopped before --from exits 1, says no picture was written and why, file as it was" \
+    sh -c '[ "$1" -eq 1 ] && [ "$(cat before.svg)" = old ] &&
+           grep -q "no picture written (-o before.svg left as it was): the run stopped at t = 0 s, before --from 0.3" before.err' sh "$rc"
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

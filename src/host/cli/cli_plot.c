@@ -33,6 +33,7 @@ typedef struct plot_run {
     double *row;
     int n;
     int status; /* the run's (done) */
+    double last_t; /* the latest state's time, kept or not */
 } plot_run;
 
 static void on_state(void *user, double t, const double *q, const double *v,
@@ -40,6 +41,7 @@ static void on_state(void *user, double t, const double *q, const double *v,
 {
     plot_run *pr = (plot_run *)user;
     const int n = pr->n;
+    pr->last_t = t;
     pr->row[0] = t;
     memcpy(pr->row + 1, q, (size_t)n * sizeof *q);
     memcpy(pr->row + 1 + n, v, (size_t)n * sizeof *v);
@@ -226,12 +228,20 @@ int braun_cli_plot(int argc, char **argv)
         row = rc ? NULL : malloc((size_t)samples.cols * sizeof *row);
         if (!rc && !row) rc = braun_cli_error("out of memory");
         if (!rc) {
-            plot_run pr = {&samples, row, tg.sys.n, BRAUN_OK};
+            plot_run pr = {&samples, row, tg.sys.n, BRAUN_OK, NAN};
             braun_cli_observer obs = {on_state, done, &pr};
             a.plot_output = &out;
             /* A failed run still draws up to its last good state. */
             rc = braun_cli_run_target(&a, &tg, &obs);
-            if (rc && samples.count == 0) goto finish;
+            /* Stopped before the window: say that nothing was drawn (only
+             * the run's own message did, and the file stayed as it was). */
+            if (rc && samples.count == 0) {
+                if (isfinite(pr.last_t))
+                    (void)braun_cli_error("no picture written (-o %s left as it was): the run "
+                                          "stopped at t = %g s, before --from %g", a.plot_path,
+                                          pr.last_t, from);
+                goto finish;
+            }
             if (a.method == BRAUN_DOPRI5)
                 snprintf(caption, sizeof caption, "%s: dopri5, rtol %g, t = %g ... %g s", tg.name,
                          a.rtol, samples.count ? samples.rows[0] : from,
