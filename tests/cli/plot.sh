@@ -570,6 +570,11 @@ echo old > before.svg
 check "plot: a run stopped before --from exits 1, says no picture was written and why, file as it was" \
     sh -c '[ "$1" -eq 1 ] && [ "$(cat before.svg)" = old ] &&
            grep -q "no picture written (-o before.svg left as it was): the run stopped at t = 0 s, before --from 0.3" before.err' sh "$rc"
+# Series past the eighth have colours of their own (link4.omega took
+# link1.theta's red).
+"$BRAUN" plot chain-5 --dt 1e-3 --t-end 0.5 --plot link1.theta,link2.theta,link3.theta,link4.theta,link5.theta,link1.omega,link2.omega,link3.omega,link4.omega,link5.omega -o many.svg 2> /dev/null
+check "plot: 10 chart series in 10 colours" \
+    [ "$(grep -o '<polyline fill="none" stroke="[^"]*"' many.svg | sort -u | wc -l)" -eq 10 ]
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

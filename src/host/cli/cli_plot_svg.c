@@ -22,8 +22,12 @@ static double series_value(const plot_job *job, const plot_series *sr, const dou
 
 const char *plot_colour(int i)
 {
+    /* One per series or trace (at most 16 of either): with 8 the 9th
+     * series took the 1st's colour. */
     static const char *const c[] = {"#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
-                                    "#17becf", "#8c564b", "#e377c2", "#7f7f7f"};
+                                    "#17becf", "#8c564b", "#e377c2", "#7f7f7f",
+                                    "#1f77b4", "#bcbd22", "#393b79", "#ad494a",
+                                    "#637939", "#8c6d31", "#7b4173", "#000000"};
     return c[(unsigned)i % (sizeof c / sizeof c[0])];
 }
 
