@@ -575,6 +575,15 @@ check "plot: a run stopped before --from exits 1, says no picture was written an
 "$BRAUN" plot chain-5 --dt 1e-3 --t-end 0.5 --plot link1.theta,link2.theta,link3.theta,link4.theta,link5.theta,link1.omega,link2.omega,link3.omega,link4.omega,link5.omega -o many.svg 2> /dev/null
 check "plot: 10 chart series in 10 colours" \
     [ "$(grep -o '<polyline fill="none" stroke="[^"]*"' many.svg | sort -u | wc -l)" -eq 10 ]
+# --plot traj_err of a scene with no reference drew an empty chart with
+# exit 0 (its column is empty); now a usage error naming the reason. A
+# built-in model has one and charts it.
+echo old > te.svg
+"$BRAUN" plot chain-5 --dt 1e-2 --t-end 0.5 --plot traj_err -o te.svg 2> te.err; rc=$?
+check "plot --plot traj_err without a reference: exit 2, says so, file as it was" \
+    sh -c '[ "$1" -eq 2 ] && [ "$(cat te.svg)" = old ] && grep -q "has no reference solution" te.err' sh "$rc"
+check "plot --plot traj_err of the pendulum (a reference): exit 0" \
+    "$BRAUN" plot pendulum --dt 1e-2 --t-end 0.5 --plot traj_err -o te2.svg
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

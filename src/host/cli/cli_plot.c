@@ -73,7 +73,13 @@ static int resolve_series(plot_job *job, plot_drawing *dr, const braun_cli_targe
         const int axis = strchr("xyz", item[len - 1]) && (len == 1 || item[len - 2] == '.')
                              ? item[len - 1] - 'x'
                              : -1;
-        if (col > 0) {
+        if (col > 0 && strcmp(item, "traj_err") == 0 && !t->reference && !job->args->traj_path) {
+            /* Its column is empty without a reference: an empty chart with
+             * exit 0 looked like a chart (found by an outside client). */
+            return braun_cli_error("--plot traj_err: '%s' has no reference solution, so its "
+                                   "trajectory error is not known (a scene names one with \"reference\": docs/scene-format.md)",
+                                   t->name);
+        } else if (col > 0) {
             if (job->nseries == most) return braun_cli_error("--plot: at most %d series", most);
             plot_series *sr = &job->series[job->nseries++];
             sr->column = col;
