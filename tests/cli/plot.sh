@@ -584,6 +584,16 @@ check "plot --plot traj_err without a reference: exit 2, says so, file as it was
     sh -c '[ "$1" -eq 2 ] && [ "$(cat te.svg)" = old ] && grep -q "has no reference solution" te.err' sh "$rc"
 check "plot --plot traj_err of the pendulum (a reference): exit 0" \
     "$BRAUN" plot pendulum --dt 1e-2 --t-end 0.5 --plot traj_err -o te2.svg
+# An adaptive run's uneven steps: frames picked as the kept state nearest
+# even times repeated three states and skipped three (21 states, "21
+# configurations", 18 drawn); now every state once, and a caption that
+# counts the configurations drawn.
+"$BRAUN" plot pendulum --integrator dopri5 --rtol 1e-3 --atol 1e-3 --dt 1e-3 --t-end 3 --frames 25 -o dpk.svg 2> /dev/null
+check "plot dopri5, 21 states, --frames 25: 21 distinct frames" \
+    [ "$(grep -o 'data-t="[^"]*"' dpk.svg | sort -u | wc -l)" -eq "$(grep -c 'class="frame"' dpk.svg)" ]
+"$BRAUN" plot pendulum --integrator dopri5 --rtol 1e-3 --atol 1e-3 --dt 1e-3 --t-end 3 --frames 20 -o dpk20.svg 2> /dev/null
+check "plot dopri5, --frames 20: the caption counts the distinct configurations drawn" \
+    [ "$(grep -o '[0-9]* configurations' dpk20.svg | head -1 | cut -d' ' -f1)" -eq "$(grep -o 'data-t="[^"]*"' dpk20.svg | sort -u | wc -l)" ]
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

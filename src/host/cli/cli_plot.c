@@ -274,7 +274,18 @@ int braun_cli_plot(int argc, char **argv)
         goto finish;
     }
     {
-        const long frames = job.frames < samples.count ? job.frames : samples.count;
+        long frames = job.frames < samples.count ? job.frames : samples.count;
+        /* The configurations drawn: frames whose nearest kept state is
+         * another frame's are one (uneven adaptive steps). */
+        if (frames > 1) {
+            long distinct = 0, last = -1;
+            for (long k = 0; k < frames; k++) {
+                const long r = plot_frame_row(&job, k);
+                if (r != last) distinct++;
+                last = r;
+            }
+            frames = distinct;
+        }
         size_t len = strlen(caption);
         if (!a.plot_columns && fmt != FMT_HTML && len < sizeof caption)
             snprintf(caption + len, sizeof caption - len, frames == 1 ? ", %ld configuration"

@@ -148,6 +148,10 @@ long plot_frame_row(const plot_job *job, long k)
     const plot_samples *s = job->samples;
     const long frames = job->frames < s->count ? job->frames : s->count;
     if (frames <= 1) return s->count - 1;
+    /* As many frames as kept states: each state once. The nearest row of
+     * evenly spaced times repeated some of an adaptive run's uneven steps
+     * and skipped others (21 states, "21 configurations", 18 drawn). */
+    if (frames == s->count) return k;
     const double t0 = s->rows[0], t1 = s->rows[(size_t)(s->count - 1) * (size_t)s->cols];
     const double want = t0 + (t1 - t0) * (double)k / (double)(frames - 1);
     /* The row nearest want (the last frame: the last row). The first at or
