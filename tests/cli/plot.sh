@@ -594,6 +594,12 @@ check "plot dopri5, 21 states, --frames 25: 21 distinct frames" \
 "$BRAUN" plot pendulum --integrator dopri5 --rtol 1e-3 --atol 1e-3 --dt 1e-3 --t-end 3 --frames 20 -o dpk20.svg 2> /dev/null
 check "plot dopri5, --frames 20: the caption counts the distinct configurations drawn" \
     [ "$(grep -o '[0-9]* configurations' dpk20.svg | head -1 | cut -d' ' -f1)" -eq "$(grep -o 'data-t="[^"]*"' dpk20.svg | sort -u | wc -l)" ]
+# A spatial scene's SVG and HTML say which plane they show (the PNG's axis
+# labels did; these did not).
+"$BRAUN" plot spatial-arm --dt 1e-3 --t-end 0.2 --view xz -o sa-xz.svg 2> /dev/null
+"$BRAUN" plot spatial-arm --dt 1e-3 --t-end 0.2 -o sa.html 2> /dev/null
+check "plot spatial-arm: the SVG and HTML captions name the view's plane" \
+    sh -c 'grep -q "view xz (x across, z up)" sa-xz.svg && grep -q "view xy (x across, y up)" sa.html'
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

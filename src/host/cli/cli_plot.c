@@ -287,6 +287,14 @@ int braun_cli_plot(int argc, char **argv)
             frames = distinct;
         }
         size_t len = strlen(caption);
+        /* The plane shown, where there is a choice (a spatial scene) or a
+         * mirror: the PNG's axis labels said it, the SVG and HTML did not. */
+        if (!a.plot_columns && want_drawing && (dr.scene->dim == 3 || strcmp(dr.view, "xy") != 0) &&
+            len < sizeof caption) {
+            snprintf(caption + len, sizeof caption - len, ", view %s (%c across, %c up)", dr.view,
+                     dr.view[0], dr.view[1]);
+            len = strlen(caption);
+        }
         if (!a.plot_columns && fmt != FMT_HTML && len < sizeof caption)
             snprintf(caption + len, sizeof caption - len, frames == 1 ? ", %ld configuration"
                                                                         : ", %ld configurations (earlier fainter)",
