@@ -600,6 +600,12 @@ check "plot dopri5, --frames 20: the caption counts the distinct configurations 
 "$BRAUN" plot spatial-arm --dt 1e-3 --t-end 0.2 -o sa.html 2> /dev/null
 check "plot spatial-arm: the SVG and HTML captions name the view's plane" \
     sh -c 'grep -q "view xz (x across, z up)" sa-xz.svg && grep -q "view xy (x across, y up)" sa.html'
+# Points 1e-310 apart (subnormal): the canvas's scale overflows; the
+# message said they spanned "more than the range of a double".
+printf 't [s],bob.x [m],bob.y [m],bob.vx [m/s],bob.vy [m/s],pos_err [Phi_q],vel_err [Phi_q/s],energy_err [J],traj_err [q]\n0,1e-310,0,0,0,0,0,0,0\n1,-1e-310,1e-310,0,0,0,0,0,0\n' > tiny310.csv
+"$BRAUN" plot pendulum --traj tiny310.csv -o t310.svg 2> t310.err; rc=$?
+check "plot --traj of points 1e-310 apart: exit 2, the message names a span below a double's normal range" \
+    sh -c '[ "$1" -eq 2 ] && grep -q "less than its smallest normal number" t310.err' sh "$rc"
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

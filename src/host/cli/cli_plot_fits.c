@@ -4,6 +4,7 @@
  * come from finite ones: coordinates at 1e308 and -1e308 span inf, and the
  * canvas's scale, the chart's ticks and each screen position would be NaN.
  * Such a picture is refused with one message instead of written. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,8 +33,12 @@ static int drawing_fits(const plot_job *job)
     plot_canvas_fit(&cv, job);
     if (!(isfinite(cv.scale) && cv.scale > 0 && isfinite(cv.u0) && isfinite(cv.v0) &&
           isfinite(cv.height)))
-        return braun_cli_error("the drawing's points span more than the range of a double (its "
-                               "scale and positions would be NaN): nothing written");
+        /* Too wide (1e308 and -1e308) or too narrow (points 1e-310 apart:
+         * the canvas over that span overflows) — both were called "more
+         * than the range of a double". */
+        return braun_cli_error("the drawing's scale would not be a finite number: its points span "
+                               "more than a double's range or less than its smallest normal "
+                               "number (%g): nothing written", DBL_MIN);
     double *pos = malloc((size_t)dr->nanchors * 3 * sizeof *pos + 1);
     braun_real *qr = malloc((size_t)s->n * sizeof *qr + 1);
     char *use = calloc((size_t)dr->nanchors + 1, 1);
