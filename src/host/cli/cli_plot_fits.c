@@ -33,12 +33,16 @@ static int drawing_fits(const plot_job *job)
     plot_canvas_fit(&cv, job);
     if (!(isfinite(cv.scale) && cv.scale > 0 && isfinite(cv.u0) && isfinite(cv.v0) &&
           isfinite(cv.height)))
-        /* Too wide (1e308 and -1e308) or too narrow (points 1e-310 apart:
-         * the canvas over that span overflows) — both were called "more
-         * than the range of a double". */
-        return braun_cli_error("the drawing's scale would not be a finite number: its points span "
-                               "more than a double's range or less than its smallest normal "
-                               "number (%g): nothing written", DBL_MIN);
+    {
+        /* Too narrow (points 1e-310 apart: the canvas over that span
+         * overflows, scale inf) was called "more than the range of a
+         * double", as too wide (1e308 and -1e308: scale 0 or NaN) is. */
+        if (cv.scale > 0 && !isfinite(cv.scale))
+            return braun_cli_error("the drawing's points span less than a double's smallest normal "
+                                   "number (%g): its scale would overflow; nothing written", DBL_MIN);
+        return braun_cli_error("the drawing's points span more than the range of a double (its "
+                               "scale and positions would be NaN): nothing written");
+    }
     double *pos = malloc((size_t)dr->nanchors * 3 * sizeof *pos + 1);
     braun_real *qr = malloc((size_t)s->n * sizeof *qr + 1);
     char *use = calloc((size_t)dr->nanchors + 1, 1);
