@@ -32,8 +32,7 @@ static int drawing_fits(const plot_job *job)
     plot_canvas cv;
     plot_canvas_fit(&cv, job);
     if (!(isfinite(cv.scale) && cv.scale > 0 && isfinite(cv.u0) && isfinite(cv.v0) &&
-          isfinite(cv.height)))
-    {
+          isfinite(cv.height))) {
         /* Too narrow (points 1e-310 apart: the canvas over that span
          * overflows, scale inf) was called "more than the range of a
          * double", as too wide (1e308 and -1e308: scale 0 or NaN) is. */
