@@ -606,6 +606,13 @@ printf 't [s],bob.x [m],bob.y [m],bob.vx [m/s],bob.vy [m/s],pos_err [Phi_q],vel_
 "$BRAUN" plot pendulum --traj tiny310.csv -o t310.svg 2> t310.err; rc=$?
 check "plot --traj of points 1e-310 apart: exit 2, the message names a span below a double's normal range" \
     sh -c '[ "$1" -eq 2 ] && grep -q "span less than a double.s smallest normal number" t310.err' sh "$rc"
+# A large scene's animation says how large it is (131 MB for a chain of
+# 1000 links at the default 400 frames, silently).
+"$BRAUN" gen chain 1000 -o ch1000.json 2> /dev/null
+"$BRAUN" plot ch1000.json --sparse --backend suitesparse --dt 1e-3 --t-end 0.4 -o ch1000.html 2> ch1000.err; rc=$?
+rm -f ch1000.html
+check "plot .html of a 1000-link chain: exit 0 and a note of its size with the way to shrink it" \
+    sh -c '[ "$1" -eq 0 ] && grep -q "^braun: note: ch1000.html is [0-9]* MB (400 frames): --frames N makes it smaller" ch1000.err' sh "$rc"
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

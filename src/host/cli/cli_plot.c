@@ -337,6 +337,13 @@ int braun_cli_plot(int argc, char **argv)
                     wrc = plot_write_svg(out.f, &job);
                 } else if (fmt == FMT_HTML) {
                     wrc = plot_write_html(out.f, &job);
+                    /* A large scene's animation is large: a 1000-link
+                     * chain's was 131 MB at the default 400 frames, and
+                     * said nothing (found by an outside client). */
+                    const long bytes = wrc ? -1 : ftell(out.f);
+                    if (bytes > 100L * 1000 * 1000)
+                        fprintf(stderr, "braun: note: %s is %.0f MB (%ld frames): --frames N makes it "
+                                        "smaller\n", a.plot_path, (double)bytes / 1e6, job.frames);
                 } else {
                     wrc = plot_copy_png(img, out.f); /* closes img */
                     img = NULL;
