@@ -613,6 +613,10 @@ check "plot --traj of points 1e-310 apart: exit 2, the message names a span belo
 rm -f ch1000.html
 check "plot .html of a 1000-link chain: exit 0 and a note of its size with the way to shrink it" \
     sh -c '[ "$1" -eq 0 ] && grep -q "^braun: note: ch1000.html is [0-9]* MB (400 frames): --frames N makes it smaller" ch1000.err' sh "$rc"
+# z of a planar scene is 0 throughout: --view refused it, --plot charted it.
+"$BRAUN" plot slider-crank --dt 1e-2 --t-end 1 --plot crank.A.z -o z.svg 2> z.err; rc=$?
+check "plot --plot crank.A.z of a planar scene: exit 2, says it is planar" \
+    sh -c '[ "$1" -eq 2 ] && grep -q "is planar (no z)" z.err' sh "$rc"
 # A slider's rail covers its block's travel: it reached as far as the
 # scene's initial size, and the slider-crank's block ran past both ends.
 "$BRAUN" plot slider-crank.json --dt 1e-2 --t-end 3 --points rod.B -o rail.svg 2> /dev/null

@@ -84,6 +84,9 @@ static int resolve_series(plot_job *job, plot_drawing *dr, const braun_cli_targe
             plot_series *sr = &job->series[job->nseries++];
             sr->column = col;
             braun_cli_column_name(t, n, col, sr->label, sizeof sr->label, &sr->unit);
+        } else if (axis == 2 && dr && dr->scene && dr->scene->dim != 3) {
+            /* As --view refuses z on a planar scene: its z is 0 throughout. */
+            return braun_cli_error("--plot %s: '%s' is planar (no z)", item, t->name);
         } else if (axis >= 0 && len == 1) {
             if (!dr || dr->ntraces == 0)
                 return braun_cli_error("--plot %s: a coordinate of the --points points; give "
