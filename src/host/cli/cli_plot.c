@@ -145,6 +145,7 @@ static void extra_values(void *ctx, const double *row, double *out)
         }
         return;
     }
+    if (!x->dr) return; /* paths without a drawing: none (the caller's rule) */
     for (int i = 0; i < x->dr->ntraces; i++) {
         const double *p = x->pos + 3 * x->dr->traces[i].anchor;
         out[2 * i] = p[x->dr->axis_u];

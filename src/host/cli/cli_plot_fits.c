@@ -31,12 +31,13 @@ static int drawing_fits(const plot_job *job)
     const plot_samples *s = job->samples;
     plot_canvas cv;
     plot_canvas_fit(&cv, job);
+    /* Too narrow (points 1e-310 apart: the canvas over that span
+     * overflows, scale inf) was called "more than the range of a double",
+     * as too wide (1e308 and -1e308: scale 0 or NaN) is. */
+    const int narrow = cv.scale > 0 && !isfinite(cv.scale);
     if (!(isfinite(cv.scale) && cv.scale > 0 && isfinite(cv.u0) && isfinite(cv.v0) &&
           isfinite(cv.height))) {
-        /* Too narrow (points 1e-310 apart: the canvas over that span
-         * overflows, scale inf) was called "more than the range of a
-         * double", as too wide (1e308 and -1e308: scale 0 or NaN) is. */
-        if (cv.scale > 0 && !isfinite(cv.scale))
+        if (narrow)
             return braun_cli_error("the drawing's points span less than a double's smallest normal "
                                    "number (%g): its scale would overflow; nothing written", DBL_MIN);
         return braun_cli_error("the drawing's points span more than the range of a double (its "

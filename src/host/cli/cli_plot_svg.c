@@ -66,7 +66,7 @@ static void wrap_word(wrap_state *w, const char *word, size_t len)
         /* A name longer than a line: its head and tail around "...". */
         const size_t head = (w->most - 3) / 2, tail = w->most - 3 - head;
         memcpy(cut, word, head);
-        memcpy(cut + head, "...", 3);
+        cut[head] = cut[head + 1] = cut[head + 2] = '.';
         memcpy(cut + head + 3, word + len - tail, tail);
         word = cut;
         len = w->most;
@@ -114,7 +114,7 @@ int plot_caption_wrap(const char *caption, double width, double font, int k, cha
             if (paren || clause || (*p == '(' && sp > p && sp[-1] == ')')) break;
             end = sp + 1;
         }
-        while (end > p && end[-1] == ' ') end--;
+        while (end[-1] == ' ') end--; /* stops after p, which is no blank */
         const size_t len = (size_t)(end - p);
         if (len <= w.most) {
             wrap_word(&w, p, len);
