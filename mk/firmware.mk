@@ -77,6 +77,8 @@ FW_COPT_double = $(FW_OPT) -fstack-usage
 FW_COPT_float = $(FW_OPT) -fstack-usage
 FW_AR_double = $(FW_AR)
 FW_AR_float = $(FW_AR)
+# The suffix of the public link names (braun.h, "Link names").
+FW_LINK_float := _float
 FW_HAVE_FIXED := $(shell grep -q BRAUN_FIXED_N src/core/braun_linalg.h 2>/dev/null && echo 1)
 ifeq ($(FW_HAVE_FIXED),1)
 FW_CONFIGS += float-fixed
@@ -84,6 +86,7 @@ FW_DEF_float-fixed := -DBRAUN_SINGLE -DBRAUN_FIXED_N=6 -DBRAUN_FIXED_ROWS=5
 FW_COPT_float-fixed = -O3 -g -flto
 FW_LTO_float-fixed = -O3 -g -flto=auto
 FW_AR_float-fixed = $(FW_CC)-ar
+FW_LINK_float-fixed := _float
 endif
 
 .PHONY: firmware firmware-deps firmware-bench-deps firmware-test firmware-bench \
@@ -153,7 +156,7 @@ $(FW_DIR)/$(1)/demo.elf: $(FW_DIR)/$(1)/obj/startup.o $(FW_DIR)/$(1)/obj/firmwar
 $(FW_DIR)/$(1)/path.elf: $(FW_DIR)/$(1)/obj/startup.o $(FW_DIR)/$(1)/obj/firmware/board/demo_main.o \
         $$(FW_DEMO_OBJ_$(1)) $(FW_DIR)/$(1)/libbraun.a $(FW_LD_SCRIPT)
 	$$(FW_CC) $$(FW_LDFLAGS) $$(FW_LTO_$(1)) -Wl,-Map=$$(@:.elf=.map) \
-	    -Wl,-u,braun_integrate -Wl,-u,braun_integrate_adaptive $$(filter %.o %.a,$$^) \
+	    -Wl,-u,braun_integrate$$(FW_LINK_$(1)) -Wl,-u,braun_integrate_adaptive$$(FW_LINK_$(1)) $$(filter %.o %.a,$$^) \
 	    $$(FW_LDLIBS) -o $$@
 endef
 FW_EXTRA_demo_main := -DFW_HAVE_SIZES

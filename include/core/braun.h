@@ -48,17 +48,35 @@ typedef double braun_real;
 
 #define BRAUN_VERSION "0.1.0"
 
-/* A program compiled for one precision and linked with a library built for
- * the other would hand every struct over at the wrong size (a crash, or
- * worse, a plausible status). The calls every program makes before a step
- * carry the precision in their link names, so the mismatch fails to link —
- * "undefined reference to braun_data_init_float" (a float program, a
- * double library) or "to braun_data_init" (the reverse). A float
- * installation's pkg-config and CMake files define BRAUN_SINGLE. */
+/* Link names. A program compiled for one precision and linked with a
+ * library built for the other would hand every struct and array over at
+ * the wrong size (a crash, or worse, a plausible status). So in a float
+ * build every public function and object of every public header carries
+ * the precision in its link name (this header's here, each other's at its
+ * top): whichever call a program makes, a mismatch fails to link,
+ * "undefined reference to braun_step_float" (a float program, a double
+ * library) or "to braun_step" (the reverse). Only braun_model_init,
+ * braun_data_size and braun_data_init did once, and a double program whose
+ * one call was braun_check_callbacks linked with the float library and
+ * passed a Jacobian 50 % wrong. A float installation's pkg-config and
+ * CMake files define BRAUN_SINGLE. */
 #ifdef BRAUN_SINGLE
-#define braun_model_init braun_model_init_float
-#define braun_data_size braun_data_size_float
 #define braun_data_init braun_data_init_float
+#define braun_data_release braun_data_release_float
+#define braun_data_size braun_data_size_float
+#define braun_energy braun_energy_float
+#define braun_energy_rate braun_energy_rate_float
+#define braun_eval braun_eval_float
+#define braun_integrate braun_integrate_float
+#define braun_integrate_adaptive braun_integrate_adaptive_float
+#define braun_method_from_name braun_method_from_name_float
+#define braun_method_name braun_method_name_float
+#define braun_model_init braun_model_init_float
+#define braun_residuals braun_residuals_float
+#define braun_set_state braun_set_state_float
+#define braun_status_str braun_status_str_float
+#define braun_step braun_step_float
+#define braun_system_check braun_system_check_float
 #endif
 
 /* ------------------------------------------------------------------ */

@@ -9,6 +9,16 @@
 
 #include "braun.h"
 
+/* The float build's link names: every public function and object of
+ * this header carries the precision (braun.h, "link names"). */
+#ifdef BRAUN_SINGLE
+#define braun_andrews_q0 braun_andrews_q0_float
+#define braun_andrews_system braun_andrews_system_float
+#define braun_andrews_v0 braun_andrews_v0_float
+#define braun_builtin_at braun_builtin_at_float
+#define braun_builtin_find braun_builtin_find_float
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -18,6 +18,15 @@
 #include "braun.h"
 #include "braun_linsolver.h"
 
+/* The float build's link names: every public function and object of
+ * this header carries the precision (braun.h, "link names"). */
+#ifdef BRAUN_SINGLE
+#define braun_linsolver_lapack braun_linsolver_lapack_float
+#define braun_linsolver_name braun_linsolver_name_float
+#define braun_linsolver_select braun_linsolver_select_float
+#define braun_linsolver_suitesparse braun_linsolver_suitesparse_float
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif

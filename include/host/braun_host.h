@@ -12,6 +12,13 @@
 
 #include "braun.h"
 
+/* The float build's link names: every public function and object of
+ * this header carries the precision (braun.h, "link names"). */
+#ifdef BRAUN_SINGLE
+#define braun_check_callbacks braun_check_callbacks_float
+#define braun_error_format braun_error_format_float
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -13,6 +13,20 @@
 
 #include "braun_models.h"
 
+/* The float build's link names: every public function and object of
+ * this header carries the precision (braun.h, "link names"). */
+#ifdef BRAUN_SINGLE
+#define braun_andrews_q_ref braun_andrews_q_ref_float
+#define braun_ellip_F braun_ellip_F_float
+#define braun_ellip_K braun_ellip_K_float
+#define braun_jacobi_sncndn braun_jacobi_sncndn_float
+#define braun_minimal_find braun_minimal_find_float
+#define braun_pendulum_exact braun_pendulum_exact_float
+#define braun_reference_eval braun_reference_eval_float
+#define braun_reference_init braun_reference_init_float
+#define braun_reference_init_minimal braun_reference_init_minimal_float
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -11,6 +11,21 @@
 
 #include "braun_scene.h"
 
+/* The float build's link names: every public function and object of
+ * this header carries the precision (braun.h, "link names"). */
+#ifdef BRAUN_SINGLE
+#define braun_gen_c_check_symbol braun_gen_c_check_symbol_float
+#define braun_gen_c_write braun_gen_c_write_float
+#define braun_gen_c_write_ex braun_gen_c_write_ex_float
+#define braun_gen_c_write_header braun_gen_c_write_header_float
+#define braun_scene_file_diagnose braun_scene_file_diagnose_float
+#define braun_scene_free braun_scene_free_float
+#define braun_scene_load braun_scene_load_float
+#define braun_scene_load_ex braun_scene_load_ex_float
+#define braun_scene_load_text braun_scene_load_text_float
+#define braun_scene_load_text_ex braun_scene_load_text_ex_float
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -106,6 +106,7 @@ for l in libbraun libbraun_host libbraun_backends; do
         no "$l.so exports beyond the public headers: $extra ($unversioned unversioned)"
     fi
 done
+cat "$tmp/libbraun.exported" "$tmp/libbraun_host.exported" "$tmp/libbraun_backends.exported" | sort -u > "$tmp/all.exported"
 grep -q "^braun_integrate$" "$tmp/libbraun.exported" && grep -q "^braun_scene_build$" "$tmp/libbraun.exported" &&
     ! grep -q "^braun__\|^braun_qrcp_\|^braun_chol_\|^braun_scene__" "$tmp/libbraun.exported" &&
     grep -q "^braun_scene_load$" "$tmp/libbraun_host.exported" && ! grep -q "^sj_" "$tmp/libbraun_host.exported" &&
@@ -226,6 +227,107 @@ elif grep -q 'braun_data_init_float\|braun_data_size_float\|braun_model_init_flo
     ok "a float program against the double library: a link error naming the precision"
 else
     no "a float program against the double library: link error without the precision's name"; cat "$tmp/prec.log"
+fi
+# Every public function and object carries the precision in a float
+# build's link names, not only the three every program calls before a step:
+# a double program whose one call was braun_check_callbacks linked with the
+# float library and passed a Jacobian entry 50 % wrong (BRAUN_OK); a scene
+# file's reader linked across precisions too.
+cat > "$tmp/chk_only.c" <<'C'
+#include <braun_host.h>
+static int mass(braun_real t, const braun_real *q, braun_real *M, void *u)
+{
+    (void)t; (void)q; (void)u;
+    M[0] = 1; M[1] = 0; M[2] = 0; M[3] = 1;
+    return 0;
+}
+static int forces(braun_real t, const braun_real *q, const braun_real *v, braun_real *Q, void *u)
+{
+    (void)t; (void)q; (void)v; (void)u;
+    Q[0] = 0; Q[1] = BRAUN_R(-9.81);
+    return 0;
+}
+/* A_q[0] 3 q0 where Phi = q0^2 + q1^2 - 1 gives 2 q0: 50 % off. */
+static int rod(braun_real t, const braun_real *q, const braun_real *v, braun_real *phi, braun_real *A,
+               braun_real *b, braun_real *bv, void *u)
+{
+    (void)t; (void)u;
+    if (phi) phi[0] = q[0] * q[0] + q[1] * q[1] - 1;
+    if (A) { A[0] = 3 * q[0]; A[1] = 2 * q[1]; }
+    if (b) b[0] = 0;
+    if (bv) bv[0] = -2 * (v[0] * v[0] + v[1] * v[1]);
+    return 0;
+}
+int main(void)
+{
+    braun_system sys = {0};
+    braun_real q[2] = {1, 0}, v[2] = {0, 1};
+    braun_callback_report rep;
+    sys.n = 2; sys.m = 1; sys.mass = mass; sys.forces = forces; sys.holonomic = rod;
+    return braun_check_callbacks(&sys, 0, q, v, 0, &rep) == BRAUN_ERR_ARGUMENT ? 0 : 1;
+}
+C
+cat > "$tmp/scene_only.c" <<'C'
+#include <braun_scene_file.h>
+int main(int argc, char **argv)
+{
+    char err[256];
+    braun_scene_file *sf = argc > 1 ? braun_scene_load(argv[1], err, sizeof err) : 0;
+    int ok = sf && sf->scene.n == 6;
+    braun_scene_free(sf);
+    return ok ? 0 : 1;
+}
+C
+hflags=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs --static braun-host 2>&1)
+for prog in chk_only:braun_check_callbacks scene_only:braun_scene_load; do
+    p=${prog%%:*} fn=${prog#*:}
+    if ! ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror "$tmp/$p.c" $hflags -o "$tmp/$p-d" 2>"$tmp/$p.log" ||
+       ! LD_LIBRARY_PATH="$L" "$tmp/$p-d" "$P/share/braun/data/four-bar.json"; then
+        no "$p: builds and passes against the installed library of its own precision"; cat "$tmp/$p.log"
+    elif ${CC:-cc} -std=c99 -DBRAUN_SINGLE "$tmp/$p.c" $hflags -o "$tmp/$p-f" 2>"$tmp/$p.log"; then
+        no "a float program whose one call is $fn links with the double library (it must not)"
+    elif grep -q "undefined reference to .${fn}_float'" "$tmp/$p.log"; then
+        ok "a float program whose one call is $fn, against the double library: undefined ${fn}_float"
+    else
+        no "a float program whose one call is $fn against the double library: $(head -3 "$tmp/$p.log")"
+    fi
+done
+# The reverse, a double program against the float libraries (the stability
+# suite's, mk/stability.mk).
+B=${BUILD:-build}
+case $B in /*) ;; *) B=$top/$B ;; esac
+if make -s -C "$top" BUILD="${BUILD:-build}" "${BUILD:-build}/float/libbraun.a" "${BUILD:-build}/float/libbraun_host.a" \
+        > "$tmp/fl.log" 2>&1; then
+    for prog in chk_only:braun_check_callbacks scene_only:braun_scene_load; do
+        p=${prog%%:*} fn=${prog#*:}
+        if ${CC:-cc} -std=c99 -I"$P/include" "$tmp/$p.c" "$B/float/libbraun_host.a" "$B/float/libbraun.a" -ljansson -lm \
+                -o "$tmp/$p-mix" 2>"$tmp/$p-mix.log"; then
+            no "a double program whose one call is $fn links with the float library (it must not)"
+        elif grep -q "undefined reference to .${fn}'" "$tmp/$p-mix.log"; then
+            ok "a double program whose one call is $fn, against the float library: undefined $fn"
+        else
+            no "a double program whose one call is $fn against the float library: $(head -3 "$tmp/$p-mix.log")"
+        fi
+    done
+    # No name the double libraries export is defined by the float ones.
+    same=$(nm -g --defined-only "$B/float/libbraun.a" "$B/float/libbraun_host.a" 2>/dev/null |
+           awk 'NF == 3 { print $3 }' | sort -u | comm -12 - "$tmp/all.exported" | tr '\n' ' ' | cut -c1-300)
+    [ -z "$same" ] && ok "the float archives define none of the $(wc -l < "$tmp/all.exported") names the double libraries export" ||
+        no "the float archives define the double libraries' names: $same"
+else
+    no "the float libraries build"; cat "$tmp/fl.log"
+fi
+# The class: every name the double libraries export is, in a float
+# build's headers, NAME_float (a new public function without it would link
+# across precisions again).
+{ for h in "$P"/include/*.h; do echo "#include \"$h\""; done; sed 's/.*/@ & @/' "$tmp/all.exported"; } > "$tmp/names.c"
+untagged=$(${CC:-cc} -std=c99 -DBRAUN_SINGLE -E -P "$tmp/names.c" 2>&1 | sed -n 's/^@ \(.*\) @$/\1/p' |
+           grep -v '_float$' | tr '\n' ' ' | cut -c1-300)
+n=$(grep -c . "$tmp/all.exported")
+if [ -z "$untagged" ] && [ "$n" -gt 80 ]; then
+    ok "in a float build each of the $n names the double libraries export is NAME_float"
+else
+    no "in a float build these public names keep the double's link name: $untagged"
 fi
 # PREFIX and DESTDIR with spaces: installed there and removed again, no stray
 # directories in the tree (the unquoted paths were split into words).

@@ -53,7 +53,9 @@ for model in slider-crank four-bar; do
             ir=0; hn=0
             if [ -x "$FW/host-$p/fw_host" ]; then
                 cg="$OUT/callgrind-$model-$p-$c.out"
-                valgrind --tool=callgrind --callgrind-out-file="$cg" --toggle-collect=braun_step \
+                # (a float library's link names end in _float: braun.h)
+                step_fn=braun_step; case $p in float*) step_fn=braun_step_float ;; esac
+                valgrind --tool=callgrind --callgrind-out-file="$cg" --toggle-collect=$step_fn \
                     "$FW/host-$p/fw_host" bench "$STEPS" "$model" "$c" > "$cg.txt" 2>&1
                 hn=$(val "$(grep '^bench ' "$cg.txt")" steps)
                 ir=$(sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$cg" | head -n 1)

@@ -239,18 +239,19 @@ path_check() {
             if (!inside) print $2, $4, loc
         }' > "$OUT/$pc-path-$root.bad"
 }
-path_check float braun_step
-reach=$(sed -n 's/^reachable //p' "$OUT/float-path-braun_step.txt")
-roots=$(sed -n 's/^roots //p' "$OUT/float-path-braun_step.txt")
-conv=$(awk '/^allowed / { s += $4 } END { print s + 0 }' "$OUT/float-path-braun_step.txt")
-bad=$(sort -u "$OUT/float-path-braun_step.bad" | tr '\n' ';')
+# The float library's link names end in _float (braun.h, "Link names").
+path_check float braun_step_float
+reach=$(sed -n 's/^reachable //p' "$OUT/float-path-braun_step_float.txt")
+roots=$(sed -n 's/^roots //p' "$OUT/float-path-braun_step_float.txt")
+conv=$(awk '/^allowed / { s += $4 } END { print s + 0 }' "$OUT/float-path-braun_step_float.txt")
+bad=$(sort -u "$OUT/float-path-braun_step_float.bad" | tr '\n' ';')
 check "float: no double operation on braun_step's path: $reach functions from $roots roots (drivers, callbacks, classes), double helpers called only to record an error ($conv conversions)${bad:+: $bad}" \
     sh -c '[ -z "$1" ] && [ "${2:-0}" -ge 100 ] && [ "${3:-0}" -ge 20 ] && ! grep -q "^missing-root" "$4"' \
-    sh "$bad" "$reach" "$roots" "$OUT/float-path-braun_step.txt"
+    sh "$bad" "$reach" "$roots" "$OUT/float-path-braun_step_float.txt"
 # The drivers' own double arithmetic (src/core/braun_integrate.c: the step
 # count, once per call; braun_adaptive.c: the error norm and step-size
 # control, every step): known, reported, confined to the driver.
-for root in braun_integrate braun_integrate_adaptive; do
+for root in braun_integrate_float braun_integrate_adaptive_float; do
     path_check float "$root"
     own=$(awk -v r="$root" '$1 != r' "$OUT/float-path-$root.bad" | sort -u | tr '\n' ';')
     sites=$(awk '{ print $3 }' "$OUT/float-path-$root.bad" | sort -u | tr '\n' ' ')
@@ -263,7 +264,7 @@ check "double: the same check finds the soft-float calls of the double build ($n
 
 # Dynamically, under QEMU -d in_asm (each translated block logged once, in
 # the order first run): STEPS steps of each model and scene.
-awk '/^fn / { print $2 }' "$OUT/float-path-braun_step.txt" | sort -u > "$OUT/float-path-reach"
+awk '/^fn / { print $2 }' "$OUT/float-path-braun_step_float.txt" | sort -u > "$OUT/float-path-reach"
 "$NM" --defined-only "$FW/float/libbraun.a" 2>/dev/null | awk '$2 ~ /^[Tt]$/ { print $3 }' | sort -u > "$OUT/float-libfns"
 for pc in float float-fixed; do
     case " ${FW_CONFIGS:-} " in *" $pc "*) ;; *) continue ;; esac
@@ -285,7 +286,7 @@ for pc in float float-fixed; do
         if [ "$pc" = float ]; then
             extra=$(awk -v r="$OUT/float-path-reach" -v l="$OUT/float-libfns" '
                 BEGIN { while ((getline x < r) > 0) reach[x] = 1; while ((getline x < l) > 0) lib[x] = 1 }
-                $1 == "braun_step" { on = 1 }
+                $1 == "braun_step_float" { on = 1 }
                 on && ($1 in lib) && !($1 in reach) { print $1 }' "$OUT/float-trace-$m.fns" | tr '\n' ' ')
         fi
         check "$pc: $m, $k steps under QEMU (${stats:-no record}): no double helper run${dbl:+: $dbl}${extra:+; library functions the static graph missed: $extra}" \
