@@ -3,7 +3,8 @@
 #   make test         build and run every test (installs missing Debian packages)
 #   make install      PREFIX=/usr/local DESTDIR=
 #   make clean
-# Options: BRAUN_SINGLE=1 builds braun_real = float.
+# Options: BRAUN_SINGLE=1 builds braun_real = float; switching the precision
+# of a BUILD rebuilds it all (BUILD/precision), BUILD=build-float keeps both.
 #
 # Two tiers (docs/architecture.md), one source list each:
 #   core  src/core/**    C99, libm only, no stdio, no allocator: libbraun.a,
@@ -34,6 +35,12 @@ CPPFLAGS_ALL += -DBRAUN_SINGLE
 CORE_CPPFLAGS += -DBRAUN_SINGLE
 endif
 CFLAGS_ALL := -std=c99 $(OPT) $(WARN) $(CFLAGS)
+# The precision of this build. Every object depends on $(BUILD)/precision,
+# rewritten only when it changes: `make BRAUN_SINGLE=1` on a tree built in
+# double rebuilt nothing, and `make install` then installed the double
+# libraries and tool with pkg-config files that define BRAUN_SINGLE.
+PRECISION := $(if $(filter 1,$(BRAUN_SINGLE)),float,double)
+PRECISION_STAMP := $(BUILD)/precision
 LDLIBS_ALL := -lm $(LDLIBS)
 # Every object records the headers it read (-MMD -MP): a change to a header
 # rebuilds exactly the objects that include it.
@@ -71,12 +78,21 @@ cli: $(BUILD)/bin/braun
 deps-host:
 	@tools/ensure-deps $(HOST_DEPS)
 
-$(CORE_OBJ): $(BUILD)/obj/%.o: %.c
+# The stamp has a rule only when it must change (a rule that always ran
+# would make make -n list every object as out of date).
+ifneq ($(shell cat '$(PRECISION_STAMP)' 2>/dev/null),$(PRECISION))
+$(PRECISION_STAMP): FORCE_PRECISION
+	@mkdir -p $(dir $@)
+	@echo $(PRECISION) > $@
+.PHONY: FORCE_PRECISION
+endif
+
+$(CORE_OBJ): $(BUILD)/obj/%.o: %.c $(PRECISION_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CORE_CPPFLAGS) $(CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
 # Host objects (and everything else under obj/: tests, bench, compare).
-$(BUILD)/obj/src/host/%.o: src/host/%.c | deps-host
+$(BUILD)/obj/src/host/%.o: src/host/%.c $(PRECISION_STAMP) | deps-host
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
@@ -109,14 +125,14 @@ TEST_CPPFLAGS = $(CPPFLAGS_ALL) -Isrc/core/scene -Isrc/core/models -Itests -Ites
 
 # Test-only systems with known solutions, linked into every test binary.
 TEST_SUPPORT := $(BUILD)/obj/tests/systems/test_systems.o
-$(BUILD)/obj/tests/%.o: tests/%.c
+$(BUILD)/obj/tests/%.o: tests/%.c $(PRECISION_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(TEST_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
 # test_noalloc counts heap calls through the linker's --wrap.
 LDFLAGS_test_noalloc := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
 
-$(BUILD)/tests/%: tests/%.c $(TEST_SUPPORT) $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a | deps-test
+$(BUILD)/tests/%: tests/%.c $(TEST_SUPPORT) $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a $(PRECISION_STAMP) | deps-test
 	@mkdir -p $(dir $@)
 	$(CC) $(TEST_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -MF $(BUILD)/tests/$*.d $< $(TEST_SUPPORT) \
 	    $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a -lcmocka $(LDLIBS_ALL) -ljansson $(LDFLAGS_$*) -o $@
@@ -164,9 +180,20 @@ convergence: $(BUILD)/bin/braun
 # their .pc.in templates (braun, braun-host, braun-backends), the tool.
 PC_SUBST = sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' \
                -e 's|@BACKEND_LDLIBS@|$(BACKEND_LDLIBS)|g' \
-               -e 's|@PRECISION_CFLAGS@|$(if $(filter 1,$(BRAUN_SINGLE)), -DBRAUN_SINGLE,)|g'
+               -e 's|@PRECISION_CFLAGS@|$(if $(filter float,$(PRECISION)), -DBRAUN_SINGLE,)|g'
+# What is installed is of the precision the pkg-config and CMake files
+# name: each archive and the tool are checked by their link names
+# (braun.h: a float build's end in _float) before anything is copied.
+NM ?= nm
+install-check: all $(BUILD)/libbraun_backends.a
+	@for f in $(BUILD)/libbraun.a $(BUILD)/libbraun_host.a $(BUILD)/libbraun_backends.a $(BUILD)/bin/braun; do \
+	    if $(NM) -g --defined-only "$$f" | grep -q ' braun_[A-Za-z0-9_]*_float$$'; then p=float; else p=double; fi; \
+	    [ $$p = $(PRECISION) ] || { echo "make install: $$f is built in $$p, this install is $(PRECISION);" \
+	        "run make clean, then make$(if $(filter float,$(PRECISION)), BRAUN_SINGLE=1,) install" >&2; \
+	        exit 1; }; done
+.PHONY: install-check
 # Every path quoted: PREFIX and DESTDIR may hold spaces.
-install: all $(BUILD)/libbraun_backends.a
+install: all $(BUILD)/libbraun_backends.a install-check
 	install -d "$(DESTDIR)$(PREFIX)/include" "$(DESTDIR)$(PREFIX)/lib/pkgconfig" "$(DESTDIR)$(PREFIX)/bin"
 	install -m 644 include/core/*.h include/host/*.h "$(DESTDIR)$(PREFIX)/include/"
 	install -m 644 $(BUILD)/libbraun.a $(BUILD)/libbraun_host.a $(BUILD)/libbraun_backends.a \

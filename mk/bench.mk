@@ -44,11 +44,11 @@ deps-bench:
 
 bench-bin: $(BENCH_BIN) $(BENCH_STATIC)
 
-$(BUILD)/obj/bench/%.o: bench/%.c | deps-host
+$(BUILD)/obj/bench/%.o: bench/%.c $(PRECISION_STAMP) | deps-host
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) -Icompare $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
-$(BUILD)/obj/bench/cmp_series.o: compare/cmp_series.c $(BUILD)/gen/cmp_series.inc | deps-host
+$(BUILD)/obj/bench/cmp_series.o: compare/cmp_series.c $(BUILD)/gen/cmp_series.inc $(PRECISION_STAMP) | deps-host
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) -Icompare -I$(BUILD)/gen $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 

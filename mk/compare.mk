@@ -56,7 +56,7 @@ deps-compare:
 
 compare-bin: $(COMPARE_BIN)
 
-$(BUILD)/obj/compare/%.o: compare/%.c | deps-compare deps-host
+$(BUILD)/obj/compare/%.o: compare/%.c $(PRECISION_STAMP) | deps-compare deps-host
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 
@@ -64,7 +64,7 @@ $(BUILD)/obj/compare/%.o: compare/%.c | deps-compare deps-host
 # Its files: the planar model and the run (cmp_simbody.cpp), the spatial
 # model (cmp_simbody3.cpp).
 COMPARE_SB_OBJ := $(BUILD)/obj/compare/pic/cmp_simbody.o $(BUILD)/obj/compare/pic/cmp_simbody3.o
-$(BUILD)/obj/compare/pic/%.o: compare/%.cpp | deps-compare deps-host
+$(BUILD)/obj/compare/pic/%.o: compare/%.cpp $(PRECISION_STAMP) | deps-compare deps-host
 	@mkdir -p $(dir $@)
 	$(CXX) $(CPPFLAGS_ALL) $(COMPARE_CPPFLAGS) $(COMPARE_CXXFLAGS) $(CXXFLAGS) $(DEPFLAGS) -c $< -o $@
 

@@ -26,7 +26,7 @@ IFTOMM_LDLIBS := -lsundials_ida -lsundials_sunlinsoldense -lsundials_sunmatrixde
 
 iftomm-bin: $(IFTOMM_BIN)
 
-$(BUILD)/obj/compare/iftomm/%.o: compare/iftomm/%.c | deps-compare deps-host
+$(BUILD)/obj/compare/iftomm/%.o: compare/iftomm/%.c $(PRECISION_STAMP) | deps-compare deps-host
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) -Icompare/iftomm $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 

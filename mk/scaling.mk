@@ -30,7 +30,7 @@ SCALING_PRE_LIBS = $(COMPARE_LIB_OBJ) $(COMPARE_PRE_LIBS)
 SCALING_LDLIBS = $(COMPARE_LDLIBS)
 $(SCALING_BIN): $(COMPARE_LIB_OBJ)
 
-$(BUILD)/obj/bench/scaling/%.o: bench/scaling/%.c | deps-host deps-backends
+$(BUILD)/obj/bench/scaling/%.o: bench/scaling/%.c $(PRECISION_STAMP) | deps-host deps-backends
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) $(SCALING_CPPFLAGS) $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 

@@ -24,13 +24,13 @@ PIC_HOST_OBJ := $(HOST_SRC:%.c=$(BUILD)/pic/%.o)
 PIC_BACKEND_OBJ := $(BACKEND_SRC:%.c=$(BUILD)/pic/%.o)
 PIC_FLAGS := -fPIC
 
-$(PIC_CORE_OBJ): $(BUILD)/pic/%.o: %.c
+$(PIC_CORE_OBJ): $(BUILD)/pic/%.o: %.c $(PRECISION_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CORE_CPPFLAGS) $(CPPFLAGS) $(CFLAGS_ALL) $(PIC_FLAGS) $(DEPFLAGS) -c $< -o $@
-$(PIC_HOST_OBJ): $(BUILD)/pic/%.o: %.c | deps-host
+$(PIC_HOST_OBJ): $(BUILD)/pic/%.o: %.c $(PRECISION_STAMP) | deps-host
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) $(CFLAGS_ALL) $(PIC_FLAGS) $(DEPFLAGS) -c $< -o $@
-$(PIC_BACKEND_OBJ): $(BUILD)/pic/%.o: %.c | deps-backends
+$(PIC_BACKEND_OBJ): $(BUILD)/pic/%.o: %.c $(PRECISION_STAMP) | deps-backends
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS_ALL) $(BACKEND_CPPFLAGS) $(CFLAGS_ALL) $(PIC_FLAGS) $(DEPFLAGS) -c $< -o $@
 $(BUILD)/pic/src/host/backends/braun_backend_select.o: $(BUILD)/backends.flags
@@ -69,7 +69,7 @@ lib: $(BUILD)/libbraun.so.$(VERSION) $(BUILD)/libbraun_host.so.$(VERSION)
 # ---------------------------------------------------------------- install
 LIBDIR := $(DESTDIR)$(PREFIX)/lib
 install: install-shared install-cmake install-data
-install-shared: $(SHARED_LIBS)
+install-shared: $(SHARED_LIBS) install-check
 	install -d "$(LIBDIR)"
 	for l in libbraun libbraun_host libbraun_backends; do \
 	    install -m 755 $(BUILD)/$$l.so.$(VERSION) "$(LIBDIR)/" && \
@@ -87,14 +87,14 @@ CMAKE_SUBST = sed -e 's|@VERSION@|$(VERSION)|g' -e 's|@SOVERSION@|$(SOVERSION)|g
                   -e 's|@BACKEND_LIBS@|$(BACKEND_CMAKE_LIBS)|g' \
                   -e 's|@BACKEND_LIBS_TEXT@|$(or $(BACKEND_LDLIBS),nothing for the backends)|g' \
                   -e 's|@SIZEOF_VOID_P@|$(SIZEOF_POINTER)|g' \
-                  -e 's|@PRECISION_DEFINES@|$(if $(filter 1,$(BRAUN_SINGLE)),BRAUN_SINGLE,)|g'
-install-cmake: cmake/braunConfig.cmake.in cmake/braunConfigVersion.cmake.in
+                  -e 's|@PRECISION_DEFINES@|$(if $(filter float,$(PRECISION)),BRAUN_SINGLE,)|g'
+install-cmake: cmake/braunConfig.cmake.in cmake/braunConfigVersion.cmake.in install-check
 	install -d "$(LIBDIR)/cmake/braun"
 	$(CMAKE_SUBST) cmake/braunConfig.cmake.in > "$(LIBDIR)/cmake/braun/braunConfig.cmake"
 	$(CMAKE_SUBST) cmake/braunConfigVersion.cmake.in > "$(LIBDIR)/cmake/braun/braunConfigVersion.cmake"
 
 SHARE := $(DESTDIR)$(PREFIX)/share
-install-data:
+install-data: install-check
 	install -d "$(SHARE)/braun/data/iftomm" "$(SHARE)/braun/examples" "$(SHARE)/doc/braun"
 	install -m 644 data/*.json "$(SHARE)/braun/data/"
 	install -m 644 data/iftomm/*.json "$(SHARE)/braun/data/iftomm/"

@@ -13,7 +13,7 @@ SPATIAL_QUICK ?= 0
 
 .PHONY: spatial-choice
 
-$(BUILD)/obj/bench/spatial/%.o: bench/spatial/%.c
+$(BUILD)/obj/bench/spatial/%.o: bench/spatial/%.c $(PRECISION_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CORE_CPPFLAGS) -Ibench/spatial $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
 

@@ -3,7 +3,9 @@
 # against it through pkg-config and run it; the shared libraries (soname,
 # exactly the public API exported), the CMake package, and every example
 # built with pkg-config and with CMake, linked statically and dynamically,
-# and run (issue 15). Prints "ok - NAME" / "not ok - NAME" and
+# and run (issue 15); programs of one precision do not link with the
+# other's libraries, and a tree built in double installs float when asked
+# (a scratch build). Prints "ok - NAME" / "not ok - NAME" and
 # "N passed, M failed, 0 skipped".
 set -u
 top=$(cd "$(dirname "$0")/../.." && pwd)
@@ -328,6 +330,62 @@ if [ -z "$untagged" ] && [ "$n" -gt 80 ]; then
     ok "in a float build each of the $n names the double libraries export is NAME_float"
 else
     no "in a float build these public names keep the double's link name: $untagged"
+fi
+# ------------------------------------------------------------ precision switch
+# `make BRAUN_SINGLE=1` on a tree built in double rebuilt nothing and exited
+# 0 (braun --version: double), and `make BRAUN_SINGLE=1 install` then
+# installed the double libraries and tool with pkg-config files defining
+# BRAUN_SINGLE. A scratch tree (-O0: quick) built in double, then installed
+# in float.
+sw=$tmp/switch F=$tmp/fi/opt/braunf
+if make -s -C "$top" BUILD="$sw" OPT=-O0 all > "$tmp/sw.log" 2>&1 &&
+   "$sw/bin/braun" --version | grep -q ", double;" &&
+   make -s -C "$top" BUILD="$sw" OPT=-O0 BRAUN_SINGLE=1 install PREFIX=/opt/braunf DESTDIR="$tmp/fi" >> "$tmp/sw.log" 2>&1; then
+    ok "a tree built in double: make BRAUN_SINGLE=1 install runs"
+    v=$("$F/bin/braun" --version 2>&1)
+    case "$v" in *", float;"*) ok "the installed tool is float ($v)" ;; *) no "the installed tool: $v (want float)" ;; esac
+    bad=""
+    for f in lib/libbraun.a:braun_step lib/libbraun_host.a:braun_scene_load lib/libbraun_backends.a:braun_linsolver_select \
+             lib/libbraun.so.$ver:braun_step lib/libbraun_host.so.$ver:braun_scene_load; do
+        lib=${f%%:*} fn=${f#*:} o=""
+        case $lib in *.so.*) o=-D ;; esac
+        syms=$(nm $o -g --defined-only "$F/$lib" 2>/dev/null | awk '{ sub(/@.*/, "", $3); print $3 }')
+        echo "$syms" | grep -qx "${fn}_float" && ! echo "$syms" | grep -qx "$fn" || bad="$bad $lib"
+    done
+    [ -z "$bad" ] && ok "the installed archives and shared libraries are float (braun_step_float, ...; no double names)" ||
+        no "installed libraries not float:$bad"
+    grep -q "^Cflags:.*-DBRAUN_SINGLE" "$F/lib/pkgconfig/braun.pc" && grep -q BRAUN_SINGLE "$F/lib/cmake/braun/braunConfig.cmake" &&
+        ok "the float installation's braun.pc and braunConfig.cmake define BRAUN_SINGLE" ||
+        no "the float installation's braun.pc or braunConfig.cmake lacks BRAUN_SINGLE"
+    ff=$(PKG_CONFIG_SYSROOT_DIR="$tmp/fi" PKG_CONFIG_PATH="$F/lib/pkgconfig" pkg-config --cflags --libs braun 2>&1)
+    if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror "$top/examples/pendulum.c" $ff -o "$tmp/pend-f" 2> "$tmp/pf.log" &&
+       out=$(LD_LIBRARY_PATH="$F/lib" "$tmp/pend-f") && case "$out" in "t = 10 "*) true ;; *) false ;; esac; then
+        ok "the README example builds through the float braun.pc and runs ($out)"
+    else
+        no "the README example through the float braun.pc: $(cat "$tmp/pf.log") $out"
+    fi
+    # A tree whose objects its stamp does not describe (simulated: the
+    # float tree's stamp says double, older than the objects): install
+    # refuses before copying anything, naming make clean.
+    echo double > "$sw/precision" && touch -t 200001010000 "$sw/precision"
+    if make -s -C "$top" BUILD="$sw" OPT=-O0 install PREFIX=/opt/braunm DESTDIR="$tmp/mixed" > "$tmp/mx.log" 2>&1; then
+        no "make install of float objects as double: installed"
+    elif grep -q "libbraun.a is built in float, this install is double.*make clean" "$tmp/mx.log" &&
+         [ -z "$(find "$tmp/mixed" -type f 2>/dev/null)" ]; then
+        ok "make install refuses float objects for a double install, installs nothing, names make clean"
+    else
+        no "make install of float objects as double: $(cat "$tmp/mx.log")"; find "$tmp/mixed" -type f 2>/dev/null | head -3
+    fi
+    # And back: the objects follow the precision asked for.
+    rm -f "$sw/precision"
+    if make -s -C "$top" BUILD="$sw" OPT=-O0 "$sw/libbraun.a" > "$tmp/sw3.log" 2>&1 &&
+       nm -g --defined-only "$sw/libbraun.a" | grep -q " braun_step$"; then
+        ok "make (double) after the float build rebuilds libbraun.a in double"
+    else
+        no "make (double) after the float build: libbraun.a not double"; cat "$tmp/sw3.log"
+    fi
+else
+    no "a tree built in double: make BRAUN_SINGLE=1 install"; tail -20 "$tmp/sw.log"
 fi
 # PREFIX and DESTDIR with spaces: installed there and removed again, no stray
 # directories in the tree (the unquoted paths were split into words).
