@@ -1,21 +1,6 @@
 # Stability suite (tests/stability/): the same source for double and float.
-# The float libraries are built from the same sources into $(BUILD)/float.
-FLOAT_OBJ := $(CORE_SRC:%.c=$(BUILD)/float/obj/%.o)
-FLOAT_HOST_OBJ := $(HOST_SRC:%.c=$(BUILD)/float/obj/%.o)
-$(FLOAT_OBJ): $(BUILD)/float/obj/%.o: %.c
-	@mkdir -p $(dir $@)
-	$(CC) $(CORE_CPPFLAGS) -DBRAUN_SINGLE $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
-$(FLOAT_HOST_OBJ): $(BUILD)/float/obj/%.o: %.c | deps-host
-	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS_ALL) -DBRAUN_SINGLE $(CFLAGS_ALL) $(DEPFLAGS) -c $< -o $@
-$(BUILD)/float/libbraun.a: $(FLOAT_OBJ)
-	@mkdir -p $(dir $@)
-	rm -f $@
-	$(AR) rcs $@ $^
-$(BUILD)/float/libbraun_host.a: $(FLOAT_HOST_OBJ)
-	@mkdir -p $(dir $@)
-	rm -f $@
-	$(AR) rcs $@ $^
+# The float libraries are built from the same sources into $(BUILD)/float
+# (mk/float.mk).
 
 STABILITY_BIN := $(BUILD)/tests/stability_double $(BUILD)/tests/stability_float
 $(BUILD)/tests/stability_double: tests/stability/test_stability.c $(BUILD)/libbraun_host.a $(BUILD)/libbraun.a | deps-test

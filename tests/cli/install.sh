@@ -294,8 +294,8 @@ for prog in chk_only:braun_check_callbacks scene_only:braun_scene_load; do
         no "a float program whose one call is $fn against the double library: $(head -3 "$tmp/$p.log")"
     fi
 done
-# The reverse, a double program against the float libraries (the stability
-# suite's, mk/stability.mk).
+# The reverse, a double program against the float libraries (BUILD/float,
+# mk/float.mk).
 B=${BUILD:-build}
 case $B in /*) ;; *) B=$top/$B ;; esac
 if make -s -C "$top" BUILD="${BUILD:-build}" "${BUILD:-build}/float/libbraun.a" "${BUILD:-build}/float/libbraun_host.a" \

@@ -202,6 +202,11 @@ enum {
  * bounds a fixed-step run too (checked before it starts). */
 #define BRAUN_CLI_MAX_STEPS 100000000L
 
+/* dopri5's minimum step from t = 0 to t_end as braun_integrate_adaptive
+ * takes it by default: 1e-12 t_end, at least 16 eps t_end (float: the
+ * latter). */
+double braun_cli_adaptive_h_min(double t_end);
+
 /* The steps braun_integrate takes from t = 0 to t_end with step h. */
 double braun_cli_fixed_steps(double h, double t_end);
 

@@ -95,6 +95,18 @@ static int parse_max_steps(const char *s, long *out)
     return 0;
 }
 
+double braun_cli_adaptive_h_min(double t_end)
+{
+    /* braun_integrate_adaptive's default (braun_adaptive.c), for a run from
+     * t = 0 to t_end as the library holds it (a braun_real): 1e-12 of the
+     * span, but at least 16 eps t_end. In float the floor always decides
+     * (1.9e-6 t_end); the summary gave 1e-12 span there, below the h the
+     * run's own error said was under the minimum. */
+    const double span = (double)(braun_real)t_end;
+    const double floor_ = 16 * (double)BRAUN_EPS * span;
+    return 1e-12 * span > floor_ ? 1e-12 * span : floor_;
+}
+
 double braun_cli_fixed_steps(double h, double t_end)
 {
     /* braun_integrate's count (braun__fixed_step_count, braun_internal.h):
@@ -373,12 +385,14 @@ int braun_cli_parse_run(int argc, char **argv, braun_cli_run_args *a, int plot)
      * (--dt 1 --t-end 1e15 stopped with BRAUN_ERR_STEP_TOO_SMALL, h = 100,
      * at t = 0, exit 1). */
     if (a->method == BRAUN_DOPRI5 && a->dt > 0 && a->t_end > 0) {
-        const double h_min = fmax(1e-12 * a->t_end, 16 * DBL_EPSILON * a->t_end);
+        const double h_min = braun_cli_adaptive_h_min(a->t_end);
+        const double rel = h_min / (double)(braun_real)a->t_end; /* 1e-12, or 16 eps in float */
         if (a->dt < h_min)
             return braun_cli_error("--dt %g is below the adaptive step's minimum %g at --t-end %g "
-                                   "(1e-12 of the span): dopri5 would take no step below %g; "
+                                   "(%s): dopri5 would take no step below %g; "
                                    "give --t-end <= %g or --dt >= %g", a->dt, h_min, a->t_end,
-                                   h_min, a->dt * 1e12, h_min);
+                                   rel > 1e-12 ? "16 eps of the span in this float build" : "1e-12 of the span",
+                                   h_min, a->dt / rel, h_min);
     }
     if (a->method == BRAUN_DOPRI5 && a->rtol == 0 && a->atol == 0)
         return braun_cli_error("--rtol and --atol cannot both be 0");

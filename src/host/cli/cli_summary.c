@@ -160,7 +160,7 @@ int braun_cli_write_summary(FILE *f, const braun_cli_result *r)
     if (!(a->ref_h > 0) && !isnan(mon->ref_h)) defaulted[nd++] = "ref_h";
     /* The first trial step as used: --dt, at most h_max (it said 1e+300). */
     num(&j, "h0", adaptive ? (a->dt < span ? a->dt : span) : NAN);
-    num(&j, "h_min", adaptive ? 1e-12 * span : NAN);
+    num(&j, "h_min", adaptive ? braun_cli_adaptive_h_min(span) : NAN);
     num(&j, "h_max", adaptive ? span : NAN);
     /* The step limit of both kinds of run (--max-steps): dopri5's
      * attempts, a fixed-step run's steps (checked before it started). */

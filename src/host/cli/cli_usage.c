@@ -3,6 +3,14 @@
 
 #include "braun_cli.h"
 
+/* --rank-tol's default is this build's (braun_default_rank_tol): the
+ * float build's help gave double's. */
+#ifdef BRAUN_SINGLE
+#define RANK_TOL_DEFAULT "30*sqrt(eps) = 0.0104 in\n                         this float build"
+#else
+#define RANK_TOL_DEFAULT "10*max(rows, n)*eps"
+#endif
+
 int braun_cli_help_asked(const char *cmd, int argc, char **argv)
 {
     int at = -1;
@@ -95,7 +103,7 @@ void braun_cli_usage(FILE *f)
 "  --discretization D     per-step | per-stage (default per-step; dopri5 is\n"
 "                         always per-step)\n"
 "  --rank-tol X           relative rank tolerance of the pseudoinverses,\n"
-"                         0 <= X < 1 (default 0: 10*max(rows, n)*eps)\n"
+"                         0 <= X < 1 (default 0: " RANK_TOL_DEFAULT ")\n"
 "  --energy-max-rel X     largest relative velocity change of one step's energy\n"
 "                         correction (default 0: 0.01)\n"
 "  --guard X              accuracy guard: stop with BRAUN_ERR_ACCURACY, keeping\n"
