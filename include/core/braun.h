@@ -40,11 +40,16 @@ extern "C" {
 /* ------------------------------------------------------------------ */
 #ifdef BRAUN_SINGLE
 typedef float braun_real;
-#define BRAUN_R(x) (x##f)
 #else
 typedef double braun_real;
-#define BRAUN_R(x) (x)
 #endif
+/* A literal (or any constant) as a braun_real, a constant expression.
+ * A cast, not x##f: that failed in float on an integer (BRAUN_R(1)) or a
+ * macro's name, and left BRAUN_R(1) an int in double (BRAUN_R(1) /
+ * BRAUN_R(3) was 0). In float a decimal goes to double, then to float,
+ * which is what gen-c's R() and the float scene reader do (every literal
+ * of the library comes out as with the f suffix). */
+#define BRAUN_R(x) ((braun_real)(x))
 
 #define BRAUN_VERSION "0.1.0"
 

@@ -3,9 +3,9 @@
 # both tools side by side: sh tests/cli/float.sh FLOAT_BRAUN DOUBLE_BRAUN
 # (make test builds the float tool into BUILD/float, mk/float.mk). The
 # float tool was tested nowhere: its summary gave double's dopri5 minimum
-# step and its --help double's rank tolerance. Prints "ok - NAME" /
-# "not ok - NAME" and "N passed, M failed, K skipped"; exit status 1 if
-# anything failed.
+# step and its --help double's rank tolerance. Also BRAUN_R in both
+# precisions. Prints "ok - NAME" / "not ok - NAME" and "N passed, M
+# failed, K skipped"; exit status 1 if anything failed.
 FB=${1:?usage: sh tests/cli/float.sh FLOAT_BRAUN DOUBLE_BRAUN}
 DB=${2:?usage: sh tests/cli/float.sh FLOAT_BRAUN DOUBLE_BRAUN}
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
@@ -58,6 +58,42 @@ check "float --help: --rank-tol default 30*sqrt(eps) = 0.0104, the summary's ran
 "$DB" --help > "$TMP/dhelp" 2>&1
 check "double --help: --rank-tol default 10*max(rows, n)*eps" sh -c '
     grep -A1 "^  --rank-tol X" "$1" | grep -q "(default 0: 10\*max(rows, n)\*eps)$" && ! grep -q sqrt "$1"' sh "$TMP/dhelp"
+
+# ------------------------------------------------------------ BRAUN_R
+# BRAUN_R(1) did not compile in float (1##f: "invalid suffix f on integer
+# constant") and was the int 1 in double (BRAUN_R(1) / BRAUN_R(3) == 0);
+# BRAUN_R(MACRO) pasted the macro's name. Now a cast to braun_real, a
+# constant expression in both.
+cat > "$TMP/lit.c" <<'C'
+#include "braun.h"
+#define HALF 0.5
+static const braun_real third = BRAUN_R(1) / BRAUN_R(3);
+static const braun_real table[3] = {BRAUN_R(1), BRAUN_R(HALF), BRAUN_R(-2)};
+int main(void)
+{
+    if (!(third > BRAUN_R(0.33) && third < BRAUN_R(0.34))) return 1;
+    if (table[0] != BRAUN_R(1.0) || table[1] != BRAUN_R(0.5) || table[2] != BRAUN_R(-2.0)) return 2;
+    if (sizeof(BRAUN_R(1)) != sizeof(braun_real)) return 3;
+#ifdef BRAUN_SINGLE
+    if (BRAUN_R(0.1) != 0.1f) return 4;
+#else
+    if (BRAUN_R(0.1) != 0.1) return 4;
+#endif
+    return 0;
+}
+C
+for prec in double float; do
+    def=""; [ "$prec" = float ] && def=-DBRAUN_SINGLE
+    # shellcheck disable=SC2086
+    if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Wconversion -Wdouble-promotion -Werror $def -I"$TOP/include/core" \
+            "$TMP/lit.c" -o "$TMP/lit-$prec" 2> "$TMP/lit-$prec.err"; then
+        "$TMP/lit-$prec"; rc=$?
+        check "BRAUN_R in $prec: integer literals, a macro, static initialisers; BRAUN_R(1) / BRAUN_R(3) is a third (exit $rc)" \
+            [ "$rc" -eq 0 ]
+    else
+        not_ok "BRAUN_R in $prec compiles warning-free" "$(head -c 300 "$TMP/lit-$prec.err")"
+    fi
+done
 
 echo "$passed passed, $failed failed, 0 skipped"
 [ "$failed" -eq 0 ]
