@@ -4,8 +4,9 @@
 # (make test builds the float tool into BUILD/float, mk/float.mk). The
 # float tool was tested nowhere: its summary gave double's dopri5 minimum
 # step and its --help double's rank tolerance. Also BRAUN_R in both
-# precisions. Prints "ok - NAME" / "not ok - NAME" and "N passed, M
-# failed, K skipped"; exit status 1 if anything failed.
+# precisions, and the float tolerances docs/cli.md gives dopri5. Prints
+# "ok - NAME" / "not ok - NAME" and "N passed, M failed, K skipped"; exit
+# status 1 if anything failed.
 FB=${1:?usage: sh tests/cli/float.sh FLOAT_BRAUN DOUBLE_BRAUN}
 DB=${2:?usage: sh tests/cli/float.sh FLOAT_BRAUN DOUBLE_BRAUN}
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
@@ -46,6 +47,27 @@ check "float dopri5 --dt 1e-5 --t-end 100: exit 2, the float minimum and the way
     [ "$1" -eq 2 ] && [ "$(wc -l < "$2")" -eq 1 ] &&
     grep -q "^braun: --dt 1e-05 is below the adaptive step.s minimum 0.000190735 at --t-end 100 (16 eps of the span in this float build).*--t-end <= 5.24288 or --dt >= 0.000190735$" "$2"' \
     sh "$rc" "$TMP/dt.err"
+
+# ------------------------------------------------------------ float tolerances (docs/cli.md)
+# The four-bar over 100 s in float: rtol 1e-6 stops at t = 0 and 1e-5
+# before t_end (BRAUN_ERR_STEP_TOO_SMALL; measured 10.9 s); 1e-4 with atol
+# 1e-6 completes, with a trajectory error of 2.0e-2 (measured). The docs
+# advised "1e-5 or above".
+e6=$(json_value error_t "$TMP/f6.json")
+check "float dopri5 rtol 1e-6 atol 1e-8: BRAUN_ERR_STEP_TOO_SMALL at t = $e6" sh -c '
+    [ "$(sed -n "s/^  \"status\": \"\(.*\)\",$/\1/p" "$1")" = BRAUN_ERR_STEP_TOO_SMALL ] && [ "$2" = 0 ]' sh "$TMP/f6.json" "$e6"
+# shellcheck disable=SC2086
+"$FB" run $fb --rtol 1e-5 --atol 1e-7 --quiet --summary "$TMP/f5.json" > /dev/null 2>&1
+e5=$(json_value error_t "$TMP/f5.json")
+check "float dopri5 rtol 1e-5 atol 1e-7: BRAUN_ERR_STEP_TOO_SMALL before t_end (t = $e5)" sh -c '
+    [ "$(sed -n "s/^  \"status\": \"\(.*\)\",$/\1/p" "$1")" = BRAUN_ERR_STEP_TOO_SMALL ] &&
+    awk -v t="$2" "BEGIN { exit !(t != \"null\" && t + 0 > 0 && t + 0 < 100) }"' sh "$TMP/f5.json" "$e5"
+# shellcheck disable=SC2086
+"$FB" run $fb --rtol 1e-4 --atol 1e-6 --quiet --summary "$TMP/f4.json" > /dev/null 2>&1
+e4=$(json_value max_trajectory_error "$TMP/f4.json")
+check "float dopri5 rtol 1e-4 atol 1e-6: BRAUN_OK over 100 s, trajectory error $e4 (2.0e-2 measured; at most 4e-2)" sh -c '
+    [ "$(sed -n "s/^  \"status\": \"\(.*\)\",$/\1/p" "$1")" = BRAUN_OK ] &&
+    awk -v e="$2" "BEGIN { exit !(e != \"\" && e + 0 > 0 && e + 0 <= 4e-2) }"' sh "$TMP/f4.json" "$e4"
 
 # ------------------------------------------------------------ --rank-tol's default
 # --help gives this build's default: 30 sqrt(eps) = 0.0104 in float, the
