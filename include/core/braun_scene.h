@@ -56,6 +56,7 @@
 #define braun_scene_body_rigid braun_scene_body_rigid_float
 #define braun_scene_body_rigid3d braun_scene_body_rigid3d_float
 #define braun_scene_build braun_scene_build_float
+#define braun_scene_coordinate_sizes braun_scene_coordinate_sizes_float
 #define braun_scene_build_sparse braun_scene_build_sparse_float
 #define braun_scene_defaults braun_scene_defaults_float
 #define braun_scene_dir_eval braun_scene_dir_eval_float

@@ -16,6 +16,7 @@
  * this header carries the precision (braun.h, "link names"). */
 #ifdef BRAUN_SINGLE
 #define braun_check_callbacks braun_check_callbacks_float
+#define braun_check_callbacks_sized braun_check_callbacks_sized_float
 #define braun_error_format braun_error_format_float
 #endif
 
