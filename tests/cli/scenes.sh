@@ -1148,6 +1148,12 @@ for L in 1 1e-6; do
         [ "$1" -eq 1 ] && grep -q "^consistent: no$" "$2" && grep -q "^assembly: reached " "$2" &&
         grep -q "^braun: para-off: the constraints have no solution at the initial state: .* disagree (their least-squares residual " "$3" &&
         grep -q "note: para-off: they disagree to first order only" "$3"' sh "$rc" "$TMP/po-$L.out" "$TMP/po.err"
+    # ... and a run refuses it at both sizes (the run's default tolerance
+    # is relative to the rows' own coordinates: ‖q‖∞, an angle's 1 rad,
+    # would let the 1 um one pass, as the absolute sqrt(eps) did).
+    "$BRAUN" run "$TMP/para-off.json" --dt 1e-3 --t-end 0.01 > /dev/null 2> "$TMP/po-run.err"; rc=$?
+    check "run: the parallelogram 2 % off its third pivot, links $L m: BRAUN_ERR_INCONSISTENT at t = 0" sh -c '
+        [ "$1" -eq 1 ] && grep -q "disagree" "$2" && grep -q "at t = 0;" "$2"' sh "$rc" "$TMP/po-run.err"
 done
 check "check: ... at 1 um the message gives the residual relative to the rows' own scale" sh -c '
     grep -q "their least-squares residual 2.89e-09 is 0.000621 of the rows. own scale, above sqrt(eps) = 1.49e-08 of it, in any units" "$1"' \
