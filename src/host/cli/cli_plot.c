@@ -363,6 +363,7 @@ int braun_cli_plot(int argc, char **argv)
         }
     }
 finish:
+    free(job.hide);
     braun_cli_output_abandon(&out);
     free(row);
     free(ex.pos);

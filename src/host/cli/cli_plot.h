@@ -150,6 +150,11 @@ typedef struct plot_job {
      * the straight line joining them (plot_job_resolution): a chart shades
      * its envelope, a path is broken there and its rows drawn as dots. */
     int strays[16];
+    /* A straying series' kept rows left off the chart's line, count ×
+     * nseries (NULL: none): a row next to a segment that strays. Joined,
+     * they drew a wave that did not happen (a pendulum's 2.37 s swings
+     * kept every 2.35 s drew a 335 s swing, thin over the envelope). */
+    unsigned char *hide;
     const char *caption;      /* one line under the picture */
 } plot_job;
 

@@ -145,6 +145,8 @@ static int script(FILE *g, const plot_job *job)
                 double v = NAN;
                 if (sr->column >= 0) v = row[sr->column];
                 else if (pos) v = pos[3 * sr->anchor + sr->axis];
+                /* Off the line where the envelope is shaded (the SVG's). */
+                if (job->hide && job->hide[(size_t)r * (size_t)job->nseries + (size_t)k]) v = NAN;
                 if (isfinite(v)) fprintf(g, " %.17g", v);
                 else fputs(" NaN", g);
             }

@@ -516,12 +516,22 @@ int plot_job_resolution(plot_job *job)
         const double tol = (range[1] - range[0]) / 200;
         for (int k = 0; k < job->nseries && k < s->nextra; k++) {
             double prev = NAN;
-            for (long r = 0; r < s->count && !job->strays[k]; r++) {
+            for (long r = 0; r < s->count; r++) {
                 const double *row = s->rows + (size_t)r * (size_t)s->cols;
                 const double v = series_value(job, &job->series[k], row, pos, qr);
                 if (r > 0 && isfinite(prev) && isfinite(v)) {
                     const double *ep = plot_samples_env(s, r - 1);
-                    job->strays[k] = bin_strays(ep[k], ep[s->nextra + k], prev, v, tol);
+                    if (bin_strays(ep[k], ep[s->nextra + k], prev, v, tol)) {
+                        /* Rows r - 1 and r leave the line (the envelope
+                         * shows what lay between them). */
+                        if (!job->hide)
+                            job->hide = calloc((size_t)s->count * (size_t)job->nseries, 1);
+                        if (job->hide) {
+                            job->hide[(size_t)(r - 1) * (size_t)job->nseries + (size_t)k] = 1;
+                            job->hide[(size_t)r * (size_t)job->nseries + (size_t)k] = 1;
+                        }
+                        job->strays[k] = 1;
+                    }
                 }
                 prev = v;
             }
@@ -802,15 +812,28 @@ int plot_svg_chart(FILE *f, const plot_job *job, double width, double height, in
     }
     for (int k = 0; k < job->nseries; k++) {
         const plot_series *sr = &job->series[k];
-        /* Over a shaded envelope the line only joins the kept states: thin. */
-        fprintf(f, "  <polyline fill=\"none\" stroke=\"%s\" stroke-width=\"%s\" points=\"",
-                plot_colour(k), job->strays[k] ? "0.8" : "1.6");
+        /* The line joins the kept rows, but not across a segment the
+         * envelope shades (job->hide): one polyline per run of rows. */
+        int open = 0;
         for (long r = 0; r < s->count; r++) {
             const double *row = s->rows + (size_t)r * (size_t)s->cols;
             const double y = series_value(job, sr, row, pos, qr);
-            if (isfinite(y)) fprintf(f, "%s%.2f,%.2f", r ? " " : "", X(row[0]), Y(y));
+            const int shown = isfinite(y) && !(job->hide && job->hide[(size_t)r * (size_t)job->nseries + (size_t)k]);
+            if (shown && !open) {
+                fprintf(f, "  <polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\" points=\"",
+                        plot_colour(k));
+                open = 1;
+                fprintf(f, "%.2f,%.2f", X(row[0]), Y(y));
+            } else if (shown) {
+                fprintf(f, " %.2f,%.2f", X(row[0]), Y(y));
+            } else if (open && !isfinite(y)) {
+                continue; /* a missing value (traj_err) does not break the line, as before */
+            } else if (open) {
+                fputs("\"/>\n", f);
+                open = 0;
+            }
         }
-        fputs("\"/>\n", f);
+        if (open) fputs("\"/>\n", f);
         fprintf(f, "  <text x=\"%.2f\" y=\"%.2f\" font-family=\"sans-serif\" font-size=\"13\" "
                    "fill=\"%s\">", ml, 16.0 + 16.0 * k, plot_colour(k));
         plot_xml_text(f, sr->label);
