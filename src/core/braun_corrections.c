@@ -435,6 +435,14 @@ static void judge_start(braun_data *d, braun_real r)
     pv->e0_t = pv->at.t;
 }
 
+/* Φ_e = E − E0 − ∫Ė is a difference of those three: within a few ulps of
+ * them it is round-off, which a correction would only feed into the
+ * motion (the stages' energy force and the step's end judge by this). */
+static braun_real energy_roundoff(const braun_data *d, braun_real E, braun_real W)
+{
+    return 4 * BRAUN_EPS * (braun_fabs(E) + braun_fabs(d->E0) + braun_fabs(W));
+}
+
 static int energy_deferred(braun_data *d, braun_real E)
 {
     braun_priv *pv = braun__priv(d);
@@ -528,8 +536,7 @@ static int stage_energy(braun_data *d, const braun_real *vdot)
      * fall below their ulp, could not yet turn into a fall: a float
      * slider-crank at h = 1e-5 never moved, status OK (found by an outside
      * client; see also the state's compensated sum, braun_step.c). */
-    const braun_real floor_e = 4 * BRAUN_EPS * (braun_fabs(E) + braun_fabs(d->E0) + braun_fabs(pv->at.W));
-    const int roundoff = braun_fabs(r) <= floor_e;
+    const int roundoff = braun_fabs(r) <= energy_roundoff(d, E, pv->at.W);
     const int saturated = !roundoff && !(braun_fabs(r) <= smax * xx);
     /* No direction at all where the rows leave no motion free (every
      * coordinate driven): nothing to saturate, no hit (at rest there is a
@@ -592,9 +599,7 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
         if (!st) st = braun__fail(d, BRAUN_ERR_NONFINITE, "energy force (overflow)", -1, -1, 0, (double)t1);
         return st;
     }
-    /* Φ_e is a difference of E, E0 and ∫Ė: below a few ulps of them it is
-     * round-off, which a correction would only feed into the motion. */
-    const braun_real floor_e = 4 * BRAUN_EPS * (braun_fabs(E) + braun_fabs(d->E0) + braun_fabs(y1[2 * n]));
+    const braun_real floor_e = energy_roundoff(d, E, y1[2 * n]);
     const braun_real smax = energy_max_rel(d);
     braun_real sigma_end = 0;
     int sat_end = 0;
@@ -852,7 +857,7 @@ static int project_at_rest(braun_data *d, braun_real *y, unsigned corr, int plai
     const int n = BRAUN_N(pv->n);
     const int nv = (corr & BRAUN_CORRECT_VELOCITY) ? 2 * n : n; /* what a correction moves */
     braun_real *prev = pv->yerr; /* the last accepted point (free before a step) */
-    braun_real last = 0, merit_last = 0, pos0 = 0, vel0 = 0, e0 = 0;
+    braun_real last = 0, merit_last = 0, pos0 = 0, vel0 = 0;
     int st = BRAUN_OK, cuts = 0, restored = 0;
     for (int it = 0;;) {
         braun__at(pv, d->t, y, y + n, y[2 * n], 0);
@@ -863,11 +868,14 @@ static int project_at_rest(braun_data *d, braun_real *y, unsigned corr, int plai
         pv->stage = 0;
         st = braun__forward(d, BRAUN_WITH_RESIDUALS, pv->k[0] + n);
         if (st) break;
-        const braun_real r = *r_last = relative_residual_of(d, corr);
+        braun_real pos, vel, energy;
+        measure_scales(d, 1, 0, &pos, &vel, &energy);
+        const braun_real r = *r_last = residual_against(pv, corr, pos, vel);
         if (restored) break;
         if (it == 0 && cuts == 0) {
             *r_first = r;
-            measure_scales(d, 1, 0, &pos0, &vel0, &e0);
+            pos0 = pos;
+            vel0 = vel;
         }
         /* Judged against the first point's scales, fixed: the point's own
          * grow with q, and a Gauss–Newton step far from the manifold that

@@ -131,7 +131,6 @@ int braun_data_init(braun_data *d, const braun_model *model, void *buffer,
     pv->q_home = d->q;
     pv->v_home = d->v;
     for (int i = 0; i < s->n; i++) d->q[i] = d->v[i] = 0;
-    for (int i = 0; BRAUN_COMPENSATED_STATE && i < 2 * s->n + 1; i++) pv->ylo[i] = 0;
     /* Off-pattern entries of a scattered A stay zero from here on. */
     if (pv->sp && pv->dense_A)
         for (size_t i = 0; i < (size_t)pv->rows * (size_t)pv->n; i++) pv->A[i] = 0;
@@ -213,7 +212,7 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     pv->state_set = 1;
     pv->has_prev = 0;
     pv->t_lo = 0;
-    for (int i = 0; BRAUN_COMPENSATED_STATE && i < 2 * n + 1; i++) pv->ylo[i] = 0;
+    braun__clear_compensation(pv);
     pv->have_ref = 0;
 #ifdef BRAUN_NO_LINSOLVER
     braun__dense_new_run(pv->ls_state);

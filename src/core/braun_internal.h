@@ -370,6 +370,13 @@ int braun__corrections_at_end(braun_data *d, const braun_real *vdot, braun_real 
 int braun__project_start(braun_data *d, braun_real *y, int *moved);
 int braun__project_positions(braun_data *d, braun_real *y, int *moved, braun_real *r_start, int judge);
 
+/* The state's carried rounding (ylo) cleared: a new run, or a state the
+ * guard took back. Read only by a step's sum, after braun_set_state. */
+static inline void braun__clear_compensation(braun_priv *pv)
+{
+    for (int i = 0; BRAUN_COMPENSATED_STATE && i < 2 * pv->n + 1; i++) pv->ylo[i] = 0;
+}
+
 /* A stage's inputs are done at this point, else BRAUN_ERR_ARGUMENT. */
 static inline int braun__need(braun_data *d, unsigned bits, const char *stage)
 {

@@ -286,7 +286,7 @@ void braun__guard_rollback(braun_data *d)
     d->guard.energy0 = pv->guard_prev[5];
     d->stats.steps--;
     pv->has_prev = 0;
-    for (int i = 0; BRAUN_COMPENSATED_STATE && i < 2 * n + 1; i++) pv->ylo[i] = 0;
+    braun__clear_compensation(pv);
 }
 
 void braun__load_state(braun_data *d)

@@ -20,13 +20,7 @@ int plot_samples_init(plot_samples *s, int n, long cap, double from, double to)
     const int nextra = s->nextra, paired = s->paired;
     void (*extra)(void *, const double *, double *) = s->extra;
     void *extra_ctx = s->extra_ctx;
-    free(s->rows);
-    free(s->last);
-    free(s->fine);
-    free(s->env);
-    free(s->fine_env);
-    free(s->ex);
-    free(s->last_ex);
+    plot_samples_free(s);
     memset(s, 0, sizeof *s);
     s->nextra = extra && nextra > 0 ? nextra : 0;
     s->paired = s->nextra && paired;
