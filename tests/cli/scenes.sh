@@ -893,6 +893,26 @@ check "check: no assembly of an unreachable joint: consistent: no, exit 1" sh -c
 check "check: the unreachable joint is named among the rows that cannot all be met" sh -c '
     grep -q "no solution near the initial state: .*joint .far. (distance) (row 4).* cannot all be met" "$1"' \
     sh "$TMP/far.err"
+# check and run agree on dependent rows that disagree by round-off: two
+# pins of one point 1e-8 m apart on a 1 m pendulum (a run takes them to
+# agree, sqrt(eps) of the rows' size, and runs BRAUN_OK) read "consistent:
+# no" with exit 1; 1.1e-8 m apart both refuse. At 1 m and 1 km.
+for L in 1 1000; do
+    for k in 1e-8 1.1e-8; do
+        awk -v L="$L" -v k="$k" 'BEGIN { printf "{\"name\": \"pins\", \"bodies\": [{\"name\": \"b\", \"type\": \"rigid\", \"mass\": 1, \"inertia\": %.17g, \"position\": [%.17g, 0], \"angle\": 0, \"points\": {\"P\": [%.17g, 0]}}], \"joints\": [{\"name\": \"pin1\", \"type\": \"revolute\", \"a\": \"b.P\", \"b\": [0, 0]}, {\"name\": \"pin2\", \"type\": \"revolute\", \"a\": \"b.P\", \"b\": [%.17g, 0]}], \"effects\": [{\"type\": \"gravity\", \"g\": [0, -9.81]}]}\n", 0.1 * L * L, 0.5 * L, -0.5 * L, k * L }' > "$TMP/pins.json"
+        "$BRAUN" check "$TMP/pins.json" > "$TMP/pins.out" 2> /dev/null; crc=$?
+        "$BRAUN" run "$TMP/pins.json" --dt 1e-3 --t-end 0.1 > "$TMP/pins.run" 2> /dev/null; rrc=$?
+        if [ "$k" = 1e-8 ]; then
+            check "check and run: pins $k x $L m apart: consistent: yes, exit 0, and the run BRAUN_OK" sh -c '
+                [ "$1" -eq 0 ] && [ "$2" -eq 0 ] && grep -q "^consistent: yes$" "$3" &&
+                grep -q "^assembly: reached to round-off" "$3"' sh "$crc" "$rrc" "$TMP/pins.out"
+        else
+            check "check and run: pins $k x $L m apart: consistent: no, exit 1, and the run INCONSISTENT" sh -c '
+                [ "$1" -eq 1 ] && [ "$2" -eq 1 ] && grep -q "^consistent: no$" "$3" &&
+                grep -q "BRAUN_ERR_INCONSISTENT" "$4"' sh "$crc" "$rrc" "$TMP/pins.out" "$TMP/pins.run"
+        fi
+    done
+done
 # A driven revolute3d whose drive starts pi/2 or more from the joint's
 # initial angle (0): the row sin(theta - f) would hold theta = f - pi, the
 # arm half a turn off the drive with exit 0. Refused at load; 1 rad off is
