@@ -146,7 +146,7 @@ static void report_failure(const braun_data *d, int st, const braun_cli_guard *g
                            const braun_cli_run_args *a, const braun_cli_target *tg)
 {
     if (d->error.status == st) {
-        char what[256], rows[400];
+        char what[512], rows[400];
         const char *element = guard ? braun_cli_guard_element(guard, d->error.t) : NULL;
         braun_error_format(d, what, sizeof what);
         /* The rows that disagree, or the row whose residual the guard

@@ -224,8 +224,16 @@ static void describe(msg *w, const braun_data *d)
         return;
     }
     case BRAUN_ERR_INCONSISTENT:
-        put(w, "dependent %s disagree by %.3g: the constraints have no solution here",
-            where ? where : "constraints", e->value);
+        if (d->stats.steps > 0)
+            /* Rows that held for the steps before: the motion drifted off
+             * rows dependent here (Bricard's linkage at dopri5 rtol 1e-2
+             * was told "the constraints have no solution here"). */
+            put(w, "dependent %s disagree by %.3g after %ld steps that held them: the motion "
+                   "drifted off them (a step, or rtol and atol, too large for these rows?)",
+                where ? where : "constraints", e->value, (long)d->stats.steps);
+        else
+            put(w, "dependent %s disagree by %.3g: the constraints have no solution here",
+                where ? where : "constraints", e->value);
         if (e->index >= 0 && e->index2 >= 0) put(w, " (rows %d and %d disagree most)", e->index, e->index2);
         else if (e->index >= 0 && e->index2 == -2)
             put(w, " (row %d: its gradient is zero here, its error is not)", e->index);
