@@ -326,11 +326,18 @@ typedef struct braun_options {
      * state whose residual exceeds them: ‖Φ_q‖ <= guard·S_pos,
      * ‖[Φ̇_q; Φ_v]‖ <= guard·S_vel, |Φ_e| <= guard·S_energy; a residual no
      * larger than it was at braun_set_state (an inconsistent start the
-     * corrections are still removing) passes. Each is checked where the
-     * corrections compute it, at no extra evaluation: position with the
-     * position correction on, velocity with the velocity correction,
-     * energy with the energy correction. 0 selects the default 1e-3; < 0
-     * turns the guard off. */
+     * corrections are still removing) passes, and so does, after a start
+     * off its position constraints, the velocity residual the position
+     * correction creates (the start's velocity seen at the corrected
+     * positions, measured while that error is removed: braun_data.guard's
+     * vel0); a start the corrections cannot bring onto its constraints
+     * (its position residual grows) is refused, d->error naming it. Each
+     * residual is checked where the corrections compute it, at no extra
+     * evaluation (but for that measurement, at a start off its positions'
+     * first steps): position with the position correction on, velocity
+     * with the velocity correction, energy with the energy correction.
+     * The guard only judges: a run it passes is the run with it off, bit
+     * for bit. 0 selects the default 1e-3; < 0 turns the guard off. */
     braun_real guard;
     /* The soft-direction filter (docs/method.md, "Redundant rows through a
      * singular configuration"): near a singular configuration C keeps a
@@ -398,7 +405,12 @@ typedef struct braun_error_info {
     const char *where;  /* static string: "mass", "forces", "state q", ... */
     int index;          /* row/entry involved, or -1; BRAUN_ERR_CALLBACK and
                          * _RECOVERABLE: the callback's return code (value too) */
-    int index2;         /* column, or -1; BRAUN_ERR_INCONSISTENT: index and
+    int index2;         /* column, or -1; BRAUN_ERR_ACCURACY refused while
+                         * the allowance of a start off its position
+                         * constraints was in use (`where` then ends "(a
+                         * start off its position constraints)"): that
+                         * start's largest position row;
+                         * BRAUN_ERR_INCONSISTENT: index and
                          * index2 are the two rows that disagree most
                          * (largest least-squares residual; holonomic rows,
                          * or rows of [A_q; A_vv] when `where` says
@@ -442,7 +454,12 @@ typedef struct braun_data {
      *            ½ vᵀ M v in place of ½ s_vᵀ M s_v);
      * and the residuals at the initial state (pos0, vel0, energy0: the
      * allowance of a start off the constraints, set to 0 once the residual
-     * comes within guard × scale). A program may set its own scales after
+     * comes within guard × scale). A start off its position constraints
+     * (pos0 above sqrt(ε)·pos) raises vel0, at each step until pos0 ends,
+     * to twice the velocity residual that step's position correction dq
+     * creates, ‖[Φ̇_q; Φ_v](t, q + dq, v) − [Φ̇_q; Φ_v](t, q, v)‖ (measured:
+     * two more evaluations of the constraints, at such steps only; never
+     * above the first step's). A program may set its own scales after
      * braun_set_state. */
     struct {
         braun_real pos, vel, energy;

@@ -227,6 +227,9 @@ int braun_set_state(braun_data *d, braun_real t, const braun_real *q,
     /* The guard's scales come from the first step's start (its forward pass
      * is at this state): no evaluation here. */
     pv->guard_pending = 1;
+    pv->vel_induced0 = 0;
+    pv->start_row = -1;
+    pv->start_off = 0;
     d->guard.pos = d->guard.vel = d->guard.energy = 0;
     d->guard.pos0 = d->guard.vel0 = d->guard.energy0 = 0;
     return BRAUN_OK;

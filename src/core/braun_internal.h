@@ -176,6 +176,15 @@ typedef struct braun_priv {
     braun_real t_lo;
     int guard_pending;    /* the guard's scales are still to be measured */
     int guard_first;      /* this step measured them (its own residuals pass) */
+    /* A start off its position constraints (d->guard.pos0 above sqrt(ε) of
+     * its scale): the velocity residual its first position correction
+     * created, twice (the ceiling of the velocity allowance later
+     * corrections may add; 0: none), and its largest position row
+     * (d->error.index2 of a refusal its allowance was in use for; -1:
+     * none). braun_corrections.c, allow_induced_velocity. */
+    braun_real vel_induced0;
+    int start_row;
+    int start_off;        /* such a start, pos0 maybe still in force (cleared once it ends) */
     int guard_on;         /* the corrections being computed belong to a run */
     braun_real *enorm;    /* rows: the normal error of an adaptive step */
     /* Integrator scratch: states of length N = 2n + 1 ([q; v; ∫Ė]). */

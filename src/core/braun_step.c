@@ -284,6 +284,9 @@ void braun__guard_rollback(braun_data *d)
     d->guard.pos0 = pv->guard_prev[3];
     d->guard.vel0 = pv->guard_prev[4];
     d->guard.energy0 = pv->guard_prev[5];
+    /* (A start off its positions measures its allowance again while pos0
+     * is back in force: braun_corrections.c, allow_induced_velocity.) */
+    if (pv->vel_induced0 > 0 && d->guard.pos0 > 0) pv->start_off = 1;
     d->stats.steps--;
     pv->has_prev = 0;
     braun__clear_compensation(pv);

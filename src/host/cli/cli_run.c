@@ -127,13 +127,23 @@ static const char *disagreeing_rows(const braun_data *d, const braun_cli_target 
 
 /* For the accuracy guard's position or velocity residual: the element that
  * owns its largest row (d->error.index), "; its largest row, 5, is joint
- * 'far' (distance)"; "" without a scene. */
+ * 'far' (distance)", and for a refusal a start off its position
+ * constraints caused, the element of the start's largest position row
+ * (d->error.index2), "; the start's largest position error is row 2, joint
+ * 'drive' (revolute3d)"; "" without a scene. */
 static const char *largest_row(const braun_data *d, const braun_cli_target *tg, char *buf, size_t size)
 {
-    char a[160];
+    char a[160], b[160];
     const char *owner = braun_cli_row_owner(tg ? tg->scene : NULL, d->error.index, a, sizeof a);
+    const char *off_row = d->error.index2 >= 0
+                              ? braun_cli_row_owner(tg ? tg->scene : NULL, d->error.index2, b, sizeof b)
+                              : NULL;
     buf[0] = '\0';
-    if (owner) snprintf(buf, size, "; its largest row, %d, is %s", d->error.index, owner);
+    if (owner && off_row)
+        snprintf(buf, size, "; its largest row, %d, is %s; the start's largest position error is row %d, %s",
+                 d->error.index, owner, d->error.index2, off_row);
+    else if (owner)
+        snprintf(buf, size, "; its largest row, %d, is %s", d->error.index, owner);
     return buf;
 }
 

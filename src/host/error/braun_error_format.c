@@ -198,9 +198,11 @@ static void describe(msg *w, const braun_data *d)
         const double g = d->model && d->model->opt.guard > 0 ? (double)d->model->opt.guard : 1e-3;
         double scale = 0, r0 = 0;
         const char *what = "residual";
-        if (where && strstr(where, "position")) {
+        /* (The residual's name: a refusal caused by a start off its
+         * position constraints names them in every `where`.) */
+        if (where && strstr(where, "position residual")) {
             scale = (double)d->guard.pos; r0 = (double)d->guard.pos0; what = "position residual ||Phi_q||";
-        } else if (where && strstr(where, "velocity")) {
+        } else if (where && strstr(where, "velocity residual")) {
             scale = (double)d->guard.vel; r0 = (double)d->guard.vel0;
             what = "velocity residual ||[dPhi_q/dt; Phi_v]||";
         } else if (where && strstr(where, "energy")) {
@@ -221,6 +223,13 @@ static void describe(msg *w, const braun_data *d)
         const int digits = strcmp(a10, b10) == 0 && e->t != (double)d->t ? 17 : 10;
         put(w, " at t = %.*g; the state kept is the last one that passed, at t = %.*g", digits, e->t,
             digits, (double)d->t);
+        /* Refused while the allowance of a start off its position
+         * constraints was in use: that start is the cause (braun.h,
+         * error.index2: its largest row). */
+        if (where && strstr(where, "a start off its position constraints"))
+            put(w, "; the cause is the start's position error, allowed while the corrections remove "
+                   "it: the start is too far off for them, or the step too large (start nearer the "
+                   "constraints: braun check prints the assembly)");
         return;
     }
     case BRAUN_ERR_INCONSISTENT:
