@@ -9,6 +9,7 @@
  * measured with libbraun's rank-revealing QR, and sparse and dense systems
  * integrate to the same trajectory. Scenes with rods have no sparsity. */
 #define _POSIX_C_SOURCE 200809L /* opendir, mkstemp */
+#define _XOPEN_SOURCE 700       /* realpath: cli_files.c, compiled in below */
 #include <dirent.h>
 #include <unistd.h>
 
