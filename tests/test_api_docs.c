@@ -542,7 +542,7 @@ static double ramp_run_corr(int how, double h, double T, braun_real guard, int *
     ramp r = {how};
     braun_system s = {1, 0, 0, BRAUN_MASS_CONSTANT | (how == RAMP_DT_ONLY ? 0u : BRAUN_ENERGY_INPUT),
                       ramp_mass, ramp_forces, NULL, NULL, ramp_energy,
-                      how == RAMP_DT_ONLY ? NULL : ramp_power, &r, NULL};
+                      how == RAMP_DT_ONLY ? NULL : ramp_power, &r, NULL, NULL};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, corr), BRAUN_OK);
     sim.model.opt.guard = guard;
@@ -772,7 +772,7 @@ static void test_energy_input_without_energy_law(void **state)
 {
     (void)state;
     const braun_system s = {1, 0, 0, BRAUN_MASS_CONSTANT | BRAUN_ENERGY_INPUT, push_mass, push_force,
-                            NULL, NULL, NULL, push_power, NULL, NULL};
+                            NULL, NULL, NULL, push_power, NULL, NULL, NULL};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, 0), BRAUN_OK);
     const braun_real q0[1] = {0}, v0[1] = {0};

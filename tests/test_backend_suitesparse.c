@@ -215,7 +215,7 @@ static void ts_model(tsys *t, int m)
     t->sp = (braun_sparsity){t->row_ptr, t->col, t->nb, t->block};
     braun_system s = {t->n,      m,       t->rows - m, BRAUN_MASS_CONSTANT,
                       dummy_mass, dummy_forces, m > 0 ? dummy_hol : NULL,
-                      t->rows > m ? dummy_nonhol : NULL, NULL, NULL, NULL, &t->sp};
+                      t->rows > m ? dummy_nonhol : NULL, NULL, NULL, NULL, &t->sp, NULL};
     assert_int_equal(braun_model_init(&t->model, &s), BRAUN_OK);
 }
 
@@ -1602,7 +1602,7 @@ static braun_system sim_system(sim_chain *c, int dup, int knife, double *q, doub
     }
     braun_system s = {3 * NS,     c->t.m,   c->t.rows - c->t.m, BRAUN_MASS_CONSTANT,
                       sim_mass,   sim_forces, sim_hol,
-                      knife ? sim_knife : NULL, sim_energy, NULL, c, &c->t.sp};
+                      knife ? sim_knife : NULL, sim_energy, NULL, c, &c->t.sp, NULL};
     return s;
 }
 

@@ -408,7 +408,7 @@ static void test_scleronomic_velocity_rows(void **state)
     for (int k = 0; k < 3; k++) {
         double u = k == 2 ? 0 : 0.4;
         braun_system s = {2, 0, 1, BRAUN_MASS_CONSTANT, belt_mass, belt_forces, NULL, belt_rows,
-                          belt_energy, NULL, &u, NULL};
+                          belt_energy, NULL, &u, NULL, NULL};
         if (k != 1) s.flags |= BRAUN_SCLERONOMIC;
         test_sim sim;
         assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_ALL), BRAUN_OK);

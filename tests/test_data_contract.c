@@ -67,7 +67,7 @@ static int ring_energy(braun_real t, const braun_real *q, const braun_real *v, b
 static braun_system ring_system(ring *r)
 {
     braun_system s = {2, 1, 0, BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC, ring_mass, ring_forces,
-                      ring_holonomic, NULL, ring_energy, NULL, r, NULL};
+                      ring_holonomic, NULL, ring_energy, NULL, r, NULL, NULL};
     return s;
 }
 

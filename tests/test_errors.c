@@ -93,6 +93,22 @@ static void test_system_check_names_the_problem(void **state)
     assert_int_equal(braun_system_check(&sparse, &why), BRAUN_ERR_ARGUMENT);
     assert_non_null(strstr(why, "sparsity"));
     assert_int_equal(braun_system_check(&s, NULL), BRAUN_OK);
+    /* q_scale: every entry a size, positive and finite; refused by
+     * braun_model_init too, with the field named. */
+    const braun_real bad[4] = {0, -1, (braun_real)NAN, (braun_real)INFINITY};
+    for (int i = 0; i < 4; i++) {
+        braun_real sizes[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+        sizes[s.n - 1] = bad[i];
+        braun_system sized = s;
+        sized.q_scale = sizes;
+        braun_model m;
+        assert_int_equal(braun_system_check(&sized, &why), BRAUN_ERR_ARGUMENT);
+        assert_non_null(strstr(why, "q_scale"));
+        assert_int_equal(braun_model_init(&m, &sized), BRAUN_ERR_ARGUMENT);
+        sizes[s.n - 1] = 0.5;
+        assert_int_equal(braun_system_check(&sized, &why), BRAUN_OK);
+        assert_int_equal(braun_model_init(&m, &sized), BRAUN_OK);
+    }
 }
 
 /* Misaligned buffers are fine: the data is carved from an aligned offset. */
@@ -265,7 +281,7 @@ static void test_divergence_is_reported(void **state)
 {
     (void)state;
     braun_system s = {1, 0, 0, BRAUN_MASS_CONSTANT, osc_mass, osc_forces, NULL, NULL, NULL,
-                      NULL, NULL, NULL};
+                      NULL, NULL, NULL, NULL};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
                      BRAUN_OK);
@@ -306,7 +322,7 @@ static int spring_force(braun_real t, const braun_real *q, const braun_real *v, 
 static void test_mass_lost_at_a_stage_is_divergence(void **state)
 {
     (void)state;
-    braun_system s = {1, 0, 0, 0, shrinking_mass, spring_force, NULL, NULL, NULL, NULL, NULL, NULL};
+    braun_system s = {1, 0, 0, 0, shrinking_mass, spring_force, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     const double q0[1] = {1}, v0[1] = {0};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_NONE), BRAUN_OK);
@@ -377,7 +393,7 @@ static void test_infinite_jacobian_is_named(void **state)
 {
     (void)state;
     braun_system s = {2, 1, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, infinite_row, NULL,
-                      NULL, NULL, NULL, NULL};
+                      NULL, NULL, NULL, NULL, NULL};
     const double q0[2] = {0, 0}, v0[2] = {0, 0};
     for (unsigned corr = 0; corr <= BRAUN_CORRECT_VELOCITY; corr += BRAUN_CORRECT_VELOCITY) {
         test_sim sim;
@@ -395,7 +411,7 @@ static void test_inconsistent_constraints(void **state)
     (void)state;
     double gap = 1.0;
     braun_system s = {2, 2, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, contradict, NULL,
-                      NULL, NULL, &gap, NULL};
+                      NULL, NULL, &gap, NULL, NULL};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION | BRAUN_CORRECT_VELOCITY),
                      BRAUN_OK);
@@ -440,7 +456,7 @@ static void test_inconsistent_rows_named(void **state)
     (void)state;
     double gap = 0.25;
     braun_system s = {2, 3, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, contradict3, NULL,
-                      NULL, NULL, &gap, NULL};
+                      NULL, NULL, &gap, NULL, NULL};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION), BRAUN_OK);
     const double q0[2] = {0.1, 0.3}, v0[2] = {0, 0};
@@ -473,7 +489,7 @@ static void test_inconsistent_single_row(void **state)
 {
     (void)state;
     braun_system s = {2, 2, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, singular_row, NULL,
-                      NULL, NULL, NULL, NULL};
+                      NULL, NULL, NULL, NULL, NULL};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_POSITION), BRAUN_OK);
     const double q0[2] = {0.2, 0}, v0[2] = {0, 0};
@@ -544,7 +560,7 @@ static void test_inconsistent_velocities(void **state)
 {
     {
         braun_system s2 = {2, 2, 0, BRAUN_MASS_CONSTANT, line_mass, line_forces, two_drives, NULL,
-                           NULL, NULL, NULL, NULL};
+                           NULL, NULL, NULL, NULL, NULL};
         const double q0[2] = {0, 0}, v0[2] = {1.5, 0};
         test_sim sim;
         first_step_inconsistent(&sim, &s2, q0, v0, "velocity-level constraint rows");
@@ -561,7 +577,7 @@ static void test_inconsistent_velocities(void **state)
     (void)state;
     double rate = 1.0;
     braun_system s = {2, 1, 1, BRAUN_MASS_CONSTANT, line_mass, line_forces, drive_x, knife_x,
-                      NULL, NULL, &rate, NULL};
+                      NULL, NULL, &rate, NULL, NULL};
     const double q0[2] = {0, 0}, v0[2] = {0.5, 1};
     test_sim sim;
     first_step_inconsistent(&sim, &s, q0, v0, "velocity-level constraint rows");
@@ -618,7 +634,7 @@ static void test_mass_constant_claim_checked(void **state)
     (void)state;
     int which = 0;
     braun_system s = {2, 0, 0, BRAUN_MASS_CONSTANT, varying_mass, line_forces, NULL, NULL, NULL,
-                      NULL, &which, NULL};
+                      NULL, &which, NULL, NULL};
     test_sim sim;
     assert_int_equal(test_sim_open(&sim, &s, BRAUN_CORRECT_NONE), BRAUN_OK);
     /* A fresh data block: a refused claim refuses every later call. */

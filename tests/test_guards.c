@@ -449,7 +449,7 @@ static void test_adaptive_no_free_motion(void **state)
 {
     (void)state;
     driven_prm p = {3.0, 0.5};
-    braun_system s = {2, 2, 0, BRAUN_MASS_CONSTANT, d_mass, d_forces, d_hol, NULL, d_energy, NULL, &p, NULL};
+    braun_system s = {2, 2, 0, BRAUN_MASS_CONSTANT, d_mass, d_forces, d_hol, NULL, d_energy, NULL, &p, NULL, NULL};
     const double rtols[3] = {1e-6, 1e-8, 1e-10};
     long prev_steps = 0;
     for (int k = 0; k < 3; k++) {
@@ -532,7 +532,7 @@ static void test_guard_start_at_rest(void **state)
 {
     (void)state;
     braun_system s = {3, 2, 0, BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC | BRAUN_ENERGY_INPUT, bar_mass,
-                      bar_forces, bar_hol, NULL, bar_energy, bar_power, NULL, NULL};
+                      bar_forces, bar_hol, NULL, bar_energy, bar_power, NULL, NULL, NULL};
     const double T = 2.0;
     for (int adaptive = 0; adaptive < 2; adaptive++) {
         test_sim sim;

@@ -175,7 +175,7 @@ static braun_system chain_system(chain *c, int sparse, int redundant, int knife_
     for (int k = 0; k < NL; k++) c->block[k] = 3;
     c->sp = (braun_sparsity){c->row_ptr, c->col, NL, c->block};
     braun_system s = {NMAX, c->m, c->p, BRAUN_MASS_CONSTANT, mass, forces, holonomic,
-                      knife_row ? knife : NULL, energy, NULL, c, sparse ? &c->sp : NULL};
+                      knife_row ? knife : NULL, energy, NULL, c, sparse ? &c->sp : NULL, NULL};
     return s;
 }
 
@@ -307,7 +307,7 @@ static void test_sizes(void **state)
     static int row_ptr[1] = {0}, block[1] = {5000};
     braun_sparsity sp = {row_ptr, NULL, 1, block};
     braun_system s = {5000, 0, 0, BRAUN_MASS_CONSTANT, mass, forces, NULL, NULL, NULL, NULL,
-                      NULL, NULL};
+                      NULL, NULL, NULL};
     braun_model model;
     assert_int_equal(braun_model_init(&model, &s), BRAUN_ERR_SIZE);
     s.sparsity = &sp;

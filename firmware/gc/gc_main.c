@@ -88,7 +88,7 @@ static union {
 int fw_board_main(void)
 {
     static const braun_system sys = {2, 1, 0, BRAUN_MASS_CONSTANT, mass, forces,
-                                     holonomic, NULL, ENERGY, NULL, NULL, NULL};
+                                     holonomic, NULL, ENERGY, NULL, NULL, NULL, NULL};
     static const braun_real q0[2] = {BRAUN_R(1.0), BRAUN_R(0.0)};
     static const braun_real v0[2] = {BRAUN_R(0.0), BRAUN_R(0.0)};
     braun_model model;

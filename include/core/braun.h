@@ -244,6 +244,19 @@ typedef struct braun_system {
     braun_power_fn power;             /* required iff BRAUN_ENERGY_INPUT */
     void *user;                       /* passed to every callback */
     const braun_sparsity *sparsity;   /* NULL: dense A and M (the default) */
+    /* Optional: each coordinate's natural size (n entries, each positive
+     * and finite, in the coordinate's own unit; the array must outlive the
+     * model; braun_model_init refuses another with BRAUN_ERR_ARGUMENT,
+     * "q_scale has an entry that is not positive and finite"): what the
+     * accuracy guard measures its scales by (braun_data.guard) — a length
+     * coordinate the mechanism's size, an angle or an Euler parameter 1.
+     * A scene fills it (braun_scene.q_scale, braun_scene_natural_sizes).
+     * NULL (the built-in models): the guard's scales from the state alone
+     * (every coordinate at least max(|q_j|, ‖q‖∞), which mixes a length's
+     * unit with an angle's and grows with where the mechanism is). Read
+     * only where the scales are measured (the first step, a residual above
+     * its bound), never in a step. */
+    const braun_real *q_scale;
 } braun_system;
 
 /* ------------------------------------------------------------------ */
@@ -452,6 +465,17 @@ typedef struct braun_data {
      *            of a fall over L;
      *   energy = max(|E0|, ½ s_vᵀ M s_v, |∫Ė|, 1e-30) (measured again:
      *            ½ vᵀ M v in place of ½ s_vᵀ M s_v);
+     * with sys.q_scale (a scene's natural sizes) each coordinate in its own
+     * unit instead, none from where the mechanism is:
+     *   pos    = Σ_i Σ_j |A_ij| s_q,j, s_q,j = q_scale[j];
+     *   vel    = the same with s_v,j = max(|v_j|, W·s_q,j), W one rate
+     *            (1/s) for the mechanism: ½ W² s_qᵀ M s_q is the larger of
+     *            ½ vᵀ M v and ½ |Qᵀ s| (the forces' work over the sizes,
+     *            s_j = ±s_q,j in the direction Q drives coordinate j), or a
+     *            drive's rate |c_i| / Σ_j |A_ij| s_q,j if faster;
+     *   energy = max(½ s_vᵀ M s_v, |∫Ė|, 1e-30) (measured again: ½ vᵀ M v),
+     *            in J whatever the units; |E0| is left out, its datum (a
+     *            potential's zero) being arbitrary;
      * and the residuals at the initial state (pos0, vel0, energy0: the
      * allowance of a start off the constraints, set to 0 once the residual
      * comes within guard × scale). A start off its position constraints

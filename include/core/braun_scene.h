@@ -57,6 +57,7 @@
 #define braun_scene_body_rigid3d braun_scene_body_rigid3d_float
 #define braun_scene_build braun_scene_build_float
 #define braun_scene_coordinate_sizes braun_scene_coordinate_sizes_float
+#define braun_scene_natural_sizes braun_scene_natural_sizes_float
 #define braun_scene_build_sparse braun_scene_build_sparse_float
 #define braun_scene_defaults braun_scene_defaults_float
 #define braun_scene_dir_eval braun_scene_dir_eval_float
@@ -295,6 +296,16 @@ int braun_scene_point_state(const braun_scene *s, int i, const braun_real *q,
  * steps by: scaled by L, a scene's sizes are L times. A built scene;
  * BRAUN_ERR_ARGUMENT for a NULL argument or a scene not built. */
 int braun_scene_coordinate_sizes(const braun_scene *s, const braun_real *q, braun_real *size);
+
+/* Each coordinate's natural size at q (size: n entries), what the
+ * accuracy guard's scales are measured by (braun_system.q_scale): a
+ * coordinate of a body's position (the first `dim` of its class's
+ * coordinates, the planar angle excepted) the mechanism's size — the
+ * diagonal of the box around the scene's points and the bodies' positions,
+ * 1 if that is 0 —, an angle or an Euler parameter 1. Independent of where
+ * the mechanism is: the same scene moved by 10 km has the same sizes.
+ * BRAUN_ERR_ARGUMENT for a NULL argument or a scene not built. */
+int braun_scene_natural_sizes(const braun_scene *s, const braun_real *q, braun_real *size);
 
 /* Angle θ and angular velocity ω of a body that has one (0 for the ground
  * or a body without angle; omega 0 when v is NULL); returns θ's column, or
@@ -703,6 +714,13 @@ struct braun_scene {
     int driven;           /* number of driven joints (0: BRAUN_SCLERONOMIC) */
     int energy_input;     /* an effect puts energy in or takes it out */
     int dim;              /* 2: planar bodies, 3: spatial bodies */
+    /* Optional storage of the caller's, n entries (the sum of the bodies'
+     * dof): braun_scene_build fills it with braun_scene_natural_sizes at
+     * the initial state and points sys->q_scale at it, so that the
+     * accuracy guard judges each coordinate by its own unit (braun.h,
+     * braun_system.q_scale). NULL: sys->q_scale = NULL (the guard's scales
+     * from the state alone). The scene file reader provides it. */
+    braun_real *q_scale;
 };
 
 /* What braun_scene_build found wrong (element and index, static text). */
@@ -728,7 +746,10 @@ typedef struct braun_scene_error {
  * bodies' own rows (a rigid3d's unit quaternion) in body order; of Φ_v:
  * nonholonomic joints — knife edges — in order), and fill sys with the
  * scene's callbacks
- * (sys->user = s: the scene must outlive the system). Rejects dangling
+ * (sys->user = s: the scene must outlive the system). With s->q_scale
+ * (the caller's n entries) it writes the coordinates' natural sizes there
+ * (braun_scene_natural_sizes at the initial state) and sets sys->q_scale
+ * to it, for the accuracy guard; else sys->q_scale = NULL. Rejects dangling
  * indices, non-finite or out-of-range numbers (|x| > BRAUN_SCENE_MAX_ABS),
  * non-positive masses, inertias and lengths, a coordinate without mass,
  * rods ending on rigid bodies, joints of a body with itself, zero axes,

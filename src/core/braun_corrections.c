@@ -670,9 +670,16 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
  * fastest one's speed, and an energy scale grown from that let a chain's
  * energy law drift by 2.2 J before the guard saw it (chain-5, RK4,
  * h = 1e-2). Scratch: pv->ce, pv->tmp (free wherever the guard runs). */
+static void measure_scales_sized(braun_data *d, int accel, int again, braun_real *pos_out,
+                                 braun_real *vel_out, braun_real *energy_out);
+
 static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_out,
                            braun_real *vel_out, braun_real *energy_out)
 {
+    if (d->model->sys.q_scale) {
+        measure_scales_sized(d, accel, again, pos_out, vel_out, energy_out);
+        return;
+    }
     braun_priv *pv = braun__priv(d);
     const int n = pv->n, m = pv->m, rows = pv->rows;
     const braun_real *q = pv->at.q, *v = pv->at.v;
@@ -712,6 +719,61 @@ static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_
     const braun_real T = BRAUN_R(0.5) * braun_dot(n, sq, sq);
     /* The energy the scene holds: E0, the kinetic scale, the work done. */
     braun_real energy = braun_fabs(d->E0) > T ? braun_fabs(d->E0) : T;
+    if (braun_fabs(pv->at.W) > energy) energy = braun_fabs(pv->at.W);
+    *pos_out = pos;
+    *vel_out = vel;
+    *energy_out = energy > 0 ? energy : BRAUN_R(1e-30);
+}
+
+/* The same with the system's natural sizes s_q = sys.q_scale (braun.h):
+ * each coordinate in its own unit, none from where the mechanism is.
+ *   pos: Σ_i Σ_j |A_ij| s_q,j — the residual a displacement of each
+ *        coordinate by its size makes;
+ *   vel: the same with s_v,j = max(|v_j|, W·s_q,j): W one rate (1/s) for
+ *        the whole mechanism, each coordinate moving through its size at
+ *        it, so that ½ W² s_qᵀ M s_q (in J, whatever the coordinates'
+ *        units) is the larger of the kinetic energy ½ vᵀ M v and the work
+ *        E_f = ½ |Qᵀ s| of the forces over the sizes (s_j = s_q,j in the
+ *        direction Q drives coordinate j: a fall over the mechanism's
+ *        size; a torque on a small inertia counts its work over 1 rad,
+ *        not its acceleration τ/I); or a drive's rate |c_i| / Σ_j |A_ij|
+ *        s_q,j if faster;
+ *   energy: max(½ s_vᵀ M s_v, |∫Ė|) (again: ½ vᵀ M v in place of the
+ *        first). |E0| is left out: its datum (a potential's zero) is
+ *        arbitrary — a pendulum 10 km above it had m·g·10 km.
+ * Scratch as measure_scales. */
+static void measure_scales_sized(braun_data *d, int accel, int again, braun_real *pos_out,
+                                 braun_real *vel_out, braun_real *energy_out)
+{
+    braun_priv *pv = braun__priv(d);
+    const int n = pv->n, m = pv->m, rows = pv->rows;
+    const braun_real *q_scale = d->model->sys.q_scale, *v = pv->at.v;
+    braun_real *sa = pv->ce, *sv = pv->tmp;
+    /* T_q = ½ s_qᵀ M s_q, T = ½ vᵀ M v. */
+    braun__mul_r(pv, q_scale, sa);
+    const braun_real Tq = BRAUN_R(0.5) * braun_dot(n, sa, sa);
+    braun__mul_r(pv, v, sa);
+    braun_real E = BRAUN_R(0.5) * braun_dot(n, sa, sa);
+    if (accel) {
+        /* Qᵀ s = ãᵀ R s, a = R⁻¹ã giving the directions. */
+        braun__solve_r(pv, pv->atil, sa);
+        for (int j = 0; j < n; j++) sv[j] = sa[j] < 0 ? -q_scale[j] : q_scale[j];
+        braun__mul_r(pv, sv, sa);
+        const braun_real Ef = BRAUN_R(0.5) * braun_fabs(braun_dot(n, pv->atil, sa));
+        if (Ef > E) E = Ef;
+    }
+    braun_real W = Tq > 0 ? braun_sqrt(E / Tq) : 0;
+    for (int i = 0; i < rows; i++) {
+        const braun_real c = braun_fabs(pv->ev[i] - braun__row_dot(pv, i, v)),
+                         a = braun__row_abs_dot(pv, i, q_scale);
+        if (a > 0 && c > W * a) W = c / a;
+    }
+    for (int j = 0; j < n; j++) sv[j] = braun_fabs(v[j]) > W * q_scale[j] ? braun_fabs(v[j]) : W * q_scale[j];
+    braun_real pos = 0, vel = 0;
+    for (int i = 0; i < m; i++) pos += braun__row_abs_dot(pv, i, q_scale);
+    for (int i = 0; i < rows; i++) vel += braun__row_abs_dot(pv, i, sv);
+    braun__mul_r(pv, again ? v : sv, sa);
+    braun_real energy = BRAUN_R(0.5) * braun_dot(n, sa, sa);
     if (braun_fabs(pv->at.W) > energy) energy = braun_fabs(pv->at.W);
     *pos_out = pos;
     *vel_out = vel;

@@ -72,6 +72,14 @@ int braun_system_check(const braun_system *sys, const char **problem)
     /* Contradictory: constraints that do work and do none. */
     else if ((sys->flags & BRAUN_CONSTRAINT_WORK) && (sys->flags & BRAUN_SCLERONOMIC))
         BRAUN__REFUSE(BRAUN_ERR_ARGUMENT, "flags has both BRAUN_CONSTRAINT_WORK and BRAUN_SCLERONOMIC");
+    else if (sys->q_scale) {
+        /* The guard divides by these sizes' products: each must be a size. */
+        for (int j = 0; j < sys->n; j++)
+            if (!(sys->q_scale[j] > 0) || !(sys->q_scale[j] <= BRAUN_MAXREAL)) {
+                BRAUN__REFUSE(BRAUN_ERR_ARGUMENT, "q_scale has an entry that is not positive and finite");
+                break;
+            }
+    }
 #undef BRAUN__REFUSE
     if (problem) *problem = why;
     return st;

@@ -1322,5 +1322,50 @@ check "check: the slider-crank at 1 um with a distance it reaches: assembled, co
     grep -q "^assembly: reached (residual [0-9.e+-]* after [1-9] Gauss-Newton steps\{0,1\}, " "$2" &&
     grep -q "^consistent: yes$" "$2"' sh "$rc" "$TMP/n6.out"
 
+# ------------------------------------------- the accuracy guard's scales
+# A scene gives the guard each coordinate's natural size (braun_scene.q_scale:
+# lengths the mechanism's size, angles 1): its scales no longer mix the
+# units, nor follow where the mechanism is. Andrews' mechanism as IFToMM's
+# A03 (x, y, theta per body, a torque on a small inertia) had an energy
+# scale of 7.1e4 J for a 2 J motion, and RK4 at h = 2e-3 ended BRAUN_OK
+# with the crank 3 rad off; it is stopped now, h = 1e-4 still runs.
+for hv in "2e-3 0.03" "1.5e-3 0.05"; do
+    set -- $hv
+    "$BRAUN" run a03-andrews --dt "$1" --t-end "$2" > "$TMP/a03g.json" 2> "$TMP/a03g.err"
+    check "run: a03-andrews RK4 h = $1 to $2 s is stopped by the accuracy guard (3 rad off otherwise)" \
+        sh -c '[ "$(sed -n "s/^  \"status\": \"\(.*\)\",$/\1/p" "$1")" = BRAUN_ERR_ACCURACY ]' sh "$TMP/a03g.json"
+done
+"$BRAUN" run a03-andrews --dt 1e-4 --t-end 0.03 > "$TMP/a03g.json" 2> "$TMP/a03g.err"
+check "run: a03-andrews RK4 h = 1e-4 runs BRAUN_OK, energy scale below 20 J (a 2 J motion)" sh -c '
+    [ "$(sed -n "s/^  \"status\": \"\(.*\)\",$/\1/p" "$1")" = BRAUN_OK ] &&
+    awk -v e="$(sed -n "s/^  \"guard_energy_scale\": \(.*\),$/\1/p" "$1")" "BEGIN { exit !(e > 1 && e < 20) }"' \
+    sh "$TMP/a03g.json"
+# Translation invariance: the pendulum of data/pendulum.json moved 10 km
+# (along x, and up: gravity's datum) gets the scales and verdicts it gets
+# at the origin. Before, its scales grew with |q| (position 2.6e4 for a
+# 1 m rod) and RK4 at h = 0.3 ended BRAUN_OK 0.9 rad off, where at the
+# origin it is stopped at its first step.
+pendulum_at() { # pendulum_at X Y: data/pendulum.json with its pivot at (X, Y)
+    cat <<EOF
+{"name": "pendulum", "bodies": [{"name": "bob", "type": "particle", "mass": 1, "position": [$(awk -v x="$1" 'BEGIN { print x + 1 }'), $2]}],
+ "joints": [{"name": "rod", "type": "distance", "a": [$1, $2], "b": "bob", "length": 1}],
+ "effects": [{"type": "gravity", "g": [0, -9.81]}]}
+EOF
+}
+pendulum_at 0 0 > "$TMP/pend-0.json"
+pendulum_at 10000 0 > "$TMP/pend-x.json"
+pendulum_at 0 10000 > "$TMP/pend-y.json"
+for hv in "0.3 3" "0.01 3"; do
+    set -- $hv
+    for w in 0 x y; do
+        "$BRAUN" run "$TMP/pend-$w.json" --integrator rk4 --dt "$1" --t-end "$2" > "$TMP/pg-$w.json" 2> /dev/null
+        grep -E '^  "(status|final_t|guard_(position|velocity|energy)_scale)"' "$TMP/pg-$w.json" > "$TMP/pg-$w.txt"
+    done
+    if [ "$1" = 0.3 ]; then want=BRAUN_ERR_ACCURACY; else want=BRAUN_OK; fi
+    check "run: the pendulum moved 10 km (x, y) gets the guard's verdict ($want at RK4 h = $1) and scales it has at the origin" sh -c '
+        grep -q "\"status\": \"$4\"" "$1" && cmp -s "$1" "$2" && cmp -s "$1" "$3"' \
+        sh "$TMP/pg-0.txt" "$TMP/pg-x.txt" "$TMP/pg-y.txt" "$want"
+done
+
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

@@ -60,7 +60,7 @@ static int pend_energy(braun_real t, const braun_real *q, const braun_real *v, b
 braun_system pendulum_system(pendulum_params *prm)
 {
     braun_system s = {2, prm->redundancy ? 2 : 1, 0, 0, pend_mass, pend_forces, pend_hol,
-                      NULL, pend_energy, NULL, prm, NULL};
+                      NULL, pend_energy, NULL, prm, NULL, NULL};
     if (!prm->bad_mass) s.flags = BRAUN_MASS_CONSTANT;
     return s;
 }
@@ -111,7 +111,7 @@ static int knife_energy(braun_real t, const braun_real *q, const braun_real *v, 
 braun_system knife_system(void)
 {
     braun_system s = {3, 0, 1, BRAUN_MASS_CONSTANT, knife_mass, zero_forces3, NULL,
-                      knife_nh, knife_energy, NULL, NULL, NULL};
+                      knife_nh, knife_energy, NULL, NULL, NULL, NULL};
     return s;
 }
 
@@ -172,7 +172,7 @@ static int bead_energy(braun_real t, const braun_real *q, const braun_real *v, b
 braun_system bead_system(double *omega)
 {
     braun_system s = {2, 1, 0, BRAUN_MASS_CONSTANT, unit_mass2,
-                      zero_forces2, bead_hol, NULL, bead_energy, NULL, omega, NULL};
+                      zero_forces2, bead_hol, NULL, bead_energy, NULL, omega, NULL, NULL};
     return s;
 }
 
@@ -240,7 +240,7 @@ static int gen_energy(braun_real t, const braun_real *q, const braun_real *v, br
 braun_system generic_system(void)
 {
     braun_system s = {4, 2, 1, BRAUN_MASS_CONSTANT, gen_mass, gen_forces, gen_hol, gen_nh,
-                      gen_energy, NULL, NULL, NULL};
+                      gen_energy, NULL, NULL, NULL, NULL};
     return s;
 }
 

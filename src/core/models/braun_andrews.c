@@ -207,7 +207,7 @@ static int power(braun_real t, const braun_real *q, const braun_real *v, braun_r
 
 const braun_system braun_andrews_system = {7, 6, 0, BRAUN_ENERGY_INPUT | BRAUN_SCLERONOMIC, mass,
                                            forces, holonomic, NULL, energy,             power,
-                                           NULL,   NULL};
+                                           NULL,   NULL, NULL};
 
 /* andrews.f, init: a consistent state at rest. */
 const braun_real braun_andrews_q0[7] = {

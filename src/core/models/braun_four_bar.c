@@ -164,7 +164,7 @@ const braun_builtin braun_builtin_four_bar = {
     "double four-bar linkage of Sec. 4.2: 6 joint coordinates, 5 constraints",
     {6, 5, 0, BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC, mass, forces, holonomic, NULL, energy, NULL,
      /* Callbacks only read the parameters; void * has no const. */
-     (void *)&params, NULL},
+     (void *)&params, NULL, NULL},
     q0,
     v0,
     4, /* joint 3: ε3 of Fig. 7 */

@@ -84,7 +84,7 @@ const braun_builtin braun_builtin_pendulum = {
     "point mass on a rigid massless rod: 2 coordinates, 1 constraint",
     {2, 1, 0, BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC, mass, forces, holonomic, NULL, energy, NULL,
      /* Callbacks only read the parameters; void * has no const. */
-     (void *)&params, NULL},
+     (void *)&params, NULL, NULL},
     q0,
     v0,
     0,

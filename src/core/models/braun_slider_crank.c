@@ -161,7 +161,7 @@ const braun_builtin braun_builtin_slider_crank = {
     "slider-crank of Sec. 4.1: 6 absolute coordinates, 5 constraints (Eq. 22)",
     {6, 5, 0, BRAUN_MASS_CONSTANT | BRAUN_SCLERONOMIC, mass, forces, holonomic, NULL, energy, NULL,
      /* Callbacks only read the parameters; void * has no const. */
-     (void *)&params, NULL},
+     (void *)&params, NULL, NULL},
     q0,
     v0,
     /* The paper plots the slider end (Fig. 2), which is no single coordinate

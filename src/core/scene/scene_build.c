@@ -337,6 +337,21 @@ void braun_scene__system(braun_scene *s, braun_system *sys)
     sys->power = s->energy_input ? braun_scene__power : NULL;
     sys->user = s;
     sys->sparsity = NULL;
+    sys->q_scale = NULL;
+    if (s->q_scale) {
+        /* The initial state into the storage, then the sizes over it
+         * (braun_scene_natural_sizes reads all of q before it writes). */
+        for (int k = 0; k < s->nbodies; k++) {
+            const braun_scene_body *b = &s->bodies[k];
+            if (b->kind->initial) {
+                braun_real v[BRAUN_SCENE_MAX_DOF];
+                b->kind->initial(b, s->q_scale + b->iq, v);
+            } else {
+                for (int i = 0; i < b->kind->dof; i++) s->q_scale[b->iq + i] = b->q0[i];
+            }
+        }
+        if (braun_scene_natural_sizes(s, s->q_scale, s->q_scale) == BRAUN_OK) sys->q_scale = s->q_scale;
+    }
 }
 
 int braun_scene_initial_state(const braun_scene *s, braun_real *q, braun_real *v)

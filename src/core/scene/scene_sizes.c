@@ -137,3 +137,47 @@ int braun_scene_coordinate_sizes(const braun_scene *s, const braun_real *q, brau
     }
     return BRAUN_OK;
 }
+
+/* Whether coordinate c of a body of class k is a length (braun_scene.h,
+ * braun_scene_natural_sizes). */
+static int is_length(const braun_scene_body_class *k, int c)
+{
+    return c < k->dim && c != k->angle;
+}
+
+int braun_scene_natural_sizes(const braun_scene *s, const braun_real *q, braun_real *size)
+{
+    if (!s || !q || !size || s->n <= 0 || (s->nbodies > 0 && !s->bodies)) return BRAUN_ERR_ARGUMENT;
+    braun_real lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = BRAUN_MAXREAL;
+        hi[k] = -BRAUN_MAXREAL;
+    }
+    for (int i = 0; i < s->npoints; i++) {
+        scene_pt P;
+        braun_scene__point(s, i, q, NULL, &P);
+        for (int k = 0; k < 3; k++) {
+            if (P.pos[k] < lo[k]) lo[k] = P.pos[k];
+            if (P.pos[k] > hi[k]) hi[k] = P.pos[k];
+        }
+    }
+    for (int b = 0; b < s->nbodies; b++) {
+        const braun_scene_body *bd = &s->bodies[b];
+        for (int c = 0; c < bd->kind->dof && c < 3; c++) {
+            if (!is_length(bd->kind, c)) continue;
+            const braun_real x = q[bd->iq + c];
+            if (x < lo[c]) lo[c] = x;
+            if (x > hi[c]) hi[c] = x;
+        }
+    }
+    braun_real l2 = 0;
+    for (int k = 0; k < 3; k++)
+        if (hi[k] >= lo[k]) l2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    braun_real len = braun_sqrt(l2);
+    if (!(len > 0) || !(len <= BRAUN_MAXREAL)) len = 1;
+    for (int b = 0; b < s->nbodies; b++) {
+        const braun_scene_body *bd = &s->bodies[b];
+        for (int c = 0; c < bd->kind->dof; c++) size[bd->iq + c] = is_length(bd->kind, c) ? len : 1;
+    }
+    return BRAUN_OK;
+}

@@ -652,12 +652,17 @@ int braun_gen_c_write_ex(FILE *out, const braun_scene_file *sf, const char *sym,
         fputs("};\n", out);
     }
 
+    /* The coordinates' natural sizes (braun_scene.q_scale), filled by
+     * braun_scene_build: the accuracy guard's scales in each coordinate's
+     * unit, as the scene file's. */
+    fprintf(out, "\nstatic braun_real %s_q_scale[%d];\n", sym, s->n > 0 ? s->n : 1);
     fprintf(out, "\nstatic braun_scene %s_scene = {\n", sym);
     array_field(out, sym, "bodies", s->nbodies);
     array_field(out, sym, "points", s->npoints);
     array_field(out, sym, "rods", s->nrods);
     array_field(out, sym, "joints", s->njoints);
     array_field(out, sym, "effects", s->neffects);
+    fprintf(out, "    .q_scale = %s_q_scale,\n", sym);
     fputs("};\n", out);
 
     /* Declared before defined: a program's own declaration (or a header

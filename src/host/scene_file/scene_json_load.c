@@ -86,6 +86,7 @@ void braun_scene_free(braun_scene_file *f)
     free(s->rods);
     free(s->joints);
     free(s->effects);
+    free(s->q_scale);
     free(f->q0);
     free(f->v0);
     free((void *)f->body_names);

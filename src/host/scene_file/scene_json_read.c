@@ -1079,6 +1079,15 @@ int sj_read_scene(sj_reader *r, json_t *root)
 
     /* Build: what the builder refuses is reported at its element. */
     braun_scene_error berr;
+    /* Storage of the coordinates' natural sizes (braun_scene.q_scale): the
+     * accuracy guard judges each coordinate in its own unit. */
+    {
+        size_t n = 0;
+        for (int k = 0; k < s->nbodies; k++)
+            if (s->bodies[k].kind && s->bodies[k].kind->dof > 0) n += (size_t)s->bodies[k].kind->dof;
+        s->q_scale = calloc(n + 1, sizeof *s->q_scale);
+        if (!s->q_scale) return sj_fail(r, SJ_AT_VALUE, "out of memory");
+    }
     int st = braun_scene_build(s, &out->sys, &berr);
     if (st) {
         element_path(r, &berr);
