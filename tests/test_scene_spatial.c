@@ -187,6 +187,228 @@ static void test_rigid3d_kinematics(void **state)
     assert_near(E, Tref, 1e-14);
 }
 
+/* ------------------------------------------- a rigid3d off the unit sphere */
+/* Body 0 of spatial_init alone (n = 7: its own row only), at states off
+ * the unit sphere: p = λ p̂ (λ = 1.01, 0.97) and p' = λ p̂' + ρ p (a radial
+ * part, ρ = 0.3). Its points move with R = A(p)/|p|² whatever |p|
+ * (braun_scene_dir_eval), so its kinetic energy is that of their motion,
+ *   T = ½ m|r'|² + ½ ω'ᵀJω' + 2k (pᵀp'/|p|²)²,   ω̃' = RᵀR',  k = tr J/3,
+ * with ω' taken from the world images of the body axes and their rates —
+ * not from the class's G(p) — and the augmentation that vanishes on the
+ * velocity manifold. Until 2026-12-05 the class's T was ½ m|r'|² +
+ * 2p'ᵀGᵀJGp' + 2k(pᵀp')², |p|⁴ times this rotational part: the energy
+ * the correction held was not that of the points' motion off the sphere. */
+typedef struct lone {
+    spatial g;
+    double q[7], v[7];
+} lone;
+
+static void lone_init(lone *L)
+{
+    spatial_init(&L->g);
+    L->g.s.nbodies = 1;
+    L->g.s.npoints = 2; /* B0_P, B0_Q */
+    assert_int_equal(braun_scene_defaults(&L->g.s), BRAUN_OK);
+    assert_int_equal(braun_scene_build(&L->g.s, &L->g.sys, NULL), BRAUN_OK);
+    assert_int_equal(L->g.s.n, 7);
+    assert_int_equal(L->g.s.m, 1);
+}
+
+/* The state at λ, ρ: a unit p̂ with p̂ᵀp̂' = 0 (ω given), then scaled. */
+static void lone_state(lone *L, double lambda, double rho)
+{
+    const braun_scene_body *b = &L->g.bodies[0];
+    const double w[3] = {0.9, -2.1, 1.4}; /* world ω at the unit state */
+    const double *p = b->q0 + 3;
+    const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
+    const double dp[4] = {0.5 * (-e1 * w[0] - e2 * w[1] - e3 * w[2]),
+                          0.5 * (e0 * w[0] + e3 * w[1] - e2 * w[2]),
+                          0.5 * (-e3 * w[0] + e0 * w[1] + e1 * w[2]),
+                          0.5 * (e2 * w[0] - e1 * w[1] + e0 * w[2])};
+    const double r[3] = {0.1, 0.2, -0.3}, dr[3] = {0.4, -0.7, 0.25};
+    for (int k = 0; k < 3; k++) L->q[k] = r[k], L->v[k] = dr[k];
+    for (int c = 0; c < 4; c++) {
+        L->q[3 + c] = lambda * p[c];
+        L->v[3 + c] = lambda * dp[c] + rho * L->q[3 + c];
+    }
+}
+
+/* R's columns (world images of the body axes) and their rates at (q, v). */
+static void lone_frame(const lone *L, const double *q, const double *v, double c[3][3],
+                       double d[3][3])
+{
+    for (int i = 0; i < 3; i++) {
+        double e[3] = {0, 0, 0};
+        e[i] = 1;
+        braun_scene_pt D;
+        braun_scene_dir_eval(&L->g.s, 0, e, q, v, &D);
+        for (int k = 0; k < 3; k++) c[i][k] = D.pos[k], d[i][k] = D.vel[k];
+    }
+}
+
+/* T of the points' motion at (q, v), from the frame (no G(p)). */
+static double lone_T(const lone *L, const double *q, const double *v)
+{
+    const braun_scene_body *b = &L->g.bodies[0];
+    double c[3][3], d[3][3];
+    lone_frame(L, q, v, c, d);
+    /* (RᵀR')_{ij} = c_i·d_j: ω'_x = c_z·d_y, ω'_y = c_x·d_z, ω'_z = c_y·d_x. */
+    const double wb[3] = {c[2][0] * d[1][0] + c[2][1] * d[1][1] + c[2][2] * d[1][2],
+                          c[0][0] * d[2][0] + c[0][1] * d[2][1] + c[0][2] * d[2][2],
+                          c[1][0] * d[0][0] + c[1][1] * d[0][1] + c[1][2] * d[0][2]};
+    const double *t = b->tensor;
+    const double J[9] = {t[0], t[3], t[4], t[3], t[1], t[5], t[4], t[5], t[2]};
+    double wJw = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) wJw += wb[i] * J[3 * i + j] * wb[j];
+    const double *p = q + 3, *dp = v + 3;
+    const double s = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
+    const double u = (p[0] * dp[0] + p[1] * dp[1] + p[2] * dp[2] + p[3] * dp[3]) / s;
+    const double k = (t[0] + t[1] + t[2]) / 3;
+    return 0.5 * b->mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 0.5 * wJw + 2 * k * u * u;
+}
+
+/* ∂T/∂v at (q, v): T is quadratic in v, so a central difference of step 1
+ * is exact (to rounding). */
+static void lone_dTdv(const lone *L, const double *q, const double *v, double *g)
+{
+    for (int j = 0; j < 7; j++) {
+        double vp[7], vm[7];
+        memcpy(vp, v, sizeof vp);
+        memcpy(vm, v, sizeof vm);
+        vp[j] += 1;
+        vm[j] -= 1;
+        g[j] = 0.5 * (lone_T(L, q, vp) - lone_T(L, q, vm));
+    }
+}
+
+static int lone_failures;
+static void lone_check(const char *what, int i, int j, double got, double want, double tol)
+{
+    if (fabs(got - want) <= tol * (1 + fabs(want))) return;
+    print_error("%s[%d][%d]: %.15g, expected %.15g\n", what, i, j, got, want);
+    lone_failures++;
+}
+
+static void test_rigid3d_off_sphere(void **state)
+{
+    (void)state;
+    static lone L;
+    lone_init(&L);
+    const braun_system *sys = &L.g.sys;
+    const braun_scene_body *b = &L.g.bodies[0];
+    const double lambdas[2] = {1.01, 0.97};
+    lone_failures = 0;
+    for (int l = 0; l < 2; l++) {
+        lone_state(&L, lambdas[l], 0.3);
+        const double *q = L.q, *v = L.v;
+        /* The energy, here and at the normalised state (p/|p|, p'/|p|). */
+        const double T = lone_T(&L, q, v);
+        double E, dEdq[7], dEdv[7], dEdt, qn[7], vn[7], En;
+        assert_int_equal(sys->energy(0, q, v, &E, dEdq, dEdv, &dEdt, sys->user), 0);
+        lone_check("E", l, 0, E, T, 1e-14);
+        memcpy(qn, q, sizeof qn);
+        memcpy(vn, v, sizeof vn);
+        for (int c = 3; c < 7; c++) qn[c] /= lambdas[l], vn[c] /= lambdas[l];
+        assert_int_equal(sys->energy(0, qn, vn, &En, NULL, NULL, NULL, sys->user), 0);
+        lone_check("E normalised", l, 0, En, E, 1e-14);
+        /* World ω = W v against R'Rᵀ = Σ_i d_i c_iᵀ. */
+        double W[21], c[3][3], d[3][3], w[3] = {0, 0, 0}, wf[3] = {0, 0, 0};
+        b->kind->omega(b, q, W);
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 7; k++) w[i] += W[7 * i + k] * v[k];
+        lone_frame(&L, q, v, c, d);
+        for (int i = 0; i < 3; i++) {
+            wf[0] += d[i][2] * c[i][1];
+            wf[1] += d[i][0] * c[i][2];
+            wf[2] += d[i][1] * c[i][0];
+        }
+        for (int i = 0; i < 3; i++) lone_check("omega", l, i, w[i], wf[i], 1e-14);
+        /* M: T's Hessian in v by polarisation. */
+        double M[49], ei[7], ej[7], eij[7];
+        assert_int_equal(sys->mass(0, q, M, sys->user), 0);
+        for (int i = 0; i < 7; i++)
+            for (int j = 0; j < 7; j++) {
+                memset(ei, 0, sizeof ei);
+                memset(ej, 0, sizeof ej);
+                ei[i] = 1;
+                ej[j] = 1;
+                for (int k = 0; k < 7; k++) eij[k] = ei[k] + ej[k];
+                const double Mij = i == j ? 2 * lone_T(&L, q, ei)
+                                          : lone_T(&L, q, eij) - lone_T(&L, q, ei) - lone_T(&L, q, ej);
+                lone_check("M", i, j, M[7 * i + j], Mij, 1e-13);
+            }
+        /* ∂E/∂v, ∂E/∂q, and the forces of Lagrange's equations of T at
+         * v' = 0: Q = -(∂(∂T/∂v)/∂q) v + ∂T/∂q, first differences in q. */
+        double gv[7], Q[7], gp[7], gm[7], qp[7], qm[7];
+        const double h = 1e-6;
+        lone_dTdv(&L, q, v, gv);
+        for (int j = 0; j < 7; j++) lone_check("dE/dv", j, 0, dEdv[j], gv[j], 1e-13);
+        assert_int_equal(sys->forces(0, q, v, Q, sys->user), 0);
+        for (int k = 0; k < 7; k++) qp[k] = q[k] + h * v[k], qm[k] = q[k] - h * v[k];
+        lone_dTdv(&L, qp, v, gp);
+        lone_dTdv(&L, qm, v, gm);
+        for (int j = 0; j < 7; j++) {
+            memcpy(qp, q, sizeof qp);
+            memcpy(qm, q, sizeof qm);
+            qp[j] += h;
+            qm[j] -= h;
+            const double dTdq = (lone_T(&L, qp, v) - lone_T(&L, qm, v)) / (2 * h);
+            lone_check("dE/dq", j, 0, dEdq[j], dTdq, 1e-8);
+            lone_check("Q", j, 0, Q[j], -(gp[j] - gm[j]) / (2 * h) + dTdq, 1e-8);
+        }
+    }
+    if (lone_failures) fail_msg("%d entries differ from those of the points' motion", lone_failures);
+}
+
+/* The body's dynamics do not depend on |p|: the Udwadia–Kalaba
+ * acceleration (no corrections) at (λp, λp') is (r'', λp'') of the one at
+ * (p, p'), for a free body under gravity, a world torque, a body-frame
+ * torque and a force at a body point (λ = 1.01, 0.97, with a radial part
+ * in p'). Until 2026-12-05 a torque's W = [0 | 2E(p)] and the mass block
+ * 4GᵀJG + 4kppᵀ made its share of p'' scale with 1/λ, a point force's with
+ * 1/λ³. */
+static void test_rigid3d_scale_invariance(void **state)
+{
+    (void)state;
+    static lone L;
+    spatial_init(&L.g);
+    L.g.s.nbodies = 1;
+    L.g.s.npoints = 2;
+    braun_scene_effect *e = L.g.effects;
+    e[0].type = BRAUN_EFFECT_GRAVITY, e[0].g[0] = 0.3, e[0].g[1] = -9.81, e[0].g[2] = 1.1;
+    e[1].type = BRAUN_EFFECT_TORQUE3D, e[1].a = 0, e[1].b = BRAUN_SCENE_GROUND;
+    e[1].f[0] = (braun_scene_fn){BRAUN_FN_CONSTANT, 0.8, 0, 0, 0};
+    e[1].f[2] = (braun_scene_fn){BRAUN_FN_CONSTANT, -1.3, 0, 0, 0};
+    e[2].type = BRAUN_EFFECT_BODY_TORQUE, e[2].a = 0, e[2].b = BRAUN_SCENE_GROUND;
+    e[2].f[1] = (braun_scene_fn){BRAUN_FN_CONSTANT, 0.6, 0, 0, 0};
+    e[3].type = BRAUN_EFFECT_BODY_FORCE, e[3].a = B0_P;
+    e[3].f[0] = (braun_scene_fn){BRAUN_FN_CONSTANT, 2.5, 0, 0, 0};
+    e[3].f[2] = (braun_scene_fn){BRAUN_FN_CONSTANT, -1.5, 0, 0, 0};
+    L.g.s.neffects = 4;
+    assert_int_equal(braun_scene_defaults(&L.g.s), BRAUN_OK);
+    assert_int_equal(braun_scene_build(&L.g.s, &L.g.sys, NULL), BRAUN_OK);
+    assert_int_equal(L.g.s.n, 7);
+    test_sim sim;
+    assert_int_equal(test_sim_open(&sim, &L.g.sys, BRAUN_CORRECT_NONE), BRAUN_OK);
+    double qd1[7], a1[7], qdl[7], al[7];
+    lone_state(&L, 1, 0.3);
+    assert_int_equal(braun_set_state(&sim.data, 0, L.q, L.v), BRAUN_OK);
+    assert_int_equal(braun_eval(&sim.data, 0, L.q, L.v, 1e-3, qd1, a1), BRAUN_OK);
+    const double lambdas[2] = {1.01, 0.97};
+    lone_failures = 0;
+    for (int l = 0; l < 2; l++) {
+        lone_state(&L, lambdas[l], 0.3);
+        assert_int_equal(braun_eval(&sim.data, 0, L.q, L.v, 1e-3, qdl, al), BRAUN_OK);
+        for (int k = 0; k < 7; k++) {
+            const double want = k < 3 ? a1[k] : lambdas[l] * a1[k];
+            lone_check("acceleration", l, k, al[k], want, 1e-13);
+        }
+    }
+    test_sim_close(&sim);
+    if (lone_failures) fail_msg("%d accelerations depend on |p|", lone_failures);
+}
+
 static void test_spherical(void **state)
 {
     (void)state;
@@ -374,6 +596,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bodies),
         cmocka_unit_test(test_rigid3d_kinematics),
+        cmocka_unit_test(test_rigid3d_off_sphere),
+        cmocka_unit_test(test_rigid3d_scale_invariance),
         cmocka_unit_test(test_spherical),
         cmocka_unit_test(test_revolute3d),
         cmocka_unit_test(test_prismatic3d),

@@ -222,14 +222,78 @@ static void test_heavy_top(void **state)
     turn(&b, 0, out.q, ex, es);
     const double gap = sqrt((es[0] - em[0]) * (es[0] - em[0]) + (es[1] - em[1]) * (es[1] - em[1]) +
                             (es[2] - em[2]) * (es[2] - em[2]));
-    assert_le(gap, 3e-12); /* measured 8.1e-13 */
+    assert_le(gap, 3e-12); /* measured 3.8e-13 (8.1e-13 before T became the points' T, 2026-12-05) */
     /* The invariants, from the scene's state alone. */
     omega(&b, 0, out.q, out.v, ws);
-    assert_near(dot(ws, es), w3, 5e-14); /* measured 7.1e-15 */
+    assert_near(dot(ws, es), w3, 5e-14); /* measured 1.4e-14 (0) */
     const double L3 = p.I1 * (dot(ws, (double[3]){0, 1, 0}) - dot(ws, es) * es[1]) + I3 * dot(ws, es) * es[1];
-    assert_near(L3, p.pphi, 1e-14);     /* measured 1.3e-15 */
-    assert_le(out.max_pos, 5e-15);      /* measured 6.9e-16 */
-    assert_le(out.max_energy, 1e-14);   /* measured 1.4e-15 */
+    assert_near(L3, p.pphi, 1e-14);     /* measured 9.8e-15 (4.4e-16): round-off, |L3 - p_phi| walks
+                                          * within 2e-14 over 16 s with either T */
+    assert_le(out.max_pos, 5e-15);      /* measured 6.8e-16 */
+    assert_le(out.max_energy, 1e-14);   /* measured 2.3e-15 (2.1e-15) */
+}
+
+/* The heavy symmetric top of an outside client (its t2_top.json: tip on a
+ * spherical joint 0.4 m below the centre, spinning at 25 rad/s) at h =
+ * 1e-2, RK4 and every correction, for 2 s: the physical energy,
+ * recomputed from (q, v) with the body angular velocity of the rotation p
+ * stands for, ω' = 2 (p̄ ⊗ p')_vec/|p|², stays with the energy error the
+ * run reports. Between corrections |p|² - 1 ~ 1e-7 here; until 2026-12-05
+ * the body's T was the unit sphere's (|p|⁴ times this one's rotational
+ * part) and the physical energy drifted by 2 T_rot (|p|² - 1), 6.1e-6 J
+ * over 5 s, while the reported error stayed at 6.9e-13 J. */
+typedef struct top_energy {
+    double m, J[3], g, E0, dev, reported;
+} top_energy;
+
+static double top_physical(const top_energy *t, const double *q, const double *v)
+{
+    const double *p = q + 3, *d = v + 3;
+    const double s = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
+    /* vector part of p̄ ⊗ p' */
+    const double wb[3] = {2 * (p[0] * d[1] - p[1] * d[0] - p[2] * d[3] + p[3] * d[2]) / s,
+                          2 * (p[0] * d[2] + p[1] * d[3] - p[2] * d[0] - p[3] * d[1]) / s,
+                          2 * (p[0] * d[3] - p[1] * d[2] + p[2] * d[1] - p[3] * d[0]) / s};
+    return 0.5 * t->m * dot(v, v) +
+           0.5 * (t->J[0] * wb[0] * wb[0] + t->J[1] * wb[1] * wb[1] + t->J[2] * wb[2] * wb[2]) +
+           t->m * t->g * q[2];
+}
+
+static void top_energy_probe(const scene_buf *b, const braun_data *d, void *user)
+{
+    top_energy *t = user;
+    double El; /* the library's energy: its law E = E0 (no input) */
+    assert_int_equal(b->sys.energy(d->t, d->q, d->v, &El, NULL, NULL, NULL, b->sys.user), 0);
+    const double E = top_physical(t, d->q, d->v);
+    if (fabs(E - t->E0) > t->dev) t->dev = fabs(E - t->E0);
+    if (fabs(El - d->E0) > t->reported) t->reported = fabs(El - d->E0);
+}
+
+static void test_top_physical_energy(void **state)
+{
+    (void)state;
+    scene_buf b;
+    sb_init(&b);
+    const double I[3] = {0.12, 0.12, 0.07}, r[3] = {0.2, -0.3258569893580142, 0.6301342459638712};
+    const double quat[4] = {0.9553364891256061, 0.2955202066613396, 0, 0};
+    const double v[3] = {0.1806855914864114, -0.09904027378916137, -0.06775709680740426};
+    const double w[3] = {0.3, -14.116061834875886, 21.433390372741954};
+    const int top_body = sb_body(&b, 1.3, I, r, quat, v, w);
+    sb_joint(&b, BRAUN_JOINT_SPHERICAL, sb_point(&b, top_body, 0, 0, -0.4),
+             sb_point(&b, BRAUN_SCENE_GROUND, 0.2, -0.1, 0.3), NULL);
+    sb_effect(&b, BRAUN_EFFECT_GRAVITY)->g[2] = -9.81;
+    sb_build(&b);
+    top_energy t = {1.3, {0.12, 0.12, 0.07}, 9.81, 0, 0, 0};
+    double q0[7], v0[7];
+    braun_scene_initial_state(&b.s, q0, v0);
+    t.E0 = top_physical(&t, q0, v0);
+    run_out out;
+    run(&b, 1e-2, 2, &out, top_energy_probe, &t);
+    print_message("top, h = 1e-2: physical energy %.3g J from E0, reported energy error %.3g J\n",
+                  t.dev, t.reported);
+    /* measured 6.7e-13 J against 5.6e-13 J (the old T: 6.1e-6 J against 6.9e-13 J) */
+    assert_le(t.dev, 4 * t.reported + 1e-13);
+    assert_le(t.dev, 1e-11);
 }
 
 /* ------------------------------------------------ free asymmetric body */
@@ -256,7 +320,7 @@ static void test_free_body(void **state)
         const double wi = dot(w, Ei);
         for (int k = 0; k < 3; k++) L[k] += I[i] * wi * Ei[k];
     }
-    for (int k = 0; k < 3; k++) assert_near(L[k], I[k] * w0[k], 5e-13); /* measured 8.4e-14 */
+    for (int k = 0; k < 3; k++) assert_near(L[k], I[k] * w0[k], 5e-13); /* measured 1.6e-13 (8.4e-14) */
     assert_le(out.max_energy, 3e-14); /* measured 4.5e-15 */
     assert_le(out.max_pos, 1e-14);    /* the unit quaternion; measured 1.3e-15 */
 }
@@ -623,7 +687,8 @@ static void test_sparse_chain(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_heavy_top),       cmocka_unit_test(test_free_body),
+        cmocka_unit_test(test_heavy_top),       cmocka_unit_test(test_top_physical_energy),
+        cmocka_unit_test(test_free_body),
         cmocka_unit_test(test_prismatic_spring), cmocka_unit_test(test_torsion_motor),
         cmocka_unit_test(test_driven_revolute), cmocka_unit_test(test_driven_revolute_off_start),
         cmocka_unit_test(test_driven_revolute_too_far_off), cmocka_unit_test(test_bricard),

@@ -19,8 +19,9 @@
  *               (m/6)(|v_a|² + v_a·v_b + |v_b|²) adds blocks m/3, m/6 to M.
  *   rigid3d     x, y, z, e0, e1, e2, e3 (centre of mass, Euler parameters:
  *               a unit quaternion, kept unit by one row of Φ_q of the body's
- *               own); M(q) = diag(m I, 4GᵀJG + 4k ppᵀ) (docs/method.md,
- *               "Spatial rigid bodies")
+ *               own); M(q) = diag(m I, (4GᵀJG + 4k ppᵀ)/|p|⁴), the
+ *               kinetic energy of its points' motion whatever |p|
+ *               (docs/method.md, "Spatial rigid bodies")
  *   particle3d  x, y, z
  * The planar classes have a constant mass matrix, so a planar scene sets
  * BRAUN_MASS_CONSTANT; a scene with a body class whose mass depends on q

@@ -6,17 +6,33 @@
  * (= |p|² R(p/|p|)) and P = r + A(p) s / |p|², the rotation that p stands
  * for whatever its length (body_vector: the partials and velocity product
  * are exact off the unit sphere too).
- * Angular velocities: body frame ω' = 2 G(p) p', world ω = 2 E(p) p', with
- *   G = [-e, e0 I - ẽ],  E = [-e, e0 I + ẽ],  A = E Gᵀ.
+ * Angular velocities (of that rotation, any |p|; s = |p|²): body frame
+ * ω' = 2 G(p) p'/s, world ω = 2 E(p) p'/s (rigid3d_omega), with
+ *   G = [-e, e0 I - ẽ],  E = [-e, e0 I + ẽ],  A = E Gᵀ,  G p = E p = 0.
  *
- * Kinetic energy. ½ ω'ᵀJω' = 2 p'ᵀGᵀJG p' is singular along p (G p = 0),
- * so the body's Lagrangian carries the augmentation 2k (pᵀp')², k = tr J/3,
- * which vanishes on the velocity manifold (pᵀp' = 0 is the derivative of
- * the body's row) and makes the block positive definite:
- *   T = ½ m |r'|² + 2 p'ᵀGᵀJG p' + 2k (pᵀp')²,
- *   M = diag(m I, 4GᵀJG + 4k ppᵀ)   (eigenvalues 4 J_i and 4k at |p| = 1),
- *   velocity-product forces (Lagrange's equations of T, exact on R⁷):
- *   Q_p = -4 G(p')ᵀ J ω' - 4k |p'|² p. */
+ * Kinetic energy: that of the motion of the body's points, which move with
+ * the rotation p stands for, so it depends on p/|p| and p'/|p| only (it is
+ * homogeneous of degree 0 under p → λp, p' → λp'). With s = |p|² the body
+ * angular velocity is ω' = 2 G(p) p'/s; ½ ω'ᵀJω' is singular along p
+ * (G p = 0), so the body's Lagrangian carries the augmentation
+ * 2k (pᵀp'/s)² = 2k (d ln|p|/dt)², k = tr J/3, which vanishes on the
+ * velocity manifold (pᵀp' = 0 is the derivative of the body's row) and
+ * makes the block positive definite:
+ *   T = ½ m |r'|² + (2 p'ᵀGᵀJG p' + 2k (pᵀp')²)/s² = ½ m |r'|² + ½ p'ᵀM0 p'/s²,
+ *   M0 = 4GᵀJG + 4k ppᵀ,  M = diag(m I, M0/s²)
+ *   (eigenvalues 4 J_i/s and 4k/s: 4 J_i and 4k at |p| = 1).
+ * Velocity-product forces (Lagrange's equations of T, exact on R⁷:
+ * Q = -Ṁp' + ½∂_p(p'ᵀMp')), with F0 = -4 G(p')ᵀJ (2Gp') - 4k |p'|² p those
+ * of ½ p'ᵀM0 p' alone and ṡ = 2pᵀp':
+ *   Q_p = F0/s² + 2ṡ M0 p'/s³ - 2 (p'ᵀM0 p') p/s³;
+ * in the terms the code uses (ω' = 2Gp'/s, u = pᵀp'/s, T_p = ½ω'ᵀJω' + 2k u²):
+ *   ∂T/∂p' = 2GᵀJω'/s + 4k u p/s,
+ *   ∂T/∂p  = -2 G(p')ᵀJω'/s + 4k u p'/s - 4 T_p p/s,
+ *   Q_p    = -4 G(p')ᵀJω'/s - 4k |p'|² p/s² + 4u ∂T/∂p' - 4 T_p p/s.
+ * (Until 2026-12-05 T was ½ m|r'|² + ½ p'ᵀM0 p', the same on the unit sphere
+ * but not the energy of the points' motion off it: between corrections,
+ * |p|² - 1 ~ 1e-7, a fast top's physical energy drifted by 2 T_p (|p|² - 1)
+ * while the law the energy correction holds stayed exact.) */
 #include "scene_internal.h"
 
 /* The inertia tensor J of b as a symmetric 3 x 3 (row-major). */
@@ -81,6 +97,11 @@ static void gt_times(const braun_real *p, const braun_real *x, braun_real *y)
     y[3] = -e2 * x[0] + e1 * x[1] + e0 * x[2];
 }
 
+static braun_real dot4(const braun_real *a, const braun_real *c)
+{
+    return a[0] * c[0] + a[1] * c[1] + a[2] * c[2] + a[3] * c[3];
+}
+
 static void mat3_vec(const braun_real *J, const braun_real *x, braun_real *y)
 {
     for (int i = 0; i < 3; i++) y[i] = J[3 * i] * x[0] + J[3 * i + 1] * x[1] + J[3 * i + 2] * x[2];
@@ -129,6 +150,7 @@ static void rigid3d_mass_at(const braun_scene_body *b, const braun_real *q, brau
 {
     const braun_real *p = q + 3;
     braun_real J[9], k = aug(b);
+    const braun_real is = 1 / dot4(p, p), is2 = is * is; /* M_pp = M0/s² */
     tensor(b, J);
     for (int i = 0; i < 3; i++) M[braun_scene__at(i, i, ld)] += b->mass;
     /* Column c of G is g_c; (GᵀJG)_{cd} = g_cᵀ J g_d. */
@@ -145,49 +167,61 @@ static void rigid3d_mass_at(const braun_scene_body *b, const braun_real *q, brau
         mat3_vec(J, gc, Jg);
         for (int d = 0; d < 4; d++) {
             const braun_real gd = G[d] * Jg[0] + G[4 + d] * Jg[1] + G[8 + d] * Jg[2];
-            M[braun_scene__at(3 + d, 3 + c, ld)] += 4 * gd + 4 * k * p[c] * p[d];
+            M[braun_scene__at(3 + d, 3 + c, ld)] += (4 * gd + 4 * k * p[c] * p[d]) * is2;
         }
     }
+}
+
+/* The rotational terms at (p, p'): ω' = 2Gp'/s into w, J ω' into Jw,
+ * u = pᵀp'/s, 1/s; returns T_p = ½ω'ᵀJω' + 2k u². */
+static braun_real rotational(const braun_scene_body *b, const braun_real *p, const braun_real *dp,
+                             braun_real *w, braun_real *Jw, braun_real *u, braun_real *is)
+{
+    braun_real J[9];
+    const braun_real k = aug(b);
+    tensor(b, J);
+    *is = 1 / dot4(p, p);
+    g_times(p, dp, w);
+    for (int i = 0; i < 3; i++) w[i] *= 2 * *is; /* ω' = 2 G p'/s */
+    mat3_vec(J, w, Jw);
+    *u = dot4(p, dp) * *is;
+    return BRAUN_R(0.5) * braun_scene__dot3(w, Jw) + 2 * k * *u * *u;
 }
 
 static braun_real rigid3d_kinetic_at(const braun_scene_body *b, const braun_real *q,
                                      const braun_real *v, braun_real *dEdq, braun_real *dEdv)
 {
     const braun_real *p = q + 3, *dp = v + 3;
-    braun_real J[9], w[3], Jw[3], k = aug(b);
-    tensor(b, J);
-    g_times(p, dp, w);
-    for (int i = 0; i < 3; i++) w[i] *= 2; /* ω' = 2 G p' */
-    mat3_vec(J, w, Jw);
-    const braun_real pdp = p[0] * dp[0] + p[1] * dp[1] + p[2] * dp[2] + p[3] * dp[3];
-    const braun_real T = BRAUN_R(0.5) * b->mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
-                         BRAUN_R(0.5) * braun_scene__dot3(w, Jw) + 2 * k * pdp * pdp;
+    braun_real w[3], Jw[3], u, is;
+    const braun_real k = aug(b), Tp = rotational(b, p, dp, w, Jw, &u, &is);
+    const braun_real T = BRAUN_R(0.5) * b->mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + Tp;
     if (dEdv) {
         braun_real y[4];
         for (int i = 0; i < 3; i++) dEdv[i] += b->mass * v[i];
-        gt_times(p, Jw, y); /* ∂/∂p' of ½ω'ᵀJω' = 2 Gᵀ J ω' */
-        for (int c = 0; c < 4; c++) dEdv[3 + c] += 2 * y[c] + 4 * k * pdp * p[c];
+        gt_times(p, Jw, y); /* ∂T/∂p' = 2GᵀJω'/s + 4k u p/s */
+        for (int c = 0; c < 4; c++) dEdv[3 + c] += (2 * y[c] + 4 * k * u * p[c]) * is;
     }
     if (dEdq) {
         braun_real y[4];
-        gt_times(dp, Jw, y); /* ∂ω'/∂p = -2 G(p') */
-        for (int c = 0; c < 4; c++) dEdq[3 + c] += -2 * y[c] + 4 * k * pdp * dp[c];
+        gt_times(dp, Jw, y); /* ∂T/∂p = -2G(p')ᵀJω'/s + 4k u p'/s - 4 T_p p/s */
+        for (int c = 0; c < 4; c++) dEdq[3 + c] += (-2 * y[c] + 4 * k * u * dp[c] - 4 * Tp * p[c]) * is;
     }
     return T;
 }
 
+/* Q_p = -4G(p')ᵀJω'/s - 4k|p'|² p/s² + 4u ∂T/∂p' - 4 T_p p/s (header). */
 static void rigid3d_inertial(const braun_scene_body *b, const braun_real *q, const braun_real *v,
                              braun_real *Q)
 {
     const braun_real *p = q + 3, *dp = v + 3;
-    braun_real J[9], w[3], Jw[3], y[4], k = aug(b);
-    tensor(b, J);
-    g_times(p, dp, w);
-    for (int i = 0; i < 3; i++) w[i] *= 2;
-    mat3_vec(J, w, Jw);
+    braun_real w[3], Jw[3], y[4], z[4], u, is;
+    const braun_real k = aug(b), Tp = rotational(b, p, dp, w, Jw, &u, &is);
     gt_times(dp, Jw, y);
-    const braun_real dd = dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2] + dp[3] * dp[3];
-    for (int c = 0; c < 4; c++) Q[3 + c] += -4 * y[c] - 4 * k * dd * p[c];
+    gt_times(p, Jw, z);
+    const braun_real dd = dot4(dp, dp);
+    for (int c = 0; c < 4; c++)
+        Q[3 + c] += (-4 * y[c] - 4 * k * dd * is * p[c] + 4 * u * (2 * z[c] + 4 * k * u * p[c]) -
+                     4 * Tp * p[c]) * is;
 }
 
 /* Shared by points and directions: the rotation of s by the unit
@@ -282,15 +316,19 @@ static void rigid3d_constraint(const braun_scene_body *b, const braun_real *q, c
     }
 }
 
-/* W = [0 | 2E(p)]: ω = 2 E(p) p' in the world frame. */
+/* W = [0 | 2E(p)/|p|²]: ω = 2 E(p) p'/|p|², the world angular velocity
+ * of the rotation the points move with (R = A(p)/|p|², ω̃ = R'Rᵀ; E(p) p =
+ * 0), whatever |p|: a torque's generalized force Wᵀτ and its power τ·ω are
+ * those of the true ω. */
 static void rigid3d_omega(const braun_scene_body *b, const braun_real *q, braun_real *W)
 {
     const braun_real e0 = q[3], e1 = q[4], e2 = q[5], e3 = q[6];
     const braun_real E[12] = {-e1, e0, -e3, e2, -e2, e3, e0, -e1, -e3, -e2, e1, e0};
+    const braun_real two_is = 2 / dot4(q + 3, q + 3);
     (void)b;
     for (int i = 0; i < 3; i++) {
         for (int c = 0; c < 3; c++) W[7 * i + c] = 0;
-        for (int c = 0; c < 4; c++) W[7 * i + 3 + c] = 2 * E[4 * i + c];
+        for (int c = 0; c < 4; c++) W[7 * i + 3 + c] = two_is * E[4 * i + c];
     }
 }
 
