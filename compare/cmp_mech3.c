@@ -234,11 +234,11 @@ static int convert(const braun_scene_file *sf, const double *q0, const double *v
             B->vel[k] = v[k];
         }
         for (int k = 0; k < 4; k++) B->quat[k] = q[3 + k] / norm;
-        /* ω = 2 E(p) ṗ. */
+        /* ω = 2 E(p) ṗ/|p|² (scene_rigid3d.c), with e = p/|p|: 2 E(e) ṗ/|p|. */
         const double *e = B->quat, *d = v + 3;
-        B->omega[0] = 2 * (-e[1] * d[0] + e[0] * d[1] - e[3] * d[2] + e[2] * d[3]);
-        B->omega[1] = 2 * (-e[2] * d[0] + e[3] * d[1] + e[0] * d[2] - e[1] * d[3]);
-        B->omega[2] = 2 * (-e[3] * d[0] - e[2] * d[1] + e[1] * d[2] + e[0] * d[3]);
+        B->omega[0] = 2 * (-e[1] * d[0] + e[0] * d[1] - e[3] * d[2] + e[2] * d[3]) / norm;
+        B->omega[1] = 2 * (-e[2] * d[0] + e[3] * d[1] + e[0] * d[2] - e[1] * d[3]) / norm;
+        B->omega[2] = 2 * (-e[3] * d[0] - e[2] * d[1] + e[1] * d[2] + e[0] * d[3]) / norm;
     }
     if (s->nrods > 0) {
         snprintf(why, whysize, "rods have no counterpart in the spatial peer model yet");
