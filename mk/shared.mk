@@ -36,7 +36,7 @@ $(PIC_BACKEND_OBJ): $(BUILD)/pic/%.o: %.c $(PRECISION_STAMP) | deps-backends
 $(BUILD)/pic/src/host/backends/braun_backend_select.o: $(BUILD)/backends.flags
 
 # The version scripts: exactly the public symbols each library defines.
-$(BUILD)/%.map: $(BUILD)/%.a $(PUBLIC_HEADERS) tools/export-map
+$(BUILD)/%.map: $(BUILD)/%.a $(PUBLIC_HEADERS) tools/export-map tools/strip-comments
 	CC="$(CC)" tools/export-map BRAUN_$(SOVERSION) $< $(PUBLIC_HEADERS) > $@.tmp && mv $@.tmp $@
 
 so_ldflags = -shared -Wl,--no-undefined -Wl,-soname,$(1).so.$(SOVERSION) \

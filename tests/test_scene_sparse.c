@@ -8,8 +8,8 @@
  * the bodies' blocks. The ladder's redundancy (rank 11N of 12N rows) is
  * measured with libbraun's rank-revealing QR, and sparse and dense systems
  * integrate to the same trajectory. Scenes with rods have no sparsity. */
-#define _POSIX_C_SOURCE 200809L /* opendir, mkstemp */
-#define _XOPEN_SOURCE 700       /* realpath: cli_files.c, compiled in below */
+#define _XOPEN_SOURCE 700 /* opendir, mkstemp; realpath (cli_files.c, included below): with
+                           * _POSIX_C_SOURCE alone it was implicitly declared */
 #include <dirent.h>
 #include <unistd.h>
 
