@@ -787,6 +787,15 @@ static void test_energy_input_without_energy_law(void **state)
     free(sim.buffer);
 }
 
+/* braun_version() and braun_precision(): the library's BRAUN_VERSION and
+ * braun_real, asked at run time (docs/api.md, "Version and precision"). */
+static void test_version_and_precision(void **state)
+{
+    (void)state;
+    assert_string_equal(braun_version(), BRAUN_VERSION);
+    assert_string_equal(braun_precision(), sizeof(braun_real) == sizeof(float) ? "float" : "double");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -801,6 +810,7 @@ int main(void)
         cmocka_unit_test(test_energy_correction_on_a_driven_scene),
         cmocka_unit_test(test_per_stage_order),
         cmocka_unit_test(test_energy_input_without_energy_law),
+        cmocka_unit_test(test_version_and_precision),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -59,5 +59,16 @@ have: $have"; fi
 else
     no "$build/libbraun.a exists"
 fi
+# No global mutable state (docs/api.md, "Threads": a braun_data per thread
+# needs no lock): no object of the three archives lives in a writable
+# section (.data, .bss, thread-local, common); constant tables with
+# pointers are in .data.rel.ro, written once by the loader.
+for a in libbraun libbraun_host libbraun_backends; do
+    [ -f "$build/$a.a" ] || { no "$build/$a.a exists"; continue; }
+    w=$(objdump -t "$build/$a.a" | awk '$0 ~ / O / && $0 ~ / (\.data|\.bss|\.tdata|\.tbss|\*COM\*)([. \t]|$)/ &&
+                                        $0 !~ /\.data\.rel\.ro/ { print $NF }' | sort -u | tr '\n' ' ')
+    [ -z "$w" ] && ok "$a.a has no writable static data (no global mutable state)" ||
+        no "$a.a has writable static data: $w"
+done
 echo "$pass passed, $fail failed, $skipped skipped"
 [ "$fail" -eq 0 ]

@@ -82,7 +82,20 @@ typedef double braun_real;
 #define braun_status_str braun_status_str_float
 #define braun_step braun_step_float
 #define braun_system_check braun_system_check_float
+#define braun_version braun_version_float
+#define braun_precision braun_precision_float
 #endif
+
+/* The library a program runs with, asked at run time (BRAUN_VERSION and
+ * BRAUN_SINGLE say what it was compiled against): braun_version() is the
+ * library's BRAUN_VERSION, "MAJOR.MINOR.PATCH"; braun_precision() its braun_real,
+ * "double" or "float". Static strings, never NULL. Linked to a shared
+ * libbraun, the version may be a later patch of the header's (the soname,
+ * libbraun.so.MAJOR.MINOR, admits no other); the precision is the
+ * program's own, since a program of the other precision does not link
+ * (the link names above). */
+const char *braun_version(void);
+const char *braun_precision(void);
 
 /* ------------------------------------------------------------------ */
 /* Status codes                                                        */

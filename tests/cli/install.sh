@@ -21,6 +21,24 @@ for f in include/braun.h include/braun_models.h include/braun_scene.h include/br
     [ -f "$tmp/opt/braun/$f" ] && ok "installed $f" || no "installed $f"
 done
 pc="$tmp/opt/braun/lib/pkgconfig"
+# needs_braun FILE: 1 if FILE names libbraun*.so in NEEDED.
+needs_braun() { readelf -d "$1" 2>/dev/null | grep -q "NEEDED.*libbraun"; }
+# A program that asks the library it runs with (braun_version,
+# braun_precision) and says what it was compiled against.
+cat > "$tmp/ver.c" <<'C'
+#include <stdio.h>
+#include <braun.h>
+int main(void)
+{
+#ifdef BRAUN_SINGLE
+    const char *compiled = "float";
+#else
+    const char *compiled = "double";
+#endif
+    printf("%s %s %s %s\n", braun_version(), braun_precision(), BRAUN_VERSION, compiled);
+    return 0;
+}
+C
 flags=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs --static braun 2>&1)
 case "$flags" in *"-lbraun"*) ok "pkg-config --libs braun" ;; *) no "pkg-config --libs braun: $flags" ;; esac
 if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror "$top/examples/pendulum.c" $flags -o "$tmp/pendulum" 2>"$tmp/cc.log"; then
@@ -152,6 +170,13 @@ for f in lib/cmake/braun/braunConfig.cmake lib/cmake/braun/braunConfigVersion.cm
 done
 "$P/bin/braun" --version > "$tmp/version.txt" 2>&1
 grep -q "^braun $ver " "$tmp/version.txt" && ok "braun --version: $(cat "$tmp/version.txt")" || no "braun --version: $(cat "$tmp/version.txt")"
+vflags=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs braun 2>&1)
+if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror "$tmp/ver.c" $vflags -o "$tmp/ver-d" 2> "$tmp/vd.log" &&
+   needs_braun "$tmp/ver-d" && out=$(LD_LIBRARY_PATH="$L" "$tmp/ver-d") && [ "$out" = "$ver double $ver double" ]; then
+    ok "a program on libbraun.so.$so: braun_version() $ver, braun_precision() double"
+else
+    no "braun_version()/braun_precision() on libbraun.so: '$out' $(cat "$tmp/vd.log")"
+fi
 mkdir -p "$tmp/anywhere"
 (cd "$tmp/anywhere" && "$P/bin/braun" run four-bar.json --dt 1e-2 --t-end 1 --summary s.json) &&
     grep -q '"scene": "four-bar"' "$tmp/anywhere/s.json" &&
@@ -189,8 +214,6 @@ examples_run() { # examples_run DIR HOW: run the four examples built in DIR
     *) no "$how: backends (exit $rc) $out" ;; esac
 }
 "$P/bin/braun" gen chain 1400 -o "$tmp/chain-1400.json" 2>"$tmp/gen.log" || cat "$tmp/gen.log"
-# needs_braun FILE: 1 if FILE names libbraun*.so in NEEDED.
-needs_braun() { readelf -d "$1" 2>/dev/null | grep -q "NEEDED.*libbraun"; }
 
 cp -r "$P/share/braun/examples" "$tmp/ex-pc-shared"
 cp -r "$P/share/braun/examples" "$tmp/ex-pc-static"
@@ -389,6 +412,12 @@ if make -s -C "$top" BUILD="$sw" OPT=-O0 all > "$tmp/sw.log" 2>&1 &&
         ok "the README example builds through the float braun.pc and runs ($out)"
     else
         no "the README example through the float braun.pc: $(cat "$tmp/pf.log") $out"
+    fi
+    if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror "$tmp/ver.c" $ff -o "$tmp/ver-f" 2> "$tmp/vf.log" &&
+       out=$(LD_LIBRARY_PATH="$F/lib" "$tmp/ver-f") && [ "$out" = "$ver float $ver float" ]; then
+        ok "a program on the float libbraun.so: braun_version() $ver, braun_precision() float"
+    else
+        no "braun_version()/braun_precision() on the float libbraun.so: '$out' $(cat "$tmp/vf.log")"
     fi
     # A tree whose objects its stamp does not describe (simulated: the
     # float tree's stamp says double, older than the objects): install

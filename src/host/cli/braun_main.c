@@ -39,16 +39,12 @@ static int dispatch(int argc, char **argv)
     }
     if (strcmp(cmd, "--version") == 0) {
         if (argc > 2) return braun_cli_error("%s takes no arguments (got '%s')", cmd, argv[2]);
-        /* What this build holds: the precision and the backends. */
+        /* What this build holds: the library's version and precision
+         * (asked of it), and the backends. */
         const int lapack = braun_linsolver_lapack() != NULL;
         const int ss = braun_linsolver_suitesparse() != NULL;
-#ifdef BRAUN_SINGLE
-        const char *precision = "float";
-#else
-        const char *precision = "double";
-#endif
-        printf("braun %s (libbraun %s, %s; backends: dense%s%s)\n", BRAUN_VERSION, BRAUN_VERSION,
-               precision, lapack ? ", lapack" : "", ss ? ", suitesparse" : "");
+        printf("braun %s (libbraun %s, %s; backends: dense%s%s)\n", BRAUN_VERSION, braun_version(),
+               braun_precision(), lapack ? ", lapack" : "", ss ? ", suitesparse" : "");
         return 0;
     }
     /* Every command's --help: alone, the usage (exit 0); with other
