@@ -50,7 +50,7 @@ int main(void)
     if (!st) st = braun_integrate(&data, BRAUN_RK4, 1e-3, 10.0, 0, NULL, NULL);
     braun_real pos, vel, en;
     if (!st) st = braun_residuals(&data, data.t, data.q, data.v, &pos, &vel, &en);
-    if (st) { fprintf(stderr, "%s\n", braun_status_str(st)); return 1; }
+    if (st) { fprintf(stderr, "pendulum: %s\n", braun_status_str(st)); return 1; }
     printf("t = %g  q = (%.9f, %.9f)  |Phi_q| = %.1e  |Phi_e| = %.1e\n",
            (double)data.t, (double)data.q[0], (double)data.q[1], (double)pos, (double)en);
     return 0;

@@ -187,13 +187,13 @@ mkdir -p "$tmp/anywhere"
 # What each example must print (its own checks decide its exit status).
 ref_q=$("$P/bin/braun" run four-bar.json --dt 1e-3 --t-end 10 2>&1 | sed -n 's/^  "final_q": \[\(.*\)\],$/\1/p')
 examples_run() { # examples_run DIR HOW: run the four examples built in DIR
-    d=$1 how=$2
+    d=$1 how=$2     # (against the installation $EP, whose braun gave ref_q)
     out=$("$d/pendulum" 2>&1); rc=$?
     case "$rc:$out" in "0:t = 10 "*) ok "$how: pendulum runs ($out)" ;; *) no "$how: pendulum (exit $rc) $out" ;; esac
     out=$("$d/driven_crank" 2>&1); rc=$?
     [ "$rc" -eq 0 ] && ok "$how: driven_crank runs within its checks ($(echo "$out" | tr '\n' ';' | cut -c1-150))" ||
         no "$how: driven_crank (exit $rc) $out"
-    out=$("$d/scene" "$P/share/braun/data/four-bar.json" 1e-3 10 2>&1); rc=$?
+    out=$("$d/scene" "$EP/share/braun/data/four-bar.json" 1e-3 10 2>&1); rc=$?
     got=$(echo "$out" | sed -n 's/.* q = \(.*\)$/\1/p' | tr ' ' ',')
     if [ "$rc" -eq 0 ] && awk -v a="$got" -v b="$ref_q" 'BEGIN { n = split(a, x, ","); m = split(b, y, ",")
             if (n != 6 || m != 6) exit 1
@@ -214,6 +214,7 @@ examples_run() { # examples_run DIR HOW: run the four examples built in DIR
     *) no "$how: backends (exit $rc) $out" ;; esac
 }
 "$P/bin/braun" gen chain 1400 -o "$tmp/chain-1400.json" 2>"$tmp/gen.log" || cat "$tmp/gen.log"
+EP=$P
 
 cp -r "$P/share/braun/examples" "$tmp/ex-pc-shared"
 cp -r "$P/share/braun/examples" "$tmp/ex-pc-static"
@@ -225,6 +226,21 @@ if make -s -C "$tmp/ex-pc-shared" CFLAGS="-std=c99 -O2 -Wall -Wextra -Wpedantic 
     export LD_LIBRARY_PATH="$L"
     examples_run "$tmp/ex-pc-shared" "pkg-config, shared"
     unset LD_LIBRARY_PATH
+    # A figure beyond its bound: exit 1, and stderr names each figure and
+    # its bound (BOUND_SCALE shrinks them all; it once exited 1 in silence).
+    if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -DBOUND_SCALE=1e-9 $(pkg-config --cflags braun) \
+            "$tmp/ex-pc-shared/driven_crank.c" $(pkg-config --libs braun) -lm -o "$tmp/dc-tight" 2> "$tmp/dct.log"; then
+        LD_LIBRARY_PATH="$L" "$tmp/dc-tight" > /dev/null 2> "$tmp/dct.err"; rc=$?
+        nb=$(grep -c "^driven_crank: .* = .* is not below its bound .* (double)$" "$tmp/dct.err")
+        if [ "$rc" -eq 1 ] && [ "$nb" -eq 5 ] && grep -q "motor: |Phi_q| = " "$tmp/dct.err" &&
+           grep -q "prescribed: max |x_B - exact| = " "$tmp/dct.err"; then
+            ok "driven_crank beyond its bounds: exit 1, each of the 5 figures named with its bound on stderr"
+        else
+            no "driven_crank beyond its bounds (exit $rc): $(cat "$tmp/dct.err")"
+        fi
+    else
+        no "driven_crank with BOUND_SCALE builds"; cat "$tmp/dct.log"
+    fi
 else
     no "pkg-config, shared: the examples build"; cat "$tmp/mk1.log"
 fi
@@ -418,6 +434,31 @@ if make -s -C "$top" BUILD="$sw" OPT=-O0 all > "$tmp/sw.log" 2>&1 &&
         ok "a program on the float libbraun.so: braun_version() $ver, braun_precision() float"
     else
         no "braun_version()/braun_precision() on the float libbraun.so: '$out' $(cat "$tmp/vf.log")"
+    fi
+    # The examples against the float installation: driven_crank's double
+    # bounds (3e-12, 5e-14) made it exit 1 there, with no word.
+    EP=$F
+    ref_q=$("$F/bin/braun" run four-bar.json --dt 1e-3 --t-end 10 2>&1 | sed -n 's/^  "final_q": \[\(.*\)\],$/\1/p')
+    cp -r "$F/share/braun/examples" "$tmp/ex-float-pc"
+    if PKG_CONFIG_SYSROOT_DIR="$tmp/fi" PKG_CONFIG_PATH="$F/lib/pkgconfig" make -s -C "$tmp/ex-float-pc" \
+            CFLAGS="-std=c99 -O2 -Wall -Wextra -Wpedantic -Werror" > "$tmp/mkf.log" 2>&1; then
+        ok "float, pkg-config, shared: the examples build warning-free"
+        export LD_LIBRARY_PATH="$F/lib"
+        examples_run "$tmp/ex-float-pc" "float, pkg-config, shared"
+        unset LD_LIBRARY_PATH
+    else
+        no "float, pkg-config, shared: the examples build"; cat "$tmp/mkf.log"
+    fi
+    if command -v cmake > /dev/null 2>&1; then
+        b="$tmp/ex-float-cmake"
+        if cmake -S "$F/share/braun/examples" -B "$b" -DCMAKE_PREFIX_PATH="$F" -DBRAUN_USE_STATIC_LIBS=ON \
+                -DCMAKE_C_FLAGS="-Wall -Wextra -Wpedantic -Werror" > "$tmp/cmf.log" 2>&1 &&
+           cmake --build "$b" >> "$tmp/cmf.log" 2>&1; then
+            ok "float, CMake, static: the examples build warning-free"
+            examples_run "$b" "float, CMake, static"
+        else
+            no "float, CMake, static: the examples build"; tail -20 "$tmp/cmf.log"
+        fi
     fi
     # A tree whose objects its stamp does not describe (simulated: the
     # float tree's stamp says double, older than the objects): install

@@ -1,0 +1,11 @@
+build-float/obj/src/core/braun_dense.o: src/core/braun_dense.c \
+ src/core/braun_dense.h src/core/braun_linalg.h include/core/braun.h \
+ src/core/braun_math.h src/core/braun_sincos.h \
+ include/core/braun_linsolver.h include/core/braun.h
+src/core/braun_dense.h:
+src/core/braun_linalg.h:
+include/core/braun.h:
+src/core/braun_math.h:
+src/core/braun_sincos.h:
+include/core/braun_linsolver.h:
+include/core/braun.h:

@@ -1,0 +1,12 @@
+build-float/pic/src/core/braun_error.o: src/core/braun_error.c \
+ src/core/braun_internal.h include/core/braun.h src/core/braun_dense.h \
+ src/core/braun_linalg.h src/core/braun_math.h src/core/braun_sincos.h \
+ include/core/braun_linsolver.h include/core/braun.h
+src/core/braun_internal.h:
+include/core/braun.h:
+src/core/braun_dense.h:
+src/core/braun_linalg.h:
+src/core/braun_math.h:
+src/core/braun_sincos.h:
+include/core/braun_linsolver.h:
+include/core/braun.h:
