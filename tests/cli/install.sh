@@ -281,6 +281,57 @@ if command -v cmake > /dev/null 2>&1; then
             ok "CMake: find_package(braun $want) $r" ;;
         *) no "CMake: find_package(braun $want) $r" ;; esac
     done
+    # Components (core, scene, backends; also braun, host): each asked
+    # for is checked and sets braun_<c>_FOUND; a missing or unknown one
+    # fails when required, naming it. find_package(braun COMPONENTS
+    # nonexistent host backends) succeeded: the components were ignored.
+    cmc() { # cmc NAME ARGS...: find_package(braun ARGS) in a project of its own; its log in $tmp/cmc/NAME.log
+        n=$1; shift
+        mkdir -p "$tmp/cmc/$n"
+        printf 'cmake_minimum_required(VERSION 3.13)\nproject(c NONE)\nfind_package(braun %s)\n' "$*" > "$tmp/cmc/$n/CMakeLists.txt"
+        printf 'message(STATUS "braun_FOUND: ${braun_FOUND}")\nforeach(c core braun scene host backends nonexistent)\n  message(STATUS "found ${c}: ${braun_${c}_FOUND}")\nendforeach()\n' >> "$tmp/cmc/$n/CMakeLists.txt"
+        cmake -S "$tmp/cmc/$n" -B "$tmp/cmc/$n/b" -DCMAKE_PREFIX_PATH="${cmc_prefix:-$P}" > "$tmp/cmc/$n.raw" 2>&1
+        r=$?
+        tr '\n' ' ' < "$tmp/cmc/$n.raw" | tr -s ' ' > "$tmp/cmc/$n.log" # (CMake wraps its messages)
+        return $r
+    }
+    if cmc all REQUIRED COMPONENTS core scene backends && grep -q "found core: TRUE" "$tmp/cmc/all.log" &&
+       grep -q "found scene: TRUE" "$tmp/cmc/all.log" && grep -q "found backends: TRUE" "$tmp/cmc/all.log"; then
+        ok "CMake: find_package(braun REQUIRED COMPONENTS core scene backends) sets braun_core_FOUND, _scene_, _backends_"
+    else
+        no "CMake: COMPONENTS core scene backends: $(tail -c 400 "$tmp/cmc/all.log")"
+    fi
+    cmc alias REQUIRED COMPONENTS braun host && grep -q "found host: TRUE" "$tmp/cmc/alias.log" &&
+        ok "CMake: COMPONENTS braun host (the other spellings) found" || no "CMake: COMPONENTS braun host: $(tail -c 400 "$tmp/cmc/alias.log")"
+    cmc unknown COMPONENTS nonexistent host backends
+    if grep -q "braun_FOUND: 0" "$tmp/cmc/unknown.log" && grep -q "unknown component 'nonexistent'" "$tmp/cmc/unknown.log"; then
+        ok "CMake: find_package(braun COMPONENTS nonexistent host backends): not found, 'nonexistent' named"
+    else
+        no "CMake: COMPONENTS nonexistent host backends: $(tail -c 400 "$tmp/cmc/unknown.log")"
+    fi
+    if cmc unknown-req REQUIRED COMPONENTS nonexistent; then
+        no "CMake: find_package(braun REQUIRED COMPONENTS nonexistent) configures"
+    elif grep -q "unknown component 'nonexistent'" "$tmp/cmc/unknown-req.log"; then
+        ok "CMake: find_package(braun REQUIRED COMPONENTS nonexistent) stops, naming 'nonexistent'"
+    else
+        no "CMake: REQUIRED COMPONENTS nonexistent: $(tail -c 400 "$tmp/cmc/unknown-req.log")"
+    fi
+    cmc optional COMPONENTS core OPTIONAL_COMPONENTS nonexistent && grep -q "found nonexistent: FALSE" "$tmp/cmc/optional.log" &&
+        ok "CMake: OPTIONAL_COMPONENTS nonexistent: found, braun_nonexistent_FOUND false" ||
+        no "CMake: OPTIONAL_COMPONENTS nonexistent: $(tail -c 400 "$tmp/cmc/optional.log")"
+    # An installation without the backends' library (a copy of it).
+    cp -r "$P" "$tmp/partial"
+    rm -f "$tmp/partial/lib/libbraun_backends.so.$ver"
+    cmc_prefix=$tmp/partial
+    if cmc partial REQUIRED COMPONENTS backends; then
+        no "CMake: COMPONENTS backends found without libbraun_backends.so.$ver"
+    elif grep -q "component backends: .*libbraun_backends.so.$ver is missing" "$tmp/cmc/partial.log" &&
+         cmc partial-scene REQUIRED COMPONENTS scene; then
+        ok "CMake: COMPONENTS backends fails naming the missing libbraun_backends.so.$ver; COMPONENTS scene is found"
+    else
+        no "CMake: a missing backends library: $(tail -c 400 "$tmp/cmc/partial.log")"
+    fi
+    unset cmc_prefix
 else
     no "CMake: cmake not found (Debian: apt-get install cmake)"
 fi
