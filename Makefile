@@ -178,7 +178,8 @@ convergence: $(BUILD)/bin/braun
 # ---------------------------------------------------------------- install
 # Headers flat under include/, the three archives, pkg-config files from
 # their .pc.in templates (braun, braun-host, braun-backends), the tool.
-PC_SUBST = sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' \
+# The .pc files name no PREFIX: prefix=${pcfiledir}/../.. (relocatable).
+PC_SUBST = sed -e 's|@VERSION@|$(VERSION)|g' \
                -e 's|@BACKEND_LDLIBS@|$(BACKEND_LDLIBS)|g' \
                -e 's|@PRECISION_CFLAGS@|$(if $(filter float,$(PRECISION)), -DBRAUN_SINGLE,)|g'
 # What is installed is of the precision the pkg-config and CMake files

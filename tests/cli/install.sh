@@ -41,6 +41,17 @@ int main(void)
 C
 flags=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs --static braun 2>&1)
 case "$flags" in *"-lbraun"*) ok "pkg-config --libs braun" ;; *) no "pkg-config --libs braun: $flags" ;; esac
+# The DESTDIR flow of the README: -I and -L are the staging directory's
+# (the sysroot prefixed once, or not at all to a path already in it).
+realdir() { (cd "$1" 2>/dev/null && pwd -P); }
+fi_=$(echo "$flags" | tr ' ' '\n' | sed -n 's/^-I//p' | head -1)
+fl_=$(echo "$flags" | tr ' ' '\n' | sed -n 's/^-L//p' | head -1)
+if [ -n "$fi_" ] && [ "$(realdir "$fi_")" = "$(realdir "$tmp/opt/braun/include")" ] &&
+   [ "$(realdir "$fl_")" = "$(realdir "$tmp/opt/braun/lib")" ]; then
+    ok "pkg-config under PKG_CONFIG_SYSROOT_DIR: -I and -L are the staging directory's"
+else
+    no "pkg-config under PKG_CONFIG_SYSROOT_DIR: $flags"
+fi
 if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror "$top/examples/pendulum.c" $flags -o "$tmp/pendulum" 2>"$tmp/cc.log"; then
     ok "README example compiles warning-free against the installed library"
     out=$(LD_LIBRARY_PATH="$tmp/opt/braun/lib" "$tmp/pendulum"); rc=$?
@@ -84,6 +95,7 @@ if ${CC:-cc} -std=c99 -Wall -Wextra -Werror "$tmp/sel.c" $bflags -o "$tmp/sel" 2
     # tool says whether it is), the built-in kernels otherwise.
     if "$tmp/opt/braun/bin/braun" run slider-crank --dt 1e-3 --t-end 0.01 --backend lapack >/dev/null 2>&1
     then want="0 lapack"; else want="0 dense"; fi
+    sel_want=$want
     out=$(LD_LIBRARY_PATH="$tmp/opt/braun/lib" "$tmp/sel")
     case "$out" in "$want") ok "a program links the installed backends (auto for a dense n = 100: $out)" ;;
     *) no "backend selection output: $out" ;; esac
@@ -534,6 +546,37 @@ if make -s -C "$top" BUILD="$sw" OPT=-O0 all > "$tmp/sw.log" 2>&1 &&
 else
     no "a tree built in double: make BRAUN_SINGLE=1 install"; tail -20 "$tmp/sw.log"
 fi
+# ------------------------------------------------------------ a moved installation
+# The .pc files said prefix=/opt/braun: an installation copied elsewhere
+# (a relocated package, a staging directory used as it is) gave
+# -I/opt/braun/include. Now they find it from their own place.
+M=$tmp/moved/somewhere/else
+mkdir -p "$(dirname "$M")" && cp -a "$P" "$M"
+if grep -q "/opt/braun" "$M"/lib/pkgconfig/*.pc; then
+    no "the installed .pc files name the PREFIX: $(grep -h "/opt/braun" "$M"/lib/pkgconfig/*.pc | head -2)"
+else
+    ok "the installed .pc files name no PREFIX (prefix=\${pcfiledir}/../..)"
+fi
+mflags=$(PKG_CONFIG_PATH="$M/lib/pkgconfig" pkg-config --cflags --libs braun-backends 2>&1)
+mlib=$(PKG_CONFIG_PATH="$M/lib/pkgconfig" pkg-config --variable=libdir braun 2>&1)
+if [ "$(cd "$mlib" 2>/dev/null && pwd -P)" = "$(cd "$M/lib" && pwd -P)" ] &&
+   ${CC:-cc} -std=c99 -Wall -Wextra -Werror "$tmp/sel.c" $mflags -o "$tmp/sel-moved" 2> "$tmp/mv.log" &&
+   out=$(LD_LIBRARY_PATH="$M/lib" "$tmp/sel-moved") && [ "$out" = "${sel_want:-}" ]; then
+    ok "a moved installation: pkg-config gives its own paths; a backends program builds and runs ($out)"
+else
+    no "a moved installation: libdir $mlib, flags $mflags, $(cat "$tmp/mv.log") $out"
+fi
+# Its examples' Makefile, STATIC=1 without LIBDIR: the archives found through
+# pkg-config --variable=libdir.
+cp -r "$M/share/braun/examples" "$tmp/ex-moved"
+if PKG_CONFIG_PATH="$M/lib/pkgconfig" make -s -C "$tmp/ex-moved" STATIC=1 \
+        CFLAGS="-std=c99 -O2 -Wall -Wextra -Wpedantic -Werror" > "$tmp/mvx.log" 2>&1 &&
+   out=$("$tmp/ex-moved/pendulum") && case "$out" in "t = 10 "*) true ;; *) false ;; esac; then
+    ok "a moved installation: the examples build with STATIC=1 alone and run ($out)"
+else
+    no "a moved installation: the examples with STATIC=1: $(tail -5 "$tmp/mvx.log") $out"
+fi
+
 # PREFIX and DESTDIR with spaces: installed there and removed again, no stray
 # directories in the tree (the unquoted paths were split into words).
 sp="$tmp/st age"
