@@ -181,6 +181,7 @@ convergence: $(BUILD)/bin/braun
 # The .pc files name no PREFIX: prefix=${pcfiledir}/../.. (relocatable).
 PC_SUBST = sed -e 's|@VERSION@|$(VERSION)|g' \
                -e 's|@BACKEND_LDLIBS@|$(BACKEND_LDLIBS)|g' \
+               -e 's|@BACKEND_STATIC_LDLIBS@|$(BACKEND_STATIC_LDLIBS)|g' \
                -e 's|@PRECISION_CFLAGS@|$(if $(filter float,$(PRECISION)), -DBRAUN_SINGLE,)|g'
 # What is installed is of the precision the pkg-config and CMake files
 # name: each archive and the tool are checked by their link names

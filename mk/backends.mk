@@ -28,6 +28,12 @@ BACKEND_LDLIBS := -lspqr -lcholmod -lsuitesparseconfig $(filter-out -llapack -lb
 BACKEND_DEPS += libsuitesparse-dev
 endif
 BACKEND_OBJ := $(BACKEND_SRC:%.c=$(BUILD)/obj/%.o)
+# What a static link of the backends needs (braun-backends.pc's
+# Libs.private): BACKEND_LDLIBS and, transitively, every library they need
+# by their shared libraries' DT_NEEDED (tools/static-libs; on Debian 12
+# AMD, CAMD, COLAMD, CCOLAMD, METIS, libgomp, libgfortran, libquadmath).
+# Evaluated at make install only.
+BACKEND_STATIC_LDLIBS = $(if $(strip $(BACKEND_LDLIBS)),$(shell CC="$(CC)" tools/static-libs $(BACKEND_LDLIBS)))
 
 $(BACKEND_OBJ): CPPFLAGS_ALL += $(BACKEND_CPPFLAGS)
 $(BACKEND_OBJ): | deps-backends

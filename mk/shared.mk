@@ -114,7 +114,9 @@ uninstall:
 # and run against a DESTDIR installation with pkg-config and with CMake,
 # statically and dynamically (tests/cli/install.sh, in make test).
 TEST_PREREQS += $(SHARED_LIBS)
-INSTALL_TEST_DEPS := cmake pkgconf binutils
+# (libmetis-dev: -lmetis in braun-backends.pc's Libs.private, which lists
+# only what the linker finds; Debian 12 ships it without libmetis.a)
+INSTALL_TEST_DEPS := cmake pkgconf binutils libmetis-dev
 deps-test: deps-install-test
 deps-install-test:
 	@tools/ensure-deps $(INSTALL_TEST_DEPS)

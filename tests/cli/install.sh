@@ -103,6 +103,53 @@ else
     no "a program links the installed backends"; cat "$tmp/cc2.log"
 fi
 
+# A static link of the backends: Libs.private lists every library they
+# need, transitively (it listed SuiteSparse's and LAPACK's own five, so
+# AMD, COLAMD, libgomp, libgfortran, ... were undefined). Fully static
+# (-static): what stays undefined must come only from libraries with no
+# static archive here (Debian 12: METIS, whose libmetis-dev ships none).
+sflags=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --static --cflags --libs braun-backends 2>&1)
+keep="" noa=""
+for f in $sflags; do
+    case $f in
+    -lbraun*) keep="$keep $f" ;;
+    -l*) a=$(${CC:-cc} -print-file-name="lib${f#-l}.a")
+         case $a in */*) [ -e "$a" ] && { keep="$keep $f"; continue; } ;; esac
+         noa="$noa ${f#-l}" ;;
+    *) keep="$keep $f" ;;
+    esac
+done
+if ${CC:-cc} -static -std=c99 "$top/examples/backends.c" $keep -o "$tmp/backends-static" 2> "$tmp/static.log"; then
+    out=$("$tmp/backends-static" 2>&1)
+    case "$out" in "chain of 30 links"*) ok "a fully static program (-static) links the backends through pkg-config --static and runs ($out)" ;;
+    *) no "the fully static backends program: $out" ;; esac
+else
+    undef=$(grep -o "undefined reference to .[A-Za-z0-9_]*'" "$tmp/static.log" | sed "s/.* .\\(.*\\)'/\\1/" | sort -u)
+    # What the libraries named in the .pc without a static archive define
+    # may stay undefined.
+    defs=""
+    for n in $noa; do
+        so=$(${CC:-cc} -print-file-name="lib$n.so")
+        case $so in */*) defs="$defs $(nm -D --defined-only "$so" | awk '{ print $3 }' | tr '\n' ' ')" ;; esac
+    done
+    stray=""
+    for u in $undef; do case " $defs " in *" $u "*) ;; *) stray="$stray $u" ;; esac; done
+    if [ -n "$undef" ] && [ -z "$stray" ]; then
+        ok "a fully static link of the backends lacks only what comes from libraries with no static archive here ($noa):$(echo $undef | cut -c1-80)"
+    else
+        no "a fully static link of the backends: undefined beyond the libraries without an archive ($noa):$(echo $stray | cut -c1-300) $(grep -v "undefined reference\|in function" "$tmp/static.log" | head -3)"
+    fi
+fi
+
+# The host tier (and the core with it) links fully static.
+hsflags=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --static --cflags --libs braun-host 2>&1)
+if ${CC:-cc} -static -std=c99 "$top/examples/scene.c" $hsflags -o "$tmp/scene-static" 2> "$tmp/hstatic.log" &&
+   out=$("$tmp/scene-static" "$top/data/four-bar.json" 1e-3 1 2>&1) && case "$out" in "four-bar: t = 1, 1000 steps"*) true ;; *) false ;; esac; then
+    ok "a fully static program (-static) links the host library through pkg-config --static and runs"
+else
+    no "a fully static host program: $(head -3 "$tmp/hstatic.log") $out"
+fi
+
 # ------------------------------------------------------------ shared libraries
 P=$tmp/opt/braun
 L=$P/lib
