@@ -192,5 +192,14 @@ else
         "$(head -c 300 "$TMP/scene_c.err")"
 fi
 
+# The same program in float, -Wconversion: its literals are BRAUN_R(x)
+# (9.81 and 1e-3 were doubles converted to float, which -Wconversion flags).
+if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Wconversion -Werror -DBRAUN_SINGLE -I"$TOP/include/core" \
+        -c "$TMP/scene_c.c" -o "$TMP/scene_c_float.o" 2> "$TMP/scene_cf.err"; then
+    ok "docs/scene-format.md's Scenes in C compiles in float with -Wconversion -Werror"
+else
+    not_ok "docs/scene-format.md's Scenes in C in float with -Wconversion" "$(head -c 300 "$TMP/scene_cf.err")"
+fi
+
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]
