@@ -121,3 +121,11 @@ deps-test: deps-install-test
 deps-install-test:
 	@tools/ensure-deps $(INSTALL_TEST_DEPS)
 .PHONY: deps-install-test
+
+# The ABI of the public headers against the record of this minor version
+# (tests/abi/check.sh); after a new minor version, `make abi-record`
+# writes the new record (tools/abi-record: x86-64, gcc).
+TEST_SUITES += "sh tests/abi/check.sh"
+.PHONY: abi-record
+abi-record:
+	CC=gcc tools/abi-record include/core include/host > tests/abi/abi-$(SOVERSION).txt

@@ -51,7 +51,12 @@ typedef double braun_real;
  * of the library comes out as with the f suffix). */
 #define BRAUN_R(x) ((braun_real)(x))
 
-#define BRAUN_VERSION "0.1.0"
+/* The one place the version is written: the Makefile derives the .pc
+ * files' and CMake package's versions, the sonames (libbraun.so.MAJOR.MINOR)
+ * and the symbol version node (BRAUN_MAJOR.MINOR) from it; braun_version()
+ * and braun --version print it (tests/cli/install.sh checks they agree,
+ * tests/abi/check.sh that the ABI is this minor version's record). */
+#define BRAUN_VERSION "0.2.0"
 
 /* Link names. A program compiled for one precision and linked with a
  * library built for the other would hand every struct and array over at

@@ -228,7 +228,46 @@ for f in lib/cmake/braun/braunConfig.cmake lib/cmake/braun/braunConfigVersion.cm
     [ -f "$P/$f" ] && ok "installed $f" || no "installed $f"
 done
 "$P/bin/braun" --version > "$tmp/version.txt" 2>&1
-grep -q "^braun $ver " "$tmp/version.txt" && ok "braun --version: $(cat "$tmp/version.txt")" || no "braun --version: $(cat "$tmp/version.txt")"
+grep -q "^braun $ver (libbraun $ver, " "$tmp/version.txt" && ok "braun --version: $(cat "$tmp/version.txt")" ||
+    no "braun --version: $(cat "$tmp/version.txt") (want braun $ver (libbraun $ver, ...)"
+# ------------------------------------------------------------ one version
+# BRAUN_VERSION (include/core/braun.h) is the one place the version is
+# written; every other place derives from it and agrees with it (0.1.0's
+# ABI changed while all of them said 0.1: tests/abi/check.sh). Here: the
+# header, braun --version (above), braun_version() (below), the three .pc
+# files, the CMake version file, the sonames and the symbol version node,
+# the versions the docs and examples ask for, the CHANGELOG's release.
+bad=""
+for m in braun braun-host braun-backends; do
+    mv_=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --modversion "$m" 2>&1)
+    [ "$mv_" = "$ver" ] || bad="$bad $m.pc:$mv_"
+done
+grep -q "^set(PACKAGE_VERSION \"$ver\")" "$L/cmake/braun/braunConfigVersion.cmake" || bad="$bad braunConfigVersion.cmake"
+grep -q "^set(braun_VERSION \"$ver\")" "$L/cmake/braun/braunConfig.cmake" || bad="$bad braunConfig.cmake"
+for l in libbraun libbraun_host libbraun_backends; do
+    sn=$(readelf -d "$L/$l.so.$ver" 2>/dev/null | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p')
+    [ "$sn" = "$l.so.$so" ] || bad="$bad $l-soname:$sn"
+    nodes=$(readelf -V --wide "$L/$l.so.$ver" 2>/dev/null | grep -o 'BRAUN_[0-9][0-9.]*' | sort -u | tr '\n' ' ')
+    [ "$nodes" = "BRAUN_$so " ] || bad="$bad $l-version-nodes:$nodes"
+done
+[ -z "$bad" ] && ok "version $ver everywhere: braun.h, the three .pc files, the CMake files, sonames *.so.$so, symbol version BRAUN_$so" ||
+    no "version $ver (braun.h) disagrees with:$bad"
+# What the docs and examples ask for and show.
+bad=""
+for f in README.md docs/api.md examples/CMakeLists.txt; do
+    for w in $(grep -o 'find_package(braun [0-9][0-9.]*' "$top/$f" | sed 's/.* //' | sort -u); do
+        [ "$w" = "$so" ] || bad="$bad $f:find_package(braun $w)"
+    done
+done
+grep -q "braun $ver (libbraun $ver, " "$top/docs/cli.md" || bad="$bad docs/cli.md:--version"
+rel=$(sed -n 's/^## \([0-9][0-9.]*\) .*/\1/p' "$top/CHANGELOG.md" | head -1)
+[ "$rel" = "$ver" ] || bad="$bad CHANGELOG.md:latest-release-$rel"
+[ -z "$bad" ] && ok "the docs, the examples' find_package and the CHANGELOG's latest release say $ver ($so)" ||
+    no "docs and examples disagree with $ver:$bad"
+# No other file writes the version itself.
+others=$(cd "$top" && grep -rlF "$ver" Makefile mk cmake ./*.pc.in src include tools examples 2>/dev/null | grep -v '^include/core/braun.h$' | tr '\n' ' ')
+[ -z "$others" ] && ok "the version $ver is written in include/core/braun.h alone (Makefile, mk, cmake, .pc.in, src, tools, examples derive it)" ||
+    no "the version $ver is also written in: $others"
 vflags=$(PKG_CONFIG_SYSROOT_DIR="$tmp" PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs braun 2>&1)
 if ${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror "$tmp/ver.c" $vflags -o "$tmp/ver-d" 2> "$tmp/vd.log" &&
    needs_braun "$tmp/ver-d" && out=$(LD_LIBRARY_PATH="$L" "$tmp/ver-d") && [ "$out" = "$ver double $ver double" ]; then
@@ -319,7 +358,7 @@ if command -v cmake > /dev/null 2>&1; then
         if cmake -S "$P/share/braun/examples" -B "$b" -DCMAKE_PREFIX_PATH="$P" -DBRAUN_USE_STATIC_LIBS=$flag \
                 -DCMAKE_C_FLAGS="-Wall -Wextra -Wpedantic -Werror" > "$tmp/cm-$kind.log" 2>&1 &&
             cmake --build "$b" >> "$tmp/cm-$kind.log" 2>&1; then
-            ok "CMake, $kind: find_package(braun 0.1) and braun::braun, braun::scene, braun::backends build the examples"
+            ok "CMake, $kind: find_package(braun $so) and braun::braun, braun::scene, braun::backends build the examples"
             if [ "$kind" = shared ]; then
                 needs_braun "$b/pendulum" && ok "CMake, shared: the programs load libbraun.so.$so" || no "CMake, shared: no libbraun.so"
             else
@@ -331,15 +370,22 @@ if command -v cmake > /dev/null 2>&1; then
             no "CMake, $kind: the examples build"; tail -20 "$tmp/cm-$kind.log"
         fi
     done
-    # The version file: 0.1 and the exact version are met; 0.2, 1.0 and 0.0 are not.
+    # The version file (0.x: the same minor version only): MAJOR.MINOR and
+    # the exact version are met; the next minor and major, the previous
+    # minors and a later patch are not (all derived from BRAUN_VERSION).
     mkdir -p "$tmp/cmv"
-    for want in "$so" "$ver" 0.2 1.0 0.0; do
-        printf 'cmake_minimum_required(VERSION 3.13)\nproject(v C)\nfind_package(braun %s REQUIRED)\n' "$want" > "$tmp/cmv/CMakeLists.txt"
-        if cmake -S "$tmp/cmv" -B "$tmp/cmv/b-$want" -DCMAKE_PREFIX_PATH="$P" > /dev/null 2>&1; then r=found; else r=refused; fi
-        case "$want:$r" in "$so:found"|"$ver:found"|0.2:refused|1.0:refused|0.0:refused)
-            ok "CMake: find_package(braun $want) $r" ;;
-        *) no "CMake: find_package(braun $want) $r" ;; esac
+    vmaj=${ver%%.*} vmin=$(echo "$ver" | cut -d. -f2) vpat=$(echo "$ver" | cut -d. -f3)
+    refuse="$vmaj.$((vmin + 1)) $((vmaj + 1)).0 $vmaj.$vmin.$((vpat + 1))"
+    [ "$vmin" -gt 0 ] && refuse="$refuse $vmaj.$((vmin - 1))"
+    [ "$vmin" -gt 1 ] && refuse="$refuse $vmaj.0"
+    for want in "$so" "$ver" $refuse; do
+        printf 'cmake_minimum_required(VERSION 3.13)\nproject(v NONE)\nfind_package(braun %s REQUIRED)\nmessage(STATUS "braun_VERSION: ${braun_VERSION}")\n' "$want" > "$tmp/cmv/CMakeLists.txt"
+        if cmake -S "$tmp/cmv" -B "$tmp/cmv/b-$want" -DCMAKE_PREFIX_PATH="$P" > "$tmp/cmv/$want.log" 2>&1; then r=found; else r=refused; fi
+        if [ "$want" = "$so" ] || [ "$want" = "$ver" ]; then expect=found; else expect=refused; fi
+        [ "$r" = "$expect" ] && ok "CMake: find_package(braun $want) $r" || no "CMake: find_package(braun $want) $r (want $expect)"
     done
+    grep -q "braun_VERSION: $ver\$" "$tmp/cmv/$so.log" && ok "CMake: braun_VERSION is $ver" ||
+        no "CMake: braun_VERSION: $(grep braun_VERSION "$tmp/cmv/$so.log")"
     # Components (core, scene, backends; also braun, host): each asked
     # for is checked and sets braun_<c>_FOUND; a missing or unknown one
     # fails when required, naming it. find_package(braun COMPONENTS
