@@ -1,6 +1,0 @@
-build-float/obj/src/host/reference/braun_reference.o: \
- src/host/reference/braun_reference.c include/host/braun_reference.h \
- include/core/braun_models.h include/core/braun.h
-include/host/braun_reference.h:
-include/core/braun_models.h:
-include/core/braun.h:

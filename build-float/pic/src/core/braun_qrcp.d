@@ -1,7 +1,0 @@
-build-float/pic/src/core/braun_qrcp.o: src/core/braun_qrcp.c \
- src/core/braun_linalg.h include/core/braun.h src/core/braun_math.h \
- src/core/braun_sincos.h
-src/core/braun_linalg.h:
-include/core/braun.h:
-src/core/braun_math.h:
-src/core/braun_sincos.h:

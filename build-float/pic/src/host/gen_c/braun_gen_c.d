@@ -1,8 +1,0 @@
-build-float/pic/src/host/gen_c/braun_gen_c.o: \
- src/host/gen_c/braun_gen_c.c include/host/braun_scene_file.h \
- include/core/braun_scene.h include/core/braun.h \
- src/host/common/braun_c_locale.h
-include/host/braun_scene_file.h:
-include/core/braun_scene.h:
-include/core/braun.h:
-src/host/common/braun_c_locale.h:
