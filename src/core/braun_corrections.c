@@ -102,13 +102,18 @@ static int allowance_in_use(const braun_data *d, braun_real r0, braun_real scale
  * that start (too far off for the corrections, or the step too large to
  * remove its error), and the failure says so: `where` names it and
  * d->error.index2 is the start's largest position row. A rare path. */
-static BRAUN_NOINLINE int worst_row(braun_data *d, int count, const braun_real *r, int velocity)
+static int largest_entry(int count, const braun_real *r)
 {
-    braun_priv *pv = braun__priv(d);
     int at = 0;
     for (int i = 1; i < count; i++)
         if (braun_fabs(r[i]) > braun_fabs(r[at])) at = i;
-    d->error.index = at;
+    return at;
+}
+
+static BRAUN_NOINLINE int worst_row(braun_data *d, int count, const braun_real *r, int velocity)
+{
+    braun_priv *pv = braun__priv(d);
+    d->error.index = largest_entry(count, r);
     if (allowance_in_use(d, d->guard.pos0, d->guard.pos) ||
         (velocity && pv->vel_induced0 > 0 && allowance_in_use(d, d->guard.vel0, d->guard.vel))) {
         d->error.where = velocity ? "accuracy guard: velocity residual |[dPhi_q; Phi_v]| (a start off its "
@@ -670,6 +675,27 @@ int braun__energy_at_end(braun_data *d, braun_real t1, const braun_real *y1)
  * fastest one's speed, and an energy scale grown from that let a chain's
  * energy law drift by 2.2 J before the guard saw it (chain-5, RK4,
  * h = 1e-2). Scratch: pv->ce, pv->tmp (free wherever the guard runs). */
+/* The scales from each coordinate's size sq and speed sv (n entries):
+ * pos = Σ_i Σ_j |A_ij| sq_j over the holonomic rows, vel the same with sv
+ * over all rows, energy = max(e_floor, ½ s_vᵀ M s_v = ½ ‖R s_v‖² — again:
+ * ½ vᵀ M v —, |∫Ė|). scratch (n) may be sq: it is written last. */
+static void scales_of(braun_data *d, const braun_real *sq, const braun_real *sv, int again,
+                      braun_real e_floor, braun_real *scratch, braun_real *pos_out,
+                      braun_real *vel_out, braun_real *energy_out)
+{
+    braun_priv *pv = braun__priv(d);
+    braun_real pos = 0, vel = 0;
+    for (int i = 0; i < pv->m; i++) pos += braun__row_abs_dot(pv, i, sq);
+    for (int i = 0; i < pv->rows; i++) vel += braun__row_abs_dot(pv, i, sv);
+    braun__mul_r(pv, again ? pv->at.v : sv, scratch);
+    const braun_real T = BRAUN_R(0.5) * braun_dot(pv->n, scratch, scratch);
+    braun_real energy = e_floor > T ? e_floor : T;
+    if (braun_fabs(pv->at.W) > energy) energy = braun_fabs(pv->at.W);
+    *pos_out = pos;
+    *vel_out = vel;
+    *energy_out = energy > 0 ? energy : BRAUN_R(1e-30);
+}
+
 static void measure_scales_sized(braun_data *d, int accel, int again, braun_real *pos_out,
                                  braun_real *vel_out, braun_real *energy_out);
 
@@ -681,7 +707,7 @@ static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_
         return;
     }
     braun_priv *pv = braun__priv(d);
-    const int n = pv->n, m = pv->m, rows = pv->rows;
+    const int n = pv->n, rows = pv->rows;
     const braun_real *q = pv->at.q, *v = pv->at.v;
     braun_real *sq = pv->ce, *sv = pv->tmp;
     braun_real L = BRAUN_R(1e-6), V = 0;
@@ -711,18 +737,8 @@ static void measure_scales(braun_data *d, int accel, int again, braun_real *pos_
         sq[j] = braun_fabs(q[j]) > L ? braun_fabs(q[j]) : L;
         sv[j] = braun_fabs(v[j]) > V ? braun_fabs(v[j]) : V;
     }
-    braun_real pos = 0, vel = 0;
-    for (int i = 0; i < m; i++) pos += braun__row_abs_dot(pv, i, sq);
-    for (int i = 0; i < rows; i++) vel += braun__row_abs_dot(pv, i, sv);
-    /* ½ s_vᵀ M s_v = ½ ‖R s_v‖² (again: ½ vᵀ M v). */
-    braun__mul_r(pv, again ? v : sv, sq);
-    const braun_real T = BRAUN_R(0.5) * braun_dot(n, sq, sq);
     /* The energy the scene holds: E0, the kinetic scale, the work done. */
-    braun_real energy = braun_fabs(d->E0) > T ? braun_fabs(d->E0) : T;
-    if (braun_fabs(pv->at.W) > energy) energy = braun_fabs(pv->at.W);
-    *pos_out = pos;
-    *vel_out = vel;
-    *energy_out = energy > 0 ? energy : BRAUN_R(1e-30);
+    scales_of(d, sq, sv, again, braun_fabs(d->E0), sq, pos_out, vel_out, energy_out);
 }
 
 /* The same with the system's natural sizes s_q = sys.q_scale (braun.h):
@@ -746,7 +762,7 @@ static void measure_scales_sized(braun_data *d, int accel, int again, braun_real
                                  braun_real *vel_out, braun_real *energy_out)
 {
     braun_priv *pv = braun__priv(d);
-    const int n = pv->n, m = pv->m, rows = pv->rows;
+    const int n = pv->n, rows = pv->rows;
     const braun_real *q_scale = d->model->sys.q_scale, *v = pv->at.v;
     braun_real *sa = pv->ce, *sv = pv->tmp;
     /* T_q = ½ s_qᵀ M s_q, T = ½ vᵀ M v. */
@@ -769,15 +785,7 @@ static void measure_scales_sized(braun_data *d, int accel, int again, braun_real
         if (a > 0 && c > W * a) W = c / a;
     }
     for (int j = 0; j < n; j++) sv[j] = braun_fabs(v[j]) > W * q_scale[j] ? braun_fabs(v[j]) : W * q_scale[j];
-    braun_real pos = 0, vel = 0;
-    for (int i = 0; i < m; i++) pos += braun__row_abs_dot(pv, i, q_scale);
-    for (int i = 0; i < rows; i++) vel += braun__row_abs_dot(pv, i, sv);
-    braun__mul_r(pv, again ? v : sv, sa);
-    braun_real energy = BRAUN_R(0.5) * braun_dot(n, sa, sa);
-    if (braun_fabs(pv->at.W) > energy) energy = braun_fabs(pv->at.W);
-    *pos_out = pos;
-    *vel_out = vel;
-    *energy_out = energy > 0 ? energy : BRAUN_R(1e-30);
+    scales_of(d, q_scale, sv, again, 0, sa, pos_out, vel_out, energy_out);
 }
 
 /* The scales at the state braun_set_state gave (the first step's forward
@@ -795,13 +803,7 @@ void braun__guard_scales(braun_data *d, const braun_real *vdot)
     pv->vel_induced0 = 0;
     pv->start_row = -1;
     pv->start_off = start_off_positions(d);
-    if (pv->start_off) {
-        /* Off its position constraints: the row a refusal names. */
-        int at = 0;
-        for (int i = 1; i < pv->m; i++)
-            if (braun_fabs(pv->phi[i]) > braun_fabs(pv->phi[at])) at = i;
-        pv->start_row = at;
-    }
+    if (pv->start_off) pv->start_row = largest_entry(pv->m, pv->phi); /* the row a refusal names */
 }
 
 /* The scales measured again at the point, each kept when larger. */

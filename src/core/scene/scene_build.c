@@ -317,6 +317,21 @@ int braun_scene_build(braun_scene *s, braun_system *sys, braun_scene_error *err)
     return BRAUN_OK;
 }
 
+/* A body's initial coordinates and velocities (its class's dof of each,
+ * into q and v): its class's own rule (a rigid3d's normalised quaternion
+ * and its rate from ω), else q0 and v0 as given. */
+static void body_initial(const braun_scene_body *b, braun_real *q, braun_real *v)
+{
+    if (b->kind->initial) {
+        b->kind->initial(b, q, v);
+        return;
+    }
+    for (int i = 0; i < b->kind->dof; i++) {
+        q[i] = b->q0[i];
+        v[i] = b->v0[i];
+    }
+}
+
 void braun_scene__system(braun_scene *s, braun_system *sys)
 {
     sys->n = s->n;
@@ -342,13 +357,8 @@ void braun_scene__system(braun_scene *s, braun_system *sys)
         /* The initial state into the storage, then the sizes over it
          * (braun_scene_natural_sizes reads all of q before it writes). */
         for (int k = 0; k < s->nbodies; k++) {
-            const braun_scene_body *b = &s->bodies[k];
-            if (b->kind->initial) {
-                braun_real v[BRAUN_SCENE_MAX_DOF];
-                b->kind->initial(b, s->q_scale + b->iq, v);
-            } else {
-                for (int i = 0; i < b->kind->dof; i++) s->q_scale[b->iq + i] = b->q0[i];
-            }
+            braun_real v[BRAUN_SCENE_MAX_DOF];
+            body_initial(&s->bodies[k], s->q_scale + s->bodies[k].iq, v);
         }
         if (braun_scene_natural_sizes(s, s->q_scale, s->q_scale) == BRAUN_OK) sys->q_scale = s->q_scale;
     }
@@ -361,17 +371,6 @@ int braun_scene_initial_state(const braun_scene *s, braun_real *q, braun_real *v
         const braun_scene_body *b = &s->bodies[k];
         if (!b->kind || b->iq < 0 || b->iq + b->kind->dof > s->n) return BRAUN_ERR_ARGUMENT;
     }
-    for (int k = 0; k < s->nbodies; k++) {
-        const braun_scene_body *b = &s->bodies[k];
-        if (b->kind->initial) {
-            b->kind->initial(b, q + b->iq, v + b->iq);
-            continue;
-        }
-        const int dim = b->kind->dof;
-        for (int i = 0; i < dim; i++) {
-            q[b->iq + i] = b->q0[i];
-            v[b->iq + i] = b->v0[i];
-        }
-    }
+    for (int k = 0; k < s->nbodies; k++) body_initial(&s->bodies[k], q + s->bodies[k].iq, v + s->bodies[k].iq);
     return BRAUN_OK;
 }
